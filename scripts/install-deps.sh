@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Installs ContactLab's build, test and figure dependencies from Debian 12 packages.
+# Does nothing when everything is present; uses sudo when not root.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config git
+  libeigen3-dev libtbb-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev zlib1g-dev
+  libfcl-dev liboctomap-dev libccd-dev
+  libcgal-dev libgmp-dev libmpfr-dev libboost-dev
+  libbullet-dev
+  libspectra-dev libnanoflann-dev libspnav-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  python3 python3-numpy python3-matplotlib python3-yaml
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}" >&2
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"

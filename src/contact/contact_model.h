@@ -1,0 +1,67 @@
+// The common contact interface (DESIGN.md): every model — the paper's pointshell-vs-field
+// model and each baseline — answers one query per haptic cycle through it.
+//
+// Conventions. Body A is the pointshell (or first) body, B the distance-field (or second)
+// body. The result is the wrench ON B, torque about B's origin, world frame, SI units. Its
+// gradient K_B is d(wrench on B)/d(pose of B) for the perturbation X_WB -> (exp([dθ]) R_WB,
+// p_WB + dx) with dx, dθ in world coordinates, ordered (dx, dθ) and (force, torque).
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <string_view>
+
+#include "geometry/pose.h"
+
+namespace contactlab {
+
+struct ReducedState;  // deform/: reduced coordinates q of a deformable body
+
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+struct Wrench {
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();   // newtons
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();  // newton metres
+  Vector6d AsVector() const {
+    Vector6d v;
+    v << force, torque;
+    return v;
+  }
+};
+
+struct ContactStats {
+  std::int32_t points_in_contact = 0;  // points (or contacts) contributing force
+  std::int64_t nodes_visited = 0;      // tree nodes / points / primitives examined
+  std::int32_t level_rendered = -1;    // deepest tree level completed (-1: not a tree model)
+  std::int32_t nodes_skipped_coherence = 0;
+  double max_penetration = 0;          // largest |d| over contributing points, metres
+  double stiffness_scale = 1;          // L / l when l >= L points touch, else 1
+};
+
+struct ContactQuery {
+  Pose X_WA;                            // world pose of body A
+  Pose X_WB;                            // world pose of body B
+  const ReducedState* q_A = nullptr;    // deformation of A, null when rigid
+  const ReducedState* q_B = nullptr;    // deformation of B, null when rigid
+  std::int64_t cycle = 0;               // haptic cycle index, for temporal coherence
+  std::int64_t node_budget = 0;         // graceful degradation; <= 0 means unlimited
+};
+
+struct ContactResult {
+  Wrench on_B;
+  Matrix6d K_B = Matrix6d::Zero();
+  ContactStats stats;
+};
+
+class ContactModel {
+ public:
+  virtual ~ContactModel() = default;
+  virtual std::string_view name() const = 0;
+  // One haptic cycle. Implementations allocate nothing and throw nothing here.
+  virtual ContactResult Evaluate(const ContactQuery& query) = 0;
+  // Forgets temporal state (coherence, level-of-detail hysteresis).
+  virtual void Reset() = 0;
+};
+
+}  // namespace contactlab

@@ -1,0 +1,43 @@
+#include "geometry/pose.h"
+
+#include <cmath>
+#include <sstream>
+#include <vector>
+
+#include "util/error.h"
+
+namespace contactlab {
+
+Pose Interpolate(const Pose& a, const Pose& b, double s) {
+  return {a.rotation.slerp(s, b.rotation).normalized(), (1.0 - s) * a.translation + s * b.translation};
+}
+
+Eigen::Quaterniond RotationFromVector(const Eigen::Vector3d& w) {
+  const double angle = w.norm();
+  if (angle < 1e-300) return Eigen::Quaterniond::Identity();
+  return Eigen::Quaterniond(Eigen::AngleAxisd(angle, w / angle));
+}
+
+Pose ParsePose(const std::string& text, const std::string& where) {
+  std::vector<double> v;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    try {
+      std::size_t used = 0;
+      const double x = std::stod(item, &used);
+      if (item.find_first_not_of(" \t", used) != std::string::npos) throw std::invalid_argument(item);
+      if (!std::isfinite(x)) Fail(where, "pose component '" + item + "' is not finite");
+      v.push_back(x);
+    } catch (const std::logic_error&) {
+      Fail(where, "pose component '" + item + "' is not a number");
+    }
+  }
+  if (v.size() != 7) Fail(where, "a pose needs 7 numbers x,y,z,qw,qx,qy,qz; got " + std::to_string(v.size()));
+  Eigen::Quaterniond q(v[3], v[4], v[5], v[6]);
+  if (q.norm() < 1e-12) Fail(where, "pose quaternion is zero");
+  q.normalize();
+  return {q, Eigen::Vector3d(v[0], v[1], v[2])};
+}
+
+}  // namespace contactlab

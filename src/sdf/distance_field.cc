@@ -1,0 +1,98 @@
+#include "sdf/distance_field.h"
+
+#include <limits>
+
+#include "util/error.h"
+
+namespace contactlab {
+
+DistanceField::DistanceField(const Eigen::Vector3d& origin, double spacing, const Eigen::Vector3i& dims,
+                             std::vector<float> values, DistanceFieldInfo info)
+    : origin_(origin), spacing_(spacing), dims_(dims), values_(std::move(values)), info_(std::move(info)) {
+  const std::string where = "distance field" + (info_.source.empty() ? "" : " of " + info_.source);
+  if (!(spacing > 0) || !std::isfinite(spacing)) Fail(where, "spacing must be positive and finite");
+  if ((dims.array() < 2).any()) Fail(where, "every grid dimension must be at least 2");
+  if (!origin.allFinite()) Fail(where, "origin is not finite");
+  const std::int64_t n = std::int64_t(dims.x()) * dims.y() * dims.z();
+  if (std::int64_t(values_.size()) != n) {
+    Fail(where, "holds " + std::to_string(values_.size()) + " samples, dimensions need " + std::to_string(n));
+  }
+  min_value_ = std::numeric_limits<float>::infinity();
+  max_value_ = -min_value_;
+  for (float v : values_) {
+    if (!std::isfinite(v)) Fail(where, "a sample is not finite");
+    min_value_ = std::min(min_value_, v);
+    max_value_ = std::max(max_value_, v);
+  }
+  boundary_min_ = std::numeric_limits<float>::infinity();
+  for (int k = 0; k < dims.z(); ++k) {
+    for (int j = 0; j < dims.y(); ++j) {
+      const bool face = (k == 0 || k == dims.z() - 1 || j == 0 || j == dims.y() - 1);
+      for (int i = 0; i < dims.x(); i += (face ? 1 : dims.x() - 1)) {
+        boundary_min_ = std::min(boundary_min_, value(i, j, k));
+      }
+    }
+  }
+  ox_ = float(origin.x());
+  oy_ = float(origin.y());
+  oz_ = float(origin.z());
+  inv_h_ = float(1.0 / spacing);
+  ex_ = float(dims.x() - 1);
+  ey_ = float(dims.y() - 1);
+  ez_ = float(dims.z() - 1);
+}
+
+Aabb DistanceField::box() const {
+  Aabb b;
+  b.min = origin_;
+  b.max = origin_ + spacing_ * (dims_ - Eigen::Vector3i::Ones()).cast<double>();
+  return b;
+}
+
+bool DistanceField::Inside(const Eigen::Vector3d& p) const { return box().Contains(p); }
+
+float DistanceField::OutsideBound(float x, float y, float z) const {
+  if (values_.empty() || !std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) {
+    return std::numeric_limits<float>::infinity();
+  }
+  const Aabb b = box();
+  return float(b.Distance(Eigen::Vector3d(x, y, z))) + boundary_min_;
+}
+
+double DistanceField::DistanceAndGradient(const Eigen::Vector3d& p, Eigen::Vector3d* gradient) const {
+  const Aabb b = box();
+  if (!b.Contains(p)) {
+    const Eigen::Vector3d q = p.cwiseMax(b.min).cwiseMin(b.max);
+    const Eigen::Vector3d d = p - q;
+    const double len = d.norm();
+    if (gradient) *gradient = len > 0 ? Eigen::Vector3d(d / len) : Eigen::Vector3d::Zero();
+    return len + boundary_min_;
+  }
+  const Eigen::Vector3d g = (p - origin_) / spacing_;
+  const int i = std::clamp(int(g.x()), 0, dims_.x() - 2);
+  const int j = std::clamp(int(g.y()), 0, dims_.y() - 2);
+  const int k = std::clamp(int(g.z()), 0, dims_.z() - 2);
+  const double tx = g.x() - i, ty = g.y() - j, tz = g.z() - k;
+  double c[2][2][2];
+  for (int dz = 0; dz < 2; ++dz)
+    for (int dy = 0; dy < 2; ++dy)
+      for (int dx = 0; dx < 2; ++dx) c[dx][dy][dz] = value(i + dx, j + dy, k + dz);
+  auto lerp = [](double a, double b, double t) { return a + t * (b - a); };
+  // Value.
+  const double c00 = lerp(c[0][0][0], c[1][0][0], tx), c10 = lerp(c[0][1][0], c[1][1][0], tx);
+  const double c01 = lerp(c[0][0][1], c[1][0][1], tx), c11 = lerp(c[0][1][1], c[1][1][1], tx);
+  const double c0 = lerp(c00, c10, ty), c1 = lerp(c01, c11, ty);
+  const double value = lerp(c0, c1, tz);
+  if (gradient) {
+    // Partial derivatives of the trilinear interpolant, per unit length.
+    const double dx00 = c[1][0][0] - c[0][0][0], dx10 = c[1][1][0] - c[0][1][0];
+    const double dx01 = c[1][0][1] - c[0][0][1], dx11 = c[1][1][1] - c[0][1][1];
+    const double ddx = lerp(lerp(dx00, dx10, ty), lerp(dx01, dx11, ty), tz);
+    const double ddy = lerp(c10 - c00, c11 - c01, tz);
+    const double ddz = c1 - c0;
+    *gradient = Eigen::Vector3d(ddx, ddy, ddz) / spacing_;
+  }
+  return value;
+}
+
+}  // namespace contactlab

@@ -1,0 +1,68 @@
+#include "geometry/procedural_shapes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <numbers>
+
+namespace contactlab {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// Every directed edge appears once and its reverse once: closed, manifold, consistently oriented.
+void ExpectClosedOriented(const TriangleMesh& m) {
+  std::map<std::pair<int, int>, int> directed;
+  for (const auto& t : m.triangles) {
+    for (int k = 0; k < 3; ++k) directed[{t[k], t[(k + 1) % 3]}]++;
+  }
+  for (const auto& [e, n] : directed) {
+    EXPECT_EQ(n, 1) << m.name << " edge " << e.first << "-" << e.second << " repeated";
+    EXPECT_EQ(directed.count({e.second, e.first}), 1u) << m.name << " boundary edge";
+  }
+}
+
+TEST(ProceduralShapes, SphereIsClosedAndItsVolumeConverges) {
+  const double r = 1.0 / 3.0;
+  const TriangleMesh m = MakeSphere(r, 5);
+  ExpectClosedOriented(m);
+  EXPECT_EQ(m.num_triangles(), 20 * 1024);
+  const double exact = 4.0 / 3.0 * kPi * r * r * r;
+  EXPECT_LT(m.SignedVolume(), exact);  // inscribed polyhedron
+  EXPECT_NEAR(m.SignedVolume(), exact, 1e-3 * exact);
+  for (const auto& v : m.vertices) EXPECT_NEAR(v.norm(), r, 1e-12);
+}
+
+TEST(ProceduralShapes, BoxVolumeIsExact) {
+  const Eigen::Vector3d half(0.1, 0.2, 0.3);
+  for (int cuts : {1, 3}) {
+    const TriangleMesh m = MakeBox(half, cuts);
+    ExpectClosedOriented(m);
+    EXPECT_NEAR(m.SignedVolume(), 8 * half.prod(), 1e-12);
+  }
+}
+
+TEST(ProceduralShapes, TorusVolumeConverges) {
+  const TriangleMesh m = MakeTorus(0.3, 0.1, 128, 64);
+  ExpectClosedOriented(m);
+  EXPECT_NEAR(m.SignedVolume(), 2 * kPi * kPi * 0.3 * 0.1 * 0.1, 0.01 * 2 * kPi * kPi * 0.003);
+}
+
+TEST(ProceduralShapes, CapsuleVolumeConverges) {
+  const double r = 0.05, h = 0.1;
+  const TriangleMesh m = MakeCapsule(r, h, 96, 32);
+  ExpectClosedOriented(m);
+  const double exact = kPi * r * r * 2 * h + 4.0 / 3.0 * kPi * r * r * r;
+  EXPECT_NEAR(m.SignedVolume(), exact, 0.01 * exact);
+}
+
+TEST(ProceduralShapes, BumpyPlateIsClosedWithPositiveVolume) {
+  const TriangleMesh m = MakeBumpyPlate(0.2, 0.02, 4, 0.005, 64);
+  ExpectClosedOriented(m);
+  EXPECT_GT(m.SignedVolume(), 0.2 * 0.2 * 0.02);
+  EXPECT_NEAR(m.Bounds().max.z(), 0.005, 1e-4);
+}
+
+}  // namespace
+}  // namespace contactlab
