@@ -1,0 +1,86 @@
+// Sums per-point penalty forces of the paper's contact model (Barbič & James 2008, eq. (1):
+// F = k_C d N on the field body) and their halfspace gradient (sec. 5), in the field body's
+// frame. Used inside the haptic cycle: fixed-size, allocation-free, inline.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "contact/contact_model.h"
+#include "geometry/pose.h"
+
+namespace contactlab {
+
+// How the contact gradient treats each point in contact.
+enum class ContactGradient {
+  kHalfspace,  // paper sec. 5: a halfspace oriented by the point's normal N
+  kField,      // the field's own gradient g at the point (exact derivative of the model)
+};
+
+class ContactAccumulator {
+ public:
+  // One point in contact, field-body frame B: position p_B (metres), the pointshell point's
+  // inward unit normal N_B, signed distance d < 0 (metres), gradient direction g_B (N_B for
+  // the halfspace rule). Adds d N (unscaled by k) and its gradient terms.
+  void Add(const Eigen::Vector3d& p_B, const Eigen::Vector3d& N_B, double d, const Eigen::Vector3d& g_B) {
+    const Eigen::Vector3d f = d * N_B;
+    force_ += f;
+    torque_ += p_B.cross(f);
+    const Eigen::Matrix3d M = N_B * g_B.transpose();  // N g^T
+    const Eigen::Matrix3d P = Skew(p_B);
+    M_ += M;
+    MP_ += M * P;
+    PM_ += P * M;
+    PMP_ += P * M * P;
+    ++count_;
+    if (-d > max_penetration_) max_penetration_ = -d;
+  }
+
+  int count() const { return count_; }
+  double max_penetration() const { return max_penetration_; }
+
+  // The wrench on B (world frame, torque about B's origin) and its gradient for stiffness
+  // k_C, with k_C scaled by L / l when l >= L points touch (L <= 0 disables the scaling).
+  void Finish(double k_C, int L, const Pose& X_WB, ContactResult* out) const {
+    double k = k_C;
+    double scale = 1;
+    if (L > 0 && count_ >= L) {
+      scale = double(L) / double(count_);
+      k *= scale;
+    }
+    const Eigen::Vector3d F_B = k * force_;
+    const Eigen::Vector3d T_B = k * torque_;
+    Matrix6d K_B;
+    K_B.block<3, 3>(0, 0) = -k * M_;
+    K_B.block<3, 3>(0, 3) = k * MP_;
+    K_B.block<3, 3>(3, 0) = Skew(F_B) - k * PM_;
+    K_B.block<3, 3>(3, 3) = k * PMP_;
+    const Eigen::Matrix3d R = X_WB.R();
+    out->on_B.force = R * F_B;
+    out->on_B.torque = R * T_B;
+    Matrix6d Rb = Matrix6d::Zero();
+    Rb.block<3, 3>(0, 0) = R;
+    Rb.block<3, 3>(3, 3) = R;
+    out->K_B = Rb * K_B * Rb.transpose();
+    out->stats.points_in_contact = count_;
+    out->stats.max_penetration = max_penetration_;
+    out->stats.stiffness_scale = scale;
+  }
+
+  static Eigen::Matrix3d Skew(const Eigen::Vector3d& v) {
+    Eigen::Matrix3d S;
+    S << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+    return S;
+  }
+
+ private:
+  Eigen::Vector3d force_ = Eigen::Vector3d::Zero();   // sum d N
+  Eigen::Vector3d torque_ = Eigen::Vector3d::Zero();  // sum p x (d N)
+  Eigen::Matrix3d M_ = Eigen::Matrix3d::Zero();       // sum N g^T
+  Eigen::Matrix3d MP_ = Eigen::Matrix3d::Zero();      // sum N g^T [p]x
+  Eigen::Matrix3d PM_ = Eigen::Matrix3d::Zero();      // sum [p]x N g^T
+  Eigen::Matrix3d PMP_ = Eigen::Matrix3d::Zero();     // sum [p]x N g^T [p]x
+  int count_ = 0;
+  double max_penetration_ = 0;
+};
+
+}  // namespace contactlab

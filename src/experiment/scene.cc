@@ -1,0 +1,144 @@
+#include "experiment/scene.h"
+
+#include "util/error.h"
+
+namespace contactlab {
+namespace {
+
+FieldSpec ParseField(const ConfigNode& n) {
+  n.ExpectKeys({"resolution", "mode", "padding", "offset"});
+  FieldSpec f;
+  f.resolution = int(n.PositiveInt("resolution", f.resolution));
+  if (f.resolution < 8 || f.resolution > 1024) n.Get("resolution").Fail("must be between 8 and 1024");
+  f.mode = n.OneOf("mode", f.mode, {"auto", "closed", "soup"});
+  f.padding = n.NonNegative("padding", f.padding);
+  if (n.Has("offset")) f.offset = n.Positive("offset", 0);
+  return f;
+}
+
+PointshellSpec ParsePointshell(const ConfigNode& n) {
+  n.ExpectKeys({"points", "levels", "method", "seed", "offset"});
+  PointshellSpec s;
+  s.points = int(n.PositiveInt("points", s.points));
+  s.levels = int(n.PositiveInt("levels", s.levels));
+  s.method = n.OneOf("method", s.method, {"repulsion", "voxel", "vertices", "random"});
+  s.seed = std::uint64_t(n.Int("seed", (long long)s.seed));
+  if (n.Has("offset")) s.offset = n.NonNegative("offset", 0);
+  return s;
+}
+
+BodySpec ParseBody(const ConfigNode& n) {
+  n.ExpectKeys({"name", "mesh", "scale", "center", "pose", "role", "field", "pointshell"});
+  BodySpec b;
+  b.mesh = n.Get("mesh").AsString();
+  b.name = n.String("name", b.mesh);
+  b.scale = n.Positive("scale", 1.0);
+  b.center = n.Bool("center", false);
+  if (auto p = n.Find("pose")) b.pose = ParsePoseNode(*p);
+  b.role = n.Get("role").AsString();
+  if (b.role != "pointshell" && b.role != "field") n.Get("role").Fail("must be 'pointshell' or 'field', got '" + b.role + "'");
+  if (auto f = n.Find("field")) b.field = ParseField(*f);
+  if (auto s = n.Find("pointshell")) b.pointshell = ParsePointshell(*s);
+  return b;
+}
+
+ModelSpec ParseModel(const ConfigNode& n) {
+  n.ExpectKeys({"k_C", "L", "node_budget", "warm_threshold", "cold_fraction", "max_point_speed", "cycle_seconds",
+                "coherence", "level", "lipschitz", "gradient"});
+  ModelSpec m;
+  m.k_C = n.NonNegative("k_C", m.k_C);
+  if (auto c = n.Find("L")) {
+    m.L = int(c->AsInt());
+    if (m.L < 0) c->Fail("must not be negative");
+  }
+  if (n.Has("node_budget") && n.Has("warm_threshold")) n.Fail("give node_budget or warm_threshold, not both");
+  for (const char* key : {"node_budget", "warm_threshold"}) {
+    if (auto c = n.Find(key)) {
+      m.node_budget = c->AsInt();
+      if (m.node_budget < 0) c->Fail("must not be negative");
+    }
+  }
+  m.cold_fraction = n.Positive("cold_fraction", m.cold_fraction);
+  if (m.cold_fraction > 1) n.Get("cold_fraction").Fail("must be at most 1");
+  m.max_point_speed = n.Positive("max_point_speed", m.max_point_speed);
+  m.cycle_seconds = n.Positive("cycle_seconds", m.cycle_seconds);
+  m.coherence = n.Bool("coherence", m.coherence);
+  if (auto c = n.Find("level")) {
+    m.level = int(c->AsInt());
+    if (m.level < -1) c->Fail("must be -1 (deepest) or a level index");
+  }
+  m.lipschitz = n.Positive("lipschitz", m.lipschitz);
+  if (m.lipschitz < 1) n.Get("lipschitz").Fail("must be at least 1");
+  m.gradient = n.OneOf("gradient", "halfspace", {"halfspace", "field"}) == "field" ? ContactGradient::kField
+                                                                                   : ContactGradient::kHalfspace;
+  return m;
+}
+
+}  // namespace
+
+Pose ParsePoseNode(const ConfigNode& n) {
+  if (n.IsSequence()) {
+    const std::vector<double> v = n.AsDoubles();
+    if (v.size() != 7) n.Fail("a pose list needs 7 numbers x, y, z, qw, qx, qy, qz");
+    Eigen::Quaterniond q(v[3], v[4], v[5], v[6]);
+    if (q.norm() < 1e-12) n.Fail("the quaternion is zero");
+    return {q.normalized(), Eigen::Vector3d(v[0], v[1], v[2])};
+  }
+  n.ExpectKeys({"position", "rotation", "rotation_vector"});
+  Pose pose;
+  if (auto p = n.Find("position")) {
+    const std::vector<double> v = p->AsDoubles();
+    if (v.size() != 3) p->Fail("needs 3 numbers");
+    pose.translation = Eigen::Vector3d(v[0], v[1], v[2]);
+  }
+  if (n.Has("rotation") && n.Has("rotation_vector")) n.Fail("give rotation or rotation_vector, not both");
+  if (auto r = n.Find("rotation")) {
+    const std::vector<double> v = r->AsDoubles();
+    if (v.size() != 4) r->Fail("needs a quaternion qw, qx, qy, qz");
+    Eigen::Quaterniond q(v[0], v[1], v[2], v[3]);
+    if (q.norm() < 1e-12) r->Fail("the quaternion is zero");
+    pose.rotation = q.normalized();
+  }
+  if (auto r = n.Find("rotation_vector")) {
+    const std::vector<double> v = r->AsDoubles();
+    if (v.size() != 3) r->Fail("needs 3 numbers (axis times angle, radians)");
+    pose.rotation = RotationFromVector(Eigen::Vector3d(v[0], v[1], v[2]));
+  }
+  return pose;
+}
+
+Scene ParseScene(const ConfigNode& n) {
+  n.ExpectKeys({"name", "bodies", "model", "models"});
+  Scene scene;
+  scene.file = n.file();
+  scene.name = n.String("name", std::filesystem::path(n.file()).stem().string());
+  const std::vector<ConfigNode> bodies = n.Get("bodies").Elements();
+  if (bodies.size() != 2) n.Get("bodies").Fail("a scene needs exactly two bodies, got " + std::to_string(bodies.size()));
+  BodySpec a = ParseBody(bodies[0]);
+  BodySpec b = ParseBody(bodies[1]);
+  if (a.role == b.role) bodies[1].Get("role").Fail("the two bodies need different roles (one pointshell, one field)");
+  if (a.role == "field") std::swap(a, b);
+  scene.pointshell_body = a;
+  scene.field_body = b;
+  if (auto m = n.Find("model")) scene.model = ParseModel(*m);
+  if (auto ms = n.Find("models")) {
+    for (const ConfigNode& e : ms->Elements()) scene.models.push_back(e.AsString());
+    if (scene.models.empty()) ms->Fail("lists no model");
+  } else {
+    scene.models = {"pointshell"};
+  }
+  return scene;
+}
+
+Scene LoadScene(const std::filesystem::path& file) { return ParseScene(ConfigNode::LoadFile(file)); }
+
+Scene Scene::Swapped() const {
+  Scene s = *this;
+  std::swap(s.pointshell_body, s.field_body);
+  s.pointshell_body.role = "pointshell";
+  s.field_body.role = "field";
+  s.name = name + " (roles swapped)";
+  return s;
+}
+
+}  // namespace contactlab

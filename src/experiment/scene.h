@@ -1,0 +1,91 @@
+// Scenes: two bodies and the parameters of the contact models that act between them, read
+// from YAML. Body "pointshell" (A) carries the pointshell, body "field" (B) the distance
+// field; either may carry both so roles can be swapped in experiments.
+//
+//   name: dragon-on-bunny
+//   bodies:
+//     - name: dragon
+//       mesh: dragon.obj          # data search path, or a procedural shape "sphere:0.05"
+//       scale: 0.001              # file units -> metres
+//       center: true              # move the bounding-box centre to the body origin
+//       pose: [x, y, z, qw, qx, qy, qz]
+//       role: pointshell          # pointshell | field
+//       pointshell: {points: 16000, levels: 4, method: repulsion, seed: 1, offset: 0}
+//       field: {resolution: 128, mode: auto}
+//     - name: bunny
+//       ...
+//       role: field
+//   model: {k_C: 2000, L: 10, node_budget: 0, max_point_speed: 1.0, coherence: true, ...}
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "contact/contact_accumulator.h"
+#include "geometry/pose.h"
+#include "util/config_node.h"
+
+namespace contactlab {
+
+struct FieldSpec {
+  int resolution = 64;        // cells along the longest side
+  std::string mode = "auto";  // auto | closed | soup
+  double padding = 0.1;       // fraction of the largest extent
+  double offset = -1;         // soup iso-offset, metres (< 0: the builder's default)
+};
+
+struct PointshellSpec {
+  int points = 4096;                 // points on the deepest level
+  int levels = 4;                    // tree levels
+  std::string method = "repulsion";  // repulsion | voxel | vertices | random
+  std::uint64_t seed = 1;
+  double offset = -1;                // level-set offset delta, metres (< 0: builder's default)
+};
+
+struct BodySpec {
+  std::string name;
+  std::string mesh;                  // file name (data search path) or "shape:params"
+  double scale = 1.0;
+  bool center = false;
+  Pose pose;                         // X_WBody at the scene's start
+  std::string role;                  // "pointshell" or "field"
+  FieldSpec field;
+  PointshellSpec pointshell;
+};
+
+struct ModelSpec {
+  double k_C = 1000;          // N/m
+  int L = 10;                 // many-point scaling threshold
+  long long node_budget = 0;  // warm threshold V_W (nodes per cycle); 0 = unlimited
+  double cold_fraction = 0.8; // V_C / V_W
+  double max_point_speed = 1.0;  // m/s, for temporal coherence
+  double cycle_seconds = 1e-3;
+  bool coherence = false;
+  int level = -1;             // deepest level (-1: all)
+  double lipschitz = 1.0;
+  ContactGradient gradient = ContactGradient::kHalfspace;
+};
+
+struct Scene {
+  std::string name;
+  std::string file;                  // where it was read from
+  BodySpec pointshell_body;          // body A
+  BodySpec field_body;               // body B
+  ModelSpec model;
+  std::vector<std::string> models;   // model names to compare (default: pointshell)
+
+  // The same scene with the roles of the two bodies exchanged.
+  Scene Swapped() const;
+};
+
+// Reads a scene from a YAML node (a whole file, or the "scene" key of an experiment).
+Scene ParseScene(const ConfigNode& node);
+Scene LoadScene(const std::filesystem::path& file);
+
+// Reads a pose given as [x,y,z,qw,qx,qy,qz] or {position: [..], rotation: [qw,qx,qy,qz]}
+// or {position: [..], rotation_vector: [..]} (radians).
+Pose ParsePoseNode(const ConfigNode& node);
+
+}  // namespace contactlab

@@ -1,0 +1,183 @@
+#include "util/config_node.h"
+
+#include <cmath>
+
+#include "util/atomic_file.h"
+#include "util/error.h"
+
+namespace contactlab {
+
+ConfigNode ConfigNode::LoadFile(const std::filesystem::path& file) {
+  const std::string text = ReadWholeFile(file);
+  return LoadString(text, file.string());
+}
+
+ConfigNode ConfigNode::LoadString(const std::string& text, const std::string& file_label) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    FailAtLine(file_label, e.mark.line + 1, "YAML syntax error: " + e.msg);
+  }
+  if (!root || root.IsNull()) contactlab::Fail(file_label, "the file is empty");
+  return ConfigNode(root, std::make_shared<const std::string>(file_label), "");
+}
+
+ConfigNode::ConfigNode(YAML::Node node, std::shared_ptr<const std::string> file, std::string path)
+    : node_(std::move(node)), file_(std::move(file)), path_(std::move(path)) {}
+
+void ConfigNode::Fail(const std::string& what) const {
+  std::string where = *file_;
+  const YAML::Mark mark = node_.Mark();
+  if (mark.line >= 0) where += ":" + std::to_string(mark.line + 1);
+  contactlab::Fail(where, (path_.empty() ? std::string("(top level)") : path_) + ": " + what);
+}
+
+std::string ConfigNode::ChildPath(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+
+void ConfigNode::ExpectMap() const {
+  if (!node_.IsMap()) Fail("expected a mapping of keys to values");
+}
+
+void ConfigNode::ExpectKeys(std::initializer_list<const char*> allowed) const {
+  ExpectMap();
+  for (const auto& kv : node_) {
+    const std::string key = kv.first.as<std::string>();
+    bool known = false;
+    for (const char* a : allowed) known = known || key == a;
+    if (!known) {
+      std::string list;
+      for (const char* a : allowed) list += std::string(list.empty() ? "" : ", ") + a;
+      ConfigNode(kv.first, file_, ChildPath(key)).Fail("unknown key (known keys here: " + list + ")");
+    }
+  }
+}
+
+bool ConfigNode::Has(const std::string& key) const { return node_.IsMap() && node_[key]; }
+
+ConfigNode ConfigNode::Get(const std::string& key) const {
+  ExpectMap();
+  const YAML::Node child = node_[key];
+  if (!child) Fail("missing required key '" + key + "'");
+  return ConfigNode(child, file_, ChildPath(key));
+}
+
+std::optional<ConfigNode> ConfigNode::Find(const std::string& key) const {
+  if (!Has(key)) return std::nullopt;
+  return ConfigNode(node_[key], file_, ChildPath(key));
+}
+
+std::vector<ConfigNode> ConfigNode::Elements() const {
+  if (!node_.IsSequence()) Fail("expected a list");
+  std::vector<ConfigNode> out;
+  for (std::size_t i = 0; i < node_.size(); ++i) {
+    out.emplace_back(node_[i], file_, path_ + "[" + std::to_string(i) + "]");
+  }
+  return out;
+}
+
+std::vector<std::string> ConfigNode::Keys() const {
+  ExpectMap();
+  std::vector<std::string> keys;
+  for (const auto& kv : node_) keys.push_back(kv.first.as<std::string>());
+  return keys;
+}
+
+std::string ConfigNode::AsString() const {
+  if (!node_.IsScalar()) Fail("expected a single value");
+  return node_.Scalar();
+}
+
+double ConfigNode::AsDouble() const {
+  const std::string s = AsString();
+  try {
+    std::size_t used = 0;
+    const double v = std::stod(s, &used);
+    if (used != s.size()) throw std::invalid_argument(s);
+    if (!std::isfinite(v)) Fail("expected a finite number, got '" + s + "'");
+    return v;
+  } catch (const std::logic_error&) {
+    Fail("expected a number, got '" + s + "'");
+  }
+}
+
+long long ConfigNode::AsInt() const {
+  const std::string s = AsString();
+  try {
+    std::size_t used = 0;
+    const long long v = std::stoll(s, &used);
+    if (used != s.size()) throw std::invalid_argument(s);
+    return v;
+  } catch (const std::logic_error&) {
+    Fail("expected an integer, got '" + s + "'");
+  }
+}
+
+bool ConfigNode::AsBool() const {
+  const std::string s = AsString();
+  if (s == "true" || s == "yes" || s == "on") return true;
+  if (s == "false" || s == "no" || s == "off") return false;
+  Fail("expected true or false, got '" + s + "'");
+}
+
+std::vector<double> ConfigNode::AsDoubles() const {
+  std::vector<double> v;
+  for (const ConfigNode& e : Elements()) v.push_back(e.AsDouble());
+  return v;
+}
+
+double ConfigNode::Double(const std::string& key, double fallback) const {
+  auto c = Find(key);
+  return c ? c->AsDouble() : fallback;
+}
+long long ConfigNode::Int(const std::string& key, long long fallback) const {
+  auto c = Find(key);
+  return c ? c->AsInt() : fallback;
+}
+bool ConfigNode::Bool(const std::string& key, bool fallback) const {
+  auto c = Find(key);
+  return c ? c->AsBool() : fallback;
+}
+std::string ConfigNode::String(const std::string& key, const std::string& fallback) const {
+  auto c = Find(key);
+  return c ? c->AsString() : fallback;
+}
+
+double ConfigNode::NonNegative(const std::string& key, double fallback) const {
+  auto c = Find(key);
+  if (!c) return fallback;
+  const double v = c->AsDouble();
+  if (v < 0) c->Fail("must not be negative, got " + c->AsString());
+  return v;
+}
+
+double ConfigNode::Positive(const std::string& key, double fallback) const {
+  auto c = Find(key);
+  if (!c) return fallback;
+  const double v = c->AsDouble();
+  if (!(v > 0)) c->Fail("must be positive, got " + c->AsString());
+  return v;
+}
+
+long long ConfigNode::PositiveInt(const std::string& key, long long fallback) const {
+  auto c = Find(key);
+  if (!c) return fallback;
+  const long long v = c->AsInt();
+  if (v <= 0) c->Fail("must be a positive integer, got " + c->AsString());
+  return v;
+}
+
+std::string ConfigNode::OneOf(const std::string& key, const std::string& fallback,
+                              std::initializer_list<const char*> choices) const {
+  auto c = Find(key);
+  if (!c) return fallback;
+  const std::string v = c->AsString();
+  std::string list;
+  for (const char* ch : choices) {
+    if (v == ch) return v;
+    list += std::string(list.empty() ? "" : ", ") + ch;
+  }
+  c->Fail("'" + v + "' is not one of: " + list);
+}
+
+}  // namespace contactlab
