@@ -1,0 +1,113 @@
+#include "experiment/scene.h"
+
+#include <gtest/gtest.h>
+
+#include "util/error.h"
+
+namespace contactlab {
+namespace {
+
+const char* kScene = R"(name: spheres
+bodies:
+  - name: ball
+    mesh: "sphere:0.05"
+    pose: [0.1, 0, 0, 1, 0, 0, 0]
+    role: pointshell
+    pointshell: {points: 2000, levels: 3, seed: 4}
+  - name: plate
+    mesh: "box:0.2,0.2,0.02"
+    role: field
+    field: {resolution: 48}
+model:
+  k_C: 1500
+  L: 10
+  node_budget: 5000
+  coherence: true
+  max_point_speed: 0.8
+)";
+
+Scene Parse(const std::string& text) { return ParseScene(ConfigNode::LoadString(text, "scene.yaml")); }
+
+// The error message of parsing TEXT (empty when it parses).
+std::string ErrorOf(const std::string& text) {
+  try {
+    Parse(text);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string Replace(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+TEST(Scene, ParsesBodiesRolesAndModelParameters) {
+  const Scene s = Parse(kScene);
+  EXPECT_EQ(s.name, "spheres");
+  EXPECT_EQ(s.pointshell_body.name, "ball");
+  EXPECT_EQ(s.field_body.name, "plate");
+  EXPECT_EQ(s.pointshell_body.pointshell.points, 2000);
+  EXPECT_EQ(s.pointshell_body.pointshell.levels, 3);
+  EXPECT_EQ(s.field_body.field.resolution, 48);
+  EXPECT_DOUBLE_EQ(s.pointshell_body.pose.translation.x(), 0.1);
+  EXPECT_DOUBLE_EQ(s.model.k_C, 1500);
+  EXPECT_EQ(s.model.node_budget, 5000);
+  EXPECT_TRUE(s.model.coherence);
+  EXPECT_EQ(s.models, std::vector<std::string>{"pointshell"});
+}
+
+TEST(Scene, RolesMayBeListedInEitherOrder) {
+  std::string text = Replace(kScene, "role: pointshell", "role: TMP");
+  text = Replace(text, "role: field\n", "role: pointshell\n");
+  text = Replace(text, "role: TMP", "role: field");
+  const Scene s = Parse(text);
+  EXPECT_EQ(s.pointshell_body.name, "plate");
+  EXPECT_EQ(s.field_body.name, "ball");
+}
+
+TEST(Scene, UnknownKeyNamesFileLineAndKey) {
+  const std::string e = ErrorOf(Replace(kScene, "levels: 3", "levles: 3"));
+  EXPECT_NE(e.find("scene.yaml:7"), std::string::npos) << e;
+  EXPECT_NE(e.find("bodies[0].pointshell.levles"), std::string::npos) << e;
+  EXPECT_NE(e.find("unknown key"), std::string::npos) << e;
+}
+
+TEST(Scene, WrongTypeNamesTheKey) {
+  const std::string e = ErrorOf(Replace(kScene, "points: 2000", "points: many"));
+  EXPECT_NE(e.find("bodies[0].pointshell.points"), std::string::npos) << e;
+  EXPECT_NE(e.find("'many'"), std::string::npos) << e;
+}
+
+TEST(Scene, NegativeStiffnessIsRejected) {
+  const std::string e = ErrorOf(Replace(kScene, "k_C: 1500", "k_C: -3"));
+  EXPECT_NE(e.find("model.k_C"), std::string::npos) << e;
+  EXPECT_NE(e.find("negative"), std::string::npos) << e;
+}
+
+TEST(Scene, MissingMeshKeyAndBadRolesAreRejected) {
+  EXPECT_NE(ErrorOf(Replace(kScene, "    mesh: \"sphere:0.05\"\n", "")).find("missing required key 'mesh'"), std::string::npos);
+  EXPECT_NE(ErrorOf(Replace(kScene, "role: field\n", "role: pointshell\n")).find("different roles"), std::string::npos);
+  EXPECT_NE(ErrorOf(Replace(kScene, "role: field\n", "role: wall\n")).find("bodies[1].role"), std::string::npos);
+  EXPECT_NE(ErrorOf("bodies: []\n").find("exactly two bodies"), std::string::npos);
+  EXPECT_NE(ErrorOf("bodies: [\n").find("YAML syntax error"), std::string::npos);
+}
+
+TEST(Scene, BadPosesAreRejected) {
+  EXPECT_NE(ErrorOf(Replace(kScene, "[0.1, 0, 0, 1, 0, 0, 0]", "[0.1, 0, 0]")).find("7 numbers"), std::string::npos);
+  EXPECT_NE(ErrorOf(Replace(kScene, "[0.1, 0, 0, 1, 0, 0, 0]", "[0.1, 0, 0, 0, 0, 0, 0]")).find("zero"), std::string::npos);
+  const Scene s = Parse(Replace(kScene, "[0.1, 0, 0, 1, 0, 0, 0]", "{position: [0, 0.2, 0], rotation_vector: [0, 0, 1.5]}"));
+  EXPECT_NEAR(Eigen::AngleAxisd(s.pointshell_body.pose.rotation).angle(), 1.5, 1e-12);
+}
+
+TEST(Scene, SwappedExchangesTheBodies) {
+  const Scene s = Parse(kScene).Swapped();
+  EXPECT_EQ(s.pointshell_body.name, "plate");
+  EXPECT_EQ(s.field_body.name, "ball");
+  EXPECT_EQ(s.pointshell_body.role, "pointshell");
+}
+
+}  // namespace
+}  // namespace contactlab
