@@ -1,0 +1,89 @@
+// One haptic cycle (Barbič & James 2008, sec. 5).
+#include "haptics/haptic_cycle.h"
+
+#include <limits>
+
+namespace contactlab {
+namespace {
+
+SafetyParams ResolveSafety(SafetyParams s, const DeviceCapabilities& caps) {
+  if (s.max_force <= 0) s.max_force = caps.max_force;
+  if (s.max_torque <= 0) s.max_torque = caps.max_torque;
+  return s;
+}
+
+}  // namespace
+
+HapticCycle::HapticCycle(HapticDevice& device, ContactModel* model, const HapticCycleConfig& config)
+    : device_(device),
+      model_(model),
+      config_(config),
+      coupling_(config.coupling),
+      safety_(ResolveSafety(config.safety, device.capabilities())) {}
+
+void HapticCycle::Start(std::int64_t now_ns) {
+  device_.Read(now_ns, &state_);
+  last_sample_ns_ = now_ns;
+  coupling_.Reset(state_.X_WD);
+  safety_.Start(now_ns);
+  if (model_ != nullptr) model_->Reset();
+  cycle_ = 0;
+}
+
+CycleRecord HapticCycle::Step(std::int64_t now_ns) {
+  CycleRecord rec;
+  rec.cycle = cycle_;
+  rec.now_ns = now_ns;
+
+  // Device pose (the previous one is kept when no new sample arrived).
+  rec.new_sample = device_.Read(now_ns, &state_);
+  if (rec.new_sample) last_sample_ns_ = now_ns;
+
+  // Contact at the simulated pose of H (body B of the model).
+  ContactResult contact;
+  if (model_ != nullptr) {
+    ContactQuery q;
+    q.X_WA = config_.X_WA;
+    q.X_WB = coupling_.X_WH();
+    q.cycle = cycle_;
+    q.node_budget = config_.node_budget;
+    contact = model_->Evaluate(q);
+  }
+
+  // Static virtual coupling, then the safety filter, then the device. A non-finite contact
+  // result does not move H; it reaches the filter as a non-finite wrench (zeroed, counted).
+  CouplingStep step;
+  if (contact.on_B.force.allFinite() && contact.on_B.torque.allFinite() && contact.K_B.allFinite()) {
+    step = coupling_.Update(state_.X_WD, contact.on_B, contact.K_B);
+  } else {
+    step.X_WH = coupling_.X_WH();
+    step.solve_ok = false;
+    step.to_device.force.setConstant(std::numeric_limits<double>::quiet_NaN());
+  }
+  const Wrench out = safety_.Filter(step.to_device, now_ns, last_sample_ns_, &rec.safety_flags);
+  device_.Write(out, now_ns);
+
+  // Record.
+  rec.device_timestamp_ns = state_.timestamp_ns;
+  rec.device_sequence = state_.sequence;
+  rec.buttons = state_.buttons;
+  rec.solve_ok = step.solve_ok;
+  rec.points_in_contact = contact.stats.points_in_contact;
+  for (int i = 0; i < 3; ++i) {
+    rec.p_WD[i] = state_.X_WD.translation[i];
+    rec.p_WH[i] = step.X_WH.translation[i];
+    rec.contact_force[i] = contact.on_B.force[i];
+    rec.device_force[i] = out.force[i];
+    rec.device_torque[i] = out.torque[i];
+  }
+  const Eigen::Quaterniond& qd = state_.X_WD.rotation;
+  const Eigen::Quaterniond& qh = step.X_WH.rotation;
+  rec.q_WD[0] = qd.w(), rec.q_WD[1] = qd.x(), rec.q_WD[2] = qd.y(), rec.q_WD[3] = qd.z();
+  rec.q_WH[0] = qh.w(), rec.q_WH[1] = qh.x(), rec.q_WH[2] = qh.y(), rec.q_WH[3] = qh.z();
+  ++cycle_;
+  return rec;
+}
+
+void HapticCycle::WriteZero(std::int64_t now_ns) { device_.Write(Wrench{}, now_ns); }
+
+}  // namespace contactlab

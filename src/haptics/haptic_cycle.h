@@ -1,0 +1,77 @@
+// One haptic cycle (Barbič & James 2008, sec. 5): read the manipulandum, evaluate contact at
+// the simulated pose, solve the static virtual coupling, filter for safety, write the wrench.
+// No threads and no clock here: the real-time loop (haptic_loop.h) and simulated-time tests
+// both drive Step(now).
+#pragma once
+
+#include <cstdint>
+
+#include "contact/contact_model.h"
+#include "haptics/haptic_device.h"
+#include "haptics/safety_filter.h"
+#include "haptics/virtual_coupling.h"
+
+namespace contactlab {
+
+struct HapticCycleConfig {
+  VirtualCouplingParams coupling;
+  // Safety limits; max_force / max_torque <= 0 mean "use the device's capabilities".
+  SafetyParams safety{.max_force = 0, .max_torque = 0};
+  Pose X_WA;                       // pose of the static contact body A (world)
+  std::int64_t node_budget = 0;    // passed to the contact model; <= 0 means unlimited
+};
+
+// What one cycle did; trivially copyable so it can travel through an SpscRing.
+struct CycleRecord {
+  std::int64_t cycle = 0;
+  std::int64_t now_ns = 0;            // loop clock at the start of the cycle
+  std::int64_t device_timestamp_ns = 0;
+  std::uint64_t device_sequence = 0;
+  std::uint32_t buttons = 0;
+  std::uint32_t safety_flags = 0;     // SafetyFlag bits
+  bool new_sample = false;
+  bool solve_ok = true;
+  std::int32_t points_in_contact = 0;
+  double p_WD[3] = {0, 0, 0};         // device position, m
+  double q_WD[4] = {1, 0, 0, 0};      // device orientation (w, x, y, z)
+  double p_WH[3] = {0, 0, 0};         // simulated body position, m
+  double q_WH[4] = {1, 0, 0, 0};
+  double contact_force[3] = {0, 0, 0};    // contact force on H, N
+  double device_force[3] = {0, 0, 0};     // force written to the device (after safety), N
+  double device_torque[3] = {0, 0, 0};    // torque written, N m
+};
+
+class HapticCycle {
+ public:
+  // DEVICE must outlive the cycle. MODEL may be null (free space) and must outlive it too;
+  // its body B is the haptic body H, body A is static at CONFIG.X_WA. Throws Error when the
+  // configuration is invalid.
+  HapticCycle(HapticDevice& device, ContactModel* model, const HapticCycleConfig& config);
+
+  // Starts a session at NOW_NS: reads the device, places H at the device pose, restarts the
+  // safety ramp, resets the contact model.
+  void Start(std::int64_t now_ns);
+
+  // Runs one cycle at NOW_NS (loop clock, ns). Allocation-free, lock-free, never throws.
+  CycleRecord Step(std::int64_t now_ns);
+
+  // Writes a zero wrench (clean stop).
+  void WriteZero(std::int64_t now_ns);
+
+  const SafetyFilter& safety() const { return safety_; }
+  const StaticVirtualCoupling& coupling() const { return coupling_; }
+  const DeviceState& device_state() const { return state_; }
+  HapticDevice& device() { return device_; }
+
+ private:
+  HapticDevice& device_;
+  ContactModel* model_;
+  HapticCycleConfig config_;
+  StaticVirtualCoupling coupling_;
+  SafetyFilter safety_;
+  DeviceState state_;
+  std::int64_t last_sample_ns_ = 0;
+  std::int64_t cycle_ = 0;
+};
+
+}  // namespace contactlab

@@ -1,0 +1,55 @@
+// The one interface every haptic device backend implements (Barbič & James 2008, sec. 5: the
+// manipulandum pose goes in, the coupling wrench comes out): sim, replay, udp, spacenav and
+// dlopen'ed plugins.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <string_view>
+
+#include "contact/contact_model.h"
+#include "geometry/pose.h"
+
+namespace contactlab {
+
+// What a device can do. Limits are the device's own; the safety filter clamps to them.
+struct DeviceCapabilities {
+  int dof_in = 6;                    // pose degrees of freedom read (3 or 6)
+  int dof_out = 6;                   // wrench degrees of freedom written (0 input-only, 3, 6)
+  Eigen::Vector3d workspace_min = Eigen::Vector3d::Constant(-0.1);  // workspace box, metres
+  Eigen::Vector3d workspace_max = Eigen::Vector3d::Constant(0.1);
+  double max_force = 0;              // N (0 when dof_out == 0)
+  double max_torque = 0;             // N m
+  double max_stiffness = 0;          // largest stable translational stiffness, N/m
+  double max_rot_stiffness = 0;      // N m / rad
+};
+
+// One pose sample. Timestamps are nanoseconds on the device's clock (see each backend).
+struct DeviceState {
+  Pose X_WD;                         // manipulandum pose in world (device frame = world)
+  std::int64_t timestamp_ns = 0;     // when the pose was sampled
+  std::uint32_t buttons = 0;         // bit i = button i pressed
+  std::uint64_t sequence = 0;        // increases with each new sample
+};
+
+class HapticDevice {
+ public:
+  virtual ~HapticDevice() = default;
+  virtual std::string_view name() const = 0;
+  virtual DeviceCapabilities capabilities() const = 0;
+
+  // Reads the newest sample into *OUT. NOW_NS is the haptic loop's clock (CLOCK_MONOTONIC or
+  // simulated time); simulated devices advance to it, real ones may ignore it. Returns false
+  // when no new sample has arrived since the last call (*OUT then holds the previous one).
+  // Called only from the haptic loop thread; allocation-free; never throws.
+  virtual bool Read(std::int64_t now_ns, DeviceState* out) = 0;
+
+  // Sends WRENCH (force N, torque N m, world frame, about the manipulandum origin) to be held
+  // until the next Write. Called only from the haptic loop thread; never throws.
+  virtual void Write(const Wrench& wrench, std::int64_t now_ns) = 0;
+
+  // Zeroes output at once; safe to call from any thread (watchdog, signal-driven stop).
+  virtual void EmergencyZero() noexcept = 0;
+};
+
+}  // namespace contactlab

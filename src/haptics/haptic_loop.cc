@@ -1,0 +1,207 @@
+// The real-time haptic loop (Barbič & James 2008, sec. 5).
+#include "haptics/haptic_loop.h"
+
+#include <pthread.h>
+#include <sched.h>
+#include <sys/mman.h>
+#include <time.h>
+
+#include <cerrno>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <sstream>
+
+#include "util/error.h"
+
+namespace contactlab {
+namespace {
+
+std::atomic<bool> g_stop_signal{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "the signal flag must be lock-free");
+
+extern "C" void OnStopSignal(int) { g_stop_signal.store(true, std::memory_order_relaxed); }
+
+timespec ToTimespec(std::int64_t ns) {
+  timespec ts;
+  ts.tv_sec = time_t(ns / 1000000000);
+  ts.tv_nsec = long(ns % 1000000000);
+  return ts;
+}
+
+// Sleeps to SPIN_NS before DEADLINE_NS with an absolute-time sleep, then spins.
+void WaitUntil(std::int64_t deadline_ns, std::int64_t spin_ns) {
+  const std::int64_t wake = deadline_ns - spin_ns;
+  if (MonotonicNowNs() < wake) {
+    const timespec ts = ToTimespec(wake);
+    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
+    }
+  }
+  while (MonotonicNowNs() < deadline_ns) {
+  }
+}
+
+}  // namespace
+
+std::int64_t MonotonicNowNs() {
+  timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return std::int64_t(ts.tv_sec) * 1000000000 + ts.tv_nsec;
+}
+
+void InstallStopSignalHandlers() {
+  struct sigaction sa;
+  std::memset(&sa, 0, sizeof(sa));
+  sa.sa_handler = OnStopSignal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+
+bool StopSignalRequested() { return g_stop_signal.load(std::memory_order_relaxed); }
+void ClearStopSignal() { g_stop_signal.store(false, std::memory_order_relaxed); }
+
+HapticLoop::HapticLoop(HapticCycle& cycle, const HapticLoopOptions& options) : cycle_(cycle), options_(options) {
+  if (!(options_.rate_hz > 0 && options_.rate_hz <= 100000)) Fail("haptic loop", "rate_hz must lie in (0, 100000]");
+  if (!(options_.spin_seconds >= 0 && options_.spin_seconds < 1.0 / options_.rate_hz))
+    Fail("haptic loop", "spin_seconds must lie in [0, 1/rate_hz)");
+  if (options_.fifo_priority < 1 || options_.fifo_priority > 99) Fail("haptic loop", "fifo_priority must lie in [1, 99]");
+}
+
+HapticLoop::~HapticLoop() {
+  RequestStop();
+  if (thread_.joinable()) thread_.join();
+  if (watchdog_.joinable()) watchdog_.join();
+}
+
+void HapticLoop::Start() {
+  if (thread_.joinable()) Fail("haptic loop", "already started");
+  stop_.store(false);
+  report_ = HapticLoopReport{};
+  watchdog_zeroes_.store(0);
+  running_.store(true, std::memory_order_release);
+  heartbeat_ns_.store(0);  // the watchdog arms at the first cycle, after real-time setup
+  try {
+    thread_ = std::thread([this] { ThreadMain(); });
+    if (options_.watchdog_seconds > 0) watchdog_ = std::thread([this] { WatchdogMain(); });
+  } catch (const std::system_error& e) {
+    running_.store(false);
+    Fail("haptic loop", std::string("cannot start thread: ") + e.what());
+  }
+}
+
+HapticLoopReport HapticLoop::Join() {
+  if (thread_.joinable()) thread_.join();
+  if (watchdog_.joinable()) watchdog_.join();
+  report_.watchdog_zeroes = watchdog_zeroes_.load();
+  report_.safety = cycle_.safety().stats();
+  return report_;
+}
+
+void HapticLoop::WatchdogMain() {
+  // Polls the loop's heartbeat every 1 ms; a stale heartbeat zeroes the device once per stall.
+  const std::int64_t limit = std::int64_t(options_.watchdog_seconds * 1e9);
+  bool tripped = false;
+  const timespec poll = ToTimespec(1000000);
+  while (running_.load(std::memory_order_acquire)) {
+    nanosleep(&poll, nullptr);
+    const std::int64_t beat = heartbeat_ns_.load(std::memory_order_relaxed);
+    if (beat == 0) continue;  // not armed yet
+    const std::int64_t age = MonotonicNowNs() - beat;
+    if (age > limit) {
+      if (!tripped) {
+        cycle_.device().EmergencyZero();
+        watchdog_zeroes_.fetch_add(1, std::memory_order_relaxed);
+      }
+      tripped = true;
+    } else {
+      tripped = false;
+    }
+  }
+}
+
+void HapticLoop::ThreadMain() {
+  HapticLoopReport& r = report_;
+  // Real-time setup, before the loop: a clear warning and a normal thread when refused.
+  if (options_.try_realtime) {
+    sched_param sp;
+    sp.sched_priority = options_.fifo_priority;
+    const int err = pthread_setschedparam(pthread_self(), SCHED_FIFO, &sp);
+    r.realtime_scheduling = (err == 0);
+    if (err != 0)
+      std::fprintf(stderr, "warning: haptic loop: SCHED_FIFO priority %d refused (%s); running as a normal thread\n",
+                   options_.fifo_priority, std::strerror(err));
+    r.memory_locked = (mlockall(MCL_CURRENT | MCL_FUTURE) == 0);
+    if (!r.memory_locked)
+      std::fprintf(stderr, "warning: haptic loop: mlockall refused (%s); page faults may delay cycles\n",
+                   std::strerror(errno));
+  }
+
+  const std::int64_t period_ns = std::int64_t(1e9 / options_.rate_hz);
+  const std::int64_t spin_ns = std::int64_t(options_.spin_seconds * 1e9);
+  const std::int64_t start_ns = MonotonicNowNs();
+  const std::int64_t end_ns =
+      options_.duration_seconds > 0 ? start_ns + std::int64_t(options_.duration_seconds * 1e9) : INT64_MAX;
+  cycle_.Start(start_ns);
+  std::int64_t release = start_ns + period_ns;
+  std::int64_t prev_start = -1;
+
+  // The loop: no allocation, no lock, no exception below.
+  for (;;) {
+    if (stop_.load(std::memory_order_relaxed)) break;
+    if (options_.honour_sigint && StopSignalRequested()) {
+      r.stopped_by_signal = true;
+      break;
+    }
+    WaitUntil(release, spin_ns);
+    const std::int64_t t0 = MonotonicNowNs();
+    if (t0 >= end_ns) break;
+    heartbeat_ns_.store(t0, std::memory_order_relaxed);
+
+    const CycleRecord rec = cycle_.Step(t0);
+    ring_.TryPush(rec);
+
+    const std::int64_t t1 = MonotonicNowNs();
+    r.work.Add(t1 - t0);
+    r.wake_latency.Add(t0 - release);
+    if (prev_start >= 0) r.period.Add(t0 - prev_start);
+    prev_start = t0;
+    ++r.cycles;
+
+    // Next release; a cycle that ends after it is a miss, and missed releases are skipped
+    // (the deadline jumps past now) instead of being run in a burst.
+    release += period_ns;
+    if (t1 > release) {
+      ++r.deadline_misses;
+      const std::int64_t behind = (t1 - release) / period_ns + 1;
+      r.skipped_cycles += behind;
+      release += behind * period_ns;
+    }
+  }
+
+  // Clean stop: zero wrench, then let the watchdog go.
+  cycle_.WriteZero(MonotonicNowNs());
+  if (r.memory_locked) munlockall();
+  running_.store(false, std::memory_order_release);
+}
+
+std::string FormatLoopReport(const HapticLoopReport& r) {
+  std::ostringstream os;
+  auto us = [](double s) { return s * 1e6; };
+  os << "cycles " << r.cycles << ", deadline misses " << r.deadline_misses << ", skipped " << r.skipped_cycles
+     << ", watchdog zeroes " << r.watchdog_zeroes << (r.realtime_scheduling ? ", SCHED_FIFO" : ", normal scheduling")
+     << (r.memory_locked ? ", mlocked" : ", not mlocked") << (r.stopped_by_signal ? ", stopped by signal" : "") << "\n";
+  auto line = [&](const char* name, const TimingHistogram& h) {
+    os << "  " << name << " us: p50 " << us(h.QuantileSeconds(0.5)) << "  p99 " << us(h.QuantileSeconds(0.99))
+       << "  p99.9 " << us(h.QuantileSeconds(0.999)) << "  max " << us(h.max_seconds()) << "  (n " << h.count() << ")\n";
+  };
+  line("work        ", r.work);
+  line("wake latency", r.wake_latency);
+  line("period      ", r.period);
+  os << "  safety: non-finite " << r.safety.non_finite << ", force clamped " << r.safety.force_clamped
+     << ", torque clamped " << r.safety.torque_clamped << ", device silent " << r.safety.device_silent
+     << ", loop stalls " << r.safety.loop_stalls << ", faults " << r.safety.faults << "\n";
+  return os.str();
+}
+
+}  // namespace contactlab

@@ -1,0 +1,97 @@
+// The real-time haptic loop at 1 kHz (Barbič & James 2008, sec. 5: one haptic cycle per
+// millisecond): absolute deadlines, SCHED_FIFO and mlockall when permitted, a cycle-time
+// histogram, deadline-miss counting with a skip-ahead catch-up policy, a watchdog thread, a
+// lock-free ring of cycle records for a graphics or logging consumer, and a clean stop on
+// SIGINT that leaves the device at zero force.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <string>
+#include <thread>
+
+#include "haptics/haptic_cycle.h"
+#include "haptics/spsc_ring.h"
+#include "haptics/timing_histogram.h"
+
+namespace contactlab {
+
+struct HapticLoopOptions {
+  double rate_hz = 1000;              // cycle rate
+  double duration_seconds = 0;        // run time; <= 0 runs until RequestStop or SIGINT
+  bool try_realtime = true;           // try SCHED_FIFO + mlockall (warn on stderr if refused)
+  int fifo_priority = 80;             // SCHED_FIFO priority when granted
+  double spin_seconds = 50e-6;        // sleep until this long before the deadline, then spin
+  double watchdog_seconds = 0.01;     // watchdog thread zeroes the device if the loop stalls this long; <= 0 disables
+  bool honour_sigint = true;          // stop when the SIGINT/SIGTERM flag is raised
+};
+
+struct HapticLoopReport {
+  std::int64_t cycles = 0;            // cycles run
+  std::int64_t deadline_misses = 0;   // cycles that finished after the next cycle's release
+  std::int64_t skipped_cycles = 0;    // releases skipped by the catch-up policy
+  std::int64_t watchdog_zeroes = 0;   // times the watchdog thread zeroed the device
+  bool realtime_scheduling = false;   // SCHED_FIFO granted
+  bool memory_locked = false;         // mlockall granted
+  bool stopped_by_signal = false;
+  TimingHistogram work;               // time from release to the wrench being written
+  TimingHistogram wake_latency;       // lateness of the wake-up after the release time
+  TimingHistogram period;             // time between consecutive cycle starts
+  SafetyStats safety;                 // the cycle's safety counters at the end
+};
+
+// Cycle records for consumers; the loop drops records (counted) when the consumer lags.
+using CycleRing = SpscRing<CycleRecord, 1024>;
+
+class HapticLoop {
+ public:
+  // CYCLE must outlive the loop. Throws Error when OPTIONS is invalid.
+  HapticLoop(HapticCycle& cycle, const HapticLoopOptions& options);
+  ~HapticLoop();  // stops and joins
+
+  // Starts the loop thread (throws Error if already running or the thread cannot start).
+  void Start();
+  // Asks the loop to stop; it exits after the current cycle and writes a zero wrench.
+  void RequestStop() { stop_.store(true, std::memory_order_relaxed); }
+  // Waits for the loop thread and returns its report.
+  HapticLoopReport Join();
+  // Start + Join on the calling thread's behalf.
+  HapticLoopReport Run() {
+    Start();
+    return Join();
+  }
+
+  // Consumer side of the record ring (one consumer thread).
+  CycleRing& records() { return ring_; }
+  bool running() const { return running_.load(std::memory_order_acquire); }
+
+ private:
+  void ThreadMain();
+  void WatchdogMain();
+
+  HapticCycle& cycle_;
+  HapticLoopOptions options_;
+  CycleRing ring_;
+  HapticLoopReport report_;
+  std::atomic<bool> stop_{false};
+  std::atomic<bool> running_{false};
+  std::atomic<std::int64_t> heartbeat_ns_{0};
+  std::atomic<std::int64_t> watchdog_zeroes_{0};
+  std::thread thread_;
+  std::thread watchdog_;
+};
+
+// Monotonic clock (CLOCK_MONOTONIC), nanoseconds.
+std::int64_t MonotonicNowNs();
+
+// Installs SIGINT and SIGTERM handlers that only set an atomic flag (async-signal-safe).
+void InstallStopSignalHandlers();
+// True once SIGINT/SIGTERM arrived after InstallStopSignalHandlers.
+bool StopSignalRequested();
+// Clears the flag (tests, or a new session).
+void ClearStopSignal();
+
+// A human-readable summary of REPORT (percentiles in microseconds).
+std::string FormatLoopReport(const HapticLoopReport& report);
+
+}  // namespace contactlab

@@ -1,0 +1,133 @@
+// A haptic device reached over UDP on loopback (see UDP_PROTOCOL.md).
+#include "haptics/udp_device.h"
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <string>
+
+#include "util/error.h"
+
+namespace contactlab {
+
+UdpDevice::UdpDevice(const UdpDeviceParams& params) : params_(params) {
+  const std::string where = "udp device 127.0.0.1:" + std::to_string(params.listen_port);
+  if (!(params.stale_seconds > 0)) Fail(where, "stale_seconds must be > 0");
+  fd_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+  if (fd_ < 0) Fail(where, std::string("cannot open a UDP socket: ") + std::strerror(errno));
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(params.listen_port);
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (::bind(fd_, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)) != 0) {
+    const int e = errno;
+    ::close(fd_);
+    Fail(where, std::string("cannot bind: ") + std::strerror(e));
+  }
+  socklen_t len = sizeof(addr);
+  ::getsockname(fd_, reinterpret_cast<sockaddr*>(&addr), &len);
+  bound_port_ = ntohs(addr.sin_port);
+  peer_port_.store(params.peer_port);
+}
+
+UdpDevice::~UdpDevice() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+bool UdpDevice::Read(std::int64_t now_ns, DeviceState* out) {
+  bool fresh = false;
+  std::uint8_t buf[512];  // larger than a packet, so over-long datagrams are seen as such
+  for (;;) {
+    sockaddr_in from{};
+    socklen_t from_len = sizeof(from);
+    const ssize_t n = ::recvfrom(fd_, buf, sizeof(buf), MSG_TRUNC, reinterpret_cast<sockaddr*>(&from), &from_len);
+    if (n < 0) break;  // EAGAIN: drained (other errors: nothing to act on this cycle)
+    ++stats_.datagrams;
+    // Decode and classify; a rejected packet changes nothing but its counter.
+    udp::PosePacket p;
+    const udp::DecodeStatus s = udp::DecodePose(buf, std::size_t(n) > sizeof(buf) ? sizeof(buf) + 1 : std::size_t(n), &p);
+    switch (s) {
+      case udp::DecodeStatus::kOk: break;
+      case udp::DecodeStatus::kBadLength: ++stats_.bad_length; continue;
+      case udp::DecodeStatus::kBadMagic:
+      case udp::DecodeStatus::kBadVersion:
+      case udp::DecodeStatus::kBadType: ++stats_.bad_header; continue;
+      case udp::DecodeStatus::kBadChecksum: ++stats_.bad_checksum; continue;
+      case udp::DecodeStatus::kNonFinite: ++stats_.non_finite; continue;
+    }
+    if (have_pose_ && p.sequence == last_sequence_) {
+      ++stats_.duplicate;
+      continue;
+    }
+    if (have_pose_ && p.sequence < last_sequence_) {
+      ++stats_.out_of_order;
+      continue;
+    }
+    const std::int64_t delay = now_ns - p.timestamp_ns;
+    if (have_pose_ && delay - min_delay_ns_ > std::int64_t(params_.stale_seconds * 1e9)) {
+      ++stats_.stale;
+      continue;
+    }
+    // Accept.
+    if (!have_pose_ || delay < min_delay_ns_) min_delay_ns_ = delay;
+    have_pose_ = true;
+    last_sequence_ = p.sequence;
+    Eigen::Quaterniond q(p.quaternion[0], p.quaternion[1], p.quaternion[2], p.quaternion[3]);
+    last_.X_WD = Pose{q.normalized(), Eigen::Vector3d(p.position[0], p.position[1], p.position[2])};
+    last_.timestamp_ns = p.timestamp_ns;
+    last_.buttons = p.buttons;
+    last_.sequence = p.sequence;
+    if (params_.peer_port == 0) peer_port_.store(ntohs(from.sin_port), std::memory_order_relaxed);
+    ++stats_.accepted;
+    fresh = true;
+  }
+  *out = last_;
+  return fresh;
+}
+
+bool UdpDevice::Send(const Wrench& w, std::int64_t now_ns, std::uint32_t flags, std::uint64_t pose_sequence) noexcept {
+  const std::uint32_t port = peer_port_.load(std::memory_order_relaxed);
+  if (port == 0) return false;  // nobody to talk to yet
+  udp::WrenchPacket pkt;
+  pkt.sequence = wrench_sequence_.fetch_add(1, std::memory_order_relaxed) + 1;
+  pkt.timestamp_ns = now_ns;
+  for (int i = 0; i < 3; ++i) {
+    pkt.force[i] = w.force[i];
+    pkt.torque[i] = w.torque[i];
+  }
+  pkt.pose_sequence = pose_sequence;
+  pkt.flags = flags;
+  udp::WrenchBytes bytes;
+  udp::EncodeWrench(pkt, &bytes);
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(std::uint16_t(port));
+  to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  return ::sendto(fd_, bytes.data(), bytes.size(), 0, reinterpret_cast<sockaddr*>(&to), sizeof(to)) ==
+         ssize_t(bytes.size());
+}
+
+void UdpDevice::Write(const Wrench& wrench, std::int64_t now_ns) {
+  if (peer_port_.load(std::memory_order_relaxed) == 0) return;
+  if (Send(wrench, now_ns, 0, last_sequence_)) {
+    ++stats_.wrenches_sent;
+  } else {
+    ++stats_.send_errors;
+  }
+}
+
+void UdpDevice::EmergencyZero() noexcept {
+  // From any thread: a zero wrench flagged kEmergencyZeroFlag; touches only atomics, and the
+  // kernel sends each datagram whole.
+  timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  if (Send(Wrench{}, std::int64_t(ts.tv_sec) * 1000000000 + ts.tv_nsec, kEmergencyZeroFlag, 0))
+    emergency_zeroes_.fetch_add(1, std::memory_order_relaxed);
+}
+
+}  // namespace contactlab

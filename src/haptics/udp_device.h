@@ -1,0 +1,76 @@
+// A haptic device reached over UDP on the loopback interface (Barbič & James 2008, sec. 5: pose
+// in, coupling wrench out); packets in udp_protocol.h / UDP_PROTOCOL.md. Short, malformed,
+// duplicated, out-of-order and stale packets are rejected and counted, never acted on.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+
+#include "haptics/haptic_device.h"
+#include "haptics/udp_protocol.h"
+
+namespace contactlab {
+
+struct UdpDeviceParams {
+  std::uint16_t listen_port = 0;   // port bound on 127.0.0.1; 0 picks a free one (see bound_port())
+  std::uint16_t peer_port = 0;     // where wrench packets go on 127.0.0.1; 0: the sender of the last accepted pose
+  double stale_seconds = 0.05;     // a packet whose one-way delay exceeds the smallest seen by more is stale
+  DeviceCapabilities capabilities; // what the remote device reports (configuration)
+};
+
+struct UdpStats {
+  std::int64_t datagrams = 0;          // received
+  std::int64_t accepted = 0;
+  std::int64_t bad_length = 0;         // short or long
+  std::int64_t bad_header = 0;         // magic, version or type
+  std::int64_t bad_checksum = 0;
+  std::int64_t non_finite = 0;
+  std::int64_t duplicate = 0;          // sequence equal to the last accepted
+  std::int64_t out_of_order = 0;       // sequence below the last accepted
+  std::int64_t stale = 0;              // too old (see UdpDeviceParams::stale_seconds)
+  std::int64_t wrenches_sent = 0;
+  std::int64_t send_errors = 0;
+  std::int64_t rejected() const { return bad_length + bad_header + bad_checksum + non_finite + duplicate + out_of_order + stale; }
+};
+
+class UdpDevice final : public HapticDevice {
+ public:
+  // Opens a non-blocking UDP socket bound to 127.0.0.1:listen_port. Throws Error naming the
+  // port when the socket cannot be opened or bound.
+  explicit UdpDevice(const UdpDeviceParams& params);
+  ~UdpDevice() override;
+  UdpDevice(const UdpDevice&) = delete;
+  UdpDevice& operator=(const UdpDevice&) = delete;
+
+  std::string_view name() const override { return "udp"; }
+  DeviceCapabilities capabilities() const override { return params_.capabilities; }
+  // Drains every queued datagram, keeps the newest valid pose. Staleness is judged on the
+  // one-way delay NOW_NS - timestamp_ns relative to the smallest delay seen so far, so the
+  // two clocks need not share an origin (only a rate).
+  bool Read(std::int64_t now_ns, DeviceState* out) override;
+  void Write(const Wrench& wrench, std::int64_t now_ns) override;
+  void EmergencyZero() noexcept override;
+
+  std::uint16_t bound_port() const { return bound_port_; }
+  const UdpStats& stats() const { return stats_; }
+  std::int64_t emergency_zeroes() const { return emergency_zeroes_.load(); }
+  // Flag bit set in a wrench packet sent by EmergencyZero.
+  static constexpr std::uint32_t kEmergencyZeroFlag = 1u << 31;
+
+ private:
+  bool Send(const Wrench& w, std::int64_t now_ns, std::uint32_t flags, std::uint64_t pose_sequence) noexcept;
+
+  UdpDeviceParams params_;
+  int fd_ = -1;
+  std::uint16_t bound_port_ = 0;
+  std::atomic<std::uint32_t> peer_port_{0};
+  std::atomic<std::uint64_t> wrench_sequence_{0};
+  std::atomic<std::int64_t> emergency_zeroes_{0};
+  bool have_pose_ = false;
+  std::uint64_t last_sequence_ = 0;
+  std::int64_t min_delay_ns_ = 0;
+  DeviceState last_;
+  UdpStats stats_;
+};
+
+}  // namespace contactlab

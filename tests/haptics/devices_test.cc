@@ -1,0 +1,116 @@
+// Tests of the device backends other than UDP: replay CSV (slerp, errors naming file and
+// line), the dlopen'ed example plugin, spacenav without a device, the device factory.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "haptics/device_factory.h"
+#include "haptics/plugin_device.h"
+#include "haptics/replay_device.h"
+#include "haptics/sim_device.h"
+#include "haptics/rotation_math.h"
+#include "test_support.h"
+#include "util/error.h"
+
+namespace contactlab {
+namespace {
+
+constexpr std::int64_t kMs = 1000000;
+
+void WriteText(const std::filesystem::path& p, const std::string& text) {
+  std::ofstream(p) << text;
+}
+
+// Expects F to throw an Error whose message contains every string in NEEDLES.
+template <typename F>
+void ExpectErrorMentions(F f, std::initializer_list<std::string> needles) {
+  try {
+    f();
+    ADD_FAILURE() << "expected an Error";
+  } catch (const Error& e) {
+    for (const auto& n : needles) EXPECT_NE(std::string(e.what()).find(n), std::string::npos) << e.what() << " lacks " << n;
+  }
+}
+
+TEST(ReplayDevice, InterpolatesPositionLinearlyAndOrientationBySlerp) {
+  testing::TempDir dir;
+  const auto file = dir / "traj.csv";
+  // 90 degrees about z over one second, moving 3 cm in x.
+  WriteText(file, "t,x,y,z,qw,qx,qy,qz\n0,0,0,0,1,0,0,0\n# comment\n\n1.0,0.03,0,0,0.7071067811865476,0,0,0.7071067811865476\n");
+  ReplayDevice dev(ReadTrajectoryCsv(file), SimDeviceParams::DefaultCapabilities());
+  DeviceState s;
+  ASSERT_TRUE(dev.Read(5 * kMs, &s));  // first read = t 0
+  EXPECT_LT(s.X_WD.translation.norm(), 1e-15);
+  dev.Read(5 * kMs + 250 * kMs, &s);
+  EXPECT_NEAR(s.X_WD.translation.x(), 0.0075, 1e-12);
+  EXPECT_NEAR(CalcRotationVector(s.X_WD.rotation).z(), M_PI / 8, 1e-9);  // slerp: angle linear in s
+  dev.Read(5 * kMs + 2000 * kMs, &s);  // past the end: hold the last pose
+  EXPECT_NEAR(s.X_WD.translation.x(), 0.03, 1e-15);
+  EXPECT_TRUE(dev.finished());
+}
+
+TEST(ReplayDevice, BadCsvRowsAreReportedWithFileAndLine) {
+  testing::TempDir dir;
+  const auto file = dir / "bad.csv";
+  WriteText(file, "t,x,y,z,qw,qx,qy,qz\n0,0,0,0,1,0,0,0\n0.1,0,0,0,1,0,0\n");
+  ExpectErrorMentions([&] { ReadTrajectoryCsv(file); }, {"bad.csv:3", "8 columns"});
+  WriteText(file, "0,0,0,0,1,0,0,0\n0.1,0,zero,0,1,0,0,0\n");
+  ExpectErrorMentions([&] { ReadTrajectoryCsv(file); }, {"bad.csv:2", "'zero'"});
+  WriteText(file, "0,0,0,0,1,0,0,0\n0,0,0,0,1,0,0,0\n");
+  ExpectErrorMentions([&] { ReadTrajectoryCsv(file); }, {"bad.csv:2", "not greater"});
+  WriteText(file, "0,0,0,0,0,0,0,0\n");
+  ExpectErrorMentions([&] { ReadTrajectoryCsv(file); }, {"bad.csv:1", "quaternion is zero"});
+  WriteText(file, "0,0,0,nan,1,0,0,0\n");
+  ExpectErrorMentions([&] { ReadTrajectoryCsv(file); }, {"bad.csv:1", "not finite"});
+  WriteText(file, "t,x,y,z,qw,qx,qy,qz\n");
+  ExpectErrorMentions([&] { ReadTrajectoryCsv(file); }, {"bad.csv", "no samples"});
+  ExpectErrorMentions([&] { ReadTrajectoryCsv(dir / "missing.csv"); }, {"missing.csv", "cannot open"});
+}
+
+TEST(PluginDevice, ExamplePluginLoadsReadsWritesAndZeroes) {
+  PluginDevice dev(CONTACTLAB_EXAMPLE_PLUGIN_PATH, "radius=0.05");
+  EXPECT_EQ(dev.name(), "example-circle");
+  EXPECT_EQ(dev.capabilities().dof_out, 6);
+  EXPECT_DOUBLE_EQ(dev.capabilities().max_force, 5.0);
+  DeviceState s;
+  ASSERT_TRUE(dev.Read(0, &s));
+  EXPECT_NEAR(s.X_WD.translation.x(), 0.05, 1e-15);
+  ASSERT_TRUE(dev.Read(1000 * kMs, &s));  // a quarter turn later (period 4 s)
+  EXPECT_NEAR(s.X_WD.translation.y(), 0.05, 1e-12);
+  Wrench w;
+  w.force.x() = 1;
+  dev.Write(w, 0);
+  dev.EmergencyZero();
+  EXPECT_EQ(dev.write_errors(), 0);
+}
+
+TEST(PluginDevice, LoadFailuresNameTheLibraryAndTheCause) {
+  ExpectErrorMentions([] { PluginDevice d("/nonexistent/libnothing.so", ""); }, {"libnothing.so", "dlopen"});
+  ExpectErrorMentions([] { PluginDevice d(CONTACTLAB_EXAMPLE_PLUGIN_PATH, "radius=oops"); },
+                      {"libcontactlab_example_device.so", "refused", "radius=oops"});
+}
+
+TEST(DeviceFactory, MakesEachKindAndRejectsBadSpecs) {
+  EXPECT_EQ(MakeDevice("sim")->name(), "sim");
+  EXPECT_EQ(MakeDevice("sim:circle:0.02:3")->name(), "sim");
+  EXPECT_EQ(MakeDevice("udp:0")->name(), "udp");
+  EXPECT_EQ(MakeDevice(std::string("plugin:") + CONTACTLAB_EXAMPLE_PLUGIN_PATH)->name(), "example-circle");
+  ExpectErrorMentions([] { MakeDevice("phantom"); }, {"phantom", "unknown device kind"});
+  ExpectErrorMentions([] { MakeDevice("udp:70000"); }, {"udp:70000", "0..65535"});
+  ExpectErrorMentions([] { MakeDevice("sim:circle:x"); }, {"radius", "'x'"});
+  ExpectErrorMentions([] { MakeDevice("replay:/nonexistent/t.csv"); }, {"/nonexistent/t.csv"});
+}
+
+TEST(SpacenavDevice, OpeningWithoutDaemonFailsWithAClearMessage) {
+  if (!SpacenavAvailable()) GTEST_SKIP() << "built without libspnav";
+  // No spacenavd and no device on the test machine.
+  try {
+    auto d = MakeDevice("spacenav");
+    GTEST_SKIP() << "a spacenavd is running here; nothing to check";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("spacenavd"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace contactlab

@@ -1,0 +1,229 @@
+// Tests of the UDP device protocol on loopback sockets (UDP_PROTOCOL.md): round trips, and
+// short, malformed, duplicated, out-of-order and stale packets rejected, counted, never acted on.
+#include "haptics/udp_device.h"
+
+#include <arpa/inet.h>
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <thread>
+
+#include "util/error.h"
+
+namespace contactlab {
+namespace {
+
+constexpr std::int64_t kMs = 1000000;
+
+// The device side of the protocol: a loopback socket talking to the UdpDevice's port.
+class Peer {
+ public:
+  explicit Peer(std::uint16_t device_port) {
+    fd_ = ::socket(AF_INET, SOCK_DGRAM, 0);
+    sockaddr_in self{};
+    self.sin_family = AF_INET;
+    self.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    ::bind(fd_, reinterpret_cast<sockaddr*>(&self), sizeof(self));
+    timeval tv{0, 200000};
+    ::setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof(tv));
+    to_.sin_family = AF_INET;
+    to_.sin_port = htons(device_port);
+    to_.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  }
+  ~Peer() { ::close(fd_); }
+  void SendRaw(const std::uint8_t* d, std::size_t n) {
+    ASSERT_EQ(::sendto(fd_, d, n, 0, reinterpret_cast<sockaddr*>(&to_), sizeof(to_)), ssize_t(n));
+  }
+  void SendPose(std::uint64_t seq, std::int64_t ts, double x) {
+    udp::PosePacket p;
+    p.sequence = seq;
+    p.timestamp_ns = ts;
+    p.position[0] = x;
+    p.buttons = 5;
+    udp::PoseBytes b;
+    udp::EncodePose(p, &b);
+    SendRaw(b.data(), b.size());
+  }
+  // Receives one datagram (200 ms timeout); returns its size or -1.
+  ssize_t Receive(std::uint8_t* buf, std::size_t cap) { return ::recv(fd_, buf, cap, 0); }
+
+ private:
+  int fd_;
+  sockaddr_in to_{};
+};
+
+// Loopback delivery is immediate in practice; give the kernel a moment anyway.
+void Settle() { std::this_thread::sleep_for(std::chrono::milliseconds(5)); }
+
+TEST(UdpProtocol, PoseAndWrenchRoundTripBitExactly) {
+  udp::PosePacket p;
+  p.sequence = 0x0123456789abcdefULL;
+  p.timestamp_ns = -42;
+  p.position[0] = 1.0 / 3.0, p.position[1] = -2e-300, p.position[2] = 7;
+  p.quaternion[0] = 0.5, p.quaternion[1] = 0.5, p.quaternion[2] = -0.5, p.quaternion[3] = 0.5;
+  p.buttons = 0x80000001u;
+  udp::PoseBytes pb;
+  udp::EncodePose(p, &pb);
+  EXPECT_EQ(pb[0], 'C');
+  EXPECT_EQ(pb[1], 'L');
+  EXPECT_EQ(pb[2], 'P');
+  EXPECT_EQ(pb[3], '1');
+  EXPECT_EQ(pb[8], 0xef);  // little-endian sequence
+  udp::PosePacket q;
+  ASSERT_EQ(udp::DecodePose(pb.data(), pb.size(), &q), udp::DecodeStatus::kOk);
+  EXPECT_EQ(q.sequence, p.sequence);
+  EXPECT_EQ(q.timestamp_ns, p.timestamp_ns);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(q.position[i], p.position[i]);
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(q.quaternion[i], p.quaternion[i]);
+  EXPECT_EQ(q.buttons, p.buttons);
+
+  udp::WrenchPacket w;
+  w.sequence = 9;
+  w.timestamp_ns = 123456789;
+  w.force[2] = -1.5;
+  w.torque[0] = 0.25;
+  w.pose_sequence = 8;
+  w.flags = 3;
+  udp::WrenchBytes wb;
+  udp::EncodeWrench(w, &wb);
+  udp::WrenchPacket v;
+  ASSERT_EQ(udp::DecodeWrench(wb.data(), wb.size(), &v), udp::DecodeStatus::kOk);
+  EXPECT_EQ(v.force[2], -1.5);
+  EXPECT_EQ(v.torque[0], 0.25);
+  EXPECT_EQ(v.pose_sequence, 8u);
+  EXPECT_EQ(v.flags, 3u);
+  // A wrench packet is not a pose packet.
+  EXPECT_EQ(udp::DecodePose(wb.data(), wb.size(), &q), udp::DecodeStatus::kBadMagic);
+}
+
+TEST(UdpProtocol, ChecksumIsStandardCrc32) {
+  const char* check = "123456789";
+  EXPECT_EQ(udp::Crc32(reinterpret_cast<const std::uint8_t*>(check), 9), 0xCBF43926u);
+}
+
+TEST(UdpProtocol, EverySingleBitFlipIsDetected) {
+  udp::PosePacket p;
+  p.sequence = 77;
+  p.position[1] = 0.01;
+  udp::PoseBytes pb;
+  udp::EncodePose(p, &pb);
+  udp::PosePacket q;
+  for (std::size_t byte = 0; byte < pb.size(); ++byte) {
+    for (int bit = 0; bit < 8; ++bit) {
+      udp::PoseBytes c = pb;
+      c[byte] ^= std::uint8_t(1u << bit);
+      ASSERT_NE(udp::DecodePose(c.data(), c.size(), &q), udp::DecodeStatus::kOk) << "byte " << byte << " bit " << bit;
+    }
+  }
+}
+
+TEST(UdpDevice, BadPacketsAreRejectedCountedAndNeverActedOn) {
+  UdpDevice dev(UdpDeviceParams{});
+  ASSERT_GT(dev.bound_port(), 0);
+  Peer peer(dev.bound_port());
+  DeviceState s;
+  const std::int64_t t0 = 1000 * kMs;
+
+  // A good packet is accepted.
+  peer.SendPose(10, t0, 0.01);
+  Settle();
+  ASSERT_TRUE(dev.Read(t0 + kMs, &s));
+  EXPECT_EQ(s.X_WD.translation.x(), 0.01);
+  EXPECT_EQ(s.sequence, 10u);
+  EXPECT_EQ(s.buttons, 5u);
+
+  // Short, long, corrupted, bad magic, non-finite, duplicate, out of order, stale.
+  udp::PosePacket p;
+  p.sequence = 11;
+  p.timestamp_ns = t0 + kMs;
+  p.position[0] = 9.0;
+  udp::PoseBytes b;
+  udp::EncodePose(p, &b);
+  peer.SendRaw(b.data(), 10);                               // short
+  std::uint8_t longer[100] = {0};
+  std::memcpy(longer, b.data(), b.size());
+  peer.SendRaw(longer, sizeof(longer));                     // long
+  udp::PoseBytes c = b;
+  c[40] ^= 0x01;
+  peer.SendRaw(c.data(), c.size());                         // checksum
+  c = b;
+  c[0] = 'X';
+  peer.SendRaw(c.data(), c.size());                         // magic (checksum not reached)
+  udp::PosePacket nf = p;
+  nf.position[1] = std::numeric_limits<double>::infinity();
+  udp::EncodePose(nf, &c);
+  peer.SendRaw(c.data(), c.size());                         // non-finite
+  peer.SendPose(10, t0 + kMs, 9.0);                         // duplicate of the accepted 10
+  peer.SendPose(7, t0 + kMs, 9.0);                          // out of order
+  peer.SendPose(12, t0 - 200 * kMs, 9.0);                   // stale: 200 ms older than expected
+  Settle();
+  EXPECT_FALSE(dev.Read(t0 + 2 * kMs, &s));
+  EXPECT_EQ(s.X_WD.translation.x(), 0.01) << "a rejected packet was acted on";
+  EXPECT_EQ(s.sequence, 10u);
+  const UdpStats& st = dev.stats();
+  EXPECT_EQ(st.bad_length, 2);
+  EXPECT_EQ(st.bad_checksum, 1);
+  EXPECT_EQ(st.bad_header, 1);
+  EXPECT_EQ(st.non_finite, 1);
+  EXPECT_EQ(st.duplicate, 1);
+  EXPECT_EQ(st.out_of_order, 1);
+  EXPECT_EQ(st.stale, 1);
+  EXPECT_EQ(st.accepted, 1);
+  EXPECT_EQ(st.rejected(), 8);
+
+  // The stream resumes with a newer packet; of several queued, the newest wins.
+  peer.SendPose(13, t0 + 3 * kMs, 0.02);
+  peer.SendPose(14, t0 + 3 * kMs, 0.03);
+  Settle();
+  ASSERT_TRUE(dev.Read(t0 + 4 * kMs, &s));
+  EXPECT_EQ(s.X_WD.translation.x(), 0.03);
+  EXPECT_EQ(dev.stats().accepted, 3);
+}
+
+TEST(UdpDevice, WrenchPacketsGoBackToTheSenderAndEmergencyZeroIsFlagged) {
+  UdpDevice dev(UdpDeviceParams{});
+  Peer peer(dev.bound_port());
+  DeviceState s;
+  peer.SendPose(1, 0, 0.0);
+  Settle();
+  ASSERT_TRUE(dev.Read(kMs, &s));
+  Wrench w;
+  w.force = Eigen::Vector3d(1, 2, 3);
+  w.torque = Eigen::Vector3d(-0.1, 0, 0.1);
+  dev.Write(w, 2 * kMs);
+  std::uint8_t buf[256];
+  ssize_t n = peer.Receive(buf, sizeof(buf));
+  ASSERT_EQ(n, ssize_t(udp::kWrenchPacketSize));
+  udp::WrenchPacket got;
+  ASSERT_EQ(udp::DecodeWrench(buf, std::size_t(n), &got), udp::DecodeStatus::kOk);
+  EXPECT_EQ(got.force[1], 2.0);
+  EXPECT_EQ(got.torque[2], 0.1);
+  EXPECT_EQ(got.pose_sequence, 1u);
+  EXPECT_EQ(got.timestamp_ns, 2 * kMs);
+
+  dev.EmergencyZero();
+  n = peer.Receive(buf, sizeof(buf));
+  ASSERT_EQ(udp::DecodeWrench(buf, std::size_t(n), &got), udp::DecodeStatus::kOk);
+  EXPECT_EQ(got.force[0], 0.0);
+  EXPECT_EQ(got.force[1], 0.0);
+  EXPECT_TRUE(got.flags & UdpDevice::kEmergencyZeroFlag);
+  EXPECT_EQ(dev.emergency_zeroes(), 1);
+}
+
+TEST(UdpDevice, PortInUseIsReportedWithThePort) {
+  UdpDevice a(UdpDeviceParams{});
+  UdpDeviceParams p;
+  p.listen_port = a.bound_port();
+  try {
+    UdpDevice b(p);
+    FAIL() << "expected an Error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(std::to_string(a.bound_port())), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace contactlab
