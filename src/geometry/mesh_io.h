@@ -1,5 +1,15 @@
 // Mesh readers: OBJ, OFF, STL (ASCII and binary), PLY (ASCII and binary little/big endian).
 // Quads and n-gons are fan-triangulated. Polygon soups are accepted as they are.
+// Format details (readers in obj_reader.cc, off_reader.cc, stl_reader.cc, ply_reader.cc):
+//  - OBJ: "v" and "f" records only (v, v/vt, v//vn, v/vt/vn; negative indices relative to the
+//    vertices read so far; a face may only use vertices defined before it).
+//  - OFF: optional '#' comments; OFF/COFF/NOFF/CNOFF/STOFF headers (extra values ignored);
+//    counts on the header line or the next one; ASCII only.
+//  - STL: binary when the size is 84 + 50 n (also under a "solid" header), else ASCII when it
+//    starts with "solid" and is text. Vertices are welded by exact position (shared vertices).
+//  - PLY: vertex x, y, z of any scalar type; face list "vertex_indices" or "vertex_index" with
+//    any integer count and index types; other properties, lists and elements are skipped.
+//    ASCII PLY holds one element record per line.
 #pragma once
 
 #include <Eigen/Core>
@@ -23,7 +33,10 @@ struct MeshLoadOptions {
 // coordinates, out-of-range or negative indices, and a mesh with no triangles.
 TriangleMesh LoadMesh(const std::filesystem::path& path, const MeshLoadOptions& options = {});
 
-// Writes MESH as OBJ, OFF, STL (binary) or PLY (binary) by extension, atomically.
+// Writes MESH as OBJ, OFF, STL (binary) or PLY (binary) by extension, atomically (temporary
+// file renamed onto PATH). OBJ, OFF and PLY (double) keep positions exactly; STL rounds them
+// to float. Throws Error naming PATH for an unknown extension, an index out of range, or a
+// failed write.
 void SaveMesh(const TriangleMesh& mesh, const std::filesystem::path& path);
 
 }  // namespace contactlab

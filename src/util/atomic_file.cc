@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <atomic>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -13,7 +14,9 @@ namespace fs = std::filesystem;
 
 void WriteFileAtomically(const fs::path& path, const std::function<void(std::ostream&)>& write,
                          bool binary) {
-  const fs::path tmp = path.string() + ".tmp-" + std::to_string(::getpid());
+  // Unique per process and per call, so threads writing the same target never collide.
+  static std::atomic<unsigned> counter{0};
+  const fs::path tmp = path.string() + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
   std::error_code ec;
   if (path.has_parent_path() && !fs::exists(path.parent_path(), ec)) {
     fs::create_directories(path.parent_path(), ec);

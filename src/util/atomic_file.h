@@ -9,7 +9,7 @@
 
 namespace contactlab {
 
-// Calls WRITE with a stream onto "PATH.tmp-<pid>", flushes, checks the stream, and renames
+// Calls WRITE with a stream onto "PATH.tmp-<pid>-<n>", flushes, checks the stream, and renames
 // the temporary file onto PATH. On any failure (including an exception thrown by WRITE) the
 // temporary file is removed and Error is thrown naming PATH. BINARY opens in binary mode.
 void WriteFileAtomically(const std::filesystem::path& path,

@@ -21,6 +21,7 @@ class ConfigNode {
   // Parses TEXT as if read from FILE_LABEL (for tests and --set overrides).
   static ConfigNode LoadString(const std::string& text, const std::string& file_label);
 
+  ConfigNode() : file_(std::make_shared<const std::string>()) {}
   ConfigNode(YAML::Node node, std::shared_ptr<const std::string> file, std::string path);
 
   const std::string& file() const { return *file_; }
