@@ -3,6 +3,22 @@
 // Two pipelines: "closed" (a watertight mesh: exact point-triangle distances, robust sign)
 // and "soup" (any triangle set: unsigned field, marching-cubes isosurface at a small offset,
 // removal of components enclosed by others, signed field of the remaining closed surface).
+//
+// Accuracy (see unsigned_distance_grid.h, ray_crossing_sign.h, signed_distance_grid.h):
+//  * every sample is the exact distance from its grid point to some triangle, so |value| never
+//    underestimates the distance; samples within 3 voxels of the surface, and the samples on
+//    the grid's boundary faces, are exact (double arithmetic, stored as float); farther ones
+//    come from closest-triangle propagation and are upper bounds, typically within a small
+//    fraction of a voxel (measured by experiments/bench_sdf/sdf_crosscheck against CGAL);
+//  * the sign comes from signed ray crossings along grid lines in x, y, z with a majority vote
+//    (non-zero winding rule), so orientation does not matter for watertight meshes;
+//  * the smallest boundary sample is lowered by ~h^2/(4 d) so that the outside-the-box bound
+//    of distance_field.h never overestimates.
+// Soup pipeline: the zero level set of the final field is NOT the input soup but the offset
+// surface at distance `offset` from it (DistanceFieldInfo::offset; default 1.5 voxels), as
+// extracted by marching cubes; holes narrower than about twice the offset are closed, inner
+// sheets enclosed by outer ones are dropped, and the field is the signed distance to what
+// remains (≈ unsigned distance to the soup minus the offset, outside it).
 #pragma once
 
 #include <filesystem>
@@ -24,17 +40,24 @@ struct DistanceFieldOptions {
 };
 
 // Builds the field of MESH (metres). Throws Error naming MESH.name for an empty mesh, a
-// resolution outside [8, 1024], or (forced closed mode) a mesh that is not watertight.
+// resolution outside [8, 1024], or (forced closed mode) a mesh that is not watertight
+// (ValidateMesh, geometry/mesh_validation.h; auto mode uses it to pick the pipeline), a
+// negative or non-finite padding, invalid triangle indices or non-finite vertices.
+// Parallel (TBB, all cores); show_progress draws stage progress on a terminal.
 DistanceField BuildDistanceField(const TriangleMesh& mesh, const DistanceFieldOptions& options = {});
 
 // Parses "auto" | "closed" | "soup"; throws Error naming WHERE.
 FieldMode ParseFieldMode(const std::string& text, const std::string& where);
 
-// Versioned binary file with a checksum (util/binary_io.h), magic "CLSDF".
+// Versioned binary file with a checksum (util/binary_io.h), magic "CLSDF", version 1: origin
+// (3 doubles), spacing (double), dims (3 int32), samples (float array), info (source, mode,
+// offset, build seconds). Save writes atomically. Load throws Error naming PATH for a missing,
+// truncated, corrupt (checksum), foreign or inconsistent file.
 void SaveDistanceField(const DistanceField& field, const std::filesystem::path& path);
 DistanceField LoadDistanceField(const std::filesystem::path& path);
 
-// A few lines: source, mode, offset, dims, spacing, box, value range, memory, build time.
+// A few lines: source, mode, offset, dims, spacing, box, value range, memory, build time. For
+// a soup field it states that the zero level set is the offset surface at distance `offset`.
 std::string DescribeDistanceField(const DistanceField& field);
 
 }  // namespace contactlab

@@ -1,0 +1,98 @@
+// Building signed distance fields from closed meshes and polygon soups (Barbič & James 2008,
+// sec. 2.3).
+#include "sdf/build_distance_field.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "geometry/mesh_validation.h"
+#include "sdf/enclosed_components.h"
+#include "sdf/field_grid.h"
+#include "sdf/marching_cubes.h"
+#include "sdf/signed_distance_grid.h"
+#include "sdf/unsigned_distance_grid.h"
+#include "util/error.h"
+
+namespace contactlab {
+namespace {
+
+constexpr int kClosedBandVoxels = 3;
+
+std::string MeshWhere(const TriangleMesh& mesh) { return mesh.name.empty() ? std::string("mesh") : mesh.name; }
+
+void CheckInputs(const TriangleMesh& mesh, const DistanceFieldOptions& options) {
+  const std::string where = MeshWhere(mesh);
+  if (mesh.empty()) Fail(where, "has no triangles; cannot build a distance field");
+  if (options.resolution < 8 || options.resolution > 1024) {
+    Fail(where, "distance-field resolution " + std::to_string(options.resolution) + " is outside [8, 1024]");
+  }
+  if (!(options.padding >= 0) || !std::isfinite(options.padding)) {
+    Fail(where, "distance-field padding must be finite and >= 0");
+  }
+  if (!std::isfinite(options.soup_offset)) Fail(where, "soup offset must be finite");
+  for (const auto& t : mesh.triangles) {
+    if ((t.array() < 0).any() || (t.array() >= mesh.num_vertices()).any()) {
+      Fail(where, "a triangle refers to a vertex that does not exist");
+    }
+  }
+  for (const auto& v : mesh.vertices) {
+    if (!v.allFinite()) Fail(where, "a vertex coordinate is not finite");
+  }
+}
+
+}  // namespace
+
+FieldMode ParseFieldMode(const std::string& text, const std::string& where) {
+  if (text == "auto") return FieldMode::kAuto;
+  if (text == "closed") return FieldMode::kClosed;
+  if (text == "soup") return FieldMode::kSoup;
+  Fail(where, "unknown distance-field mode '" + text + "' (expected auto, closed or soup)");
+}
+
+DistanceField BuildDistanceField(const TriangleMesh& mesh, const DistanceFieldOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  CheckInputs(mesh, options);
+  const std::string where = MeshWhere(mesh);
+
+  // Pipeline: closed meshes get the exact signed field, everything else the soup pipeline.
+  FieldMode mode = options.mode;
+  if (mode != FieldMode::kSoup) {
+    const MeshReport report = ValidateMesh(mesh);
+    if (mode == FieldMode::kClosed && !report.watertight) {
+      Fail(where, "is not watertight (" + std::to_string(report.boundary_edges) + " boundary edges, " +
+                      std::to_string(report.nonmanifold_edges) + " non-manifold edges, " +
+                      std::to_string(report.inconsistent_edges) +
+                      " inconsistently oriented edges); the closed pipeline needs a watertight mesh, "
+                      "use mode soup or auto");
+    }
+    mode = report.watertight ? FieldMode::kClosed : FieldMode::kSoup;
+  }
+  const FieldGrid grid = MakeFieldGrid(mesh.Bounds(), options.resolution, options.padding);
+
+  DistanceFieldInfo info;
+  info.source = mesh.name;
+  std::vector<float> values;
+  if (mode == FieldMode::kClosed) {
+    info.mode = "closed";
+    values = ComputeSignedDistance(mesh, grid, kClosedBandVoxels, options.show_progress);
+  } else {
+    // Soup: unsigned field, offset isosurface, drop enclosed components, signed field of the rest.
+    info.mode = "soup";
+    const double offset = options.soup_offset < 0 ? 1.5 * grid.spacing : options.soup_offset;
+    if (!(offset > 0)) Fail(where, "soup offset must be positive (or negative for the default 1.5 voxels)");
+    info.offset = offset;
+    const int band = std::max(kClosedBandVoxels, int(std::ceil(offset / grid.spacing)) + 2);
+    std::vector<float> unsigned_distance =
+        ComputeUnsignedDistance(mesh, grid, band, options.show_progress).distance;
+    const TriangleMesh iso = ExtractIsosurface(unsigned_distance, grid, offset, /*close_at_boundary=*/true,
+                                               where + " offset surface");
+    unsigned_distance = {};
+    if (iso.empty()) Fail(where, "the offset surface of the soup is empty; increase the soup offset");
+    const TriangleMesh outer = RemoveEnclosedComponents(iso);
+    values = ComputeSignedDistance(outer, grid, kClosedBandVoxels, options.show_progress);
+  }
+  info.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return DistanceField(grid.origin, grid.spacing, grid.dims, std::move(values), std::move(info));
+}
+
+}  // namespace contactlab

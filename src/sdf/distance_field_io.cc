@@ -1,0 +1,96 @@
+// Distance-field files ("CLSDF", version 1) and summaries (Barbič & James 2008, sec. 2.3).
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "sdf/build_distance_field.h"
+#include "util/binary_io.h"
+#include "util/error.h"
+
+namespace contactlab {
+namespace {
+
+constexpr char kMagic[] = "CLSDF";
+constexpr std::uint32_t kVersion = 1;
+constexpr int kMaxDim = 1 << 14;
+
+}  // namespace
+
+void SaveDistanceField(const DistanceField& field, const std::filesystem::path& path) {
+  if (field.empty()) Fail(path.string(), "cannot save an empty distance field");
+  BinaryWriter w;
+  for (int a = 0; a < 3; ++a) w.Put<double>(field.origin()[a]);
+  w.Put<double>(field.spacing());
+  for (int a = 0; a < 3; ++a) w.Put<std::int32_t>(field.dims()[a]);
+  w.PutArray(field.values());
+  w.PutString(field.info().source);
+  w.PutString(field.info().mode);
+  w.Put<double>(field.info().offset);
+  w.Put<double>(field.info().build_seconds);
+  w.Save(path, kMagic, kVersion);
+}
+
+DistanceField LoadDistanceField(const std::filesystem::path& path) {
+  BinaryReader r(path, kMagic, kVersion);
+  Eigen::Vector3d origin;
+  for (int a = 0; a < 3; ++a) origin[a] = r.Get<double>("origin");
+  const double spacing = r.Get<double>("spacing");
+  Eigen::Vector3i dims;
+  for (int a = 0; a < 3; ++a) {
+    dims[a] = r.Get<std::int32_t>("dimensions");
+    if (dims[a] < 2 || dims[a] > kMaxDim) {
+      r.Corrupt("grid dimension " + std::to_string(dims[a]) + " is outside [2, " + std::to_string(kMaxDim) + "]");
+    }
+  }
+  if (!origin.allFinite()) r.Corrupt("origin is not finite");
+  if (!(spacing > 0) || !std::isfinite(spacing)) r.Corrupt("spacing must be positive and finite");
+  const std::uint64_t n = std::uint64_t(dims.x()) * dims.y() * dims.z();
+  std::vector<float> values = r.GetArray<float>("samples", n);
+  if (values.size() != n) {
+    r.Corrupt("holds " + std::to_string(values.size()) + " samples, dimensions need " + std::to_string(n));
+  }
+  DistanceFieldInfo info;
+  info.source = r.GetString("source");
+  info.mode = r.GetString("mode");
+  info.offset = r.Get<double>("offset");
+  info.build_seconds = r.Get<double>("build time");
+  r.ExpectEnd();
+  try {
+    return DistanceField(origin, spacing, dims, std::move(values), std::move(info));
+  } catch (const Error& e) {
+    r.Corrupt(e.what());
+  }
+}
+
+std::string DescribeDistanceField(const DistanceField& field) {
+  char buf[512];
+  std::ostringstream out;
+  const DistanceFieldInfo& info = field.info();
+  out << "distance field of " << (info.source.empty() ? "(unnamed)" : info.source) << "\n";
+  if (info.mode == "soup") {
+    std::snprintf(buf, sizeof(buf),
+                  "  mode: soup; the zero level set is the offset surface at distance %.6g m (%.3g voxels) "
+                  "from the input soup\n",
+                  info.offset, info.offset / field.spacing());
+    out << buf;
+  } else {
+    out << "  mode: " << (info.mode.empty() ? "unknown" : info.mode) << "\n";
+  }
+  const Eigen::Vector3i& d = field.dims();
+  std::snprintf(buf, sizeof(buf), "  grid: %d x %d x %d points, spacing %.6g m, %lld samples (%.1f MB)\n", d.x(),
+                d.y(), d.z(), field.spacing(), static_cast<long long>(field.num_samples()),
+                field.num_samples() * 4.0 / (1 << 20));
+  out << buf;
+  const Aabb box = field.box();
+  std::snprintf(buf, sizeof(buf), "  box: [%.6g, %.6g, %.6g] .. [%.6g, %.6g, %.6g] m\n", box.min.x(), box.min.y(),
+                box.min.z(), box.max.x(), box.max.y(), box.max.z());
+  out << buf;
+  std::snprintf(buf, sizeof(buf), "  values: [%.6g, %.6g] m, boundary minimum %.6g m\n", field.min_value(),
+                field.max_value(), field.boundary_min());
+  out << buf;
+  std::snprintf(buf, sizeof(buf), "  build time: %.3f s\n", info.build_seconds);
+  out << buf;
+  return out.str();
+}
+
+}  // namespace contactlab
