@@ -1,6 +1,6 @@
 // The nested multiresolution pointshell (Barbič & James 2008, sec. 2.2 and 2.4): points with
 // inward unit normals on an offset surface of the body, organised as a tree whose level L_i
-// holds an instance of every point of repulsion levels 1..i.
+// holds an instance of every point of repulsion levels 0..i (the paper numbers them from 1).
 //
 // Storage is flat (structure of arrays, index-based children) so a breadth-first traversal
 // allocates nothing. Points are ordered by repulsion level, so the points of tree level i
