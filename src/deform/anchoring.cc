@@ -1,0 +1,69 @@
+// Fixed vertices of anchored reduced deformable models (Barbič & James 2008, sec. 4).
+#include "deform/anchoring.h"
+
+#include <sstream>
+
+#include "util/error.h"
+
+namespace contactlab {
+
+Anchoring Anchoring::BelowY(double y) { return BelowPlane(Eigen::Vector3d::UnitY(), y); }
+
+Anchoring Anchoring::BelowPlane(const Eigen::Vector3d& normal, double offset) {
+  Anchoring a;
+  a.kind = Kind::kBelowPlane;
+  a.normal = normal;
+  a.offset = offset;
+  return a;
+}
+
+Anchoring Anchoring::InBox(const Aabb& box) {
+  Anchoring a;
+  a.kind = Kind::kInBox;
+  a.box = box;
+  return a;
+}
+
+std::string Anchoring::Describe() const {
+  std::ostringstream s;
+  switch (kind) {
+    case Kind::kFree: s << "free"; break;
+    case Kind::kBelowPlane:
+      s << "fixed where n.p <= c, n = (" << normal.x() << ", " << normal.y() << ", " << normal.z()
+        << "), c = " << offset;
+      break;
+    case Kind::kInBox:
+      s << "fixed inside box [" << box.min.transpose() << "] .. [" << box.max.transpose() << "]";
+      break;
+  }
+  return s.str();
+}
+
+std::vector<std::uint8_t> FindFixedVertices(const TetMesh& mesh, const Anchoring& anchoring,
+                                            const std::string& where) {
+  std::vector<std::uint8_t> fixed(mesh.vertices.size(), 0);
+  if (!anchoring.anchored()) return fixed;
+  if (anchoring.kind == Anchoring::Kind::kBelowPlane && !(anchoring.normal.norm() > 0)) {
+    Fail(where, "the anchoring plane normal is zero");
+  }
+  int count = 0;
+  for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+    const Eigen::Vector3d& p = mesh.vertices[i];
+    const bool f = anchoring.kind == Anchoring::Kind::kBelowPlane
+                       ? anchoring.normal.dot(p) <= anchoring.offset
+                       : anchoring.box.Contains(p);
+    fixed[i] = f ? 1 : 0;
+    count += f;
+  }
+  if (count == 0) {
+    const Aabb b = mesh.Bounds();
+    std::ostringstream s;
+    s << "no vertex of the simulation mesh is anchored (" << anchoring.Describe()
+      << "; mesh box [" << b.min.transpose() << "] .. [" << b.max.transpose() << "])";
+    Fail(where, s.str());
+  }
+  if (count == mesh.num_vertices()) Fail(where, "every vertex is anchored (" + anchoring.Describe() + "); nothing can move");
+  return fixed;
+}
+
+}  // namespace contactlab

@@ -1,0 +1,36 @@
+// Which vertices of a simulation mesh are fixed (Barbič & James 2008, sec. 4: anchored reduced
+// deformable models such as the bridge of Fig. 2), or none for a free-flying body.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "deform/tet_mesh.h"
+#include "geometry/aabb.h"
+
+namespace contactlab {
+
+struct Anchoring {
+  enum class Kind { kFree, kBelowPlane, kInBox };
+  Kind kind = Kind::kFree;
+  // kBelowPlane: vertices with normal . p <= offset are fixed (e.g. normal (0,1,0): y <= c).
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitY();
+  double offset = 0;
+  Aabb box;  // kInBox: vertices inside BOX are fixed
+
+  static Anchoring Free() { return {}; }
+  static Anchoring BelowY(double y);
+  static Anchoring BelowPlane(const Eigen::Vector3d& normal, double offset);
+  static Anchoring InBox(const Aabb& box);
+  bool anchored() const { return kind != Kind::kFree; }
+  // "free", "below plane n=(...) c=...", "in box [...]".
+  std::string Describe() const;
+};
+
+// Per-vertex flags (1 = fixed) of MESH. Throws Error (naming WHERE) when anchoring is asked
+// for and no vertex is fixed, or when every vertex is fixed.
+std::vector<std::uint8_t> FindFixedVertices(const TetMesh& mesh, const Anchoring& anchoring,
+                                            const std::string& where = "anchoring");
+
+}  // namespace contactlab

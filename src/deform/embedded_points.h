@@ -1,0 +1,58 @@
+// Material points embedded in a reduced deformable model (Barbič & James 2008, sec. 4.1):
+// u = U q per point, with U (3 x r) interpolated from the basis by the enclosing tet's shape
+// functions, and deformed normals by deformation-gradient push-forward n' ~ F^{-T} n, with
+// F = I + sum_j F_j q_j. Precomputed once per point in flat arrays; evaluated per haptic
+// cycle without allocation.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "deform/reduced_state.h"
+#include "deform/tet_mesh.h"
+
+namespace contactlab {
+
+class EmbeddedPoints {
+ public:
+  EmbeddedPoints() = default;
+  // Embeds POINTS (rest frame, metres) with rest NORMALS (unit, or empty for none) into MESH
+  // with basis U (3#V x r). A point outside every tet uses the tet it is least outside of
+  // (barycentric extrapolation). Throws Error when sizes disagree or the mesh is empty.
+  EmbeddedPoints(const TetMesh& mesh, const Eigen::MatrixXd& U, const std::vector<Eigen::Vector3d>& points,
+                 const std::vector<Eigen::Vector3d>& normals = {});
+
+  int size() const { return int(tet_.size()); }
+  int r() const { return r_; }
+  int tet(int i) const { return tet_[i]; }
+  // Barycentric coordinates of point I (4 entries, sum 1; all >= 0 inside its tet).
+  Eigen::Vector4d barycentric(int i) const { return Eigen::Map<const Eigen::Vector4d>(&bary_[4 * i]); }
+  Eigen::Vector3d rest_position(int i) const { return Eigen::Map<const Eigen::Vector3f>(&rest_[3 * i]).cast<double>(); }
+
+  // The point's 3 x r basis U_i (allocates; for setup and tests).
+  Eigen::MatrixXd Basis(int i) const;
+
+  // Hot path (no allocation): displacement U_i q, deformed position, deformation gradient and
+  // deformed unit normal of point I for reduced coordinates Q (r entries).
+  Eigen::Vector3d Displacement(int i, const double* q) const;
+  Eigen::Vector3d Position(int i, const double* q) const { return rest_position(i) + Displacement(i, q); }
+  Eigen::Matrix3d DeformationGradient(int i, const double* q) const;
+  Eigen::Vector3d Normal(int i, const double* q) const;
+  // F_q += U_i^T FORCE: the reduced force of a point force (newtons) applied at point I.
+  void AddPointForce(int i, const Eigen::Vector3d& force, double* f_q) const;
+
+ private:
+  int r_ = 0;
+  std::vector<int> tet_;       // #P enclosing tet
+  std::vector<double> bary_;   // #P x 4 barycentric coordinates
+  std::vector<float> rest_;    // #P x 3 rest positions
+  std::vector<float> normal_;  // #P x 3 rest normals (zero when none were given)
+  std::vector<float> u_;       // #P x 3 x r: row c of U_i at u_[(3 i + c) r]
+  std::vector<float> f_;       // #P x 9 x r: entry (a, b) of F_j at f_[(9 i + 3 a + b) r + j]
+};
+
+// Index of the tet containing P, or the one P is least outside of, and its barycentric
+// coordinates. O(#T) per call; EmbeddedPoints uses a grid instead.
+int LocateInTetMesh(const TetMesh& mesh, const Eigen::Vector3d& p, Eigen::Vector4d* bary);
+
+}  // namespace contactlab

@@ -1,0 +1,77 @@
+// The per-cycle operations (time step, reduced forces, embedded point queries) allocate
+// nothing: malloc is interposed in this test executable and counted while a flag is set.
+#include <gtest/gtest.h>
+
+#include <cstddef>
+
+#include "deform/embedded_points.h"
+#include "deform/reduced_integrator.h"
+#include "beam_fixture.h"
+
+extern "C" void* __libc_malloc(std::size_t);
+extern "C" void* __libc_realloc(void*, std::size_t);
+
+namespace {
+thread_local bool g_counting = false;
+thread_local long g_allocations = 0;
+}  // namespace
+
+extern "C" void* malloc(std::size_t n) {
+  if (g_counting) ++g_allocations;
+  return __libc_malloc(n);
+}
+extern "C" void* realloc(void* p, std::size_t n) {
+  if (g_counting) ++g_allocations;
+  return __libc_realloc(p, n);
+}
+
+namespace contactlab {
+namespace {
+
+TEST(NoAllocation, CounterSeesAllocations) {
+  g_allocations = 0;
+  g_counting = true;
+  Eigen::VectorXd* v = new Eigen::VectorXd(100);
+  g_counting = false;
+  delete v;
+  EXPECT_GE(g_allocations, 2);
+}
+
+TEST(NoAllocation, TimeStepForcesAndPointQueriesAllocateNothing) {
+  for (auto kind : {ReducedModelKind::kStVK, ReducedModelKind::kLinear}) {
+    const ReducedModel model = BuildReducedModel(testing::MakeBeam(), testing::BeamOptions(20, kind), "beam");
+    IntegratorOptions options;
+    options.time_step = 1e-3;
+    options.mass_damping = 0.5;
+    options.stiffness_damping = 1e-3;
+    options.newton_iterations = 3;
+    options.newton_tolerance = 1e-12;
+    ReducedIntegrator integrator(model.forces, options);
+    const std::vector<Eigen::Vector3d> points = {{1.0, 0.125, 0.125}, {0.5, 0.25, 0.1}};
+    const std::vector<Eigen::Vector3d> normals = {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY()};
+    const EmbeddedPoints embedded(model.mesh, model.basis, points, normals);
+    auto ws = model.forces.MakeWorkspace();
+    ReducedVector f_ext = ReducedVector::Zero(20), f(20);
+    ReducedMatrix K(20, 20);
+    double sink = 0;
+
+    g_allocations = 0;
+    g_counting = true;
+    for (int step = 0; step < 20; ++step) {
+      f_ext.setZero();
+      embedded.AddPointForce(0, Eigen::Vector3d(0, -100, 0), f_ext.data());
+      integrator.Step(f_ext);
+      const double* q = integrator.state().q.data();
+      sink += embedded.Position(0, q).y() + embedded.Normal(1, q).x() + embedded.DeformationGradient(1, q)(0, 0);
+      model.forces.Evaluate(integrator.state().q, &f, &K, &ws);
+      sink += f[0] + K(0, 0) + model.forces.Energy(integrator.state().q, &ws);
+    }
+    g_counting = false;
+    EXPECT_EQ(g_allocations, 0) << (kind == ReducedModelKind::kStVK ? "reduced StVK" : "linear");
+    EXPECT_TRUE(std::isfinite(sink));
+    EXPECT_LT(integrator.state().q.norm(), 1e3);
+  }
+}
+
+}  // namespace
+}  // namespace contactlab
