@@ -69,6 +69,8 @@ CycleRecord HapticCycle::Step(std::int64_t now_ns) {
   rec.buttons = state_.buttons;
   rec.solve_ok = step.solve_ok;
   rec.points_in_contact = contact.stats.points_in_contact;
+  rec.level_rendered = contact.stats.level_rendered;
+  rec.nodes_visited = contact.stats.nodes_visited;
   for (int i = 0; i < 3; ++i) {
     rec.p_WD[i] = state_.X_WD.translation[i];
     rec.p_WH[i] = step.X_WH.translation[i];

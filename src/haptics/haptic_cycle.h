@@ -32,6 +32,9 @@ struct CycleRecord {
   bool new_sample = false;
   bool solve_ok = true;
   std::int32_t points_in_contact = 0;
+  std::int32_t level_rendered = -1;   // deepest tree level the contact model rendered
+  std::int64_t nodes_visited = 0;
+  std::int64_t work_ns = 0;           // time the cycle took (set by the loop), ns
   double p_WD[3] = {0, 0, 0};         // device position, m
   double q_WD[4] = {1, 0, 0, 0};      // device orientation (w, x, y, z)
   double p_WH[3] = {0, 0, 0};         // simulated body position, m

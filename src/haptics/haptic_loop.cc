@@ -158,10 +158,11 @@ void HapticLoop::ThreadMain() {
     if (t0 >= end_ns) break;
     heartbeat_ns_.store(t0, std::memory_order_relaxed);
 
-    const CycleRecord rec = cycle_.Step(t0);
+    CycleRecord rec = cycle_.Step(t0);
+    const std::int64_t t1 = MonotonicNowNs();
+    rec.work_ns = t1 - t0;
     ring_.TryPush(rec);
 
-    const std::int64_t t1 = MonotonicNowNs();
     r.work.Add(t1 - t0);
     r.wake_latency.Add(t0 - release);
     if (prev_start >= 0) r.period.Add(t0 - prev_start);

@@ -1,0 +1,173 @@
+// `contactlab session SCENE.yaml --device SPEC [--duration S] [--log FILE]`: a live haptic
+// session (Barbič & James 2008, sec. 5). The scene's field body is the haptic body: the device
+// workspace is centred on its start pose; the pointshell body stays where the scene puts it.
+// A one-line status shows rate, 99th-percentile cycle time, points in contact, level
+// rendered and clamps; the log (CSV) replays as a recorded trajectory.
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <thread>
+#include <unistd.h>
+#include <vector>
+
+#include "cli/command_registry.h"
+#include "experiment/model_factory.h"
+#include "experiment/scene.h"
+#include "experiment/scene_assets.h"
+#include "haptics/device_factory.h"
+#include "haptics/haptic_cycle.h"
+#include "haptics/haptic_loop.h"
+#include "haptics/safety_filter.h"
+#include "haptics/workspace_mapping.h"
+#include "util/data_path.h"
+#include "util/error.h"
+
+namespace contactlab::cli {
+namespace {
+
+struct SessionArgs {
+  std::string scene;
+  std::string device = "sim";
+  std::string model;
+  std::string log;
+  std::string cache;
+  double duration = 10;
+  double k_vc = -1;
+  bool no_realtime = false;
+  bool quiet = false;
+};
+
+// Columns of the session log; the first eight are the recorded-trajectory format of the
+// experiment harness and the replay device (t, x, y, z, qw, qx, qy, qz of the device).
+constexpr const char* kLogHeader =
+    "t,x,y,z,qw,qx,qy,qz,body_x,body_y,body_z,body_qw,body_qx,body_qy,body_qz,"
+    "force_x,force_y,force_z,torque_x,torque_y,torque_z,contact_fx,contact_fy,contact_fz,"
+    "points_in_contact,level_rendered,nodes_visited,work_us,safety_flags,buttons\n";
+
+void WriteRecord(std::ostream& out, const CycleRecord& r, std::int64_t t0_ns) {
+  char line[640];
+  std::snprintf(line, sizeof line,
+                "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,"
+                "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%d,%lld,%.3f,%u,%u\n",
+                double(r.now_ns - t0_ns) * 1e-9, r.p_WD[0], r.p_WD[1], r.p_WD[2], r.q_WD[0], r.q_WD[1], r.q_WD[2],
+                r.q_WD[3], r.p_WH[0], r.p_WH[1], r.p_WH[2], r.q_WH[0], r.q_WH[1], r.q_WH[2], r.q_WH[3],
+                r.device_force[0], r.device_force[1], r.device_force[2], r.device_torque[0], r.device_torque[1],
+                r.device_torque[2], r.contact_force[0], r.contact_force[1], r.contact_force[2], r.points_in_contact,
+                r.level_rendered, static_cast<long long>(r.nodes_visited), double(r.work_ns) * 1e-3,
+                r.safety_flags, r.buttons);
+  out << line;
+}
+
+void RunSession(const SessionArgs& args) {
+  const Scene scene = LoadScene(RequireDataFile(args.scene));
+  AssetOptions options;
+  options.cache_dir = args.cache;
+  SceneAssets assets(scene, options);
+  const std::string model_name = args.model.empty() ? scene.models.front() : args.model;
+  auto model = MakeContactModel(model_name, scene, assets);
+
+  std::unique_ptr<HapticDevice> device = MakeDevice(args.device);
+  WorkspaceMappedDevice mapped(*device, scene.field_body.pose);
+  HapticCycleConfig config;
+  config.X_WA = scene.pointshell_body.pose;
+  config.node_budget = scene.model.node_budget;
+  if (args.k_vc > 0) config.coupling.k_vc = args.k_vc;
+  HapticCycle cycle(mapped, model.get(), config);
+
+  HapticLoopOptions loop_options;
+  loop_options.duration_seconds = args.duration;
+  loop_options.try_realtime = !args.no_realtime;
+  InstallStopSignalHandlers();
+  HapticLoop loop(cycle, loop_options);
+
+  // The log goes to a temporary name and is renamed when the session ends cleanly.
+  std::ofstream log;
+  const std::string tmp_log = args.log.empty() ? "" : args.log + ".tmp-" + std::to_string(::getpid());
+  if (!args.log.empty()) {
+    log.open(tmp_log, std::ios::trunc);
+    if (!log) Fail(args.log, "cannot open the session log for writing");
+    log << "# contactlab session log: scene " << scene.name << ", model " << model_name << ", device " << args.device
+        << "\n"
+        << kLogHeader;
+  }
+
+  std::printf("session: scene %s, model %s, device %s, %.1f s (Ctrl-C stops)\n", scene.name.c_str(),
+              model_name.c_str(), args.device.c_str(), args.duration);
+  std::atomic<bool> done{false};
+  std::thread consumer([&] {
+    CycleRecord rec;
+    std::int64_t t0 = -1, window_start = -1, window_cycles = 0;
+    std::vector<double> work_us;
+    work_us.reserve(4096);
+    int points = 0, level = -1;
+    std::uint64_t clamps = 0;
+    auto status = [&](std::int64_t now) {
+      if (args.quiet || work_us.empty()) return;
+      std::sort(work_us.begin(), work_us.end());
+      const double p99 = work_us[std::min(work_us.size() - 1, std::size_t(0.99 * work_us.size()))];
+      const double rate = window_cycles / std::max(1e-9, double(now - window_start) * 1e-9);
+      std::fprintf(stderr, "\r%7.0f Hz  p99 %7.1f us  contacts %5d  level %2d  clamps %6llu   ", rate, p99, points,
+                   level, static_cast<unsigned long long>(clamps));
+      std::fflush(stderr);
+    };
+    for (;;) {
+      const bool finished = done.load();
+      while (loop.records().TryPop(&rec)) {
+        if (t0 < 0) t0 = window_start = rec.now_ns;
+        if (log.is_open()) WriteRecord(log, rec, t0);
+        work_us.push_back(double(rec.work_ns) * 1e-3);
+        ++window_cycles;
+        points = rec.points_in_contact;
+        level = rec.level_rendered;
+        if (rec.safety_flags & (kSafetyForceClamped | kSafetyTorqueClamped)) ++clamps;
+        if (rec.now_ns - window_start > 500'000'000) {
+          status(rec.now_ns);
+          work_us.clear();
+          window_cycles = 0;
+          window_start = rec.now_ns;
+        }
+      }
+      if (finished) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    if (!args.quiet) std::fprintf(stderr, "\n");
+  });
+  const HapticLoopReport report = loop.Run();
+  done.store(true);
+  consumer.join();
+  std::printf("%s", FormatLoopReport(report).c_str());
+  std::printf("  records dropped by the log consumer: %llu\n",
+              static_cast<unsigned long long>(loop.records().dropped()));
+  if (log.is_open()) {
+    log.close();
+    if (!log) Fail(args.log, "write failed");
+    std::error_code ec;
+    std::filesystem::rename(tmp_log, args.log, ec);
+    if (ec) Fail(args.log, "cannot rename the finished log: " + ec.message());
+    std::printf("session log: %s\n", args.log.c_str());
+  }
+}
+
+const CommandRegistration kSessionCommands([](CLI::App& app) {
+  auto args = std::make_shared<SessionArgs>();
+  CLI::App* cmd = app.add_subcommand("session", "Run a live haptic session on a scene with a device at 1 kHz");
+  cmd->add_option("SCENE", args->scene, "scene YAML file (its field body is the haptic body)")->required();
+  cmd->add_option("--device", args->device,
+                  "sim | sim:circle[:R[:PERIOD]] | replay:FILE.csv | udp:PORT[:PEER] | spacenav | plugin:LIB.so");
+  cmd->add_option("--duration", args->duration, "session length, seconds")->check(CLI::PositiveNumber);
+  cmd->add_option("--log", args->log, "CSV log of poses, wrenches and timings (replayable trajectory)");
+  cmd->add_option("--model", args->model, "contact model (default: the scene's first)");
+  cmd->add_option("--k-vc", args->k_vc, "virtual coupling stiffness, N/m")->check(CLI::PositiveNumber);
+  cmd->add_option("--cache", args->cache, "cache folder for fields and pointshells");
+  cmd->add_flag("--no-realtime", args->no_realtime, "do not try SCHED_FIFO / mlockall");
+  cmd->add_flag("--quiet", args->quiet, "no live status line");
+  cmd->callback([args] { RunSession(*args); });
+});
+
+}  // namespace
+}  // namespace contactlab::cli

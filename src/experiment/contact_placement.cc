@@ -1,0 +1,49 @@
+#include "experiment/contact_placement.h"
+
+#include <cmath>
+
+#include "util/error.h"
+
+namespace contactlab {
+
+Placement PlaceAtDepth(ContactModel& model, const Pose& X_WA_start, const Pose& X_WB, Eigen::Vector3d direction,
+                       double depth, double max_travel) {
+  if (!(depth > 0) || !(max_travel > 0) || direction.norm() == 0) {
+    Fail("PlaceAtDepth", "needs depth > 0, max_travel > 0 and a non-zero direction");
+  }
+  direction.normalize();
+  auto penetration = [&](double s) {
+    ContactQuery q;
+    q.X_WA = X_WA_start;
+    q.X_WA.translation += s * direction;
+    q.X_WB = X_WB;
+    model.Reset();
+    return model.Evaluate(q).stats.max_penetration;
+  };
+  Placement out;
+  const double step = depth / 4;
+  double lo = 0, hi = -1;
+  for (double s = 0; s <= max_travel; s += step) {
+    if (penetration(s) >= depth) {
+      hi = s;
+      break;
+    }
+    lo = s;
+  }
+  if (hi < 0) {
+    out.X_WA = X_WA_start;
+    return out;
+  }
+  while (hi - lo > 0.01 * depth) {
+    const double mid = 0.5 * (lo + hi);
+    (penetration(mid) >= depth ? hi : lo) = mid;
+  }
+  out.X_WA = X_WA_start;
+  out.X_WA.translation += hi * direction;
+  out.travel = hi;
+  out.depth = penetration(hi);
+  out.found = true;
+  return out;
+}
+
+}  // namespace contactlab

@@ -1,0 +1,27 @@
+// Putting two bodies into contact at a chosen depth: body A is moved along a direction toward
+// B until the deepest penetration a contact model reports reaches the target. Used by
+// benchmarks and experiments to make "shallow" and "deep" contact configurations.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "contact/contact_model.h"
+#include "geometry/pose.h"
+
+namespace contactlab {
+
+struct Placement {
+  Pose X_WA;            // A's pose with the requested penetration
+  double travel = 0;    // distance moved from the start, metres
+  double depth = 0;     // penetration reached (max_penetration stat), metres
+  bool found = false;   // false when A passed through B's reach without reaching DEPTH
+};
+
+// Starts A at X_WA_START (separated from B) and moves it by s * DIRECTION (world, normalised
+// here) for s in [0, MAX_TRAVEL]: marches in steps of DEPTH / 4 to the first s whose
+// penetration (stats.max_penetration of MODEL) reaches DEPTH, then bisects to 1 % of DEPTH.
+// The model must report max_penetration (the pointshell models do).
+Placement PlaceAtDepth(ContactModel& model, const Pose& X_WA_start, const Pose& X_WB, Eigen::Vector3d direction,
+                       double depth, double max_travel);
+
+}  // namespace contactlab

@@ -1,0 +1,74 @@
+// Runs experiment jobs: each model of a job follows the trajectory cycle by cycle; per-cycle
+// rows and per-model summaries are collected, then written as long-format CSV with a
+// meta.json describing the run. Outputs are written to temporary names and renamed, so a
+// failed or interrupted run never leaves a file that looks complete.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "experiment/experiment_config.h"
+#include "experiment/scene_assets.h"
+
+namespace contactlab {
+
+struct RunOptions {
+  std::filesystem::path out_dir;  // results folder (created)
+  AssetOptions assets;
+  int parallel_jobs = 0;          // 0: all cores, or 1 when the config measures timing
+  bool progress = true;
+};
+
+// One row per cycle per model.
+struct CycleRow {
+  int job = 0;
+  std::string model;
+  std::int64_t cycle = 0;
+  double t = 0;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // moving body origin, world
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();     // on the moving body, world, N
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();    // on the moving body about its origin, N m
+  int contacts = 0;
+  std::int64_t nodes = 0;
+  int level = -1;
+  double max_penetration = 0;   // m
+  double depth_voxels = 0;      // max_penetration / spacing of the field body's field (pointshell models)
+  double time_us = 0;
+  bool has_reference = false;
+  Eigen::Vector3d reference_force = Eigen::Vector3d::Zero();
+};
+
+// Metrics of one model over one job's trajectory.
+struct SummaryRow {
+  int job = 0;
+  std::string model;
+  int points = 0;               // pointshell points of body A
+  std::int64_t cycles = 0;
+  double max_jump = 0, lipschitz = 0, hf_share = 0;
+  double median_us = 0, p99_us = 0, max_us = 0, mean_nodes = 0, level_switches_per_s = 0;
+  double rms_rel_error = -1, max_dir_error_deg = -1;  // -1: no reference
+  double max_force = 0, mean_force = 0;
+  double max_depth_voxels = 0;
+};
+
+struct JobResult {
+  Job job;
+  std::vector<CycleRow> cycles;
+  std::vector<SummaryRow> summary;
+};
+
+// Runs JOB of CONFIG (assets built or reused through OPTIONS.assets).
+JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOptions& options);
+
+// Runs JOBS (all of them when empty) and writes cycles.csv, summary.csv, convergence.csv and
+// meta.json into OPTIONS.out_dir. Returns the summary rows.
+std::vector<SummaryRow> RunExperiment(const ExperimentConfig& config, const RunOptions& options,
+                                      const std::vector<int>& jobs = {});
+
+// Joins the results of single-job runs (folders holding cycles.csv, summary.csv, meta.json)
+// into OUT_DIR, recomputing convergence.csv. Throws Error naming a folder that is missing a
+// file or whose columns differ.
+void MergeResults(const std::vector<std::filesystem::path>& job_dirs, const std::filesystem::path& out_dir);
+
+}  // namespace contactlab

@@ -1,0 +1,216 @@
+#include "experiment/scene_assets.h"
+
+#include <cstdlib>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include "geometry/mesh_io.h"
+#include "geometry/procedural_shapes.h"
+#include "pointshell/build_pointshell.h"
+#include "pointshell/pointshell_io.h"
+#include "sdf/build_distance_field.h"
+#include "util/data_path.h"
+#include "util/error.h"
+
+namespace contactlab {
+namespace fs = std::filesystem;
+namespace {
+
+// Bumped whenever a builder changes what it produces, so stale cache entries are not reused.
+constexpr const char* kCacheGeneration = "1";
+
+// FNV-1a 64-bit.
+struct Hasher {
+  std::uint64_t h = 1469598103934665603ull;
+  void Bytes(const void* data, std::size_t n) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
+  }
+  void Text(const std::string& s) { Bytes(s.data(), s.size() + 1); }
+  template <typename T>
+  void Value(const T& v) { Bytes(&v, sizeof v); }
+  std::string Hex() const {
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+    return buf;
+  }
+};
+
+std::vector<double> ParseShapeNumbers(const std::string& text, const std::string& where) {
+  std::vector<double> v;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    try {
+      std::size_t used = 0;
+      v.push_back(std::stod(item, &used));
+      if (used != item.size()) throw std::invalid_argument(item);
+    } catch (const std::logic_error&) {
+      Fail(where, "'" + item + "' is not a number");
+    }
+  }
+  return v;
+}
+
+TriangleMesh MakeShape(const std::string& spec, const std::string& where) {
+  const auto colon = spec.find(':');
+  const std::string kind = spec.substr(0, colon);
+  const std::vector<double> a = ParseShapeNumbers(spec.substr(colon + 1), where);
+  auto need = [&](std::size_t lo, std::size_t hi) {
+    if (a.size() < lo || a.size() > hi) {
+      Fail(where, "shape '" + kind + "' takes " + std::to_string(lo) + (lo == hi ? "" : " to " + std::to_string(hi)) +
+                      " numbers, got " + std::to_string(a.size()));
+    }
+  };
+  TriangleMesh m;
+  if (kind == "sphere") {
+    need(1, 2);
+    m = MakeSphere(a[0], a.size() > 1 ? int(a[1]) : 5);
+  } else if (kind == "box") {
+    need(3, 4);
+    m = MakeBox(Eigen::Vector3d(a[0], a[1], a[2]), a.size() > 3 ? int(a[3]) : 8);
+  } else if (kind == "torus") {
+    need(2, 2);
+    m = MakeTorus(a[0], a[1], 128, 64);
+  } else if (kind == "capsule") {
+    need(2, 2);
+    m = MakeCapsule(a[0], a[1], 64, 16);
+  } else if (kind == "bumpy-plate") {
+    need(4, 5);
+    m = MakeBumpyPlate(a[0], a[1], int(a[2]), a[3], a.size() > 4 ? int(a[4]) : 128);
+  } else {
+    Fail(where, "unknown procedural shape '" + kind + "' (sphere, box, torus, capsule, bumpy-plate)");
+  }
+  m.name = spec;
+  return m;
+}
+
+}  // namespace
+
+fs::path DefaultCacheDir() {
+  if (const char* c = std::getenv("CONTACTLAB_CACHE"); c && *c) return c;
+  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return fs::path(x) / "contactlab";
+  if (const char* h = std::getenv("HOME"); h && *h) return fs::path(h) / ".cache" / "contactlab";
+  return fs::temp_directory_path() / "contactlab-cache";
+}
+
+TriangleMesh LoadBodyMesh(const BodySpec& body) {
+  const std::string where = "body '" + body.name + "'";
+  TriangleMesh mesh;
+  const bool procedural = body.mesh.find(':') != std::string::npos && !FindDataFile(body.mesh);
+  if (procedural) {
+    mesh = MakeShape(body.mesh, where + " mesh '" + body.mesh + "'");
+    if (body.center) {
+      const Eigen::Vector3d c = mesh.Bounds().center();
+      mesh.Transform(1.0, Eigen::Matrix3d::Identity(), -c);
+    }
+    mesh.Transform(body.scale, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero());
+  } else {
+    MeshLoadOptions options;
+    options.scale = body.scale;
+    options.center = body.center;
+    mesh = LoadMesh(RequireDataFile(body.mesh), options);
+  }
+  return mesh;
+}
+
+BodyAssets::BodyAssets(BodySpec spec, AssetOptions options) : spec_(std::move(spec)), options_(std::move(options)) {
+  if (options_.cache_dir.empty()) options_.cache_dir = DefaultCacheDir();
+}
+
+std::shared_ptr<const TriangleMesh> BodyAssets::mesh() {
+  if (!mesh_) mesh_ = std::make_shared<const TriangleMesh>(LoadBodyMesh(spec_));
+  return mesh_;
+}
+
+const std::string& BodyAssets::mesh_key() {
+  if (mesh_key_.empty()) {
+    const auto m = mesh();
+    Hasher h;
+    h.Text(kCacheGeneration);
+    h.Bytes(m->vertices.data(), m->vertices.size() * sizeof(Eigen::Vector3d));
+    h.Bytes(m->triangles.data(), m->triangles.size() * sizeof(Eigen::Vector3i));
+    mesh_key_ = h.Hex();
+  }
+  return mesh_key_;
+}
+
+std::shared_ptr<const DistanceField> BodyAssets::field() {
+  if (field_) return field_;
+  const FieldSpec& f = spec_.field;
+  Hasher h;
+  h.Text(mesh_key());
+  h.Text("field");
+  h.Value(f.resolution);
+  h.Text(f.mode);
+  h.Value(f.padding);
+  h.Value(f.offset);
+  const fs::path cached = options_.cache_dir / ("field-" + h.Hex() + ".sdf");
+  std::error_code ec;
+  if (options_.use_cache && fs::exists(cached, ec)) {
+    try {
+      field_ = std::make_shared<const DistanceField>(LoadDistanceField(cached));
+      if (options_.verbose) std::cerr << "reusing the field of " << spec_.name << " from " << cached.string() << "\n";
+      return field_;
+    } catch (const Error& e) {
+      std::cerr << "warning: ignoring a bad cache entry: " << e.what() << "\n";
+    }
+  }
+  DistanceFieldOptions o;
+  o.resolution = f.resolution;
+  o.mode = ParseFieldMode(f.mode, "body '" + spec_.name + "' field.mode");
+  o.padding = f.padding;
+  o.soup_offset = f.offset;
+  if (options_.verbose) std::cerr << "building the " << f.resolution << "-cell field of " << spec_.name << "\n";
+  field_ = std::make_shared<const DistanceField>(BuildDistanceField(*mesh(), o));
+  if (options_.use_cache) {
+    fs::create_directories(options_.cache_dir, ec);
+    SaveDistanceField(*field_, cached);
+  }
+  return field_;
+}
+
+std::shared_ptr<const Pointshell> BodyAssets::pointshell() {
+  if (pointshell_) return pointshell_;
+  const PointshellSpec& s = spec_.pointshell;
+  const auto f = field();
+  Hasher h;
+  h.Text(mesh_key());
+  h.Text("pointshell");
+  h.Value(spec_.field.resolution);
+  h.Text(spec_.field.mode);
+  h.Value(spec_.field.padding);
+  h.Value(spec_.field.offset);
+  h.Value(s.points);
+  h.Value(s.levels);
+  h.Text(s.method);
+  h.Value(s.seed);
+  h.Value(s.offset);
+  const fs::path cached = options_.cache_dir / ("pointshell-" + h.Hex() + ".ps");
+  std::error_code ec;
+  if (options_.use_cache && fs::exists(cached, ec)) {
+    try {
+      pointshell_ = std::make_shared<const Pointshell>(LoadPointshell(cached));
+      if (options_.verbose) std::cerr << "reusing the pointshell of " << spec_.name << " from " << cached.string() << "\n";
+      return pointshell_;
+    } catch (const Error& e) {
+      std::cerr << "warning: ignoring a bad cache entry: " << e.what() << "\n";
+    }
+  }
+  PointshellOptions o;
+  o.method = ParsePointshellMethod(s.method, "body '" + spec_.name + "' pointshell.method");
+  o.num_points = s.points;
+  o.num_levels = s.levels;
+  o.seed = s.seed;
+  if (s.offset >= 0) o.offset = s.offset;
+  if (options_.verbose) std::cerr << "building the " << s.points << "-point pointshell of " << spec_.name << "\n";
+  pointshell_ = std::make_shared<const Pointshell>(BuildPointshell(*f, o, mesh().get()));
+  if (options_.use_cache) {
+    fs::create_directories(options_.cache_dir, ec);
+    SavePointshell(*pointshell_, cached);
+  }
+  return pointshell_;
+}
+
+}  // namespace contactlab

@@ -1,0 +1,61 @@
+// The preprocessed data of a scene's bodies: meshes in metres, distance fields and
+// pointshells, built on demand and cached on disk keyed by everything they depend on, so a
+// second run does not rebuild them.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "experiment/scene.h"
+#include "geometry/triangle_mesh.h"
+#include "pointshell/pointshell.h"
+#include "sdf/distance_field.h"
+
+namespace contactlab {
+
+struct AssetOptions {
+  std::filesystem::path cache_dir;  // empty: DefaultCacheDir()
+  bool use_cache = true;            // read and write cached fields and pointshells
+  bool verbose = true;              // say on stderr what is built or reused
+};
+
+// $CONTACTLAB_CACHE, else $XDG_CACHE_HOME/contactlab, else $HOME/.cache/contactlab, else
+// a folder under the system temp dir.
+std::filesystem::path DefaultCacheDir();
+
+// Reads a body's mesh: a file through the data search path, or a procedural shape written
+// "sphere:R[,subdivisions]", "box:HX,HY,HZ", "torus:MAJOR,MINOR", "capsule:R,HALF_LENGTH",
+// "bumpy-plate:SIZE,THICKNESS,BUMPS,HEIGHT[,RESOLUTION]" (metres; scale still applies).
+// Applies the body's scale and centring. Throws Error naming the body and the mesh.
+TriangleMesh LoadBodyMesh(const BodySpec& body);
+
+class BodyAssets {
+ public:
+  BodyAssets(BodySpec spec, AssetOptions options);
+
+  const BodySpec& spec() const { return spec_; }
+  std::shared_ptr<const TriangleMesh> mesh();
+  std::shared_ptr<const DistanceField> field();
+  std::shared_ptr<const Pointshell> pointshell();
+  // A key of the mesh content and load parameters (hex), part of every cache key.
+  const std::string& mesh_key();
+
+ private:
+  BodySpec spec_;
+  AssetOptions options_;
+  std::shared_ptr<const TriangleMesh> mesh_;
+  std::shared_ptr<const DistanceField> field_;
+  std::shared_ptr<const Pointshell> pointshell_;
+  std::string mesh_key_;
+};
+
+// Body A (pointshell role) and body B (field role) of a scene.
+struct SceneAssets {
+  SceneAssets(const Scene& scene, const AssetOptions& options = {})
+      : A(scene.pointshell_body, options), B(scene.field_body, options) {}
+  BodyAssets A;
+  BodyAssets B;
+};
+
+}  // namespace contactlab

@@ -1,0 +1,72 @@
+// Trajectories of the haptic body for experiments: procedural (approach and press, slide,
+// twist, scan across bumps, circle) or recorded (CSV of t, x, y, z, qw, qx, qy, qz at 1 kHz,
+// as a live session logs). A trajectory gives the pose of one body relative to its start
+// pose at any time; poses between recorded samples are interpolated (slerp for rotation).
+#pragma once
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "geometry/pose.h"
+#include "util/config_node.h"
+
+namespace contactlab {
+
+class Trajectory {
+ public:
+  // Samples (t, pose) with strictly increasing t (seconds).
+  Trajectory(std::vector<double> times, std::vector<Pose> poses, std::string description);
+
+  double duration() const { return times_.back() - times_.front(); }
+  double start_time() const { return times_.front(); }
+  // Pose at time T (clamped to the ends), interpolated between samples.
+  Pose At(double t) const;
+  const std::string& description() const { return description_; }
+  std::size_t num_samples() const { return times_.size(); }
+  // Largest speed of any point within RADIUS of the moving frame's origin, m/s (finite
+  // differences over the samples): the bound temporal coherence needs.
+  double MaxPointSpeed(double radius) const;
+
+ private:
+  std::vector<double> times_;
+  std::vector<Pose> poses_;
+  std::string description_;
+};
+
+// Procedural trajectories, as displacements from the start pose (translation in the world
+// frame, rotation about the moving body's origin):
+//  approach-press: along DIRECTION from -approach to +depth and back (smoothstep ramps);
+//  slide:          press to DEPTH, then slide LENGTH along a tangent, and back;
+//  twist:          press to DEPTH, then rotate by ANGLE about DIRECTION, and back;
+//  scan:           press to DEPTH, then sweep LENGTH along the tangent at constant speed;
+//  circle:         press to DEPTH, then a circle of RADIUS in the tangent plane.
+struct ProceduralTrajectorySpec {
+  std::string type = "approach-press";
+  Eigen::Vector3d direction = Eigen::Vector3d(0, 0, -1);  // pressing direction (world)
+  Eigen::Vector3d tangent = Eigen::Vector3d(1, 0, 0);     // slide/scan direction (made orthogonal)
+  double approach = 0.005;  // m travelled before touching (start offset against the direction)
+  double depth = 0.002;     // m of travel past the start pose
+  double length = 0.02;     // m (slide, scan)
+  double radius = 0.005;    // m (circle)
+  double angle = 0.5;       // rad (twist)
+  double duration = 2.0;    // s
+  double rate = 1000;       // samples per second
+};
+Trajectory MakeProceduralTrajectory(const ProceduralTrajectorySpec& spec);
+
+// Reads a trajectory from CSV: optional '#' comment lines, an optional header line whose
+// first eight names are t,x,y,z,qw,qx,qy,qz, then rows of at least eight numbers (extra
+// columns ignored, so session logs replay directly). Throws Error naming the file and line
+// for short rows, non-numbers, non-finite values, zero quaternions or non-increasing times.
+Trajectory LoadTrajectoryCsv(const std::filesystem::path& file);
+
+// Writes t,x,y,z,qw,qx,qy,qz at RATE samples per second, atomically.
+void SaveTrajectoryCsv(const Trajectory& trajectory, const std::filesystem::path& file, double rate = 1000);
+
+// From a config node: {type: approach-press|slide|twist|scan|circle, ...} or
+// {type: recorded, file: path}.
+Trajectory ParseTrajectory(const ConfigNode& node);
+
+}  // namespace contactlab

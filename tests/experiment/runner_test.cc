@@ -1,0 +1,186 @@
+#include "experiment/runner.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "test_support.h"
+#include "util/atomic_file.h"
+#include "util/error.h"
+
+namespace contactlab {
+namespace {
+
+using testing::TempDir;
+
+// A 4 cm ball pressed 1.5 mm into a plate: procedural, small, fast.
+const char* kConfig = R"(name: tiny
+description: a ball pressed into a plate
+scene:
+  name: ball-plate
+  bodies:
+    - name: ball
+      mesh: "sphere:0.02,3"
+      pose: [0, 0, 0.0215, 1, 0, 0, 0]
+      role: pointshell
+      pointshell: {points: 256, levels: 2, seed: 3}
+      field: {resolution: 24}
+    - name: plate
+      mesh: "box:0.05,0.05,0.01,2"
+      pose: [0, 0, -0.01, 1, 0, 0, 0]
+      role: field
+      field: {resolution: 24}
+  model: {k_C: 1000}
+models: [pointshell, pointshell-linear]
+moving_body: ball
+trajectory: {type: approach-press, direction: [0, 0, -1], approach: 0.002, depth: 0.003, duration: 0.04}
+reference: pointshell-linear
+reference_every: 2
+sweep:
+  points: [64, 256]
+)";
+
+ExperimentConfig Load(const TempDir& dir, const std::string& text, std::vector<std::string> overrides = {}) {
+  std::ofstream(dir / "config.yaml") << text;
+  return LoadExperimentConfig(dir / "config.yaml", overrides);
+}
+
+std::vector<std::string> Lines(const std::filesystem::path& file) {
+  std::istringstream in(ReadWholeFile(file));
+  std::vector<std::string> lines;
+  for (std::string l; std::getline(in, l);) lines.push_back(l);
+  return lines;
+}
+
+RunOptions Options(const TempDir& dir, const std::string& out) {
+  RunOptions o;
+  o.out_dir = dir / out;
+  o.assets.cache_dir = dir / "cache";
+  o.assets.verbose = false;
+  o.progress = false;
+  o.parallel_jobs = 2;
+  return o;
+}
+
+TEST(Runner, SmallSweepWritesLongFormatCsvAndMeta) {
+  TempDir dir;
+  const ExperimentConfig config = Load(dir, kConfig);
+  ASSERT_EQ(ExpandJobs(config).size(), 2u);
+  const std::vector<SummaryRow> rows = RunExperiment(config, Options(dir, "out"));
+  ASSERT_EQ(rows.size(), 4u);  // 2 jobs x 2 models
+  const auto cycles = Lines(dir / "out" / "cycles.csv");
+  EXPECT_EQ(cycles.front(),
+            "experiment,job,points,model,cycle,t,x,y,z,fx,fy,fz,tx,ty,tz,contacts,nodes,level,max_penetration,"
+            "depth_voxels,time_us,ref_fx,ref_fy,ref_fz");
+  EXPECT_EQ(cycles.size(), 1u + 2 * 2 * 41);  // header + jobs x models x cycles (0.04 s at 1 kHz)
+  // The tree and the linear traversal of the deepest level agree; the linear model is its own
+  // reference, so its error is zero.
+  for (const SummaryRow& r : rows) {
+    EXPECT_GT(r.max_force, 0.1) << r.model << " never touched";
+    if (r.model == "pointshell-linear") {
+      EXPECT_EQ(r.rms_rel_error, 0.0);
+    } else {
+      EXPECT_LT(r.rms_rel_error, 1e-6);
+    }
+  }
+  // The ball is pushed up (+z) by the plate.
+  const SummaryRow& r = rows.front();
+  EXPECT_EQ(r.points, 64);
+  const auto meta = nlohmann::json::parse(ReadWholeFile(dir / "out" / "meta.json"));
+  EXPECT_EQ(meta["experiment"], "tiny");
+  EXPECT_NE(meta["resolved_config"].get<std::string>().find("approach-press"), std::string::npos);
+  for (const char* key : {"git_commit", "compiler", "compiler_flags", "cpu", "library_versions", "wall_seconds"}) {
+    EXPECT_TRUE(meta.contains(key)) << key;
+  }
+  EXPECT_EQ(Lines(dir / "out" / "summary.csv").size(), 5u);
+  EXPECT_EQ(Lines(dir / "out" / "convergence.csv").size(), 3u);  // header + one group per model
+}
+
+TEST(Runner, ForceOnTheMovingBallPointsUpAtTheDeepestCycle) {
+  TempDir dir;
+  const ExperimentConfig config = Load(dir, kConfig, {"sweep.points=[256]", "models=[pointshell]"});
+  const JobResult r = RunJob(config, ExpandJobs(config).front(), Options(dir, "out"));
+  const CycleRow& deepest = r.cycles[20];  // halfway: 3 mm past the start
+  EXPECT_GT(deepest.force.z(), 0.0);
+  EXPECT_LT(deepest.force.head<2>().norm(), 0.05 * deepest.force.z());
+  EXPECT_GT(deepest.contacts, 0);
+  EXPECT_EQ(r.cycles.front().contacts, 0);  // starts 2 mm above the contact
+}
+
+TEST(Runner, SingleJobsMergeIntoTheFullRun) {
+  TempDir dir;
+  const ExperimentConfig config = Load(dir, kConfig);
+  RunExperiment(config, Options(dir, "job0"), {0});
+  RunExperiment(config, Options(dir, "job1"), {1});
+  MergeResults({dir / "job0", dir / "job1"}, dir / "merged");
+  EXPECT_EQ(Lines(dir / "merged" / "cycles.csv").size(), 1u + 2 * 2 * 41);
+  EXPECT_EQ(Lines(dir / "merged" / "summary.csv").size(), 5u);
+  EXPECT_THROW(MergeResults({dir / "job0", dir / "nowhere"}, dir / "merged2"), Error);
+  EXPECT_THROW(RunExperiment(config, Options(dir, "bad"), {7}), Error);
+}
+
+TEST(Runner, AFailedRunLeavesNoResultFile) {
+  TempDir dir;
+  // The second sweep point names a model that does not exist: the run fails after the first
+  // job has finished, and no output file may exist.
+  const ExperimentConfig config = Load(dir, kConfig, {"sweep.model=[pointshell, no-such-model]", "sweep.points=[64]"});
+  EXPECT_THROW(RunExperiment(config, Options(dir, "out")), Error);
+  EXPECT_FALSE(std::filesystem::exists(dir / "out" / "cycles.csv"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "out" / "summary.csv"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "out" / "meta.json"));
+}
+
+std::string ConfigError(const std::string& text, std::vector<std::string> overrides = {}) {
+  TempDir dir;
+  try {
+    Load(dir, text, overrides);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string Replace(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+TEST(Runner, ConfigErrorsNameTheFileAndKey) {
+  std::string e = ConfigError(Replace(kConfig, "reference_every: 2", "reference_evry: 2"));
+  EXPECT_NE(e.find("config.yaml:22"), std::string::npos) << e;
+  EXPECT_NE(e.find("reference_evry"), std::string::npos) << e;
+  e = ConfigError(Replace(kConfig, "points: [64, 256]", "pionts: [64, 256]"));
+  EXPECT_NE(e.find("sweep.pionts"), std::string::npos) << e;
+  EXPECT_NE(e.find("unknown sweep axis"), std::string::npos) << e;
+  e = ConfigError(Replace(kConfig, "points: [64, 256]", "points: [64, many]"));
+  EXPECT_NE(e.find("sweep.points value 'many'"), std::string::npos) << e;
+  e = ConfigError(Replace(kConfig, "type: approach-press", "type: wiggle"));
+  EXPECT_NE(e.find("trajectory.type"), std::string::npos) << e;
+  e = ConfigError(Replace(kConfig, "moving_body: ball", "moving_body: hammer"));
+  EXPECT_NE(e.find("moving_body"), std::string::npos) << e;
+  e = ConfigError(kConfig, {"trajectory.duration=-1"});
+  EXPECT_NE(e.find("trajectory.duration"), std::string::npos) << e;
+  e = ConfigError(kConfig, {"no-equals-sign"});
+  EXPECT_NE(e.find("key.path=value"), std::string::npos) << e;
+}
+
+TEST(Runner, RoleReversalKeepsTheForceOnTheSameBody) {
+  TempDir dir;
+  const ExperimentConfig config =
+      Load(dir, kConfig, {"sweep.points=[256]", "sweep.roles=[normal, swapped]", "models=[pointshell-linear]",
+                          "reference="});
+  const std::vector<Job> jobs = ExpandJobs(config);
+  ASSERT_EQ(jobs.size(), 2u);
+  EXPECT_EQ(jobs[1].scene.pointshell_body.name, "plate");
+  const JobResult a = RunJob(config, jobs[0], Options(dir, "a"));
+  const JobResult b = RunJob(config, jobs[1], Options(dir, "b"));
+  // Both report the force on the moving ball: up, of similar size at the deepest cycle.
+  EXPECT_GT(a.cycles[20].force.z(), 0);
+  EXPECT_GT(b.cycles[20].force.z(), 0);
+}
+
+}  // namespace
+}  // namespace contactlab
