@@ -2,6 +2,7 @@
 #include <exception>
 #include <iostream>
 
+#include "baselines/register_baselines.h"
 #include "cli/command_registry.h"
 #include "util/error.h"
 
@@ -15,6 +16,7 @@ std::vector<CommandAdder>& CommandRegistry() {
 }  // namespace contactlab::cli
 
 int main(int argc, char** argv) {
+  contactlab::RegisterBaselineContactModels();
   CLI::App app{"ContactLab: a testbed for 6-DoF haptic contact (Barbič & James 2008 and baselines)"};
   app.set_version_flag("--version", std::string("contactlab ") + CONTACTLAB_VERSION);
   app.require_subcommand(1);

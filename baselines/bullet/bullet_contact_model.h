@@ -1,0 +1,67 @@
+// Baseline: Bullet (3.24, double precision) GImpact mesh-mesh contact manifolds turned into
+// penalty wrenches, for comparison with the paper's model (Barbič & James 2008, sec. 2.1, 5).
+//
+// Both meshes become btGImpactMeshShape (over btTriangleIndexVertexArray views of our own
+// vertex and index copies, bounds updated once) with an explicit collision margin; a query
+// sets the two objects' world transforms and calls btCollisionWorld::contactPairTest. That
+// function looks up the dispatcher's *closest-points* table, which has no GImpact entry by
+// default (so it returns nothing, bullet3 issue #1534): the constructor registers GImpact's
+// algorithm there too (registerClosestPointsCreateFunc), besides the usual
+// btGImpactCollisionAlgorithm::registerAlgorithm.
+//
+// Each manifold point (distance s < 0 when penetrating, unit normal n on B pointing from B
+// toward A — Bullet's m_normalWorldOnB convention, checked by a unit test) is a penalty
+// contact with depth δ = -s - (margin_A + margin_B) when subtract_margins (GImpact thickens
+// every triangle by its shape's margin, so touching surfaces already report s = -2 margin):
+//     force on B  = -k δ n at the midpoint of the manifold points on A and B (pushes B away)
+//     torque      = (p - p_WB) × force (about B's origin)
+//     gradient    = the paper's halfspace rule with N = n: dF/dx_B = -k n nᵀ, ...
+// summed by ContactAccumulator with k = k_C, scaled to k_C L / l when l >= L contacts touch.
+//
+// Caveats (baselines/README.md): GImpact's triangle-pair clipping reports up to 16 points per
+// overlapping triangle pair with a depth local to that pair; the contact count follows the
+// tessellation, and deep or thin overlaps give arbitrary normals.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "contact/contact_model.h"
+#include "geometry/triangle_mesh.h"
+
+namespace contactlab {
+
+struct BulletContactParams {
+  double k_C = 1000;             // penalty stiffness per contact, N/m (before L/l scaling)
+  int L = 10;                    // k_C -> k_C L / l when l >= L contacts; <= 0 disables it
+  double margin = 0.0005;        // collision margin of each GImpact shape, metres (0.5 mm)
+  bool subtract_margins = true;  // δ = -s - 2 margin (true) or δ = -s (false)
+};
+
+class BulletContactModel final : public ContactModel {
+ public:
+  // MESH_A, MESH_B in their body frames (metres). Throws Error for an empty mesh, invalid
+  // indices, a negative margin or a negative / non-finite k_C.
+  BulletContactModel(std::shared_ptr<const TriangleMesh> mesh_A, std::shared_ptr<const TriangleMesh> mesh_B,
+                     const BulletContactParams& params);
+  ~BulletContactModel() override;
+
+  std::string_view name() const override { return "bullet"; }
+  // stats: points_in_contact = manifold points with δ > 0, nodes_visited = all manifold
+  // points Bullet reported, max_penetration = largest δ. Throws nothing. Our side allocates
+  // nothing (points are summed as the callback sees them, no buffer); Bullet itself takes the
+  // algorithm and the manifold from its pool allocators and heap-allocates the overlapping
+  // triangle-pair list (btPairSet, a btAlignedObjectArray local to
+  // btGImpactCollisionAlgorithm::gimpact_vs_gimpact) on every query.
+  ContactResult Evaluate(const ContactQuery& query) override;
+  void Reset() override {}
+
+  const BulletContactParams& params() const { return params_; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  BulletContactParams params_;
+};
+
+}  // namespace contactlab

@@ -1,0 +1,59 @@
+// Baseline: FCL (Flexible Collision Library 0.7) mesh-mesh contacts turned into penalty
+// wrenches, for comparison with the paper's model (Barbič & James 2008, sec. 2.1 and 5).
+//
+// Both meshes become BVHModel<OBBRSS> once, at construction; a query only sets the two
+// objects' transforms (OBBRSS traversal applies them on the fly, nothing is copied) and calls
+// fcl::collide with contacts enabled. Each contact (position p, unit normal n pointing from
+// object 1 = A to object 2 = B — FCL's convention, checked by a unit test — and penetration
+// depth δ > 0) is a penalty contact:
+//     force on B  = k δ n  at p        (pushes B away from A)
+//     torque      = (p - p_WB) × force (about B's origin)
+//     gradient    = the paper's halfspace rule with N = -n: dF/dx_B = -k n nᵀ, ...
+// summed by ContactAccumulator (contact/contact_accumulator.h) with the paper's stiffness
+// k = k_C, scaled to k_C L / l when l >= L contacts touch, so magnitudes are comparable.
+//
+// Caveats (see baselines/README.md): FCL's mesh-mesh penetration depth is local to one
+// triangle pair, not the depth of the bodies' overlap, and its normal is a triangle's normal
+// whose sign depends on the winding (FCL issues #574 and #8); the number of contacts depends
+// on the tessellation, not on the contact area.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+
+#include "contact/contact_model.h"
+#include "geometry/triangle_mesh.h"
+
+namespace contactlab {
+
+struct FclContactParams {
+  double k_C = 1000;                 // penalty stiffness per contact, N/m (before L/l scaling)
+  int L = 10;                        // k_C -> k_C L / l when l >= L contacts; <= 0 disables it
+  std::size_t max_contacts = 100000; // FCL's num_max_contacts
+};
+
+class FclContactModel final : public ContactModel {
+ public:
+  // MESH_A, MESH_B: closed or not, in their body frames (metres). Throws Error for an empty
+  // mesh, invalid triangle indices or a negative / non-finite k_C.
+  FclContactModel(std::shared_ptr<const TriangleMesh> mesh_A, std::shared_ptr<const TriangleMesh> mesh_B,
+                  const FclContactParams& params);
+  ~FclContactModel() override;
+
+  std::string_view name() const override { return "fcl"; }
+  // stats: points_in_contact = contacts with δ > 0, nodes_visited = all FCL contacts,
+  // max_penetration = largest δ. Throws nothing. FCL keeps its contact vector between calls
+  // (cleared, capacity kept), so after the first deep query it does not allocate for
+  // contacts; its traversal allocates nothing for OBBRSS.
+  ContactResult Evaluate(const ContactQuery& query) override;
+  void Reset() override {}
+
+  const FclContactParams& params() const { return params_; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  FclContactParams params_;
+};
+
+}  // namespace contactlab

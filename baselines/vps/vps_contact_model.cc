@@ -1,0 +1,204 @@
+// McNeely, Puterbaugh & Troy 1999 (sec. 4) and 2006 (sec. 3): the Voxmap-PointShell contact
+// model, tangent-plane forces with temporal coherence from the 8-bit voxmap.
+#include "baselines/vps/vps_contact_model.h"
+
+#include <cmath>
+#include <limits>
+
+#include "baselines/vps/vps_pointshell.h"
+#include "contact/contact_accumulator.h"
+#include "experiment/model_factory.h"
+#include "util/error.h"
+
+namespace contactlab {
+namespace {
+
+// Pose of A in B's frame, as float arrays for the point loop.
+struct FloatTransform {
+  float r[9];
+  float t[3];
+  explicit FloatTransform(const Pose& X_BA) {
+    const Eigen::Matrix3d R = X_BA.R();
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) r[3 * i + j] = float(R(i, j));
+      t[i] = float(X_BA.translation[i]);
+    }
+  }
+  void Apply(float x, float y, float z, float* out) const {
+    out[0] = r[0] * x + r[1] * y + r[2] * z + t[0];
+    out[1] = r[3] * x + r[4] * y + r[5] * z + t[1];
+    out[2] = r[6] * x + r[7] * y + r[8] * z + t[2];
+  }
+  void Rotate(float x, float y, float z, float* out) const {
+    out[0] = r[0] * x + r[1] * y + r[2] * z;
+    out[1] = r[3] * x + r[4] * y + r[5] * z;
+    out[2] = r[6] * x + r[7] * y + r[8] * z;
+  }
+};
+
+// Cycles a point may skip when it cannot touch before moving GAP metres at STEP metres per
+// cycle: the first cycle offset m with m * STEP >= GAP (shrunk slightly against rounding of
+// the point's voxel). At least 1 (look again next cycle).
+inline std::int64_t CyclesToCover(double gap, double step) {
+  const double m = std::ceil(gap * (1 - 1e-4) / step);
+  return m < 1 ? 1 : (m > 1e15 ? std::int64_t(1e15) : std::int64_t(m));
+}
+
+}  // namespace
+
+VpsContactModel::VpsContactModel(std::string name, std::shared_ptr<const Pointshell> shell,
+                                 std::shared_ptr<const DistanceField> field, const VpsContactParams& params)
+    : name_(std::move(name)), shell_(std::move(shell)), params_(params) {
+  const std::string where = "contact model " + name_;
+  if (!shell_ || shell_->num_points() == 0) Fail(where, "needs a non-empty pointshell");
+  if (!field || field->empty()) Fail(where, "needs a distance field");
+  if (!(params.k_C >= 0) || !std::isfinite(params.k_C)) Fail(where, "k_C must be a finite non-negative stiffness");
+  if (!(params.max_point_speed > 0) || !(params.cycle_seconds > 0) || !std::isfinite(params.max_point_speed) ||
+      !std::isfinite(params.cycle_seconds)) {
+    Fail(where, "max_point_speed and cycle_seconds must be finite and positive");
+  }
+  if (!std::isfinite(params.interior_depth)) Fail(where, "interior_depth must be finite");
+  VoxmapOptions vo;
+  vo.voxel_size = params.voxel_size;
+  voxmap_ = BuildVoxmap(*field, vo);
+  if (params.coherence) wide_ = BuildWideVoxmap(voxmap_);
+  const double v = voxmap_.voxel_size();
+  interior_depth_ = params.interior_depth >= 0 ? params.interior_depth : 0.5 * std::sqrt(3.0) * v;
+  for (int a = 0; a < 3; ++a) box_hi_[a] = float(voxmap_.origin()[a] + v * voxmap_.dims()[a]);
+  next_check_.assign(std::size_t(shell_->num_points()), std::numeric_limits<std::int64_t>::min());
+}
+
+void VpsContactModel::Reset() {
+  std::fill(next_check_.begin(), next_check_.end(), std::numeric_limits<std::int64_t>::min());
+}
+
+VpsModelInfo VpsContactModel::info() const {
+  VpsModelInfo info;
+  info.voxel_size = voxmap_.voxel_size();
+  info.dims = voxmap_.dims();
+  info.voxels = voxmap_.num_voxels();
+  info.free = voxmap_.count(VoxelClass::kFree);
+  info.proximity = voxmap_.count(VoxelClass::kProximity);
+  info.surface = voxmap_.count(VoxelClass::kSurface);
+  info.interior = voxmap_.count(VoxelClass::kInterior);
+  info.voxmap_bytes = voxmap_.memory_bytes();
+  info.wide_voxmap_bytes = wide_.memory_bytes();
+  info.points = shell_->num_points();
+  info.pointshell_bytes = std::size_t(shell_->num_points()) * 6 * sizeof(float);
+  info.interior_depth = interior_depth_;
+  return info;
+}
+
+ContactResult VpsContactModel::Evaluate(const ContactQuery& query) {
+  const Pointshell& s = *shell_;
+  const FloatTransform T(query.X_WB.Inverse() * query.X_WA);
+  ContactAccumulator acc;
+  const int n = s.num_points();
+  const bool coherence = params_.coherence;
+  const double v = voxmap_.voxel_size();
+  const double step = params_.max_point_speed * params_.cycle_seconds;  // metres per cycle
+  const std::int64_t cycle = query.cycle;
+  const Eigen::Vector3d& o = voxmap_.origin();
+  std::int64_t visited = 0;
+  std::int32_t skipped = 0;
+
+  for (int i = 0; i < n; ++i) {
+    // Temporal coherence: the point cannot touch before its next check.
+    if (coherence && cycle < next_check_[i]) {
+      ++skipped;
+      continue;
+    }
+    ++visited;
+    // The point in B's frame and its voxel.
+    float p[3];
+    T.Apply(s.x[i], s.y[i], s.z[i], p);
+    int vi, vj, vk;
+    if (!voxmap_.Locate(p[0], p[1], p[2], &vi, &vj, &vk)) {
+      if (coherence) {
+        // Outside the voxmap: no contact before the point reaches the voxmap box.
+        float e2 = 0.f;
+        for (int a = 0; a < 3; ++a) {
+          const float lo = float(o[a]) - p[a], hi = p[a] - box_hi_[a];
+          const float e = lo > 0.f ? lo : (hi > 0.f ? hi : 0.f);
+          e2 += e * e;
+        }
+        // A non-finite point (e2 NaN) is looked at again next cycle.
+        next_check_[i] = cycle + (e2 > 0.f ? CyclesToCover(std::sqrt(double(e2)), step) : 1);
+      }
+      continue;
+    }
+    // Classify: surface, interior, or no force (with coherence, the layer sets the next check).
+    const std::int64_t idx = voxmap_.Index(vi, vj, vk);
+    bool surface;
+    if (coherence) {
+      const std::uint8_t w = wide_.Get(idx);
+      if (w == kWideSurface) {
+        surface = true;
+      } else if (w == kWideInterior) {
+        surface = false;
+      } else {
+        next_check_[i] = cycle + CyclesToCover(double(w - 1) * v, step);
+        continue;
+      }
+    } else {
+      const VoxelClass c = voxmap_.Get(idx);
+      if (c == VoxelClass::kSurface) {
+        surface = true;
+      } else if (c == VoxelClass::kInterior) {
+        surface = false;
+      } else {
+        continue;
+      }
+    }
+    // Tangent-plane depth (surface) or the fixed interior depth, along the point's normal.
+    float nrm[3];
+    T.Rotate(s.nx[i], s.ny[i], s.nz[i], nrm);
+    const Eigen::Vector3d p_B(p[0], p[1], p[2]);
+    const Eigen::Vector3d N_B(nrm[0], nrm[1], nrm[2]);
+    double depth = interior_depth_;
+    if (surface) {
+      const Eigen::Vector3d c_B = o + v * Eigen::Vector3d(vi + 0.5, vj + 0.5, vk + 0.5);
+      depth = (c_B - p_B).dot(N_B);
+    }
+    if (depth > 0) acc.Add(p_B, N_B, -depth, N_B);
+  }
+
+  ContactResult result;
+  acc.Finish(params_.k_C, params_.L, query.X_WB, &result);
+  result.stats.nodes_visited = visited;
+  result.stats.nodes_skipped_coherence = skipped;
+  result.stats.level_rendered = -1;
+  return result;
+}
+
+namespace {
+
+VpsContactParams VpsParamsFromScene(const Scene& scene) {
+  const ModelSpec& m = scene.model;
+  VpsContactParams p;
+  p.k_C = m.k_C;
+  p.L = m.L;
+  p.coherence = m.coherence;
+  p.max_point_speed = m.max_point_speed;
+  p.cycle_seconds = m.cycle_seconds;
+  return p;
+}
+
+}  // namespace
+
+void RegisterVpsContactModels() {
+  RegisterContactModel("vps", [](const Scene& scene, SceneAssets& assets) -> std::unique_ptr<ContactModel> {
+    const VpsContactParams params = VpsParamsFromScene(scene);
+    auto field_B = assets.B.field();
+    const double v = params.voxel_size > 0 ? params.voxel_size : field_B->spacing();
+    auto shell = std::make_shared<const Pointshell>(
+        BuildVpsPointshell(*assets.A.field(), v, scene.pointshell_body.pointshell.seed));
+    return std::make_unique<VpsContactModel>("vps", std::move(shell), std::move(field_B), params);
+  });
+  RegisterContactModel("vps-repulsion", [](const Scene& scene, SceneAssets& assets) -> std::unique_ptr<ContactModel> {
+    return std::make_unique<VpsContactModel>("vps-repulsion", assets.A.pointshell(), assets.B.field(),
+                                             VpsParamsFromScene(scene));
+  });
+}
+
+}  // namespace contactlab

@@ -1,0 +1,109 @@
+// The Voxmap-PointShell (VPS) contact model as a baseline behind the common contact interface:
+// McNeely, Puterbaugh & Troy, "Six degree-of-freedom haptic rendering using voxel sampling",
+// SIGGRAPH 1999 (sec. 4: voxmap, pointshell, tangent-plane force model), with the 8-bit
+// distance-to-contact voxmap for temporal coherence of McNeely, Puterbaugh & Troy 2006,
+// "Voxel-based 6-DOF haptic rendering improvements" (Haptics-e 3(7), sec. 3).
+//
+// Body A carries the pointshell (points with inward unit normals N, body frame), body B the
+// voxmap built from B's distance field; the structure mirrors PointshellContactModel.
+//
+// Force model (per point P, in B's frame, voxel of P with centre c, voxel side v):
+//   surface voxel   depth = max(0, (c - p) . N): the depth of P below the tangent plane
+//                   through c perpendicular to N (N points into A, so depth grows as P goes
+//                   deeper into B); at most v sqrt(3) / 2 inside the voxel;
+//   interior voxel  depth = interior_depth, by default half the voxel diagonal v sqrt(3) / 2,
+//                   the largest depth a surface voxel can produce (McNeely 1999 bound the
+//                   force of points that reach the interior by the surface-voxel maximum);
+//   proximity/free  no force (McNeely 1999 used proximity voxels for a velocity-dependent
+//                   pre-contact braking force, which a static wrench query has no use for).
+// A point with depth > 0 adds F_B = -k depth N to B (ContactAccumulator::Add(p_B, N_B, -depth,
+// N_B)), k = k_C scaled by L / l when l >= L points touch (as the paper's model); torque about
+// B's origin; K_B by the paper's halfspace rule (sec. 5) with the point's normal.
+// The force jumps when a point crosses a voxel face (c jumps by v): the known VPS artefact.
+//
+// Temporal coherence (optional, McNeely 2006): a point found in a free voxel n >= 2 layers
+// from the nearest contact voxel cannot touch before it has moved (n - 1) v, so it is not
+// looked at again for ceil((n - 1) v / (max_point_speed * cycle_seconds)) cycles (a point
+// outside the voxmap: its distance to the voxmap box instead). Exact (identical wrench) as
+// long as no point of A moves faster than max_point_speed relative to B.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "baselines/vps/voxmap.h"
+#include "baselines/vps/wide_voxmap.h"
+#include "contact/contact_model.h"
+#include "pointshell/pointshell.h"
+#include "sdf/distance_field.h"
+
+namespace contactlab {
+
+struct VpsContactParams {
+  double k_C = 1000;             // per-point stiffness, N/m (before L / l scaling)
+  int L = 10;                    // k_C -> k_C L / l when l >= L points touch; <= 0 disables it
+  double voxel_size = 0;         // voxmap voxel side, metres; <= 0: B's field spacing
+  double interior_depth = -1;    // depth of a point in an interior voxel, metres; < 0: v sqrt(3)/2
+  bool coherence = false;        // temporal coherence through the 8-bit voxmap
+  double max_point_speed = 1.0;  // m/s, largest speed of any pointshell point relative to B
+  double cycle_seconds = 1e-3;   // duration of one haptic cycle, seconds
+};
+
+// What the model holds, for reports and experiments.
+struct VpsModelInfo {
+  double voxel_size = 0;                       // metres
+  Eigen::Vector3i dims = Eigen::Vector3i::Zero();  // voxels per axis
+  std::int64_t voxels = 0;
+  std::int64_t free = 0, proximity = 0, surface = 0, interior = 0;  // voxel counts
+  std::size_t voxmap_bytes = 0;       // 2-bit voxmap: ceil(voxels / 4)
+  std::size_t wide_voxmap_bytes = 0;  // 8-bit voxmap: voxels (0 when coherence is off)
+  std::int32_t points = 0;            // pointshell points rendered
+  std::size_t pointshell_bytes = 0;   // 6 floats per point
+  double interior_depth = 0;          // metres
+};
+
+class VpsContactModel final : public ContactModel {
+ public:
+  // NAME is what name() reports ("vps", "vps-repulsion"). SHELL is A's pointshell (every
+  // point of it is rendered, whatever its levels); FIELD is B's distance field, from which
+  // the voxmap (and, with coherence, the 8-bit voxmap) is built here. Throws Error for
+  // an empty shell or field, k_C < 0 or not finite, a non-positive speed or cycle time, and
+  // the errors of BuildVoxmap.
+  VpsContactModel(std::string name, std::shared_ptr<const Pointshell> shell,
+                  std::shared_ptr<const DistanceField> field, const VpsContactParams& params);
+
+  std::string_view name() const override { return name_; }
+  // One haptic cycle: allocation-free, throws nothing. query.node_budget is ignored.
+  ContactResult Evaluate(const ContactQuery& query) override;
+  void Reset() override;
+
+  const VpsContactParams& params() const { return params_; }
+  const Pointshell& shell() const { return *shell_; }
+  const Voxmap& voxmap() const { return voxmap_; }
+  const WideVoxmap& wide_voxmap() const { return wide_; }  // empty when coherence is off
+  VpsModelInfo info() const;
+
+ private:
+  std::string name_;
+  std::shared_ptr<const Pointshell> shell_;
+  VpsContactParams params_;
+  Voxmap voxmap_;
+  WideVoxmap wide_;
+  double interior_depth_;  // metres
+  float box_hi_[3];        // upper corner of the voxmap box (B frame)
+
+  // Scratch sized once at construction.
+  std::vector<std::int64_t> next_check_;  // (#P) temporal coherence: first cycle to look again
+};
+
+// Registers "vps" (A's pointshell = centres of A's surface voxels, BuildVpsPointshell at the
+// voxmap's voxel size) and "vps-repulsion" (the scene's own pointshell of A, normally the
+// paper's repulsion pointshell) with the model factory (experiment/model_factory.h).
+// Parameters from the scene's model section: k_C, L, coherence, max_point_speed,
+// cycle_seconds; the voxel size is B's field spacing. Safe to call more than once.
+void RegisterVpsContactModels();
+
+}  // namespace contactlab

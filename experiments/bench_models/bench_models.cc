@@ -1,0 +1,206 @@
+// Question: what does one query of each registered contact model cost — the paper's
+// pointshell models (Barbič & James 2008, sec. 2.1, 3), VPS, FCL, Bullet and the offline
+// eq. (2) reference — on the same real mesh pairs in shallow (0.5 mm) and deep (2 mm)
+// contact, and how far is each model's force direction from the model-independent reference
+// (-∇V, the CGAL overlap-volume gradient of baselines/reference)?
+//
+// Placement as in bench_contact: A moves from its scene pose toward B's origin until the
+// pointshell-linear model sees the target depth plus the pointshell's offset (so the meshes
+// themselves overlap by about the target depth; without it the "shallow" meshes do not touch). The reference direction is computed once
+// per configuration, outside the timed loop: -∇V when CGAL can corefine the two meshes, else
+// the direction of the dense-quadrature eq. (2) limit (counter ref_kind = 1 or 2; 0 = none).
+// Counters: contacts (points or contacts contributing), dir_err_deg, force_N, ref_kind.
+// Quick mode (CONTACTLAB_BENCH_QUICK=1): the procedural sphere-on-plate scene only.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "baselines/register_baselines.h"
+#include "bench_common.h"
+#include "contact/pointshell_contact_model.h"
+#include "experiment/contact_placement.h"
+#include "experiment/model_factory.h"
+#include "experiment/scene.h"
+#include "experiment/scene_assets.h"
+#include "util/data_path.h"
+#include "util/error.h"
+#ifdef CONTACTLAB_HAVE_CGAL
+#include "baselines/reference/penetration_volume.h"
+#include "baselines/reference/surface_quadrature_reference.h"
+#endif
+
+namespace contactlab {
+namespace {
+
+constexpr double kDepths[2] = {0.0005, 0.002};  // shallow 0.5 mm, deep 2 mm
+const char* kDepthNames[2] = {"shallow", "deep"};
+
+struct Configuration {
+  Pose X_WA, X_WB;
+  bool placed = false;
+  Eigen::Vector3d reference_direction = Eigen::Vector3d::Zero();  // unit, or zero if none
+  int reference_kind = 0;  // 1: -grad V (CGAL corefinement), 2: eq. (2) quadrature limit, 0: none
+};
+
+struct Prepared {
+  Scene scene;
+  std::unique_ptr<SceneAssets> assets;
+  Configuration config[2];
+  std::map<std::string, std::unique_ptr<ContactModel>> models;  // made once, outside timing
+  std::map<std::string, std::string> model_errors;
+};
+
+// The reference direction of the force on B at one configuration (see the file comment).
+void ComputeReference(Prepared& p, Configuration& c) {
+#ifdef CONTACTLAB_HAVE_CGAL
+  try {
+    const PenetrationVolume volume(*p.assets->A.mesh(), *p.assets->B.mesh());
+    const Vector6d g = volume.Gradient(c.X_WA, c.X_WB, 1e-4, 1e-3, /*with_rotation=*/false);
+    if (g.head<3>().norm() > 0) {
+      c.reference_direction = -g.head<3>().normalized();
+      c.reference_kind = 1;
+      return;
+    }
+  } catch (const Error& e) {
+    std::cerr << p.scene.name << ": no volume gradient (" << e.what() << "); using the quadrature limit\n";
+  }
+  try {
+    QuadratureReferenceParams params;
+    params.k_C = p.scene.model.k_C;
+    params.L = p.scene.model.L > 0 ? p.scene.model.L : 10;
+    const QuadratureReference reference(p.assets->A.mesh(), p.assets->B.mesh(), params);
+    const Eigen::Vector3d F = reference.Limit(c.X_WA, c.X_WB).on_B.force;
+    if (F.norm() > 0) {
+      c.reference_direction = F.normalized();
+      c.reference_kind = 2;
+    }
+  } catch (const Error& e) {
+    std::cerr << p.scene.name << ": no quadrature reference either (" << e.what() << ")\n";
+  }
+#endif
+}
+
+Prepared& Prepare(const std::string& scene_file) {
+  static std::map<std::string, Prepared> cache;
+  auto it = cache.find(scene_file);
+  if (it != cache.end()) return it->second;
+  Prepared& p = cache[scene_file];
+  p.scene = LoadScene(RequireDataFile(scene_file));
+  AssetOptions options;
+  options.verbose = false;
+  p.assets = std::make_unique<SceneAssets>(p.scene, options);
+  const Pose X_WB = p.scene.field_body.pose;
+  const Pose start = p.scene.pointshell_body.pose;
+  const Eigen::Vector3d direction = (X_WB.translation - start.translation).normalized();
+  PointshellContactModel probe(PointshellContactModel::Variant::kLinear, p.assets->A.pointshell(), p.assets->B.field(),
+                               PointshellParamsFromScene(p.scene));
+  Pose far = start;
+  far.translation -= 0.05 * direction;
+  // The pointshell sits on A's offset surface (offset δ outside the mesh), so the mesh-based
+  // models (FCL, Bullet, the references) see the meshes overlap by (pointshell depth - δ):
+  // aim at kDepths + δ so the meshes themselves overlap by about kDepths.
+  const double offset = p.assets->A.pointshell()->offset;
+  for (int d = 0; d < 2; ++d) {
+    const Placement placed = PlaceAtDepth(probe, far, X_WB, direction, kDepths[d] + offset, 0.3);
+    p.config[d].X_WA = placed.X_WA;
+    p.config[d].X_WB = X_WB;
+    p.config[d].placed = placed.found;
+    if (placed.found) ComputeReference(p, p.config[d]);
+  }
+  return p;
+}
+
+ContactModel* GetModel(Prepared& p, const std::string& name, std::string* error) {
+  auto it = p.models.find(name);
+  if (it != p.models.end()) return it->second.get();
+  auto e = p.model_errors.find(name);
+  if (e != p.model_errors.end()) {
+    *error = e->second;
+    return nullptr;
+  }
+  try {
+    return (p.models[name] = MakeContactModel(name, p.scene, *p.assets)).get();
+  } catch (const Error& err) {
+    p.models.erase(name);
+    *error = p.model_errors[name] = err.what();
+    return nullptr;
+  }
+}
+
+void BM_ModelQuery(benchmark::State& state, std::string scene_file, std::string model_name, int depth) {
+  Prepared& p = Prepare(scene_file);
+  const Configuration& c = p.config[depth];
+  if (!c.placed) {
+    state.SkipWithError("could not place the bodies in contact");
+    return;
+  }
+  std::string error;
+  ContactModel* model = GetModel(p, model_name, &error);
+  if (!model) {
+    state.SkipWithError(error.c_str());
+    return;
+  }
+  ContactQuery q;
+  q.X_WA = c.X_WA;
+  q.X_WB = c.X_WB;
+  model->Reset();
+  ContactResult r;
+  std::int64_t cycles = 0;
+  for (auto _ : state) {
+    q.cycle = cycles++;
+    r = model->Evaluate(q);
+    benchmark::DoNotOptimize(r);
+  }
+  state.counters["contacts"] = r.stats.points_in_contact;
+  state.counters["force_N"] = r.on_B.force.norm();
+  state.counters["ref_kind"] = c.reference_kind;
+  double err = NAN;
+  if (c.reference_kind != 0) {
+    err = r.on_B.force.norm() > 0
+              ? std::acos(std::clamp(r.on_B.force.normalized().dot(c.reference_direction), -1.0, 1.0)) * 180 / M_PI
+              : 180.0;
+  }
+  state.counters["dir_err_deg"] = err;
+  state.SetItemsProcessed(cycles);
+}
+
+void RegisterAll() {
+  RegisterBaselineContactModels();
+  std::vector<std::string> scenes;
+  if (bench::QuickRun()) {
+    scenes = {"scenes/sphere-on-plate.yaml"};
+  } else {
+    scenes = {"scenes/dragon-bunny.yaml", "scenes/knight-screwdriver.yaml", "scenes/block-joint.yaml",
+              "scenes/bumpy-cube-plate.yaml"};
+  }
+  for (const std::string& scene : scenes) {
+    for (const std::string& model : ContactModelNames()) {
+      for (int depth = 0; depth < 2; ++depth) {
+        const std::string name =
+            "model/" + std::filesystem::path(scene).stem().string() + "/" + model + "/" + kDepthNames[depth];
+        // One query per iteration; offline models (reference) run a few iterations only.
+        auto* b = benchmark::RegisterBenchmark(name.c_str(), BM_ModelQuery, scene, model, depth)
+                      ->Unit(benchmark::kMicrosecond);
+        if (model == "reference") b->Iterations(bench::QuickRun() ? 1 : 3);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace contactlab
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  contactlab::RegisterAll();
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,168 @@
+// Question: how long does one haptic cycle of the Voxmap-PointShell baseline take (McNeely,
+// Puterbaugh & Troy 1999; 8-bit voxmap coherence of 2006) against the paper's tree-less
+// pointshell model on the same scene and placement, with the VPS voxel pointshell ("vps"),
+// with the paper's repulsion pointshell ("vps-repulsion"), and with temporal coherence?
+//
+// Each iteration is one cycle: body A slides on a 1 mm circle (6 mm/s) across B's surface at
+// the placement depth (found with pointshell-linear). Counters: points (in A's pointshell),
+// visited (points looked up per cycle), contacts (points with force), max_us (slowest cycle),
+// voxmap_kB and wide_kB (VPS voxmap memory, 2-bit and 8-bit).
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "baselines/vps/vps_contact_model.h"
+#include "bench_common.h"
+#include "contact/pointshell_contact_model.h"
+#include "experiment/contact_placement.h"
+#include "experiment/model_factory.h"
+#include "experiment/scene.h"
+#include "experiment/scene_assets.h"
+#include "util/data_path.h"
+
+namespace contactlab {
+namespace {
+
+constexpr double kDepths[2] = {0.0005, 0.002};  // shallow 0.5 mm, deep 2 mm
+const char* kDepthNames[2] = {"shallow", "deep"};
+
+struct Prepared {
+  Scene scene;
+  std::unique_ptr<SceneAssets> assets;
+  Pose X_WB;
+  Pose X_WA[2];  // shallow, deep
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
+  bool ok = false;
+};
+
+Prepared& Prepare(const std::string& scene_file, int points, int levels) {
+  static std::map<std::string, Prepared> cache;
+  const std::string key = scene_file + "/" + std::to_string(points);
+  auto it = cache.find(key);
+  if (it != cache.end()) return it->second;
+  Prepared& p = cache[key];
+  p.scene = LoadScene(RequireDataFile(scene_file));
+  p.scene.pointshell_body.pointshell.points = points;
+  p.scene.pointshell_body.pointshell.levels = levels;
+  AssetOptions options;
+  options.verbose = false;
+  p.assets = std::make_unique<SceneAssets>(p.scene, options);
+  p.X_WB = p.scene.field_body.pose;
+  // Approach from the scene's start pose of A toward B's origin.
+  const Pose start = p.scene.pointshell_body.pose;
+  if ((p.X_WB.translation - start.translation).norm() > 0) {
+    p.direction = (p.X_WB.translation - start.translation).normalized();
+  }
+  PointshellContactModel probe(PointshellContactModel::Variant::kLinear, p.assets->A.pointshell(), p.assets->B.field(),
+                               PointshellParamsFromScene(p.scene));
+  Pose far = start;
+  far.translation -= 0.05 * p.direction;
+  p.ok = true;
+  for (int d = 0; d < 2; ++d) {
+    const Placement placed = PlaceAtDepth(probe, far, p.X_WB, p.direction, kDepths[d], 0.3);
+    p.ok = p.ok && placed.found;
+    p.X_WA[d] = placed.X_WA;
+  }
+  return p;
+}
+
+void BM_Cycle(benchmark::State& state, std::string scene_file, int points, int levels, std::string model_name,
+              bool coherence, int depth) {
+  Prepared& p = Prepare(scene_file, points, levels);
+  if (!p.ok) {
+    state.SkipWithError("could not place the bodies in contact");
+    return;
+  }
+  Scene scene = p.scene;
+  scene.model.coherence = coherence;
+  scene.model.max_point_speed = 0.5;  // m/s: bounds the 6 mm/s circle with a wide margin
+  std::unique_ptr<ContactModel> model = MakeContactModel(model_name, scene, *p.assets);
+  std::int64_t shell_points = 0;
+  if (auto* vps = dynamic_cast<VpsContactModel*>(model.get())) {
+    const VpsModelInfo info = vps->info();
+    state.counters["voxmap_kB"] = double(info.voxmap_bytes) / 1024.0;
+    state.counters["wide_kB"] = double(info.wide_voxmap_bytes) / 1024.0;
+    state.counters["voxel_mm"] = info.voxel_size * 1e3;
+    shell_points = info.points;
+  } else {
+    shell_points = p.assets->A.pointshell()->num_points();
+  }
+  // A circle in the plane perpendicular to the approach direction.
+  const Eigen::Vector3d e1 = p.direction.unitOrthogonal(), e2 = p.direction.cross(e1);
+  ContactQuery q;
+  q.X_WB = p.X_WB;
+  std::int64_t cycle = 0;
+  double max_us = 0, visited = 0, contacts = 0;
+  for (auto _ : state) {
+    const double angle = 2 * M_PI * double(cycle) / 1000.0;  // one turn per second
+    q.X_WA = p.X_WA[depth];
+    q.X_WA.translation += 0.001 * (std::cos(angle) * e1 + std::sin(angle) * e2);
+    q.cycle = cycle++;
+    const auto t0 = std::chrono::steady_clock::now();
+    const ContactResult r = model->Evaluate(q);
+    const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+    benchmark::DoNotOptimize(r);
+    max_us = std::max(max_us, us);
+    visited += double(r.stats.nodes_visited);
+    contacts += r.stats.points_in_contact;
+  }
+  const double n = double(std::max<std::int64_t>(1, cycle));
+  state.counters["points"] = double(shell_points);
+  state.counters["visited"] = visited / n;
+  state.counters["contacts"] = contacts / n;
+  state.counters["max_us"] = max_us;
+  state.SetItemsProcessed(std::int64_t(visited));
+}
+
+void RegisterAll() {
+  RegisterVpsContactModels();
+  struct SceneCase {
+    std::string file;
+    int points, levels;
+  };
+  std::vector<SceneCase> scenes;
+  if (bench::QuickRun()) {
+    scenes = {{"scenes/sphere-on-plate.yaml", 1024, 3}};  // small repulsion shell: seconds to build
+  } else {
+    scenes = {{"scenes/sphere-on-plate.yaml", 8192, 4}};  // the scene as written
+    if (SharedMeshDir()) scenes.push_back({"scenes/dragon-bunny.yaml", 16384, 4});  // real meshes, 128^3 fields
+  }
+  struct ModelCase {
+    const char* name;
+    bool coherence;
+    const char* label;
+  };
+  const ModelCase models[] = {{"pointshell-linear", false, "pointshell-linear"},
+                              {"vps", false, "vps"},
+                              {"vps", true, "vps+coherence"},
+                              {"vps-repulsion", false, "vps-repulsion"},
+                              {"vps-repulsion", true, "vps-repulsion+coherence"}};
+  for (const SceneCase& sc : scenes) {
+    for (int depth = 0; depth < 2; ++depth) {
+      for (const ModelCase& m : models) {
+        const std::string name = "vps/" + std::filesystem::path(sc.file).stem().string() + "/points:" +
+                                 std::to_string(sc.points) + "/" + m.label + "/" + kDepthNames[depth];
+        benchmark::RegisterBenchmark(name.c_str(), BM_Cycle, sc.file, sc.points, sc.levels, std::string(m.name),
+                                     m.coherence, depth)
+            ->Unit(benchmark::kMicrosecond);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace contactlab
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  contactlab::RegisterAll();
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

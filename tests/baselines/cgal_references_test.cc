@@ -1,0 +1,120 @@
+// Tests of the CGAL references: the dense-quadrature eq. (2) limit against the exact
+// polyhedron-halfspace limit, exact signed distances, and the corefinement overlap volume and
+// its gradient against boxes integrated by hand.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+
+#include "baselines/reference/analytic_references.h"
+#include "baselines/reference/penetration_volume.h"
+#include "baselines/reference/surface_quadrature_reference.h"
+#include "geometry/procedural_shapes.h"
+#include "util/error.h"
+
+namespace contactlab {
+namespace {
+
+constexpr double kC = 2000;
+constexpr int kL = 10;
+
+// A wide box B (top face z = 1/20 in its frame) yawed and shifted; its top as a halfspace.
+struct WideBox {
+  std::shared_ptr<const TriangleMesh> mesh =
+      std::make_shared<TriangleMesh>(MakeBox(Eigen::Vector3d(1.0 / 10, 1.0 / 10, 1.0 / 20), 1));
+  Pose X_WB{Eigen::Quaterniond(Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ())), Eigen::Vector3d(0.01, -0.02, -0.05)};
+  Eigen::Vector3d top_W() const { return X_WB * Eigen::Vector3d(0, 0, 1.0 / 20); }
+};
+
+TEST(QuadratureReference, MatchesExactPolyhedronHalfspaceLimitForTiltedBox) {
+  WideBox B;
+  auto A = std::make_shared<TriangleMesh>(MakeBox(Eigen::Vector3d(1.0 / 30, 1.0 / 40, 1.0 / 50), 1));
+  Pose X_WA;
+  X_WA.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 0).normalized()));
+  // Lowest corner 3 mm below the top face.
+  double lowest = 1e9;
+  for (const auto& v : A->vertices) lowest = std::min(lowest, (X_WA * v).z());
+  X_WA.translation = Eigen::Vector3d(0.004, 0.002, -lowest - 0.003);
+  QuadratureReferenceParams params;
+  params.k_C = kC;
+  params.L = kL;
+  params.target_edge = 2e-4;
+  QuadratureReference reference(A, B.mesh, params);
+  const ForceLimit q = reference.Limit(X_WA, B.X_WB);
+  const ForceLimit exact = PolyhedronHalfspaceLimit(*A, X_WA, B.top_W(), Eigen::Vector3d::UnitZ(), B.X_WB.translation,
+                                                    kC, kL);
+  ASSERT_GT(exact.on_B.force.norm(), 0);
+  EXPECT_LT((q.on_B.force - exact.on_B.force).norm(), 0.02 * exact.on_B.force.norm())
+      << q.on_B.force.transpose() << " vs " << exact.on_B.force.transpose();
+  EXPECT_LT((q.on_B.torque - exact.on_B.torque).norm(), 0.02 * exact.on_B.torque.norm());
+  EXPECT_NEAR(q.area_inside, exact.area_inside, 0.03 * exact.area_inside);
+  EXPECT_NEAR(q.max_penetration, 0.003, 3e-4);
+}
+
+TEST(QuadratureReference, SignedDistanceIsExactForABox) {
+  WideBox B;
+  QuadratureReference reference(B.mesh, B.mesh, {});
+  EXPECT_NEAR(reference.SignedDistance(Eigen::Vector3d(0.01, 0.02, 1.0 / 20 - 0.003)), -0.003, 1e-12);
+  EXPECT_NEAR(reference.SignedDistance(Eigen::Vector3d(0.01, 0.02, 1.0 / 20 + 0.003)), 0.003, 1e-12);
+  EXPECT_NEAR(reference.SignedDistance(Eigen::Vector3d(0.1 + 0.004, 0.1 + 0.003, 0)), 0.005, 1e-12);
+}
+
+TEST(QuadratureReference, HalfspaceGradientMatchesFiniteDifferencesForFlatContact) {
+  // Box face on box face, moved by less than the gap between samples and B's surface.
+  WideBox B;
+  auto A = std::make_shared<TriangleMesh>(MakeBox(Eigen::Vector3d(1.0 / 30, 1.0 / 40, 1.0 / 50), 1));
+  QuadratureReferenceParams params;
+  params.k_C = kC;
+  params.L = kL;
+  params.target_edge = 1e-3;
+  QuadratureReference reference(A, B.mesh, params);
+  ContactQuery q;
+  q.X_WB = B.X_WB;
+  q.X_WA.translation = B.top_W() + Eigen::Vector3d(0, 0, 1.0 / 50 - 0.002);
+  const ContactResult r = reference.Evaluate(q);
+  ASSERT_GT(r.stats.points_in_contact, 0);
+  const double h = 1e-6;
+  ContactQuery qp = q, qm = q;
+  qp.X_WB.translation.z() += h;
+  qm.X_WB.translation.z() -= h;
+  const Eigen::Vector3d fd = (reference.Evaluate(qp).on_B.force - reference.Evaluate(qm).on_B.force) / (2 * h);
+  // No sample crosses B's surface within ±h, so the inside area is fixed and every d moves
+  // by -dz: the derivative is -k L Σ w N_z^2 / area, which is the halfspace rule.
+  EXPECT_NEAR(fd.z(), r.K_B(2, 2), 1e-3 * std::abs(r.K_B(2, 2)));
+  EXPECT_LT(r.K_B(2, 2), 0);
+}
+
+TEST(PenetrationVolume, OverlapOfBoxesIsProductOfOverlaps) {
+  const TriangleMesh a = MakeBox(Eigen::Vector3d(1.0 / 30, 1.0 / 40, 1.0 / 50), 1);
+  const TriangleMesh b = MakeBox(Eigen::Vector3d(1.0 / 10, 1.0 / 10, 1.0 / 20), 1);
+  PenetrationVolume volume(a, b);
+  const double delta = 0.002;
+  const Pose X_WA = Pose::FromTranslation(Eigen::Vector3d(0.01, 0.02, 1.0 / 20 + 1.0 / 50 - delta));
+  const Pose X_WB = Pose::Identity();
+  const double area = 4.0 / 30 / 40;
+  EXPECT_NEAR(volume.Volume(X_WA, X_WB), area * delta, 1e-9 * area * delta);
+  // Moving B up by dz adds area dz; sideways and yaw add nothing. Rolling B about x by θ
+  // lifts its top under A by y θ, so dV/dθx = ∫ y dA = 0.02 area; about y, -x θ: -0.01 area.
+  const Vector6d g = volume.Gradient(X_WA, X_WB, 1e-4, 1e-3);
+  EXPECT_NEAR(g[2], area, 1e-6 * area);
+  EXPECT_NEAR(g[0], 0, 1e-9);
+  EXPECT_NEAR(g[1], 0, 1e-9);
+  EXPECT_NEAR(g[3], 0.02 * area, 0.01 * 0.02 * area);
+  EXPECT_NEAR(g[4], -0.01 * area, 0.01 * 0.01 * area);
+  EXPECT_NEAR(g[5], 0, 1e-9);
+}
+
+TEST(PenetrationVolume, SeparatedBodiesHaveZeroVolume) {
+  const TriangleMesh s = MakeSphere(1.0 / 30, 2);
+  PenetrationVolume volume(s, s);
+  EXPECT_EQ(volume.Volume(Pose::Identity(), Pose::FromTranslation(Eigen::Vector3d(0.1, 0, 0))), 0.0);
+}
+
+TEST(PenetrationVolume, RejectsOpenMesh) {
+  TriangleMesh open = MakeBox(Eigen::Vector3d(0.1, 0.1, 0.1), 1);
+  open.triangles.pop_back();
+  EXPECT_THROW(PenetrationVolume(open, open), Error);
+}
+
+}  // namespace
+}  // namespace contactlab
