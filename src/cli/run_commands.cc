@@ -21,6 +21,7 @@ struct RunArgs {
   std::string config;
   std::string out;
   std::vector<std::string> overrides;
+  std::string profile;
   bool list_jobs = false;
   std::vector<int> jobs;
   int parallel = 0;
@@ -29,7 +30,7 @@ struct RunArgs {
 };
 
 void RunRun(const RunArgs& args) {
-  const ExperimentConfig config = LoadExperimentConfig(RequireDataFile(args.config), args.overrides);
+  const ExperimentConfig config = LoadExperimentConfig(RequireDataFile(args.config), args.overrides, args.profile);
   const std::vector<Job> jobs = ExpandJobs(config);
   if (args.list_jobs) {
     for (const Job& j : jobs) std::printf("%d\t%s\n", j.index, j.Label().c_str());
@@ -63,6 +64,7 @@ const CommandRegistration kRunCommands([](CLI::App& app) {
   run->add_option("CONFIG", args->config, "experiment YAML (experiments/*.yaml)")->required();
   run->add_option("--out", args->out, "results folder (default results/NAME, or results/NAME/job-I with one --job)");
   run->add_option("--set", args->overrides, "override a config value: key.path=value (YAML value); repeatable");
+  run->add_option("--profile", args->profile, "apply a named set of overrides from the config's 'profiles' (e.g. paper)");
   run->add_flag("--list-jobs", args->list_jobs, "print the sweep points (index and axis values) and exit");
   run->add_option("--job", args->jobs, "run only these sweep points (repeatable)");
   run->add_option("--parallel", args->parallel, "jobs run at once (default: all cores; 1 for timing experiments)")

@@ -11,7 +11,7 @@ namespace {
 
 const char* const kAxes[] = {"points",     "levels",   "method",          "resolution", "pointshell_resolution",
                              "k_C",        "node_budget", "coherence",     "max_point_speed", "level",
-                             "model",      "roles",    "gradient"};
+                             "model",      "roles",    "gradient",        "scene"};
 
 // Sets ROOT[path] = VALUE (YAML text), creating maps along the path.
 void ApplyOverride(YAML::Node root, const std::string& assignment, const std::string& file) {
@@ -57,7 +57,8 @@ std::string Job::Label() const {
   return s.empty() ? "(single run)" : s;
 }
 
-ExperimentConfig LoadExperimentConfig(const std::filesystem::path& config_file, const std::vector<std::string>& overrides) {
+ExperimentConfig LoadExperimentConfig(const std::filesystem::path& config_file, const std::vector<std::string>& given,
+                                      const std::string& profile) {
   const std::string text = ReadWholeFile(config_file);
   YAML::Node root;
   try {
@@ -66,6 +67,18 @@ ExperimentConfig LoadExperimentConfig(const std::filesystem::path& config_file, 
     FailAtLine(config_file.string(), e.mark.line + 1, "YAML syntax error: " + e.msg);
   }
   if (!root.IsMap()) Fail(config_file.string(), "an experiment config must be a mapping");
+  // A profile's overrides come first, then those given on the command line.
+  std::vector<std::string> overrides;
+  if (!profile.empty()) {
+    const YAML::Node p = root["profiles"] ? root["profiles"][profile] : YAML::Node();
+    if (!p || !p.IsMap()) Fail(config_file.string(), "has no profile '" + profile + "' (under 'profiles')");
+    for (const auto& kv : p) {
+      YAML::Emitter e;
+      e << YAML::Flow << kv.second;
+      overrides.push_back(kv.first.as<std::string>() + "=" + e.c_str());
+    }
+  }
+  overrides.insert(overrides.end(), given.begin(), given.end());
   for (const std::string& o : overrides) ApplyOverride(root, o, config_file.string());
   YAML::Emitter emitter;
   emitter << root;
@@ -79,7 +92,7 @@ ExperimentConfig LoadExperimentConfig(const std::filesystem::path& config_file, 
 
 ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resolved_yaml) {
   root.ExpectKeys({"name", "description", "scene", "models", "moving_body", "trajectory", "reference",
-                   "reference_every", "metrics", "sweep"});
+                   "reference_every", "metrics", "sweep", "profiles"});
   ExperimentConfig c;
   c.trajectory_node = root.Get("trajectory");
   c.file = root.file();
@@ -99,12 +112,21 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
     c.models = c.scene.models;
   }
   c.moving_body = root.String("moving_body", c.scene.field_body.name);
+  c.moving_body_is_default = !root.Has("moving_body");
   if (c.moving_body != c.scene.field_body.name && c.moving_body != c.scene.pointshell_body.name) {
     root.Get("moving_body").Fail("'" + c.moving_body + "' is not a body of the scene");
   }
   c.trajectory_node.ExpectMap();
   if (!c.trajectory_node.Has("type")) c.trajectory_node.Fail("missing required key 'type'");
-  c.reference_model = root.String("reference", "");
+  if (auto r = root.Find("reference"); r && r->IsMap()) {
+    r->ExpectKeys({"model", "points", "levels", "resolution"});
+    c.reference_model = r->Get("model").AsString();
+    c.reference_points = int(r->PositiveInt("points", 0));
+    c.reference_levels = int(r->PositiveInt("levels", 0));
+    c.reference_resolution = int(r->PositiveInt("resolution", 0));
+  } else {
+    c.reference_model = root.String("reference", "");
+  }
   c.reference_every = int(root.PositiveInt("reference_every", 1));
   if (auto m = root.Find("metrics")) {
     m->ExpectKeys({"cutoff_hz", "timing"});
@@ -196,6 +218,9 @@ void ApplySweepValue(const std::string& axis, const std::string& value, Job* job
     s.model.gradient = value == "field" ? ContactGradient::kField : ContactGradient::kHalfspace;
   } else if (axis == "model") {
     job->models = {value};
+  } else if (axis == "scene") {
+    job->scene = LoadScene(RequireDataFile(value));
+    job->models = job->models.empty() ? job->scene.models : job->models;
   } else if (axis == "roles") {
     if (value == "swapped") {
       s = s.Swapped();
@@ -223,13 +248,21 @@ std::vector<Job> ExpandJobs(const ExperimentConfig& config) {
       pick[a] = rest % config.sweep[a].values.size();
       rest /= config.sweep[a].values.size();
     }
-    // Roles first so the other axes apply to the bodies' roles after the swap.
-    for (int pass = 0; pass < 2; ++pass) {
+    // The scene first, then roles, so the other axes apply to the bodies' final roles.
+    for (const char* first : {"scene", "roles", ""}) {
       for (std::size_t a = 0; a < config.sweep.size(); ++a) {
-        const bool roles = config.sweep[a].name == "roles";
-        if ((pass == 0) != roles) continue;
-        ApplySweepValue(config.sweep[a].name, config.sweep[a].values[pick[a]], &job, config.file);
+        const std::string& name = config.sweep[a].name;
+        const bool early = name == "scene" || name == "roles";
+        if (*first ? name != first : early) continue;
+        ApplySweepValue(name, config.sweep[a].values[pick[a]], &job, config.file);
       }
+      // Unless the config names it, the moving body is the field body of the job's scene
+      // (before a role swap, so the same physical body moves in both role orders).
+      if (std::string(first) == "scene" && config.moving_body_is_default) job.moving_body = job.scene.field_body.name;
+    }
+    if (job.moving_body != job.scene.field_body.name && job.moving_body != job.scene.pointshell_body.name) {
+      Fail(config.file, "moving_body '" + job.moving_body + "' is not a body of the scene of job " +
+                            std::to_string(index));
     }
     for (std::size_t a = 0; a < config.sweep.size(); ++a) {
       job.axis_values.emplace_back(config.sweep[a].name, config.sweep[a].values[pick[a]]);

@@ -16,6 +16,8 @@
 #include <sstream>
 #include <thread>
 
+#include "contact/pointshell_contact_model.h"
+#include "experiment/contact_placement.h"
 #include "experiment/metrics.h"
 #include "experiment/model_factory.h"
 #include "util/atomic_file.h"
@@ -127,10 +129,11 @@ std::string ConvergenceCsv(const std::string& summary_csv) {
     std::string pts, errs;
     for (auto [x, y] : pairs) {
       xs.push_back(x), ys.push_back(y);
-      pts += (pts.empty() ? "" : " ") + std::to_string(int(x));
-      char b[32];
-      std::snprintf(b, sizeof b, "%.4g", y);
-      errs += (errs.empty() ? "" : " ") + std::string(b);
+      char b[48];
+      std::snprintf(b, sizeof b, "%s%d", pts.empty() ? "" : " ", int(x));
+      pts += b;
+      std::snprintf(b, sizeof b, "%s%.4g", errs.empty() ? "" : " ", y);
+      errs += b;
     }
     char b[64];
     std::snprintf(b, sizeof b, "%.4g", FittedOrder(xs, ys));
@@ -198,15 +201,63 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
   result.job = job;
   const Scene& scene = job.scene;
   SceneAssets assets(scene, options.assets);
-  const Trajectory trajectory = ParseTrajectory(config.trajectory_node);
   const bool moving_is_B = scene.field_body.name == job.moving_body;
-  const Pose X_WA0 = scene.pointshell_body.pose, X_WB0 = scene.field_body.pose;
-  const Pose& start = moving_is_B ? X_WB0 : X_WA0;
+  Pose X_WA0 = scene.pointshell_body.pose, X_WB0 = scene.field_body.pose;
+  // touch: true moves the body along the trajectory's direction until the deepest point of
+  // the paper's model (linear, deepest level) is touch_depth deep; the trajectory starts there.
+  // direction: toward points from the moving body to the other body's origin.
+  YAML::Node tyaml = YAML::Clone(config.trajectory_node.yaml());
+  const Pose& X_moving0 = moving_is_B ? X_WB0 : X_WA0;
+  const Pose& X_other0 = moving_is_B ? X_WA0 : X_WB0;
+  if (tyaml["direction"] && tyaml["direction"].IsScalar()) {
+    const Eigen::Vector3d toward = (X_other0.translation - X_moving0.translation).normalized();
+    tyaml["direction"] = std::vector<double>{toward.x(), toward.y(), toward.z()};
+  }
+  const ConfigNode tn(tyaml, std::make_shared<const std::string>(config.file), "trajectory");
+  const Trajectory trajectory = ParseTrajectory(tn);
+  if (tn.Bool("touch", false)) {
+    Eigen::Vector3d dir(0, 0, -1);
+    if (auto d = tn.Find("direction")) {
+      const std::vector<double> v = d->AsDoubles();
+      dir = Eigen::Vector3d(v[0], v[1], v[2]).normalized();
+    }
+    const double depth = tn.Positive("touch_depth", 1e-4);
+    PointshellContactParams pp = PointshellParamsFromScene(scene);
+    pp.level = -1;
+    PointshellContactModel probe(PointshellContactModel::Variant::kLinear, assets.A.pointshell(), assets.B.field(), pp);
+    // Moving B by s along DIR is moving A by s against it.
+    const Eigen::Vector3d a_dir = moving_is_B ? Eigen::Vector3d(-dir) : dir;
+    const double reach = assets.A.mesh()->Bounds().size().norm() + assets.B.mesh()->Bounds().size().norm();
+    // Back off by the bodies' reach first, so the search starts separated.
+    Pose far = X_WA0;
+    far.translation -= reach * a_dir;
+    const Placement placed = PlaceAtDepth(probe, far, X_WB0, a_dir, depth, 2 * reach);
+    if (!placed.found) {
+      Fail(config.file, "job " + std::to_string(job.index) + ": the bodies never touch moving along the trajectory direction");
+    }
+    if (moving_is_B) {
+      X_WB0.translation += (placed.travel - reach) * dir;
+    } else {
+      X_WA0 = placed.X_WA;
+    }
+  }
+  const Pose start = moving_is_B ? X_WB0 : X_WA0;
   const double dt = scene.model.cycle_seconds;
   const std::int64_t cycles = std::int64_t(std::floor(trajectory.duration() / dt + 1e-9)) + 1;
 
+  // The reference: a model of the same scene, or of a denser version of it.
   std::unique_ptr<ContactModel> reference;
-  if (!config.reference_model.empty()) reference = MakeContactModel(config.reference_model, scene, assets);
+  std::unique_ptr<SceneAssets> reference_assets;
+  if (!config.reference_model.empty()) {
+    Scene ref_scene = scene;
+    if (config.reference_points > 0) ref_scene.pointshell_body.pointshell.points = config.reference_points;
+    if (config.reference_levels > 0) ref_scene.pointshell_body.pointshell.levels = config.reference_levels;
+    if (config.reference_resolution > 0) ref_scene.field_body.field.resolution = config.reference_resolution;
+    ref_scene.model.level = -1;
+    ref_scene.model.node_budget = 0;
+    reference_assets = std::make_unique<SceneAssets>(ref_scene, options.assets);
+    reference = MakeContactModel(config.reference_model, ref_scene, *reference_assets);
+  }
 
   for (const std::string& name : job.models) {
     std::unique_ptr<ContactModel> model = MakeContactModel(name, scene, assets);
@@ -255,7 +306,9 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
       row.time_us = us;
       if (reference && k % config.reference_every == 0) {
         Eigen::Vector3d T;
-        on_moving(reference->Evaluate(q).on_B, &row.reference_force, &T);
+        ContactQuery rq = q;
+        rq.node_budget = 0;
+        on_moving(reference->Evaluate(rq).on_B, &row.reference_force, &T);
         row.has_reference = true;
       }
       forces.push_back(row.force);

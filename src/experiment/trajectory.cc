@@ -165,13 +165,15 @@ void SaveTrajectoryCsv(const Trajectory& trajectory, const std::filesystem::path
 Trajectory ParseTrajectory(const ConfigNode& n) {
   const std::string type = n.Get("type").AsString();
   if (type == "recorded") {
-    n.ExpectKeys({"type", "file"});
+    n.ExpectKeys({"type", "file", "touch", "touch_depth", "direction"});
     return LoadTrajectoryCsv(RequireDataFile(n.Get("file").AsString()));
   }
-  n.ExpectKeys({"type", "direction", "tangent", "approach", "depth", "length", "radius", "angle", "duration", "rate"});
+  n.ExpectKeys({"type", "direction", "tangent", "approach", "depth", "length", "radius", "angle", "duration", "rate",
+                "touch", "touch_depth"});
   ProceduralTrajectorySpec s;
   s.type = n.OneOf("type", s.type, {"approach-press", "slide", "twist", "scan", "circle"});
-  if (auto d = n.Find("direction")) s.direction = Vec3(*d);
+  // "toward" (the other body) is resolved by the experiment runner; checked here as a placeholder.
+  if (auto d = n.Find("direction"); d && !(d->IsScalar() && d->AsString() == "toward")) s.direction = Vec3(*d);
   if (auto d = n.Find("tangent")) s.tangent = Vec3(*d);
   if (s.direction.norm() == 0) n.Get("direction").Fail("must be non-zero");
   s.approach = n.NonNegative("approach", s.approach);

@@ -66,7 +66,8 @@ Trajectory LoadTrajectoryCsv(const std::filesystem::path& file);
 void SaveTrajectoryCsv(const Trajectory& trajectory, const std::filesystem::path& file, double rate = 1000);
 
 // From a config node: {type: approach-press|slide|twist|scan|circle, ...} or
-// {type: recorded, file: path}.
+// {type: recorded, file: path}. The keys touch (bool) and touch_depth (m) are read by the
+// experiment runner: it first moves the body along the direction until it touches.
 Trajectory ParseTrajectory(const ConfigNode& node);
 
 }  // namespace contactlab

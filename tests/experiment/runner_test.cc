@@ -184,3 +184,56 @@ TEST(Runner, RoleReversalKeepsTheForceOnTheSameBody) {
 
 }  // namespace
 }  // namespace contactlab
+
+namespace contactlab {
+namespace {
+
+TEST(Runner, ProfilesApplyNamedOverrides) {
+  TempDir dir;
+  const std::string text = std::string(kConfig) + "profiles:\n  small: {sweep.points: [64], trajectory.duration: 0.01}\n";
+  const ExperimentConfig config = [&] {
+    std::ofstream(dir / "config.yaml") << text;
+    return LoadExperimentConfig(dir / "config.yaml", {}, "small");
+  }();
+  ASSERT_EQ(ExpandJobs(config).size(), 1u);
+  EXPECT_EQ(ExpandJobs(config).front().scene.pointshell_body.pointshell.points, 64);
+  EXPECT_THROW(LoadExperimentConfig(dir / "config.yaml", {}, "huge"), Error);
+}
+
+TEST(Runner, TouchPlacesTheMovingBodyAtFirstContactTowardTheOtherBody) {
+  TempDir dir;
+  // The ball starts 5 cm above the plate; touch moves it down ("toward" the plate) until it is
+  // 0.1 mm deep, then the trajectory approaches from 2 mm above and presses 3 mm past that.
+  std::string text = Replace(kConfig, "[0, 0, 0.0215, 1, 0, 0, 0]", "[0.001, 0.002, 0.07, 1, 0, 0, 0]");
+  text = Replace(text, "direction: [0, 0, -1]", "direction: toward, touch: true, touch_depth: 0.0001");
+  const ExperimentConfig config = Load(dir, text, {"sweep.points=[256]", "models=[pointshell-linear]", "reference="});
+  const JobResult r = RunJob(config, ExpandJobs(config).front(), Options(dir, "out"));
+  EXPECT_EQ(r.cycles.front().contacts, 0);
+  const CycleRow& deepest = r.cycles[20];
+  EXPECT_NEAR(deepest.max_penetration, 0.0031, 0.0004);
+  EXPECT_GT(deepest.force.z(), 0);
+}
+
+TEST(Runner, SceneAxisRunsEachJobOnItsOwnScene) {
+  TempDir dir;
+  std::ofstream(dir / "other.yaml") << R"(name: other
+bodies:
+  - {name: cube, mesh: "box:0.02,0.02,0.02,2", role: pointshell, pose: [0, 0, 0.05, 1, 0, 0, 0],
+     pointshell: {points: 256, levels: 2}, field: {resolution: 24}}
+  - {name: slab, mesh: "box:0.05,0.05,0.01,2", role: field, pose: [0, 0, -0.01, 1, 0, 0, 0],
+     field: {resolution: 24}}
+)";
+  std::string text = Replace(kConfig, "moving_body: ball\n", "");
+  text = Replace(text, "direction: [0, 0, -1]", "direction: toward, touch: true");
+  const ExperimentConfig config =
+      Load(dir, text, {"sweep.points=[256]", "reference=", "sweep.scene=[" + (dir / "other.yaml").string() + "]"});
+  const std::vector<Job> jobs = ExpandJobs(config);
+  ASSERT_EQ(jobs.size(), 1u);
+  EXPECT_EQ(jobs[0].scene.pointshell_body.name, "cube");
+  EXPECT_EQ(jobs[0].moving_body, "slab");  // the job scene's field body
+  const JobResult r = RunJob(config, jobs[0], Options(dir, "out"));
+  EXPECT_LT(r.cycles[20].force.z(), 0);  // the slab is pushed down by the cube
+}
+
+}  // namespace
+}  // namespace contactlab

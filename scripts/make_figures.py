@@ -1,0 +1,279 @@
+#!/usr/bin/python3
+"""Makes every figure of ContactLab's experiments from the files under results/.
+
+Reads only results/<experiment>/{cycles,summary,convergence}.csv (written by
+`contactlab run`) and writes PNG figures, with labelled axes and units, to
+results/figures/. An experiment whose results are missing is skipped with a note.
+
+Usage: scripts/make_figures.py [--results DIR]
+"""
+import argparse
+import csv
+import math
+import os
+import sys
+from collections import defaultdict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def num(row, key):
+    v = row.get(key, "")
+    return float(v) if v not in ("", None) else math.nan
+
+
+class Figures:
+    def __init__(self, results):
+        self.results = results
+        self.out = os.path.join(results, "figures")
+        os.makedirs(self.out, exist_ok=True)
+        self.made = []
+
+    def load(self, name, kind):
+        path = os.path.join(self.results, name, kind + ".csv")
+        if not os.path.exists(path):
+            return None
+        return read_csv(path)
+
+    def save(self, fig, name):
+        path = os.path.join(self.out, name)
+        tmp = path + ".tmp.png"
+        fig.tight_layout()
+        fig.savefig(tmp, dpi=110)
+        plt.close(fig)
+        os.replace(tmp, path)
+        self.made.append(path)
+
+    # Paper Fig. 5(b): error against the eq. (2) limit as the pointshell grows.
+    def fig05b(self):
+        rows = self.load("fig05b-convergence", "summary")
+        if not rows:
+            return False
+        conv = self.load("fig05b-convergence", "convergence") or []
+        fig, ax = plt.subplots(figsize=(6, 4.2))
+        by_model = defaultdict(list)
+        for r in rows:
+            by_model[r["model"]].append((num(r, "points"), num(r, "rms_rel_error")))
+        for model, pts in by_model.items():
+            pts.sort()
+            ax.loglog([p for p, _ in pts], [e for _, e in pts], "o-", label=model)
+        for c in conv:
+            ax.text(0.05, 0.08, f"fitted order {float(c['fitted_order']):.2f}", transform=ax.transAxes)
+        ax.set_xlabel("pointshell points")
+        ax.set_ylabel("RMS relative force error vs. limit")
+        ax.set_title("Fig. 5(b): convergence to the volume-integral limit")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend()
+        self.save(fig, "fig05b_convergence.png")
+        return True
+
+    # Paper Fig. 11: cycle time, nodes and level on a recorded trajectory, with and without budget.
+    def fig11(self):
+        rows = self.load("fig11-degradation", "cycles")
+        if not rows:
+            return False
+        fig, axes = plt.subplots(3, 1, figsize=(7, 7), sharex=True)
+        groups = defaultdict(list)
+        for r in rows:
+            groups[r["node_budget"]].append(r)
+        for budget, rs in sorted(groups.items(), key=lambda kv: int(kv[0])):
+            label = "no budget" if budget == "0" else f"budget {budget} nodes"
+            t = [num(r, "t") for r in rs]
+            axes[0].plot(t, [num(r, "time_us") for r in rs], lw=0.6, label=label)
+            axes[1].plot(t, [num(r, "nodes") for r in rs], lw=0.6, label=label)
+            axes[2].plot(t, [num(r, "level") for r in rs], lw=0.9, label=label)
+        axes[0].set_ylabel("cycle time (µs)")
+        axes[1].set_ylabel("nodes visited")
+        axes[2].set_ylabel("level rendered")
+        axes[2].set_xlabel("time (s)")
+        axes[0].set_title("Fig. 11: graceful degradation on a recorded trajectory")
+        for a in axes:
+            a.grid(True, alpha=0.3)
+            a.legend(fontsize=8)
+        self.save(fig, "fig11_degradation.png")
+        return True
+
+    # Paper Fig. 14(b): force while scanning the bumps, per pointshell size.
+    def fig14b(self):
+        rows = self.load("fig14b-bumps", "cycles")
+        if not rows:
+            return False
+        fig, axes = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
+        groups = defaultdict(list)
+        for r in rows:
+            groups[int(r["points"])].append(r)
+        for points, rs in sorted(groups.items()):
+            x = [1000 * num(r, "x") for r in rs]
+            axes[0].plot(x, [num(r, "fz") for r in rs], lw=0.8, label=f"{points} points")
+            axes[1].plot(x, [num(r, "fx") for r in rs], lw=0.8, label=f"{points} points")
+        axes[0].set_ylabel("normal force $F_z$ (N)")
+        axes[1].set_ylabel("tangential force $F_x$ (N)")
+        axes[1].set_xlabel("scan position x (mm)")
+        axes[0].set_title("Fig. 14(b): scanning bumps with progressively finer pointshells")
+        for a in axes:
+            a.grid(True, alpha=0.3)
+            a.legend(fontsize=8)
+        self.save(fig, "fig14b_bumps.png")
+        return True
+
+    # Paper Fig. 15: force under role reversal against penetration depth in voxels.
+    def fig15(self):
+        rows = self.load("fig15-asymmetry", "cycles")
+        if not rows:
+            return False
+        fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+        by = defaultdict(dict)
+        for r in rows:
+            by[(r["resolution"], r["model"])].setdefault(r["roles"], []).append(r)
+        for (res, model), roles in sorted(by.items()):
+            if "normal" not in roles or "swapped" not in roles:
+                continue
+            a, b = roles["normal"], roles["swapped"]
+            t = [num(r, "t") for r in a]
+            axes[0].plot(t, [math.hypot(num(r, "fx"), num(r, "fy"), num(r, "fz")) for r in a], lw=0.9,
+                         label=f"{res}³, moving dragon = field")
+            axes[0].plot(t, [math.hypot(num(r, "fx"), num(r, "fy"), num(r, "fz")) for r in b], "--", lw=0.9,
+                         label=f"{res}³, moving dragon = pointshell")
+            depth, diff = [], []
+            for ra, rb in zip(a, b):
+                fa = (num(ra, "fx"), num(ra, "fy"), num(ra, "fz"))
+                fb = (num(rb, "fx"), num(rb, "fy"), num(rb, "fz"))
+                mag = max(math.hypot(*fa), math.hypot(*fb))
+                if mag > 1e-9:
+                    depth.append(num(ra, "depth_voxels"))
+                    diff.append(math.dist(fa, fb) / mag)
+            axes[1].plot(depth, diff, ".", ms=3, label=f"field {res}³")
+        axes[0].set_xlabel("time (s)")
+        axes[0].set_ylabel("|F| on the moving dragon (N)")
+        axes[0].set_title("Fig. 15: role reversal")
+        axes[1].set_xlabel("penetration depth (field voxels)")
+        axes[1].set_ylabel("|F₁ − F₂| / max(|F₁|, |F₂|)")
+        axes[1].set_title("asymmetry against depth")
+        for a in axes:
+            a.grid(True, alpha=0.3)
+            a.legend(fontsize=8)
+        self.save(fig, "fig15_asymmetry.png")
+        return True
+
+    # Paper Table 1: statistics per scene.
+    def table1(self):
+        rows = self.load("table1-statistics", "summary")
+        if not rows:
+            return False
+        table = defaultdict(dict)
+        for r in rows:
+            scene = os.path.splitext(os.path.basename(r["scene"]))[0]
+            key = (r["model"], r["coherence"])
+            table[scene][key] = r
+        header = ["scene", "points", "nodes (tree)", "tree µs (median)", "tree+TC µs", "level", "tree-less µs"]
+        lines = []
+        for scene, cells in sorted(table.items()):
+            tree = cells.get(("pointshell", "false"), {})
+            tc = cells.get(("pointshell", "true"), {})
+            lin = cells.get(("pointshell-linear", "false"), {})
+            lines.append([scene, tree.get("points", ""), f"{num(tree, 'mean_nodes'):.0f}",
+                          f"{num(tree, 'median_us'):.1f}", f"{num(tc, 'median_us'):.1f}",
+                          "all" if tree else "", f"{num(lin, 'median_us'):.1f}"])
+        fig, ax = plt.subplots(figsize=(9, 0.6 + 0.45 * len(lines)))
+        ax.axis("off")
+        t = ax.table(cellText=lines, colLabels=header, loc="center")
+        t.auto_set_font_size(False)
+        t.set_fontsize(9)
+        t.scale(1, 1.4)
+        ax.set_title("Table 1: traversal statistics per scene (circling contact, 1 mm deep)")
+        self.save(fig, "table1_statistics.png")
+        md = os.path.join(self.out, "table1_statistics.md")
+        with open(md + ".tmp", "w") as f:
+            f.write("| " + " | ".join(header) + " |\n|" + "---|" * len(header) + "\n")
+            for line in lines:
+                f.write("| " + " | ".join(str(c) for c in line) + " |\n")
+        os.replace(md + ".tmp", md)
+        return True
+
+    # Beyond the paper: continuity across models.
+    def continuity(self):
+        rows = self.load("continuity-models", "cycles")
+        summary = self.load("continuity-models", "summary")
+        if not rows or not summary:
+            return False
+        scenes = sorted({r["scene"] for r in rows})
+        fig, axes = plt.subplots(len(scenes), 2, figsize=(11, 3.6 * len(scenes)), squeeze=False)
+        for i, scene in enumerate(scenes):
+            groups = defaultdict(list)
+            for r in rows:
+                if r["scene"] == scene:
+                    groups[r["model"]].append(r)
+            for model, rs in groups.items():
+                axes[i][0].plot([num(r, "t") for r in rs],
+                                [math.hypot(num(r, "fx"), num(r, "fy"), num(r, "fz")) for r in rs], lw=0.7,
+                                label=model)
+            name = os.path.splitext(os.path.basename(scene))[0]
+            axes[i][0].set_title(f"{name}: |F| while sliding")
+            axes[i][0].set_xlabel("time (s)")
+            axes[i][0].set_ylabel("|F| (N)")
+            axes[i][0].legend(fontsize=8)
+            s = [r for r in summary if r["scene"] == scene]
+            axes[i][1].bar([r["model"] for r in s], [num(r, "max_jump_N") for r in s])
+            axes[i][1].set_ylabel("largest per-cycle force jump (N)")
+            axes[i][1].set_title(f"{name}: force continuity")
+            axes[i][1].tick_params(axis="x", rotation=30)
+            for a in axes[i]:
+                a.grid(True, alpha=0.3)
+        self.save(fig, "continuity_models.png")
+        return True
+
+    # Beyond the paper: speed against error.
+    def speed_vs_error(self):
+        summary = self.load("speed-vs-error", "summary")
+        if not summary:
+            return False
+        fig, ax = plt.subplots(figsize=(7, 5))
+        markers = "osD^v<>p*"
+        scenes = sorted({r["scene"] for r in summary})
+        models = sorted({r["model"] for r in summary})
+        for j, model in enumerate(models):
+            for i, scene in enumerate(scenes):
+                for r in summary:
+                    if r["model"] == model and r["scene"] == scene and num(r, "rms_rel_error") >= 0:
+                        ax.scatter(num(r, "median_us"), num(r, "rms_rel_error"), marker=markers[i % len(markers)],
+                                   color=f"C{j}", label=model if i == 0 else None)
+                        ax.plot([num(r, "median_us"), num(r, "p99_us")], [num(r, "rms_rel_error")] * 2,
+                                color=f"C{j}", lw=0.8)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("cycle time (µs): median, line to 99th percentile")
+        ax.set_ylabel("RMS relative force error vs. quadrature reference")
+        ax.set_title("Speed against error (" + ", ".join(os.path.splitext(os.path.basename(s))[0] for s in scenes) + ")")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+        self.save(fig, "speed_vs_error.png")
+        return True
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--results", default=os.path.join(os.path.dirname(__file__), "..", "results"))
+    args = parser.parse_args()
+    figs = Figures(os.path.abspath(args.results))
+    for name in ["fig05b", "fig11", "fig14b", "fig15", "table1", "continuity", "speed_vs_error"]:
+        try:
+            if not getattr(figs, name)():
+                print(f"make_figures: {name}: no results yet (run its experiment first)", file=sys.stderr)
+        except (KeyError, ValueError) as e:
+            print(f"make_figures: {name}: results are malformed: {e}", file=sys.stderr)
+            return 1
+    for path in figs.made:
+        print(path)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
