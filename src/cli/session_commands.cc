@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "cli/command_registry.h"
+#include "experiment/contact_placement.h"
 #include "experiment/model_factory.h"
 #include "experiment/scene.h"
 #include "experiment/scene_assets.h"
@@ -38,6 +39,7 @@ struct SessionArgs {
   std::string cache;
   double duration = 10;
   double k_vc = -1;
+  double touch = -1;
   bool no_realtime = false;
   bool quiet = false;
 };
@@ -71,8 +73,15 @@ void RunSession(const SessionArgs& args) {
   const std::string model_name = args.model.empty() ? scene.models.front() : args.model;
   auto model = MakeContactModel(model_name, scene, assets);
 
+  // --touch: the haptic body starts where it touches the other body, moving toward it.
+  Pose X_WB_start = scene.field_body.pose;
+  if (args.touch > 0) {
+    const Eigen::Vector3d toward = scene.pointshell_body.pose.translation - X_WB_start.translation;
+    X_WB_start = TouchAlong(scene, assets, true, scene.pointshell_body.pose, X_WB_start, toward, args.touch,
+                            args.scene + ": --touch");
+  }
   std::unique_ptr<HapticDevice> device = MakeDevice(args.device);
-  WorkspaceMappedDevice mapped(*device, scene.field_body.pose);
+  WorkspaceMappedDevice mapped(*device, X_WB_start);
   HapticCycleConfig config;
   config.X_WA = scene.pointshell_body.pose;
   config.node_budget = scene.model.node_budget;
@@ -163,6 +172,9 @@ const CommandRegistration kSessionCommands([](CLI::App& app) {
   cmd->add_option("--log", args->log, "CSV log of poses, wrenches and timings (replayable trajectory)");
   cmd->add_option("--model", args->model, "contact model (default: the scene's first)");
   cmd->add_option("--k-vc", args->k_vc, "virtual coupling stiffness, N/m")->check(CLI::PositiveNumber);
+  cmd->add_option("--touch", args->touch,
+                  "start the haptic body in contact: moved toward the other body until this deep, metres")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--cache", args->cache, "cache folder for fields and pointshells");
   cmd->add_flag("--no-realtime", args->no_realtime, "do not try SCHED_FIFO / mlockall");
   cmd->add_flag("--quiet", args->quiet, "no live status line");

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "contact/pointshell_contact_model.h"
+#include "experiment/model_factory.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -44,6 +46,25 @@ Placement PlaceAtDepth(ContactModel& model, const Pose& X_WA_start, const Pose& 
   out.depth = penetration(hi);
   out.found = true;
   return out;
+}
+
+Pose TouchAlong(const Scene& scene, SceneAssets& assets, bool move_B, const Pose& X_WA, const Pose& X_WB,
+                const Eigen::Vector3d& direction, double depth, const std::string& where) {
+  const Eigen::Vector3d dir = direction.normalized();
+  PointshellContactParams params = PointshellParamsFromScene(scene);
+  params.level = -1;
+  PointshellContactModel probe(PointshellContactModel::Variant::kLinear, assets.A.pointshell(), assets.B.field(), params);
+  // Moving B by s along DIR is moving A by s against it; start a full reach back.
+  const Eigen::Vector3d a_dir = move_B ? Eigen::Vector3d(-dir) : dir;
+  const double reach = assets.A.mesh()->Bounds().size().norm() + assets.B.mesh()->Bounds().size().norm();
+  Pose far = X_WA;
+  far.translation -= reach * a_dir;
+  const Placement placed = PlaceAtDepth(probe, far, X_WB, a_dir, depth, 2 * reach);
+  if (!placed.found) Fail(where, "the bodies never touch moving along the direction");
+  if (!move_B) return placed.X_WA;
+  Pose moved = X_WB;
+  moved.translation += (placed.travel - reach) * dir;
+  return moved;
 }
 
 }  // namespace contactlab

@@ -5,7 +5,11 @@
 
 #include <Eigen/Core>
 
+#include <string>
+
 #include "contact/contact_model.h"
+#include "experiment/scene.h"
+#include "experiment/scene_assets.h"
 #include "geometry/pose.h"
 
 namespace contactlab {
@@ -23,5 +27,12 @@ struct Placement {
 // The model must report max_penetration (the pointshell models do).
 Placement PlaceAtDepth(ContactModel& model, const Pose& X_WA_start, const Pose& X_WB, Eigen::Vector3d direction,
                        double depth, double max_travel);
+
+// Moves one body of SCENE (B when MOVE_B, else A; the other stays at its pose) along
+// DIRECTION (world) from far enough back that the bodies are apart, until the paper's model
+// (linear, deepest level, the scene's parameters) reports DEPTH of penetration. Returns the
+// moved body's new pose. Throws Error naming WHERE when the bodies never touch.
+Pose TouchAlong(const Scene& scene, SceneAssets& assets, bool move_B, const Pose& X_WA, const Pose& X_WB,
+                const Eigen::Vector3d& direction, double depth, const std::string& where);
 
 }  // namespace contactlab

@@ -222,24 +222,9 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
       dir = Eigen::Vector3d(v[0], v[1], v[2]).normalized();
     }
     const double depth = tn.Positive("touch_depth", 1e-4);
-    PointshellContactParams pp = PointshellParamsFromScene(scene);
-    pp.level = -1;
-    PointshellContactModel probe(PointshellContactModel::Variant::kLinear, assets.A.pointshell(), assets.B.field(), pp);
-    // Moving B by s along DIR is moving A by s against it.
-    const Eigen::Vector3d a_dir = moving_is_B ? Eigen::Vector3d(-dir) : dir;
-    const double reach = assets.A.mesh()->Bounds().size().norm() + assets.B.mesh()->Bounds().size().norm();
-    // Back off by the bodies' reach first, so the search starts separated.
-    Pose far = X_WA0;
-    far.translation -= reach * a_dir;
-    const Placement placed = PlaceAtDepth(probe, far, X_WB0, a_dir, depth, 2 * reach);
-    if (!placed.found) {
-      Fail(config.file, "job " + std::to_string(job.index) + ": the bodies never touch moving along the trajectory direction");
-    }
-    if (moving_is_B) {
-      X_WB0.translation += (placed.travel - reach) * dir;
-    } else {
-      X_WA0 = placed.X_WA;
-    }
+    const Pose moved = TouchAlong(scene, assets, moving_is_B, X_WA0, X_WB0, dir, depth,
+                                  config.file + ": job " + std::to_string(job.index));
+    (moving_is_B ? X_WB0 : X_WA0) = moved;
   }
   const Pose start = moving_is_B ? X_WB0 : X_WA0;
   const double dt = scene.model.cycle_seconds;
