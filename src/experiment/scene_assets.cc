@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Bumped whenever a builder changes what it produces, so stale cache entries are not reused.
-constexpr const char* kCacheGeneration = "1";
+constexpr const char* kCacheGeneration = "2";
 
 // FNV-1a 64-bit.
 struct Hasher {

@@ -29,6 +29,43 @@ void Shuffle(std::vector<Eigen::Vector3d>* points, std::uint64_t seed) {
 
 // VPS-style points: centres of the voxels (side V, grid from the field box's lower corner)
 // whose eight corner values bracket DELTA.
+// Spreads the low 10 bits of V to every third bit (for a 30-bit Morton code).
+std::uint32_t SpreadBits(std::uint32_t v) {
+  v &= 0x3ffu;
+  v = (v | (v << 16)) & 0x030000ffu;
+  v = (v | (v << 8)) & 0x0300f00fu;
+  v = (v | (v << 4)) & 0x030c30c3u;
+  v = (v | (v << 2)) & 0x09249249u;
+  return v;
+}
+
+// Orders the points of each level band [ends[i-1], ends[i]) along a Morton curve over the
+// field box, so a traversal that walks a level in order touches nearby field cells one after
+// another (cache locality in the haptic cycle). Levels keep their points; only the order
+// within a band changes, so nesting and determinism are unaffected.
+void SortLevelsAlongMortonCurve(std::vector<Eigen::Vector3d>* points, const std::vector<std::int32_t>& ends,
+                                const DistanceField& field) {
+  const Aabb box = field.box();
+  const Eigen::Vector3d scale = Eigen::Vector3d::Constant(1023.0).cwiseQuotient(box.size().cwiseMax(1e-300));
+  std::vector<std::pair<std::uint32_t, std::int32_t>> keys;
+  std::int32_t begin = 0;
+  for (const std::int32_t end : ends) {
+    keys.clear();
+    for (std::int32_t i = begin; i < end; ++i) {
+      const Eigen::Vector3d q = ((*points)[i] - box.min).cwiseProduct(scale).cwiseMax(0.0).cwiseMin(1023.0);
+      const std::uint32_t code =
+          SpreadBits(std::uint32_t(q.x())) | (SpreadBits(std::uint32_t(q.y())) << 1) | (SpreadBits(std::uint32_t(q.z())) << 2);
+      keys.emplace_back(code, i);
+    }
+    std::sort(keys.begin(), keys.end());
+    std::vector<Eigen::Vector3d> band;
+    band.reserve(keys.size());
+    for (const auto& [code, i] : keys) band.push_back((*points)[i]);
+    std::copy(band.begin(), band.end(), points->begin() + begin);
+    begin = end;
+  }
+}
+
 std::vector<Eigen::Vector3d> VoxelCentres(const DistanceField& field, double delta, double v) {
   const Aabb box = field.box();
   const Eigen::Vector3i n = (box.size() / v).array().floor().cast<int>().max(1);
@@ -170,6 +207,8 @@ Pointshell BuildPointshell(const DistanceField& field, const PointshellOptions& 
       break;
     }
   }
+
+  SortLevelsAlongMortonCurve(&positions, ends, field);
 
   // Float positions, inward normals from the field gradient at the stored positions.
   Pointshell shell;

@@ -40,6 +40,10 @@ DistanceField::DistanceField(const Eigen::Vector3d& origin, double spacing, cons
   ex_ = float(dims.x() - 1);
   ey_ = float(dims.y() - 1);
   ez_ = float(dims.z() - 1);
+  const Eigen::Vector3d upper = box().max;
+  x1_ = float(upper.x());
+  y1_ = float(upper.y());
+  z1_ = float(upper.z());
 }
 
 Aabb DistanceField::box() const {
@@ -50,14 +54,6 @@ Aabb DistanceField::box() const {
 }
 
 bool DistanceField::Inside(const Eigen::Vector3d& p) const { return box().Contains(p); }
-
-float DistanceField::OutsideBound(float x, float y, float z) const {
-  if (values_.empty() || !std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) {
-    return std::numeric_limits<float>::infinity();
-  }
-  const Aabb b = box();
-  return float(b.Distance(Eigen::Vector3d(x, y, z))) + boundary_min_;
-}
 
 double DistanceField::DistanceAndGradient(const Eigen::Vector3d& p, Eigen::Vector3d* gradient) const {
   const Aabb b = box();

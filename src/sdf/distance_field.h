@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -66,7 +67,8 @@ class DistanceField {
   bool Inside(const Eigen::Vector3d& p) const;
 
  private:
-  float OutsideBound(float x, float y, float z) const;
+  // The conservative bound outside the box: distance to the box + boundary_min.
+  inline float OutsideBound(float x, float y, float z) const;
 
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
   double spacing_ = 1;
@@ -76,6 +78,7 @@ class DistanceField {
   float boundary_min_ = 0, min_value_ = 0, max_value_ = 0;
   // Hot-path copies in float.
   float ox_ = 0, oy_ = 0, oz_ = 0, inv_h_ = 1, ex_ = 0, ey_ = 0, ez_ = 0;  // e*: last grid coordinate
+  float x1_ = 0, y1_ = 0, z1_ = 0;  // the box's upper corner
 };
 
 inline float DistanceField::Distance(float x, float y, float z) const {
@@ -97,6 +100,17 @@ inline float DistanceField::Distance(float x, float y, float z) const {
   const float c0 = c00 + ty * (c10 - c00);
   const float c1 = c01 + ty * (c11 - c01);
   return c0 + tz * (c1 - c0);
+}
+
+inline float DistanceField::OutsideBound(float x, float y, float z) const {
+  // NaN or infinite input, or an empty field: never in contact.
+  if (values_.empty() || !(std::abs(x) + std::abs(y) + std::abs(z) < std::numeric_limits<float>::infinity())) {
+    return std::numeric_limits<float>::infinity();
+  }
+  const float dx = std::max(std::max(ox_ - x, x - x1_), 0.f);
+  const float dy = std::max(std::max(oy_ - y, y - y1_), 0.f);
+  const float dz = std::max(std::max(oz_ - z, z - z1_), 0.f);
+  return std::sqrt(dx * dx + dy * dy + dz * dz) + boundary_min_;
 }
 
 }  // namespace contactlab
