@@ -7,34 +7,12 @@
 
 #include "baselines/vps/vps_pointshell.h"
 #include "contact/contact_accumulator.h"
+#include "contact/float_transform.h"
 #include "experiment/model_factory.h"
 #include "util/error.h"
 
 namespace contactlab {
 namespace {
-
-// Pose of A in B's frame, as float arrays for the point loop.
-struct FloatTransform {
-  float r[9];
-  float t[3];
-  explicit FloatTransform(const Pose& X_BA) {
-    const Eigen::Matrix3d R = X_BA.R();
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) r[3 * i + j] = float(R(i, j));
-      t[i] = float(X_BA.translation[i]);
-    }
-  }
-  void Apply(float x, float y, float z, float* out) const {
-    out[0] = r[0] * x + r[1] * y + r[2] * z + t[0];
-    out[1] = r[3] * x + r[4] * y + r[5] * z + t[1];
-    out[2] = r[6] * x + r[7] * y + r[8] * z + t[2];
-  }
-  void Rotate(float x, float y, float z, float* out) const {
-    out[0] = r[0] * x + r[1] * y + r[2] * z;
-    out[1] = r[3] * x + r[4] * y + r[5] * z;
-    out[2] = r[6] * x + r[7] * y + r[8] * z;
-  }
-};
 
 // Cycles a point may skip when it cannot touch before moving GAP metres at STEP metres per
 // cycle: the first cycle offset m with m * STEP >= GAP (shrunk slightly against rounding of

@@ -5,7 +5,8 @@
 //
 // Each iteration is one cycle: body A slides on a 1 mm circle (6 mm/s) across B's surface
 // while held at the placement depth, so coherence sees a moving configuration. Counters:
-// ns_per_point (linear), nodes (visited per cycle), contacts, level, max_us (slowest cycle).
+// ns_per_node, nodes (visited per cycle), contacts, level, p99_us / p999_us / max_us (cycle
+// time percentiles and the slowest cycle, which includes the operating system's jitter).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -17,6 +18,7 @@
 #include <vector>
 
 #include "bench_common.h"
+#include "placed_scene.h"
 #include "contact/pointshell_contact_model.h"
 #include "experiment/contact_placement.h"
 #include "experiment/model_factory.h"
@@ -27,55 +29,16 @@
 namespace contactlab {
 namespace {
 
-struct Prepared {
-  Scene scene;
-  std::unique_ptr<SceneAssets> assets;
-  Pose X_WB;
-  Pose X_WA[2];  // shallow, deep
-  Eigen::Vector3d direction;
-  bool ok = false;
-};
-
-constexpr double kDepths[2] = {0.0005, 0.002};  // shallow 0.5 mm, deep 2 mm
-const char* kDepthNames[2] = {"shallow", "deep"};
-
-Prepared& Prepare(const std::string& scene_file, int points, int levels) {
-  static std::map<std::string, Prepared> cache;
-  const std::string key = scene_file + "/" + std::to_string(points);
-  auto it = cache.find(key);
-  if (it != cache.end()) return it->second;
-  Prepared& p = cache[key];
-  p.scene = LoadScene(RequireDataFile(scene_file));
-  p.scene.pointshell_body.pointshell.points = points;
-  p.scene.pointshell_body.pointshell.levels = levels;
-  AssetOptions options;
-  options.verbose = false;
-  p.assets = std::make_unique<SceneAssets>(p.scene, options);
-  p.X_WB = p.scene.field_body.pose;
-  // Approach from the scene's start pose of A toward B's origin.
-  const Pose start = p.scene.pointshell_body.pose;
-  p.direction = (p.X_WB.translation - start.translation).normalized();
-  PointshellContactParams params = PointshellParamsFromScene(p.scene);
-  PointshellContactModel probe(PointshellContactModel::Variant::kLinear, p.assets->A.pointshell(), p.assets->B.field(),
-                               params);
-  Pose far = start;
-  far.translation -= 0.05 * p.direction;
-  p.ok = true;
-  for (int d = 0; d < 2; ++d) {
-    const Placement placed = PlaceAtDepth(probe, far, p.X_WB, p.direction, kDepths[d], 0.3);
-    p.ok = p.ok && placed.found;
-    p.X_WA[d] = placed.X_WA;
-  }
-  return p;
-}
+using bench::kDepthNames;
+using bench::PlacedScene;
 
 enum Variant { kLinear, kTree, kTreeCoherence, kTreeCoherenceBudget };
 const char* kVariantNames[] = {"linear", "tree", "tree+coherence", "tree+coherence+budget"};
 
 void BM_ContactCycle(benchmark::State& state, std::string scene_file, int points, int levels, Variant variant,
                      int depth, long long budget) {
-  Prepared& p = Prepare(scene_file, points, levels);
-  if (!p.ok) {
+  PlacedScene& p = bench::PreparePlacedScene(scene_file, points, levels, /*add_offset=*/false);
+  if (!p.ok()) {
     state.SkipWithError("could not place the bodies in contact");
     return;
   }
@@ -92,6 +55,8 @@ void BM_ContactCycle(benchmark::State& state, std::string scene_file, int points
   q.node_budget = variant == kTreeCoherenceBudget ? budget : 0;
   std::int64_t cycle = 0;
   double max_us = 0, nodes = 0, contacts = 0, level = 0;
+  std::vector<double> cycle_us;
+  cycle_us.reserve(1 << 20);
   for (auto _ : state) {
     const double angle = 2 * M_PI * double(cycle) / 1000.0;  // one turn per second
     q.X_WA = p.X_WA[depth];
@@ -102,6 +67,7 @@ void BM_ContactCycle(benchmark::State& state, std::string scene_file, int points
     const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
     benchmark::DoNotOptimize(r);
     max_us = std::max(max_us, us);
+    if (cycle_us.size() < cycle_us.capacity()) cycle_us.push_back(us);
     nodes += double(r.stats.nodes_visited);
     contacts += r.stats.points_in_contact;
     level += r.stats.level_rendered;
@@ -111,6 +77,11 @@ void BM_ContactCycle(benchmark::State& state, std::string scene_file, int points
   state.counters["contacts"] = contacts / n;
   state.counters["level"] = level / n;
   state.counters["max_us"] = max_us;
+  if (!cycle_us.empty()) {
+    std::sort(cycle_us.begin(), cycle_us.end());
+    state.counters["p99_us"] = cycle_us[std::size_t(0.99 * double(cycle_us.size() - 1))];
+    state.counters["p999_us"] = cycle_us[std::size_t(0.999 * double(cycle_us.size() - 1))];
+  }
   state.counters["points"] = points;
   state.counters["ns_per_node"] =
       benchmark::Counter(nodes * 1e-9, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);

@@ -24,6 +24,7 @@
 
 #include "baselines/register_baselines.h"
 #include "bench_common.h"
+#include "placed_scene.h"
 #include "contact/pointshell_contact_model.h"
 #include "experiment/contact_placement.h"
 #include "experiment/model_factory.h"
@@ -39,8 +40,7 @@
 namespace contactlab {
 namespace {
 
-constexpr double kDepths[2] = {0.0005, 0.002};  // shallow 0.5 mm, deep 2 mm
-const char* kDepthNames[2] = {"shallow", "deep"};
+using bench::kDepthNames;
 
 struct Configuration {
   Pose X_WA, X_WB;
@@ -51,7 +51,7 @@ struct Configuration {
 
 struct Prepared {
   Scene scene;
-  std::unique_ptr<SceneAssets> assets;
+  SceneAssets* assets = nullptr;  // owned by the PlacedScene cache
   Configuration config[2];
   std::map<std::string, std::unique_ptr<ContactModel>> models;  // made once, outside timing
   std::map<std::string, std::string> model_errors;
@@ -92,27 +92,17 @@ Prepared& Prepare(const std::string& scene_file) {
   auto it = cache.find(scene_file);
   if (it != cache.end()) return it->second;
   Prepared& p = cache[scene_file];
-  p.scene = LoadScene(RequireDataFile(scene_file));
-  AssetOptions options;
-  options.verbose = false;
-  p.assets = std::make_unique<SceneAssets>(p.scene, options);
-  const Pose X_WB = p.scene.field_body.pose;
-  const Pose start = p.scene.pointshell_body.pose;
-  const Eigen::Vector3d direction = (X_WB.translation - start.translation).normalized();
-  PointshellContactModel probe(PointshellContactModel::Variant::kLinear, p.assets->A.pointshell(), p.assets->B.field(),
-                               PointshellParamsFromScene(p.scene));
-  Pose far = start;
-  far.translation -= 0.05 * direction;
   // The pointshell sits on A's offset surface (offset δ outside the mesh), so the mesh-based
   // models (FCL, Bullet, the references) see the meshes overlap by (pointshell depth - δ):
-  // aim at kDepths + δ so the meshes themselves overlap by about kDepths.
-  const double offset = p.assets->A.pointshell()->offset;
+  // the placement aims at kDepths + δ so the meshes themselves overlap by about kDepths.
+  bench::PlacedScene& placed = bench::PreparePlacedScene(scene_file, 0, 0, /*add_offset=*/true);
+  p.scene = placed.scene;
+  p.assets = placed.assets.get();
   for (int d = 0; d < 2; ++d) {
-    const Placement placed = PlaceAtDepth(probe, far, X_WB, direction, kDepths[d] + offset, 0.3);
-    p.config[d].X_WA = placed.X_WA;
-    p.config[d].X_WB = X_WB;
-    p.config[d].placed = placed.found;
-    if (placed.found) ComputeReference(p, p.config[d]);
+    p.config[d].X_WA = placed.X_WA[d];
+    p.config[d].X_WB = placed.X_WB;
+    p.config[d].placed = placed.placed[d];
+    if (placed.placed[d]) ComputeReference(p, p.config[d]);
   }
   return p;
 }

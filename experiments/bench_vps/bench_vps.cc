@@ -19,6 +19,7 @@
 
 #include "baselines/vps/vps_contact_model.h"
 #include "bench_common.h"
+#include "placed_scene.h"
 #include "contact/pointshell_contact_model.h"
 #include "experiment/contact_placement.h"
 #include "experiment/model_factory.h"
@@ -29,53 +30,13 @@
 namespace contactlab {
 namespace {
 
-constexpr double kDepths[2] = {0.0005, 0.002};  // shallow 0.5 mm, deep 2 mm
-const char* kDepthNames[2] = {"shallow", "deep"};
-
-struct Prepared {
-  Scene scene;
-  std::unique_ptr<SceneAssets> assets;
-  Pose X_WB;
-  Pose X_WA[2];  // shallow, deep
-  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
-  bool ok = false;
-};
-
-Prepared& Prepare(const std::string& scene_file, int points, int levels) {
-  static std::map<std::string, Prepared> cache;
-  const std::string key = scene_file + "/" + std::to_string(points);
-  auto it = cache.find(key);
-  if (it != cache.end()) return it->second;
-  Prepared& p = cache[key];
-  p.scene = LoadScene(RequireDataFile(scene_file));
-  p.scene.pointshell_body.pointshell.points = points;
-  p.scene.pointshell_body.pointshell.levels = levels;
-  AssetOptions options;
-  options.verbose = false;
-  p.assets = std::make_unique<SceneAssets>(p.scene, options);
-  p.X_WB = p.scene.field_body.pose;
-  // Approach from the scene's start pose of A toward B's origin.
-  const Pose start = p.scene.pointshell_body.pose;
-  if ((p.X_WB.translation - start.translation).norm() > 0) {
-    p.direction = (p.X_WB.translation - start.translation).normalized();
-  }
-  PointshellContactModel probe(PointshellContactModel::Variant::kLinear, p.assets->A.pointshell(), p.assets->B.field(),
-                               PointshellParamsFromScene(p.scene));
-  Pose far = start;
-  far.translation -= 0.05 * p.direction;
-  p.ok = true;
-  for (int d = 0; d < 2; ++d) {
-    const Placement placed = PlaceAtDepth(probe, far, p.X_WB, p.direction, kDepths[d], 0.3);
-    p.ok = p.ok && placed.found;
-    p.X_WA[d] = placed.X_WA;
-  }
-  return p;
-}
+using bench::kDepthNames;
+using bench::PlacedScene;
 
 void BM_Cycle(benchmark::State& state, std::string scene_file, int points, int levels, std::string model_name,
               bool coherence, int depth) {
-  Prepared& p = Prepare(scene_file, points, levels);
-  if (!p.ok) {
+  PlacedScene& p = bench::PreparePlacedScene(scene_file, points, levels, /*add_offset=*/false);
+  if (!p.ok()) {
     state.SkipWithError("could not place the bodies in contact");
     return;
   }

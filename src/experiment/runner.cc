@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cstdio>
 #include <ctime>
+#include <exception>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -360,13 +361,24 @@ std::vector<SummaryRow> RunExperiment(const ExperimentConfig& config, const RunO
   {
     Progress progress("experiment " + config.name, std::int64_t(indices.size()));
     if (!options.progress) progress.Finish();
+    // A failing job must not cancel the others: TBB would propagate the cancellation into
+    // the nested parallel loops of a field or pointshell build still running in another job
+    // and cut them short. Each job's exception is kept and the first is rethrown after all.
+    std::vector<std::exception_ptr> errors(indices.size());
     tbb::task_arena arena(std::max(1, parallel));
     arena.execute([&] {
       tbb::parallel_for(std::size_t(0), indices.size(), [&](std::size_t i) {
-        results[i] = RunJob(config, all[std::size_t(indices[i])], options);
+        try {
+          results[i] = RunJob(config, all[std::size_t(indices[i])], options);
+        } catch (...) {
+          errors[i] = std::current_exception();
+        }
         if (options.progress) progress.Advance();
       });
     });
+    for (const std::exception_ptr& e : errors) {
+      if (e) std::rethrow_exception(e);
+    }
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 

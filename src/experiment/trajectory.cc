@@ -1,10 +1,10 @@
 #include "experiment/trajectory.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <sstream>
 
+#include "geometry/pose_samples_csv.h"
 #include "util/atomic_file.h"
 #include "util/data_path.h"
 #include "util/error.h"
@@ -98,52 +98,14 @@ Trajectory MakeProceduralTrajectory(const ProceduralTrajectorySpec& s) {
 }
 
 Trajectory LoadTrajectoryCsv(const std::filesystem::path& file) {
-  const std::string text = ReadWholeFile(file);
-  const std::string name = file.string();
-  std::vector<double> times;
-  std::vector<Pose> poses;
-  std::istringstream in(text);
-  std::string line;
-  long line_no = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty() || line[0] == '#') continue;
-    if (times.empty() && poses.empty() && line.rfind("t,", 0) == 0) {
-      if (line.rfind("t,x,y,z,qw,qx,qy,qz", 0) != 0) FailAtLine(name, line_no, "header must start with t,x,y,z,qw,qx,qy,qz");
-      continue;
-    }
-    double v[8];
-    const char* p = line.data();
-    const char* end = line.data() + line.size();
-    for (int k = 0; k < 8; ++k) {
-      while (p < end && (*p == ' ' || *p == '\t')) ++p;
-      const auto [next, ec] = std::from_chars(p, end, v[k]);
-      if (ec != std::errc()) {
-        FailAtLine(name, line_no, k == 0 && p == end ? "empty row" : "column " + std::to_string(k + 1) + " is not a number");
-      }
-      if (!std::isfinite(v[k])) FailAtLine(name, line_no, "column " + std::to_string(k + 1) + " is not finite");
-      p = next;
-      while (p < end && (*p == ' ' || *p == '\t')) ++p;
-      if (k < 7) {
-        if (p >= end || *p != ',') FailAtLine(name, line_no, "a row needs 8 values t,x,y,z,qw,qx,qy,qz");
-        ++p;
-      }
-    }
-    if (p < end && *p != ',') FailAtLine(name, line_no, "unexpected text after the 8th value");
-    Eigen::Quaterniond q(v[4], v[5], v[6], v[7]);
-    if (q.norm() < 1e-9) FailAtLine(name, line_no, "zero quaternion");
-    if (!times.empty() && !(v[0] > times.back())) FailAtLine(name, line_no, "time does not increase");
-    times.push_back(v[0]);
-    poses.push_back({q.normalized(), Eigen::Vector3d(v[1], v[2], v[3])});
-  }
-  if (times.size() < 2) Fail(name, "a recorded trajectory needs at least two rows");
+  PoseSamples samples = ReadPoseSamplesCsv(file);
+  if (samples.t.size() < 2) Fail(file.string(), "a recorded trajectory needs at least two rows");
   // Relative to the first sample, like the procedural ones: translation in the world frame,
   // rotation as a world-frame rotation applied before the start orientation.
-  const Eigen::Vector3d p0 = poses.front().translation;
-  const Eigen::Quaterniond q0 = poses.front().rotation;
-  for (Pose& pose : poses) pose = Pose{(pose.rotation * q0.conjugate()).normalized(), pose.translation - p0};
-  return Trajectory(std::move(times), std::move(poses), name);
+  const Eigen::Vector3d p0 = samples.poses.front().translation;
+  const Eigen::Quaterniond q0 = samples.poses.front().rotation;
+  for (Pose& pose : samples.poses) pose = Pose{(pose.rotation * q0.conjugate()).normalized(), pose.translation - p0};
+  return Trajectory(std::move(samples.t), std::move(samples.poses), file.string());
 }
 
 void SaveTrajectoryCsv(const Trajectory& trajectory, const std::filesystem::path& file, double rate) {

@@ -56,10 +56,9 @@ struct ProceduralTrajectorySpec {
 };
 Trajectory MakeProceduralTrajectory(const ProceduralTrajectorySpec& spec);
 
-// Reads a trajectory from CSV: optional '#' comment lines, an optional header line whose
-// first eight names are t,x,y,z,qw,qx,qy,qz, then rows of at least eight numbers (extra
-// columns ignored, so session logs replay directly). Throws Error naming the file and line
-// for short rows, non-numbers, non-finite values, zero quaternions or non-increasing times.
+// Reads a recorded trajectory (geometry/pose_samples_csv.h; session logs replay directly),
+// relative to its first sample. Throws Error naming the file and line for bad rows, and the
+// file when it holds fewer than two rows.
 Trajectory LoadTrajectoryCsv(const std::filesystem::path& file);
 
 // Writes t,x,y,z,qw,qx,qy,qz at RATE samples per second, atomically.

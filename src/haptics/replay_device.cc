@@ -1,6 +1,8 @@
 // Replay of a recorded manipulandum trajectory (Barbič & James 2008, sec. 6).
 #include "haptics/replay_device.h"
 
+#include "geometry/pose_samples_csv.h"
+
 #include <cctype>
 #include <cmath>
 #include <fstream>
@@ -25,45 +27,10 @@ Pose RecordedTrajectory::Sample(double time, std::size_t* cursor) const {
 }
 
 RecordedTrajectory ReadTrajectoryCsv(const std::filesystem::path& file) {
-  const std::string name = file.string();
-  std::ifstream in(file);
-  if (!in) Fail(name, "cannot open trajectory file");
+  PoseSamples samples = ReadPoseSamplesCsv(file);
   RecordedTrajectory traj;
-  std::string line;
-  long line_no = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    const std::size_t first = line.find_first_not_of(" \t");
-    if (first == std::string::npos || line[first] == '#') continue;
-    if (traj.t.empty() && std::isalpha(static_cast<unsigned char>(line[first])) && line_no == 1) continue;  // header
-    // Eight comma-separated numbers.
-    double v[8];
-    int count = 0;
-    std::stringstream ss(line);
-    std::string item;
-    while (std::getline(ss, item, ',')) {
-      if (count == 8) FailAtLine(name, line_no, "expected 8 columns t,x,y,z,qw,qx,qy,qz, got more");
-      try {
-        std::size_t used = 0;
-        v[count] = std::stod(item, &used);
-        if (item.find_first_not_of(" \t", used) != std::string::npos) throw std::invalid_argument(item);
-      } catch (const std::logic_error&) {
-        FailAtLine(name, line_no, "column " + std::to_string(count + 1) + " '" + item + "' is not a number");
-      }
-      if (!std::isfinite(v[count])) FailAtLine(name, line_no, "column " + std::to_string(count + 1) + " is not finite");
-      ++count;
-    }
-    if (count != 8)
-      FailAtLine(name, line_no, "expected 8 columns t,x,y,z,qw,qx,qy,qz, got " + std::to_string(count));
-    Eigen::Quaterniond q(v[4], v[5], v[6], v[7]);
-    if (q.norm() < 1e-12) FailAtLine(name, line_no, "quaternion is zero");
-    if (!traj.t.empty() && !(v[0] > traj.t.back()))
-      FailAtLine(name, line_no, "time " + std::to_string(v[0]) + " is not greater than the previous row's");
-    traj.t.push_back(v[0]);
-    traj.X_WD.push_back(Pose{q.normalized(), Eigen::Vector3d(v[1], v[2], v[3])});
-  }
-  if (traj.t.empty()) Fail(name, "trajectory has no samples (expected rows t,x,y,z,qw,qx,qy,qz)");
+  traj.t = std::move(samples.t);
+  traj.X_WD = std::move(samples.poses);
   return traj;
 }
 

@@ -20,10 +20,8 @@ struct RecordedTrajectory {
   double duration() const { return t.empty() ? 0.0 : t.back() - t.front(); }
 };
 
-// Reads a trajectory CSV: optional header line starting with a letter, '#' comments and blank
-// lines skipped, 8 numbers per row t,x,y,z,qw,qx,qy,qz (seconds, metres, quaternion normalised).
-// Throws Error "FILE:LINE: what" for a wrong column count, a non-number, a non-finite value, a
-// zero quaternion or a time not greater than the previous row's; and when there are no rows.
+// Reads a trajectory CSV (geometry/pose_samples_csv.h: rows t,x,y,z,qw,qx,qy,qz, extra columns
+// of a session log ignored). Throws Error "FILE:LINE: what" for bad rows, and when there are none.
 RecordedTrajectory ReadTrajectoryCsv(const std::filesystem::path& file);
 
 // Replays a trajectory from the first Read (time 0 = the trajectory's first sample). Written
