@@ -1,0 +1,81 @@
+#include "experiment/scene_assets.h"
+
+#include <gtest/gtest.h>
+
+#include "pointshell/pointshell_io.h"
+#include "test_support.h"
+#include "util/error.h"
+
+namespace contactlab {
+namespace {
+
+BodySpec Ball(int points, std::uint64_t seed = 1) {
+  BodySpec b;
+  b.name = "ball";
+  b.mesh = "sphere:0.02,3";
+  b.role = "pointshell";
+  b.field.resolution = 24;
+  b.pointshell.points = points;
+  b.pointshell.levels = 2;
+  b.pointshell.seed = seed;
+  return b;
+}
+
+int CountFiles(const std::filesystem::path& dir, const std::string& prefix) {
+  int n = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) n += e.path().filename().string().rfind(prefix, 0) == 0;
+  return n;
+}
+
+TEST(SceneAssets, ASecondRunReadsFieldsAndPointshellsFromTheCache) {
+  testing::TempDir dir;
+  AssetOptions options{.cache_dir = dir / "cache", .use_cache = true, .verbose = false};
+  BodyAssets first(Ball(256), options);
+  const auto shell = first.pointshell();
+  EXPECT_EQ(CountFiles(dir / "cache", "field-"), 1);
+  EXPECT_EQ(CountFiles(dir / "cache", "pointshell-"), 1);
+  // Swap the cached pointshell for one of another seed: a second run must return the file's
+  // content, proving it read the cache instead of rebuilding.
+  BodyAssets other(Ball(256, 7), AssetOptions{.cache_dir = dir / "other", .use_cache = true, .verbose = false});
+  std::filesystem::path cached;
+  for (const auto& e : std::filesystem::directory_iterator(dir / "cache")) {
+    if (e.path().filename().string().rfind("pointshell-", 0) == 0) cached = e.path();
+  }
+  SavePointshell(*other.pointshell(), cached);
+  BodyAssets second(Ball(256), options);
+  EXPECT_EQ(second.pointshell()->x, other.pointshell()->x);
+  EXPECT_NE(second.pointshell()->x, shell->x);
+  // Another size is another key.
+  BodyAssets bigger(Ball(512), options);
+  bigger.pointshell();
+  EXPECT_EQ(CountFiles(dir / "cache", "pointshell-"), 2);
+  EXPECT_EQ(CountFiles(dir / "cache", "field-"), 1);  // same mesh, same field
+}
+
+TEST(SceneAssets, ACorruptCacheEntryIsRebuilt) {
+  testing::TempDir dir;
+  AssetOptions options{.cache_dir = dir / "cache", .use_cache = true, .verbose = false};
+  BodyAssets first(Ball(128), options);
+  const auto expected = first.field();
+  for (const auto& e : std::filesystem::directory_iterator(dir / "cache")) {
+    std::filesystem::resize_file(e.path(), 40);  // truncate every entry
+  }
+  BodyAssets second(Ball(128), options);
+  EXPECT_EQ(second.field()->values(), expected->values());
+}
+
+TEST(SceneAssets, ProceduralShapeSpecsAreCheckedAndScaled) {
+  BodySpec b = Ball(64);
+  b.mesh = "sphere:0.5";
+  b.scale = 0.1;
+  EXPECT_NEAR(LoadBodyMesh(b).Bounds().size().x(), 0.1, 1e-9);
+  b.mesh = "cylinder:1,2";
+  EXPECT_THROW(LoadBodyMesh(b), Error);
+  b.mesh = "box:1,2";
+  EXPECT_THROW(LoadBodyMesh(b), Error);
+  b.mesh = "sphere:x";
+  EXPECT_THROW(LoadBodyMesh(b), Error);
+}
+
+}  // namespace
+}  // namespace contactlab
