@@ -168,6 +168,11 @@ class Figures:
         rows = self.load("table1-statistics", "summary")
         if not rows:
             return False
+        # Level rendered: the most frequent level of the tree model's cycles per scene.
+        levels = defaultdict(lambda: defaultdict(int))
+        for r in self.load("table1-statistics", "cycles") or []:
+            if r["model"] == "pointshell" and r["coherence"] == "false":
+                levels[os.path.splitext(os.path.basename(r["scene"]))[0]][r["level"]] += 1
         table = defaultdict(dict)
         for r in rows:
             scene = os.path.splitext(os.path.basename(r["scene"]))[0]
@@ -181,7 +186,8 @@ class Figures:
             lin = cells.get(("pointshell-linear", "false"), {})
             lines.append([scene, tree.get("points", ""), f"{num(tree, 'mean_nodes'):.0f}",
                           f"{num(tree, 'median_us'):.1f}", f"{num(tc, 'median_us'):.1f}",
-                          "all" if tree else "", f"{num(lin, 'median_us'):.1f}"])
+                          max(levels[scene], key=levels[scene].get) if levels[scene] else "",
+                          f"{num(lin, 'median_us'):.1f}"])
         fig, ax = plt.subplots(figsize=(9, 0.6 + 0.45 * len(lines)))
         ax.axis("off")
         t = ax.table(cellText=lines, colLabels=header, loc="center")
@@ -247,13 +253,18 @@ class Figures:
                                    color=f"C{j}", label=model if i == 0 else None)
                         ax.plot([num(r, "median_us"), num(r, "p99_us")], [num(r, "rms_rel_error")] * 2,
                                 color=f"C{j}", lw=0.8)
+        # A second legend for the scenes (marker shapes).
+        from matplotlib.lines import Line2D
+        handles = [Line2D([], [], marker=markers[i % len(markers)], color="gray", ls="",
+                          label=os.path.splitext(os.path.basename(sc))[0]) for i, sc in enumerate(scenes)]
+        ax.add_artist(ax.legend(handles=handles, loc="lower right", fontsize=8, title="scene"))
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("cycle time (µs): median, line to 99th percentile")
         ax.set_ylabel("RMS relative force error vs. quadrature reference")
         ax.set_title("Speed against error (" + ", ".join(os.path.splitext(os.path.basename(s))[0] for s in scenes) + ")")
         ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8)
+        ax.legend(fontsize=8, loc="upper left", title="model")
         self.save(fig, "speed_vs_error.png")
         return True
 
