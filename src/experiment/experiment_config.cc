@@ -5,6 +5,7 @@
 #include "util/atomic_file.h"
 #include "util/data_path.h"
 #include "util/error.h"
+#include "util/parse_number.h"
 
 namespace contactlab {
 namespace {
@@ -159,24 +160,14 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
 void ApplySweepValue(const std::string& axis, const std::string& value, Job* job, const std::string& where) {
   const std::string at = where + ": sweep." + axis + " value '" + value + "'";
   auto as_int = [&]() {
-    try {
-      std::size_t used = 0;
-      const long long v = std::stoll(value, &used);
-      if (used != value.size()) throw std::invalid_argument(value);
-      return v;
-    } catch (const std::logic_error&) {
-      Fail(at, "is not an integer");
-    }
+    const std::optional<long long> v = ParseInteger(value);
+    if (!v) Fail(at, "is not an integer");
+    return *v;
   };
   auto as_double = [&]() {
-    try {
-      std::size_t used = 0;
-      const double v = std::stod(value, &used);
-      if (used != value.size()) throw std::invalid_argument(value);
-      return v;
-    } catch (const std::logic_error&) {
-      Fail(at, "is not a number");
-    }
+    const std::optional<double> v = ParseDouble(value);
+    if (!v) Fail(at, "is not a number");
+    return *v;
   };
   Scene& s = job->scene;
   if (axis == "points") {

@@ -12,6 +12,7 @@
 #include "sdf/build_distance_field.h"
 #include "util/data_path.h"
 #include "util/error.h"
+#include "util/parse_number.h"
 
 namespace contactlab {
 namespace fs = std::filesystem;
@@ -37,26 +38,10 @@ struct Hasher {
   }
 };
 
-std::vector<double> ParseShapeNumbers(const std::string& text, const std::string& where) {
-  std::vector<double> v;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    try {
-      std::size_t used = 0;
-      v.push_back(std::stod(item, &used));
-      if (used != item.size()) throw std::invalid_argument(item);
-    } catch (const std::logic_error&) {
-      Fail(where, "'" + item + "' is not a number");
-    }
-  }
-  return v;
-}
-
 TriangleMesh MakeShape(const std::string& spec, const std::string& where) {
   const auto colon = spec.find(':');
   const std::string kind = spec.substr(0, colon);
-  const std::vector<double> a = ParseShapeNumbers(spec.substr(colon + 1), where);
+  const std::vector<double> a = ParseNumberList(spec.substr(colon + 1), where);
   auto need = [&](std::size_t lo, std::size_t hi) {
     if (a.size() < lo || a.size() > hi) {
       Fail(where, "shape '" + kind + "' takes " + std::to_string(lo) + (lo == hi ? "" : " to " + std::to_string(hi)) +
@@ -136,6 +121,34 @@ const std::string& BodyAssets::mesh_key() {
   return mesh_key_;
 }
 
+namespace {
+
+// Reads T from CACHED when caching is on and the entry is good; else BUILDs it and saves it.
+// A bad entry (truncated, corrupt, from another version) is reported and rebuilt.
+template <typename T, typename Load, typename Save, typename Build>
+std::shared_ptr<const T> CachedOrBuilt(const fs::path& cached, const AssetOptions& options, const std::string& what,
+                                       Load load, Save save, Build build) {
+  std::error_code ec;
+  if (options.use_cache && fs::exists(cached, ec)) {
+    try {
+      auto value = std::make_shared<const T>(load(cached));
+      if (options.verbose) std::cerr << "reusing " << what << " from " << cached.string() << "\n";
+      return value;
+    } catch (const Error& e) {
+      std::cerr << "warning: ignoring a bad cache entry: " << e.what() << "\n";
+    }
+  }
+  if (options.verbose) std::cerr << "building " << what << "\n";
+  auto value = std::make_shared<const T>(build());
+  if (options.use_cache) {
+    fs::create_directories(options.cache_dir, ec);
+    save(*value, cached);
+  }
+  return value;
+}
+
+}  // namespace
+
 std::shared_ptr<const DistanceField> BodyAssets::field() {
   if (field_) return field_;
   const FieldSpec& f = spec_.field;
@@ -146,28 +159,17 @@ std::shared_ptr<const DistanceField> BodyAssets::field() {
   h.Text(f.mode);
   h.Value(f.padding);
   h.Value(f.offset);
-  const fs::path cached = options_.cache_dir / ("field-" + h.Hex() + ".sdf");
-  std::error_code ec;
-  if (options_.use_cache && fs::exists(cached, ec)) {
-    try {
-      field_ = std::make_shared<const DistanceField>(LoadDistanceField(cached));
-      if (options_.verbose) std::cerr << "reusing the field of " << spec_.name << " from " << cached.string() << "\n";
-      return field_;
-    } catch (const Error& e) {
-      std::cerr << "warning: ignoring a bad cache entry: " << e.what() << "\n";
-    }
-  }
-  DistanceFieldOptions o;
-  o.resolution = f.resolution;
-  o.mode = ParseFieldMode(f.mode, "body '" + spec_.name + "' field.mode");
-  o.padding = f.padding;
-  o.soup_offset = f.offset;
-  if (options_.verbose) std::cerr << "building the " << f.resolution << "-cell field of " << spec_.name << "\n";
-  field_ = std::make_shared<const DistanceField>(BuildDistanceField(*mesh(), o));
-  if (options_.use_cache) {
-    fs::create_directories(options_.cache_dir, ec);
-    SaveDistanceField(*field_, cached);
-  }
+  field_ = CachedOrBuilt<DistanceField>(
+      options_.cache_dir / ("field-" + h.Hex() + ".sdf"), options_,
+      "the " + std::to_string(f.resolution) + "-cell field of " + spec_.name, LoadDistanceField, SaveDistanceField,
+      [&] {
+        DistanceFieldOptions o;
+        o.resolution = f.resolution;
+        o.mode = ParseFieldMode(f.mode, "body '" + spec_.name + "' field.mode");
+        o.padding = f.padding;
+        o.soup_offset = f.offset;
+        return BuildDistanceField(*mesh(), o);
+      });
   return field_;
 }
 
@@ -187,29 +189,17 @@ std::shared_ptr<const Pointshell> BodyAssets::pointshell() {
   h.Text(s.method);
   h.Value(s.seed);
   h.Value(s.offset);
-  const fs::path cached = options_.cache_dir / ("pointshell-" + h.Hex() + ".ps");
-  std::error_code ec;
-  if (options_.use_cache && fs::exists(cached, ec)) {
-    try {
-      pointshell_ = std::make_shared<const Pointshell>(LoadPointshell(cached));
-      if (options_.verbose) std::cerr << "reusing the pointshell of " << spec_.name << " from " << cached.string() << "\n";
-      return pointshell_;
-    } catch (const Error& e) {
-      std::cerr << "warning: ignoring a bad cache entry: " << e.what() << "\n";
-    }
-  }
-  PointshellOptions o;
-  o.method = ParsePointshellMethod(s.method, "body '" + spec_.name + "' pointshell.method");
-  o.num_points = s.points;
-  o.num_levels = s.levels;
-  o.seed = s.seed;
-  if (s.offset >= 0) o.offset = s.offset;
-  if (options_.verbose) std::cerr << "building the " << s.points << "-point pointshell of " << spec_.name << "\n";
-  pointshell_ = std::make_shared<const Pointshell>(BuildPointshell(*f, o, mesh().get()));
-  if (options_.use_cache) {
-    fs::create_directories(options_.cache_dir, ec);
-    SavePointshell(*pointshell_, cached);
-  }
+  pointshell_ = CachedOrBuilt<Pointshell>(
+      options_.cache_dir / ("pointshell-" + h.Hex() + ".ps"), options_,
+      "the " + std::to_string(s.points) + "-point pointshell of " + spec_.name, LoadPointshell, SavePointshell, [&] {
+        PointshellOptions o;
+        o.method = ParsePointshellMethod(s.method, "body '" + spec_.name + "' pointshell.method");
+        o.num_points = s.points;
+        o.num_levels = s.levels;
+        o.seed = s.seed;
+        if (s.offset >= 0) o.offset = s.offset;
+        return BuildPointshell(*f, o, mesh().get());
+      });
   return pointshell_;
 }
 

@@ -1,10 +1,10 @@
 #include "geometry/pose.h"
 
 #include <cmath>
-#include <sstream>
 #include <vector>
 
 #include "util/error.h"
+#include "util/parse_number.h"
 
 namespace contactlab {
 
@@ -19,20 +19,7 @@ Eigen::Quaterniond RotationFromVector(const Eigen::Vector3d& w) {
 }
 
 Pose ParsePose(const std::string& text, const std::string& where) {
-  std::vector<double> v;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    try {
-      std::size_t used = 0;
-      const double x = std::stod(item, &used);
-      if (item.find_first_not_of(" \t", used) != std::string::npos) throw std::invalid_argument(item);
-      if (!std::isfinite(x)) Fail(where, "pose component '" + item + "' is not finite");
-      v.push_back(x);
-    } catch (const std::logic_error&) {
-      Fail(where, "pose component '" + item + "' is not a number");
-    }
-  }
+  const std::vector<double> v = ParseNumberList(text, where + ": pose component");
   if (v.size() != 7) Fail(where, "a pose needs 7 numbers x,y,z,qw,qx,qy,qz; got " + std::to_string(v.size()));
   Eigen::Quaterniond q(v[3], v[4], v[5], v[6]);
   if (q.norm() < 1e-12) Fail(where, "pose quaternion is zero");

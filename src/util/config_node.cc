@@ -4,6 +4,7 @@
 
 #include "util/atomic_file.h"
 #include "util/error.h"
+#include "util/parse_number.h"
 
 namespace contactlab {
 
@@ -90,27 +91,16 @@ std::string ConfigNode::AsString() const {
 
 double ConfigNode::AsDouble() const {
   const std::string s = AsString();
-  try {
-    std::size_t used = 0;
-    const double v = std::stod(s, &used);
-    if (used != s.size()) throw std::invalid_argument(s);
-    if (!std::isfinite(v)) Fail("expected a finite number, got '" + s + "'");
-    return v;
-  } catch (const std::logic_error&) {
-    Fail("expected a number, got '" + s + "'");
-  }
+  const std::optional<double> v = ParseDouble(s);
+  if (!v) Fail("expected a finite number, got '" + s + "'");
+  return *v;
 }
 
 long long ConfigNode::AsInt() const {
   const std::string s = AsString();
-  try {
-    std::size_t used = 0;
-    const long long v = std::stoll(s, &used);
-    if (used != s.size()) throw std::invalid_argument(s);
-    return v;
-  } catch (const std::logic_error&) {
-    Fail("expected an integer, got '" + s + "'");
-  }
+  const std::optional<long long> v = ParseInteger(s);
+  if (!v) Fail("expected an integer, got '" + s + "'");
+  return *v;
 }
 
 bool ConfigNode::AsBool() const {
