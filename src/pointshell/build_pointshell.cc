@@ -2,6 +2,8 @@
 // (Barbič & James 2008, sec. 2.2 and 2.4).
 #include "pointshell/build_pointshell.h"
 
+#include "util/isolated_parallel.h"
+
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -140,7 +142,9 @@ std::vector<std::int32_t> NestedLevelEnds(std::int32_t num_points, int num_level
   return ends;
 }
 
-Pointshell BuildPointshell(const DistanceField& field, const PointshellOptions& options, const TriangleMesh* mesh,
+namespace {
+
+Pointshell BuildPointshellImpl(const DistanceField& field, const PointshellOptions& options, const TriangleMesh* mesh,
                            PointshellBuildReport* report) {
   const auto start = std::chrono::steady_clock::now();
   const std::string where =
@@ -249,6 +253,14 @@ Pointshell BuildPointshell(const DistanceField& field, const PointshellOptions& 
   rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return shell;
 }
+
+}  // namespace
+
+Pointshell BuildPointshell(const DistanceField& field, const PointshellOptions& options, const TriangleMesh* mesh,
+                           PointshellBuildReport* report) {
+  return RunIsolatedFromCancellation([&] { return BuildPointshellImpl(field, options, mesh, report); });
+}
+
 
 PointshellMethod ParsePointshellMethod(const std::string& text, const std::string& where) {
   if (text == "repulsion") return PointshellMethod::kRepulsion;

@@ -2,6 +2,8 @@
 // sec. 2.3).
 #include "sdf/build_distance_field.h"
 
+#include "util/isolated_parallel.h"
+
 #include <chrono>
 #include <cmath>
 
@@ -49,7 +51,9 @@ FieldMode ParseFieldMode(const std::string& text, const std::string& where) {
   Fail(where, "unknown distance-field mode '" + text + "' (expected auto, closed or soup)");
 }
 
-DistanceField BuildDistanceField(const TriangleMesh& mesh, const DistanceFieldOptions& options) {
+namespace {
+
+DistanceField BuildDistanceFieldImpl(const TriangleMesh& mesh, const DistanceFieldOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   CheckInputs(mesh, options);
   const std::string where = MeshWhere(mesh);
@@ -93,6 +97,12 @@ DistanceField BuildDistanceField(const TriangleMesh& mesh, const DistanceFieldOp
   }
   info.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return DistanceField(grid.origin, grid.spacing, grid.dims, std::move(values), std::move(info));
+}
+
+}  // namespace
+
+DistanceField BuildDistanceField(const TriangleMesh& mesh, const DistanceFieldOptions& options) {
+  return RunIsolatedFromCancellation([&] { return BuildDistanceFieldImpl(mesh, options); });
 }
 
 }  // namespace contactlab

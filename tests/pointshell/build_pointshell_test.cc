@@ -2,6 +2,8 @@
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
 #include <tbb/global_control.h>
 
 #include <cmath>
@@ -219,6 +221,29 @@ TEST(LevelSetSampling, ProjectionLandsOnTheLevelSetAlongTheGradient) {
   EXPECT_NEAR(Sphere().DistanceAndGradient(p, nullptr), delta, 1e-9);
   // Radial motion on a sphere: the direction from the centre is kept (to the interpolation error).
   EXPECT_GT(p.normalized().dot(Eigen::Vector3d(0.1, 0.2, -0.15).normalized()), 0.999);
+}
+
+}  // namespace
+}  // namespace contactlab
+
+namespace contactlab {
+namespace {
+
+// A build started from a task whose group has been cancelled (as when another job of a
+// parallel sweep fails) still completes, identical to an ordinary build.
+TEST(BuildPointshell, CompletesInsideACancelledTaskGroup) {
+  const Pointshell expected = BuildPointshell(Sphere(), Options(PointshellMethod::kRepulsion, 1024, 3, 5));
+  Pointshell built;
+  tbb::task_group_context outer;
+  tbb::parallel_for(
+      0, 1,
+      [&](int) {
+        outer.cancel_group_execution();
+        built = BuildPointshell(Sphere(), Options(PointshellMethod::kRepulsion, 1024, 3, 5));
+      },
+      outer);
+  EXPECT_EQ(built.x, expected.x);
+  EXPECT_EQ(built.node_radius, expected.node_radius);
 }
 
 }  // namespace

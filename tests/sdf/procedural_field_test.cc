@@ -1,6 +1,8 @@
 // Distance fields built from procedural meshes against analytic and brute-force references,
 // and the builder's input checks (Barbič & James 2008, sec. 2.3).
 #include <gtest/gtest.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
 
 #include <Eigen/Geometry>
 #include <random>
@@ -243,6 +245,31 @@ TEST(BuildDistanceField, ModeNamesParseAndUnknownOnesAreRejected) {
   EXPECT_EQ(ParseFieldMode("closed", "x"), FieldMode::kClosed);
   EXPECT_EQ(ParseFieldMode("soup", "x"), FieldMode::kSoup);
   EXPECT_THROW(ParseFieldMode("signed", "--mode"), Error);
+}
+
+}  // namespace
+}  // namespace contactlab
+
+namespace contactlab {
+namespace {
+
+// A field build started from a task whose group has been cancelled still completes.
+TEST(BuildDistanceField, CompletesInsideACancelledTaskGroup) {
+  const TriangleMesh mesh = MakeTorus(0.3, 0.1, 48, 24);
+  DistanceFieldOptions options;
+  options.resolution = 32;
+  options.show_progress = false;
+  const DistanceField expected = BuildDistanceField(mesh, options);
+  DistanceField built;
+  tbb::task_group_context outer;
+  tbb::parallel_for(
+      0, 1,
+      [&](int) {
+        outer.cancel_group_execution();
+        built = BuildDistanceField(mesh, options);
+      },
+      outer);
+  EXPECT_EQ(built.values(), expected.values());
 }
 
 }  // namespace
