@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <random>
 
+#include "allocation_counter.h"
 #include "test_shells.h"
 #include "util/error.h"
 
@@ -315,6 +316,34 @@ TEST(PointshellContactModel, InvalidParametersAreRejected) {
   bad_speed.max_point_speed = 0;
   EXPECT_THROW(PointshellContactModel(Variant::kTree, shell, field, bad_speed), Error);
   EXPECT_THROW(PointshellContactModel(Variant::kTree, nullptr, field, {}), Error);
+}
+
+}  // namespace
+}  // namespace contactlab
+
+namespace contactlab {
+namespace {
+
+// The haptic-cycle rule: Evaluate allocates nothing, for either variant, with coherence and
+// a node budget that makes the level change.
+TEST(PointshellContactModel, EvaluateAllocatesNothing) {
+  auto shell = testing::SphereShell(0.05, 48, 4);
+  auto field = SphereField(0.06, 0.004);
+  PointshellContactParams params;
+  params.coherence = true;
+  PointshellContactModel tree(PointshellContactModel::Variant::kTree, shell, field, params);
+  PointshellContactModel linear(PointshellContactModel::Variant::kLinear, shell, field, {});
+  ContactQuery q;
+  std::int64_t contacts = 0;
+  const long before = testing::AllocationCount();
+  for (int cycle = 0; cycle < 2000; ++cycle) {
+    q.cycle = cycle;
+    q.node_budget = (cycle / 100) % 2 == 0 ? 0 : 400;
+    q.X_WA = Pose::FromTranslation(Eigen::Vector3d(0.1 + 0.004 * std::sin(cycle * 0.01), 0.001, 0));
+    contacts += tree.Evaluate(q).stats.points_in_contact + linear.Evaluate(q).stats.points_in_contact;
+  }
+  EXPECT_EQ(testing::AllocationCount() - before, 0);
+  EXPECT_GT(contacts, 0);
 }
 
 }  // namespace

@@ -18,16 +18,7 @@
 #include "haptics/haptic_cycle.h"
 #include "haptics/haptic_loop.h"
 #include "haptics/sim_device.h"
-
-// Counts heap allocations in this test program, to check that a haptic cycle makes none.
-static std::atomic<long> g_allocations{0};
-void* operator new(std::size_t n) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#include "allocation_counter.h"
 
 namespace contactlab {
 namespace {
@@ -167,7 +158,7 @@ TEST(ClosedLoop, CycleMakesNoHeapAllocation) {
   cycle.Start(0);
   CycleRing ring;
   TimingHistogram hist;
-  const long before = g_allocations.load();
+  const long before = testing::AllocationCount();
   for (int i = 1; i <= 2400; ++i) {  // free space, pressing, sliding, holding
     const CycleRecord rec = cycle.Step(i * kMs);
     ring.TryPush(rec);
@@ -175,7 +166,7 @@ TEST(ClosedLoop, CycleMakesNoHeapAllocation) {
     CycleRecord out;
     ring.TryPop(&out);
   }
-  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_EQ(testing::AllocationCount() - before, 0);
   EXPECT_GT(device.held_wrench().force.norm(), 0.1);  // it did render contact
 }
 
