@@ -241,7 +241,7 @@ class Figures:
         summary = self.load("speed-vs-error", "summary")
         if not summary:
             return False
-        fig, ax = plt.subplots(figsize=(7, 5))
+        fig, ax = plt.subplots(figsize=(9.5, 5))
         markers = "osD^v<>p*"
         scenes = sorted({r["scene"] for r in summary})
         models = sorted({r["model"] for r in summary})
@@ -249,22 +249,26 @@ class Figures:
             for i, scene in enumerate(scenes):
                 for r in summary:
                     if r["model"] == model and r["scene"] == scene and num(r, "rms_rel_error") >= 0:
+                        # Hollow markers: the pointshell on its default offset surface; filled: offset 0.
+                        hollow = r.get("offset", "0") == "default"
                         ax.scatter(num(r, "median_us"), num(r, "rms_rel_error"), marker=markers[i % len(markers)],
-                                   color=f"C{j}", label=model if i == 0 else None)
+                                   facecolors="none" if hollow else f"C{j}", edgecolors=f"C{j}",
+                                   label=model if (i == 0 and not hollow) else None)
                         ax.plot([num(r, "median_us"), num(r, "p99_us")], [num(r, "rms_rel_error")] * 2,
                                 color=f"C{j}", lw=0.8)
         # A second legend for the scenes (marker shapes).
         from matplotlib.lines import Line2D
         handles = [Line2D([], [], marker=markers[i % len(markers)], color="gray", ls="",
                           label=os.path.splitext(os.path.basename(sc))[0]) for i, sc in enumerate(scenes)]
-        ax.add_artist(ax.legend(handles=handles, loc="lower right", fontsize=8, title="scene"))
+        ax.add_artist(ax.legend(handles=handles, loc="lower left", bbox_to_anchor=(1.01, 0.0), fontsize=8,
+                                title="scene"))
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("cycle time (µs): median, line to 99th percentile")
         ax.set_ylabel("RMS relative force error vs. quadrature reference")
-        ax.set_title("Speed against error (" + ", ".join(os.path.splitext(os.path.basename(s))[0] for s in scenes) + ")")
+        ax.set_title("Speed against error (hollow: pointshell on its default offset surface)")
         ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8, loc="upper left", title="model")
+        ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), title="model")
         self.save(fig, "speed_vs_error.png")
         return True
 

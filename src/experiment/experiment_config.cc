@@ -12,7 +12,7 @@ namespace {
 
 const char* const kAxes[] = {"points",     "levels",   "method",          "resolution", "pointshell_resolution",
                              "k_C",        "node_budget", "coherence",     "max_point_speed", "level",
-                             "model",      "roles",    "gradient",        "scene"};
+                             "model",      "roles",    "gradient",        "scene",      "offset"};
 
 // Sets ROOT[path] = VALUE (YAML text), creating maps along the path.
 void ApplyOverride(YAML::Node root, const std::string& assignment, const std::string& file) {
@@ -140,7 +140,7 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
       for (const char* a : kAxes) known = known || key == a;
       const ConfigNode axis = s->Get(key);
       if (!known) axis.Fail("unknown sweep axis (points, levels, method, resolution, pointshell_resolution, k_C, "
-                            "node_budget, coherence, max_point_speed, level, model, roles, gradient)");
+                            "node_budget, coherence, max_point_speed, level, model, roles, gradient, scene, offset)");
       SweepAxis a{key, {}};
       if (axis.IsSequence()) {
         for (const ConfigNode& v : axis.Elements()) a.values.push_back(ScalarText(v));
@@ -209,6 +209,15 @@ void ApplySweepValue(const std::string& axis, const std::string& value, Job* job
     s.model.gradient = value == "field" ? ContactGradient::kField : ContactGradient::kHalfspace;
   } else if (axis == "model") {
     job->models = {value};
+  } else if (axis == "offset") {
+    // The pointshell's level-set offset in metres, or "default" (half a field spacing).
+    if (value == "default") {
+      s.pointshell_body.pointshell.offset = -1;
+    } else {
+      const double v = as_double();
+      if (v < 0) Fail(at, "must not be negative (or 'default')");
+      s.pointshell_body.pointshell.offset = v;
+    }
   } else if (axis == "scene") {
     job->scene = LoadScene(RequireDataFile(value));
     job->models = job->models.empty() ? job->scene.models : job->models;

@@ -15,7 +15,8 @@
 //   sweep: {points: [1024, 4096, 16384]}   # axes: points levels method resolution
 //                                          # pointshell_resolution k_C node_budget coherence
 //                                          # max_point_speed level model roles gradient
-//                                          # scene (a scene file per job)
+//                                          # scene (a scene file per job), offset (the
+//                                          # pointshell's level-set offset, m, or default)
 //   profiles: {paper: {sweep.points: [...]}} # named sets of overrides: --profile paper
 #pragma once
 
