@@ -2,6 +2,7 @@
 // sec. 3 temporal coherence): analytic plate forces, the voxel-boundary force jump against the
 // continuous pointshell model, halfspace gradients by finite differences, coherence on = off,
 // and registration through the model factory.
+#include "allocation_counter.h"
 #include "baselines/vps/vps_contact_model.h"
 
 #include <gtest/gtest.h>
@@ -231,6 +232,25 @@ TEST(VpsContactModel, TemporalCoherenceGivesIdenticalWrenchesWithinTheSpeedBound
   EXPECT_EQ(b.stats.nodes_skipped_coherence, 0);
   EXPECT_GT(a.stats.points_in_contact, 0);
   EXPECT_EQ(a.on_B.force, b.on_B.force);
+}
+
+TEST(VpsContactModel, EvaluateAllocatesNothing) {
+  auto shell = SphereShell(0.03, 200, 2, 9);
+  auto field = SampleField([](const Eigen::Vector3d& p) { return p.norm() - 0.05; }, Eigen::Vector3d::Constant(-0.065),
+                           Eigen::Vector3d::Constant(0.065), kH);
+  VpsContactParams params;
+  params.coherence = true;
+  VpsContactModel model("vps", shell, field, params);
+  std::int64_t contacts = 0;
+  const long before = testing::AllocationCount();
+  for (int cycle = 0; cycle < 1000; ++cycle) {
+    ContactQuery q;
+    q.cycle = cycle;
+    q.X_WA = Pose::FromTranslation(Eigen::Vector3d(0.078 + 0.004 * std::sin(cycle * 0.01), 0, 0));
+    contacts += model.Evaluate(q).stats.points_in_contact;
+  }
+  EXPECT_EQ(testing::AllocationCount() - before, 0);
+  EXPECT_GT(contacts, 0);
 }
 
 TEST(VpsContactModel, InfoReportsVoxmapMemoryAndCounts) {
