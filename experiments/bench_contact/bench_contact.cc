@@ -48,44 +48,14 @@ void BM_ContactCycle(benchmark::State& state, std::string scene_file, int points
   PointshellContactModel model(variant == kLinear ? PointshellContactModel::Variant::kLinear
                                                   : PointshellContactModel::Variant::kTree,
                                p.assets->A.pointshell(), p.assets->B.field(), params);
-  // A circle in the plane perpendicular to the approach direction.
-  const Eigen::Vector3d e1 = p.direction.unitOrthogonal(), e2 = p.direction.cross(e1);
-  ContactQuery q;
-  q.X_WB = p.X_WB;
-  q.node_budget = variant == kTreeCoherenceBudget ? budget : 0;
-  std::int64_t cycle = 0;
-  double max_us = 0, nodes = 0, contacts = 0, level = 0;
-  std::vector<double> cycle_us;
-  cycle_us.reserve(1 << 20);
-  for (auto _ : state) {
-    const double angle = 2 * M_PI * double(cycle) / 1000.0;  // one turn per second
-    q.X_WA = p.X_WA[depth];
-    q.X_WA.translation += 0.001 * (std::cos(angle) * e1 + std::sin(angle) * e2);
-    q.cycle = cycle++;
-    const auto t0 = std::chrono::steady_clock::now();
-    const ContactResult r = model.Evaluate(q);
-    const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
-    benchmark::DoNotOptimize(r);
-    max_us = std::max(max_us, us);
-    if (cycle_us.size() < cycle_us.capacity()) cycle_us.push_back(us);
-    nodes += double(r.stats.nodes_visited);
-    contacts += r.stats.points_in_contact;
-    level += r.stats.level_rendered;
-  }
-  const double n = double(std::max<std::int64_t>(1, cycle));
-  state.counters["nodes"] = nodes / n;
-  state.counters["contacts"] = contacts / n;
-  state.counters["level"] = level / n;
-  state.counters["max_us"] = max_us;
-  if (!cycle_us.empty()) {
-    std::sort(cycle_us.begin(), cycle_us.end());
-    state.counters["p99_us"] = cycle_us[std::size_t(0.99 * double(cycle_us.size() - 1))];
-    state.counters["p999_us"] = cycle_us[std::size_t(0.999 * double(cycle_us.size() - 1))];
-  }
+  const bench::CycleTimes t =
+      bench::TimeCirclingCycles(state, model, p, depth, variant == kTreeCoherenceBudget ? budget : 0);
+  const double n = double(std::max<std::int64_t>(1, t.cycles));
+  state.counters["nodes"] = t.nodes / n;
+  state.counters["level"] = t.level / n;
   state.counters["points"] = points;
   state.counters["ns_per_node"] =
-      benchmark::Counter(nodes * 1e-9, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
-  state.SetItemsProcessed(std::int64_t(nodes));
+      benchmark::Counter(t.nodes * 1e-9, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 void RegisterAll() {

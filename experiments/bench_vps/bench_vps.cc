@@ -54,31 +54,9 @@ void BM_Cycle(benchmark::State& state, std::string scene_file, int points, int l
   } else {
     shell_points = p.assets->A.pointshell()->num_points();
   }
-  // A circle in the plane perpendicular to the approach direction.
-  const Eigen::Vector3d e1 = p.direction.unitOrthogonal(), e2 = p.direction.cross(e1);
-  ContactQuery q;
-  q.X_WB = p.X_WB;
-  std::int64_t cycle = 0;
-  double max_us = 0, visited = 0, contacts = 0;
-  for (auto _ : state) {
-    const double angle = 2 * M_PI * double(cycle) / 1000.0;  // one turn per second
-    q.X_WA = p.X_WA[depth];
-    q.X_WA.translation += 0.001 * (std::cos(angle) * e1 + std::sin(angle) * e2);
-    q.cycle = cycle++;
-    const auto t0 = std::chrono::steady_clock::now();
-    const ContactResult r = model->Evaluate(q);
-    const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
-    benchmark::DoNotOptimize(r);
-    max_us = std::max(max_us, us);
-    visited += double(r.stats.nodes_visited);
-    contacts += r.stats.points_in_contact;
-  }
-  const double n = double(std::max<std::int64_t>(1, cycle));
+  const bench::CycleTimes t = bench::TimeCirclingCycles(state, *model, p, depth);
   state.counters["points"] = double(shell_points);
-  state.counters["visited"] = visited / n;
-  state.counters["contacts"] = contacts / n;
-  state.counters["max_us"] = max_us;
-  state.SetItemsProcessed(std::int64_t(visited));
+  state.counters["visited"] = t.nodes / double(std::max<std::int64_t>(1, t.cycles));
 }
 
 void RegisterAll() {

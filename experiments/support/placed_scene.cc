@@ -1,11 +1,14 @@
 #include "placed_scene.h"
 
+#include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <map>
+#include <vector>
 
-#include "contact/pointshell_contact_model.h"
 #include "experiment/contact_placement.h"
-#include "experiment/model_factory.h"
 #include "util/data_path.h"
+#include "util/error.h"
 
 namespace contactlab::bench {
 
@@ -23,22 +26,58 @@ PlacedScene& PreparePlacedScene(const std::string& scene_file, int points, int l
   options.verbose = false;
   p.assets = std::make_unique<SceneAssets>(p.scene, options);
   p.X_WB = p.scene.field_body.pose;
-  // Approach from the scene's start pose of A toward B's origin, starting 5 cm back.
+  // Approach from the scene's start pose of A toward B's origin.
   const Pose start = p.scene.pointshell_body.pose;
   if ((p.X_WB.translation - start.translation).norm() > 0) {
     p.direction = (p.X_WB.translation - start.translation).normalized();
   }
-  PointshellContactModel probe(PointshellContactModel::Variant::kLinear, p.assets->A.pointshell(), p.assets->B.field(),
-                               PointshellParamsFromScene(p.scene));
-  Pose far = start;
-  far.translation -= 0.05 * p.direction;
   const double extra = add_offset ? p.assets->A.pointshell()->offset : 0.0;
   for (int d = 0; d < 2; ++d) {
-    const Placement placed = PlaceAtDepth(probe, far, p.X_WB, p.direction, kDepths[d] + extra, 0.3);
-    p.placed[d] = placed.found;
-    p.X_WA[d] = placed.X_WA;
+    try {
+      p.X_WA[d] = TouchAlong(p.scene, *p.assets, /*move_B=*/false, start, p.X_WB, p.direction, kDepths[d] + extra,
+                             scene_file);
+      p.placed[d] = true;
+    } catch (const Error&) {
+      p.placed[d] = false;
+    }
   }
   return p;
+}
+
+CycleTimes TimeCirclingCycles(benchmark::State& state, ContactModel& model, const PlacedScene& p, int depth,
+                              std::int64_t node_budget) {
+  const Eigen::Vector3d e1 = p.direction.unitOrthogonal(), e2 = p.direction.cross(e1);
+  ContactQuery q;
+  q.X_WB = p.X_WB;
+  q.node_budget = node_budget;
+  CycleTimes out;
+  std::vector<double> cycle_us;
+  cycle_us.reserve(1 << 20);
+  for (auto _ : state) {
+    const double angle = 2 * M_PI * double(out.cycles) / 1000.0;  // one turn per second
+    q.X_WA = p.X_WA[depth];
+    q.X_WA.translation += 0.001 * (std::cos(angle) * e1 + std::sin(angle) * e2);
+    q.cycle = out.cycles++;
+    const auto t0 = std::chrono::steady_clock::now();
+    const ContactResult r = model.Evaluate(q);
+    const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+    benchmark::DoNotOptimize(r);
+    out.max_us = std::max(out.max_us, us);
+    if (cycle_us.size() < cycle_us.capacity()) cycle_us.push_back(us);
+    out.nodes += double(r.stats.nodes_visited);
+    out.contacts += r.stats.points_in_contact;
+    out.level += r.stats.level_rendered;
+  }
+  const double n = double(std::max<std::int64_t>(1, out.cycles));
+  state.counters["contacts"] = out.contacts / n;
+  state.counters["max_us"] = out.max_us;
+  if (!cycle_us.empty()) {
+    std::sort(cycle_us.begin(), cycle_us.end());
+    state.counters["p99_us"] = cycle_us[std::size_t(0.99 * double(cycle_us.size() - 1))];
+    state.counters["p999_us"] = cycle_us[std::size_t(0.999 * double(cycle_us.size() - 1))];
+  }
+  state.SetItemsProcessed(std::int64_t(out.nodes));
+  return out;
 }
 
 }  // namespace contactlab::bench

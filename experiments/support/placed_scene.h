@@ -3,10 +3,14 @@
 // program times the same configurations.
 #pragma once
 
+#include <benchmark/benchmark.h>
+
 #include <Eigen/Core>
+#include <cstdint>
 #include <memory>
 #include <string>
 
+#include "contact/contact_model.h"
 #include "experiment/scene.h"
 #include "experiment/scene_assets.h"
 #include "geometry/pose.h"
@@ -27,9 +31,24 @@ struct PlacedScene {
 };
 
 // Loads SCENE_FILE (A's pointshell gets POINTS and LEVELS when > 0) and places A with the
-// paper's linear model at kDepths; with ADD_OFFSET the target depth grows by the
+// paper's linear model at kDepths (experiment/contact_placement.h TouchAlong); with ADD_OFFSET the target depth grows by the
 // pointshell's offset, so the meshes themselves (not the offset surface) overlap by about
 // kDepths, as the mesh-based models need. Cached per argument set for the program's lifetime.
 PlacedScene& PreparePlacedScene(const std::string& scene_file, int points, int levels, bool add_offset);
+
+// Sums over the timed cycles of TimeCirclingCycles (divide by cycles for means).
+struct CycleTimes {
+  std::int64_t cycles = 0;
+  double nodes = 0, contacts = 0, level = 0;  // sums of the per-cycle statistics
+  double max_us = 0;                          // slowest cycle
+};
+
+// The timed loop of the contact benchmarks: one MODEL.Evaluate per iteration with A at the
+// DEPTH placement of P, sliding on a 1 mm circle (6 mm/s) across B so temporal coherence sees
+// a moving configuration. Sets the counters contacts, max_us, p99_us and p999_us (cycle time
+// percentiles; the slowest cycle includes the operating system's jitter) and the items
+// processed (nodes visited).
+CycleTimes TimeCirclingCycles(benchmark::State& state, ContactModel& model, const PlacedScene& p, int depth,
+                              std::int64_t node_budget = 0);
 
 }  // namespace contactlab::bench

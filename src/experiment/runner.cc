@@ -361,9 +361,9 @@ std::vector<SummaryRow> RunExperiment(const ExperimentConfig& config, const RunO
   {
     Progress progress("experiment " + config.name, std::int64_t(indices.size()));
     if (!options.progress) progress.Finish();
-    // A failing job must not cancel the others: TBB would propagate the cancellation into
-    // the nested parallel loops of a field or pointshell build still running in another job
-    // and cut them short. Each job's exception is kept and the first is rethrown after all.
+    // A failing job does not cancel the others (whose builds are isolated from cancellation
+    // anyway): each job's exception is kept, every job finishes, and the first error in job
+    // order is rethrown, so the reported error does not depend on thread timing.
     std::vector<std::exception_ptr> errors(indices.size());
     tbb::task_arena arena(std::max(1, parallel));
     arena.execute([&] {
