@@ -92,7 +92,7 @@ BulletContactModel::BulletContactModel(std::shared_ptr<const TriangleMesh> mesh_
     : impl_(std::make_unique<Impl>()), params_(params) {
   const std::string where = "contact model bullet";
   if (!mesh_A || !mesh_B) Fail(where, "needs both meshes");
-  if (!(params.k_C >= 0) || !std::isfinite(params.k_C)) Fail(where, "k_C must be a finite non-negative stiffness");
+  CheckPenaltyParams(params.penalty, where);
   if (!(params.margin >= 0) || !std::isfinite(params.margin)) Fail(where, "margin must be finite and non-negative");
   Impl& m = *impl_;
   m.mesh_A = std::move(mesh_A);
@@ -122,7 +122,7 @@ ContactResult BulletContactModel::Evaluate(const ContactQuery& query) {
   // Manifold points of A (object 0) against B (object 1).
   m.world.contactPairTest(&m.A.object, &m.B.object, c);
   ContactResult out;
-  c.acc.Finish(params_.k_C, params_.L, query.X_WB, &out);
+  c.acc.Finish(params_.penalty, query.X_WB, &out);
   out.stats.nodes_visited = c.reported;
   return out;
 }

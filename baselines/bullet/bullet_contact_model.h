@@ -27,13 +27,13 @@
 #include <memory>
 
 #include "contact/contact_model.h"
+#include "contact/penalty_params.h"
 #include "geometry/triangle_mesh.h"
 
 namespace contactlab {
 
 struct BulletContactParams {
-  double k_C = 1000;             // penalty stiffness per contact, N/m (before L/l scaling)
-  int L = 10;                    // k_C -> k_C L / l when l >= L contacts; <= 0 disables it
+  PenaltyParams penalty;             // k_C per contact and the L / l scaling, as the paper's model
   double margin = 0.0005;        // collision margin of each GImpact shape, metres (0.5 mm)
   bool subtract_margins = true;  // δ = -s - 2 margin (true) or δ = -s (false)
 };

@@ -46,7 +46,7 @@ FclContactModel::FclContactModel(std::shared_ptr<const TriangleMesh> mesh_A, std
     : impl_(std::make_unique<Impl>()), params_(params) {
   const std::string where = "contact model fcl";
   if (!mesh_A || !mesh_B) Fail(where, "needs both meshes");
-  if (!(params.k_C >= 0) || !std::isfinite(params.k_C)) Fail(where, "k_C must be a finite non-negative stiffness");
+  CheckPenaltyParams(params.penalty, where);
   if (params.max_contacts == 0) Fail(where, "max_contacts must be positive");
   impl_->mesh_A = std::move(mesh_A);
   impl_->mesh_B = std::move(mesh_B);
@@ -83,7 +83,7 @@ ContactResult FclContactModel::Evaluate(const ContactQuery& query) {
     acc.Add(p_B, N_B, -depth, N_B);
   }
   ContactResult out;
-  acc.Finish(params_.k_C, params_.L, query.X_WB, &out);
+  acc.Finish(params_.penalty, query.X_WB, &out);
   out.stats.nodes_visited = std::int64_t(num);
   return out;
 }

@@ -22,13 +22,13 @@
 #include <memory>
 
 #include "contact/contact_model.h"
+#include "contact/penalty_params.h"
 #include "geometry/triangle_mesh.h"
 
 namespace contactlab {
 
 struct FclContactParams {
-  double k_C = 1000;                 // penalty stiffness per contact, N/m (before L/l scaling)
-  int L = 10;                        // k_C -> k_C L / l when l >= L contacts; <= 0 disables it
+  PenaltyParams penalty;             // k_C per contact and the L / l scaling, as the paper's model
   std::size_t max_contacts = 100000; // FCL's num_max_contacts
 };
 

@@ -34,9 +34,9 @@ QuadratureReference::QuadratureReference(std::shared_ptr<const TriangleMesh> mes
     : distance_(std::make_unique<Distance>()), params_(params), mesh_A_(std::move(mesh_A)), mesh_B_(std::move(mesh_B)) {
   const std::string where = "contact model reference";
   if (!mesh_A_ || !mesh_B_ || mesh_A_->empty()) Fail(where, "needs two non-empty meshes");
-  if (params.L <= 0) Fail(where, "the eq. (2) limit needs L > 0");
+  CheckPenaltyParams(params.penalty, where);
+  if (params.penalty.L <= 0) Fail(where, "the eq. (2) limit needs L > 0");
   if (!(params.target_edge > 0)) Fail(where, "target_edge must be positive");
-  if (!(params.k_C >= 0) || !std::isfinite(params.k_C)) Fail(where, "k_C must be a finite non-negative stiffness");
 
   // B: closed surface mesh, AABB tree for closest points, ray-parity inside test on the tree.
   distance_->mesh = cgal::ToSurfaceMesh(*mesh_B_, where + " (body B)", /*require_closed=*/true);
@@ -127,7 +127,7 @@ ContactResult QuadratureReference::Compute(const Pose& X_WA, const Pose& X_WB, d
   ContactResult out;
   if (area_inside) *area_inside = area;
   if (inside == 0) return out;
-  acc.Finish(params_.k_C * params_.L / area, /*L=*/0, X_WB, &out);
+  acc.Finish(PenaltyParams{params_.penalty.k_C * params_.penalty.L / area, /*L=*/0}, X_WB, &out);
   out.stats.points_in_contact = inside;
   out.stats.nodes_visited = examined;
   out.stats.max_penetration = max_pen;

@@ -17,13 +17,13 @@
 
 #include "baselines/reference/analytic_references.h"
 #include "contact/contact_model.h"
+#include "contact/penalty_params.h"
 #include "geometry/triangle_mesh.h"
 
 namespace contactlab {
 
 struct QuadratureReferenceParams {
-  double k_C = 1000;           // N/m, as the paper's model
-  int L = 10;                  // must be > 0: the limit is k_C L times an area average
+  PenaltyParams penalty;       // as the paper's model; L must be > 0 (the limit is k_C L times an area average)
   double target_edge = 5e-4;   // metres, longest sub-triangle edge on A
 };
 

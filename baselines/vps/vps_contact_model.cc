@@ -8,7 +8,6 @@
 #include "baselines/vps/vps_pointshell.h"
 #include "contact/contact_accumulator.h"
 #include "contact/float_transform.h"
-#include "experiment/model_factory.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -30,7 +29,7 @@ VpsContactModel::VpsContactModel(std::string name, std::shared_ptr<const Pointsh
   const std::string where = "contact model " + name_;
   if (!shell_ || shell_->num_points() == 0) Fail(where, "needs a non-empty pointshell");
   if (!field || field->empty()) Fail(where, "needs a distance field");
-  if (!(params.k_C >= 0) || !std::isfinite(params.k_C)) Fail(where, "k_C must be a finite non-negative stiffness");
+  CheckPenaltyParams(params.penalty, where);
   if (!(params.max_point_speed > 0) || !(params.cycle_seconds > 0) || !std::isfinite(params.max_point_speed) ||
       !std::isfinite(params.cycle_seconds)) {
     Fail(where, "max_point_speed and cycle_seconds must be finite and positive");
@@ -69,7 +68,7 @@ VpsModelInfo VpsContactModel::info() const {
 
 ContactResult VpsContactModel::Evaluate(const ContactQuery& query) {
   const Pointshell& s = *shell_;
-  const FloatTransform T(query.X_WB.Inverse() * query.X_WA);
+  const FloatTransform X_BA(query.X_WB.Inverse() * query.X_WA);
   ContactAccumulator acc;
   const int n = s.num_points();
   const bool coherence = params_.coherence;
@@ -88,15 +87,15 @@ ContactResult VpsContactModel::Evaluate(const ContactQuery& query) {
     }
     ++visited;
     // The point in B's frame and its voxel.
-    float p[3];
-    T.Apply(s.x[i], s.y[i], s.z[i], p);
+    float p_BQ[3];
+    X_BA.Apply(s.x[i], s.y[i], s.z[i], p_BQ);
     int vi, vj, vk;
-    if (!voxmap_.Locate(p[0], p[1], p[2], &vi, &vj, &vk)) {
+    if (!voxmap_.Locate(p_BQ[0], p_BQ[1], p_BQ[2], &vi, &vj, &vk)) {
       if (coherence) {
         // Outside the voxmap: no contact before the point reaches the voxmap box.
         float e2 = 0.f;
         for (int a = 0; a < 3; ++a) {
-          const float lo = float(o[a]) - p[a], hi = p[a] - box_hi_[a];
+          const float lo = float(o[a]) - p_BQ[a], hi = p_BQ[a] - box_hi_[a];
           const float e = lo > 0.f ? lo : (hi > 0.f ? hi : 0.f);
           e2 += e * e;
         }
@@ -129,10 +128,10 @@ ContactResult VpsContactModel::Evaluate(const ContactQuery& query) {
       }
     }
     // Tangent-plane depth (surface) or the fixed interior depth, along the point's normal.
-    float nrm[3];
-    T.Rotate(s.nx[i], s.ny[i], s.nz[i], nrm);
-    const Eigen::Vector3d p_B(p[0], p[1], p[2]);
-    const Eigen::Vector3d N_B(nrm[0], nrm[1], nrm[2]);
+    float n_B[3];
+    X_BA.Rotate(s.nx[i], s.ny[i], s.nz[i], n_B);
+    const Eigen::Vector3d p_B(p_BQ[0], p_BQ[1], p_BQ[2]);
+    const Eigen::Vector3d N_B(n_B[0], n_B[1], n_B[2]);
     double depth = interior_depth_;
     if (surface) {
       const Eigen::Vector3d c_B = o + v * Eigen::Vector3d(vi + 0.5, vj + 0.5, vk + 0.5);
@@ -142,41 +141,11 @@ ContactResult VpsContactModel::Evaluate(const ContactQuery& query) {
   }
 
   ContactResult result;
-  acc.Finish(params_.k_C, params_.L, query.X_WB, &result);
+  acc.Finish(params_.penalty, query.X_WB, &result);
   result.stats.nodes_visited = visited;
   result.stats.nodes_skipped_coherence = skipped;
   result.stats.level_rendered = -1;
   return result;
-}
-
-namespace {
-
-VpsContactParams VpsParamsFromScene(const Scene& scene) {
-  const ModelSpec& m = scene.model;
-  VpsContactParams p;
-  p.k_C = m.k_C;
-  p.L = m.L;
-  p.coherence = m.coherence;
-  p.max_point_speed = m.max_point_speed;
-  p.cycle_seconds = m.cycle_seconds;
-  return p;
-}
-
-}  // namespace
-
-void RegisterVpsContactModels() {
-  RegisterContactModel("vps", [](const Scene& scene, SceneAssets& assets) -> std::unique_ptr<ContactModel> {
-    const VpsContactParams params = VpsParamsFromScene(scene);
-    auto field_B = assets.B.field();
-    const double v = params.voxel_size > 0 ? params.voxel_size : field_B->spacing();
-    auto shell = std::make_shared<const Pointshell>(
-        BuildVpsPointshell(*assets.A.field(), v, scene.pointshell_body.pointshell.seed));
-    return std::make_unique<VpsContactModel>("vps", std::move(shell), std::move(field_B), params);
-  });
-  RegisterContactModel("vps-repulsion", [](const Scene& scene, SceneAssets& assets) -> std::unique_ptr<ContactModel> {
-    return std::make_unique<VpsContactModel>("vps-repulsion", assets.A.pointshell(), assets.B.field(),
-                                             VpsParamsFromScene(scene));
-  });
 }
 
 }  // namespace contactlab

@@ -37,14 +37,14 @@
 #include "baselines/vps/voxmap.h"
 #include "baselines/vps/wide_voxmap.h"
 #include "contact/contact_model.h"
+#include "contact/penalty_params.h"
 #include "pointshell/pointshell.h"
 #include "sdf/distance_field.h"
 
 namespace contactlab {
 
 struct VpsContactParams {
-  double k_C = 1000;             // per-point stiffness, N/m (before L / l scaling)
-  int L = 10;                    // k_C -> k_C L / l when l >= L points touch; <= 0 disables it
+  PenaltyParams penalty;         // k_C per point and the L / l scaling, as the paper's model
   double voxel_size = 0;         // voxmap voxel side, metres; <= 0: B's field spacing
   double interior_depth = -1;    // depth of a point in an interior voxel, metres; < 0: v sqrt(3)/2
   bool coherence = false;        // temporal coherence through the 8-bit voxmap
@@ -98,12 +98,5 @@ class VpsContactModel final : public ContactModel {
   // Scratch sized once at construction.
   std::vector<std::int64_t> next_check_;  // (#P) temporal coherence: first cycle to look again
 };
-
-// Registers "vps" (A's pointshell = centres of A's surface voxels, BuildVpsPointshell at the
-// voxmap's voxel size) and "vps-repulsion" (the scene's own pointshell of A, normally the
-// paper's repulsion pointshell) with the model factory (experiment/model_factory.h).
-// Parameters from the scene's model section: k_C, L, coherence, max_point_speed,
-// cycle_seconds; the voxel size is B's field spacing. Safe to call more than once.
-void RegisterVpsContactModels();
 
 }  // namespace contactlab

@@ -21,9 +21,8 @@
 #include "placed_scene.h"
 #include "contact/pointshell_contact_model.h"
 #include "experiment/contact_placement.h"
-#include "experiment/model_factory.h"
-#include "experiment/scene.h"
 #include "experiment/scene_assets.h"
+#include "experiment/scene.h"
 #include "util/data_path.h"
 
 namespace contactlab {
@@ -42,7 +41,7 @@ void BM_ContactCycle(benchmark::State& state, std::string scene_file, int points
     state.SkipWithError("could not place the bodies in contact");
     return;
   }
-  PointshellContactParams params = PointshellParamsFromScene(p.scene);
+  PointshellContactParams params = p.scene.model;
   params.coherence = variant >= kTreeCoherence;
   params.max_point_speed = 0.5;
   PointshellContactModel model(variant == kLinear ? PointshellContactModel::Variant::kLinear

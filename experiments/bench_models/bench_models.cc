@@ -27,9 +27,8 @@
 #include "placed_scene.h"
 #include "contact/pointshell_contact_model.h"
 #include "experiment/contact_placement.h"
-#include "experiment/model_factory.h"
-#include "experiment/scene.h"
 #include "experiment/scene_assets.h"
+#include "experiment/scene.h"
 #include "util/data_path.h"
 #include "util/error.h"
 #ifdef CONTACTLAB_HAVE_CGAL
@@ -73,8 +72,8 @@ void ComputeReference(Prepared& p, Configuration& c) {
   }
   try {
     QuadratureReferenceParams params;
-    params.k_C = p.scene.model.k_C;
-    params.L = p.scene.model.L > 0 ? p.scene.model.L : 10;
+    params.penalty = p.scene.model.penalty;
+    if (params.penalty.L <= 0) params.penalty.L = PenaltyParams::kDefaultManyPointThreshold;
     const QuadratureReference reference(p.assets->A.mesh(), p.assets->B.mesh(), params);
     const Eigen::Vector3d F = reference.Limit(c.X_WA, c.X_WB).on_B.force;
     if (F.norm() > 0) {
@@ -116,7 +115,7 @@ ContactModel* GetModel(Prepared& p, const std::string& name, std::string* error)
     return nullptr;
   }
   try {
-    return (p.models[name] = MakeContactModel(name, p.scene, *p.assets)).get();
+    return (p.models[name] = MakeSceneContactModel(name, p.scene, *p.assets)).get();
   } catch (const Error& err) {
     p.models.erase(name);
     *error = p.model_errors[name] = err.what();

@@ -17,12 +17,12 @@
 #include <string>
 #include <vector>
 
+#include "baselines/register_baselines.h"
 #include "baselines/vps/vps_contact_model.h"
 #include "bench_common.h"
 #include "placed_scene.h"
 #include "contact/pointshell_contact_model.h"
 #include "experiment/contact_placement.h"
-#include "experiment/model_factory.h"
 #include "experiment/scene.h"
 #include "experiment/scene_assets.h"
 #include "util/data_path.h"
@@ -43,7 +43,7 @@ void BM_Cycle(benchmark::State& state, std::string scene_file, int points, int l
   Scene scene = p.scene;
   scene.model.coherence = coherence;
   scene.model.max_point_speed = 0.5;  // m/s: bounds the 6 mm/s circle with a wide margin
-  std::unique_ptr<ContactModel> model = MakeContactModel(model_name, scene, *p.assets);
+  std::unique_ptr<ContactModel> model = MakeSceneContactModel(model_name, scene, *p.assets);
   std::int64_t shell_points = 0;
   if (auto* vps = dynamic_cast<VpsContactModel*>(model.get())) {
     const VpsModelInfo info = vps->info();
@@ -60,7 +60,7 @@ void BM_Cycle(benchmark::State& state, std::string scene_file, int points, int l
 }
 
 void RegisterAll() {
-  RegisterVpsContactModels();
+  RegisterBaselineContactModels();
   struct SceneCase {
     std::string file;
     int points, levels;

@@ -1,6 +1,7 @@
 // `contactlab contact SCENE.yaml [--model NAME] [--pose-a ...] [--pose-b ...] [--json]`:
 // evaluates one contact query of a scene (Barbič & James 2008, sec. 2.1 and 3) and prints
 // the wrench on the field body, points in contact, nodes visited and level rendered.
+// `contactlab models`: the registered contact models, what each needs and what it is.
 #include <nlohmann/json.hpp>
 
 #include <chrono>
@@ -10,9 +11,9 @@
 #include <string>
 
 #include "cli/command_registry.h"
-#include "experiment/model_factory.h"
-#include "experiment/scene.h"
+#include "contact/model_registry.h"
 #include "experiment/scene_assets.h"
+#include "experiment/scene.h"
 #include "util/data_path.h"
 
 namespace contactlab::cli {
@@ -36,12 +37,12 @@ void RunContact(const ContactArgs& args) {
   options.verbose = !args.json;
   SceneAssets assets(scene, options);
   const std::string model_name = args.model.empty() ? scene.models.front() : args.model;
-  auto model = MakeContactModel(model_name, scene, assets);
+  auto model = MakeSceneContactModel(model_name, scene, assets);
 
   ContactQuery q;
   q.X_WA = args.pose_a.empty() ? scene.pointshell_body.pose : ParsePose(args.pose_a, "--pose-a");
   q.X_WB = args.pose_b.empty() ? scene.field_body.pose : ParsePose(args.pose_b, "--pose-b");
-  q.node_budget = args.budget >= 0 ? args.budget : scene.model.node_budget;
+  q.node_budget = args.budget >= 0 ? args.budget : scene.node_budget;
   const auto t0 = std::chrono::steady_clock::now();
   const ContactResult r = model->Evaluate(q);
   const double micros = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
@@ -91,6 +92,29 @@ const CommandRegistration kContactCommands([](CLI::App& app) {
   cmd->add_flag("--no-cache", args->no_cache, "neither read nor write cached fields and pointshells");
   cmd->add_flag("--json", args->json, "print JSON (with the 6x6 gradient K_B)");
   cmd->callback([args] { RunContact(*args); });
+});
+
+// One line per registered model: name, what it needs of the bodies, description.
+void ListModels() {
+  for (const std::string& name : ContactModelNames()) {
+    const ContactModelEntry& e = *FindContactModel(name);
+    std::string needs;
+    auto add = [&](bool need, const char* what) {
+      if (need) needs += (needs.empty() ? "" : ", ") + std::string(what);
+    };
+    add(e.needs.pointshell_A, "A pointshell");
+    add(e.needs.field_A, "A field");
+    add(e.needs.mesh_A, "A mesh");
+    add(e.needs.field_B, "B field");
+    add(e.needs.mesh_B, e.needs.closed_mesh_B ? "B closed mesh" : "B mesh");
+    std::printf("%-18s needs %-28s %s\n", name.c_str(), needs.c_str(), e.description.c_str());
+  }
+}
+
+const CommandRegistration kModelsCommand([](CLI::App& app) {
+  CLI::App* cmd = app.add_subcommand("models", "List the registered contact models, what each needs of the two "
+                                               "bodies (A: pointshell role, B: field role) and what it is");
+  cmd->callback([] { ListModels(); });
 });
 
 }  // namespace

@@ -17,9 +17,8 @@
 
 #include "cli/command_registry.h"
 #include "experiment/contact_placement.h"
-#include "experiment/model_factory.h"
-#include "experiment/scene.h"
 #include "experiment/scene_assets.h"
+#include "experiment/scene.h"
 #include "haptics/device_factory.h"
 #include "haptics/haptic_cycle.h"
 #include "haptics/haptic_loop.h"
@@ -71,7 +70,7 @@ void RunSession(const SessionArgs& args) {
   options.cache_dir = args.cache;
   SceneAssets assets(scene, options);
   const std::string model_name = args.model.empty() ? scene.models.front() : args.model;
-  auto model = MakeContactModel(model_name, scene, assets);
+  auto model = MakeSceneContactModel(model_name, scene, assets);
 
   // --touch: the haptic body starts where it touches the other body, moving toward it.
   Pose X_WB_start = scene.field_body.pose;
@@ -84,7 +83,7 @@ void RunSession(const SessionArgs& args) {
   WorkspaceMappedDevice mapped(*device, X_WB_start);
   HapticCycleConfig config;
   config.X_WA = scene.pointshell_body.pose;
-  config.node_budget = scene.model.node_budget;
+  config.node_budget = scene.node_budget;
   if (args.k_vc > 0) config.coupling.k_vc = args.k_vc;
   HapticCycle cycle(mapped, model.get(), config);
 

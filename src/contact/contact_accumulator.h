@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 
 #include "contact/contact_model.h"
+#include "contact/penalty_params.h"
 #include "geometry/pose.h"
 
 namespace contactlab {
@@ -38,15 +39,11 @@ class ContactAccumulator {
   int count() const { return count_; }
   double max_penetration() const { return max_penetration_; }
 
-  // The wrench on B (world frame, torque about B's origin) and its gradient for stiffness
-  // k_C, with k_C scaled by L / l when l >= L points touch (L <= 0 disables the scaling).
-  void Finish(double k_C, int L, const Pose& X_WB, ContactResult* out) const {
-    double k = k_C;
+  // The wrench on B (world frame, torque about B's origin) and its gradient under the
+  // penalty law PENALTY: k_C, scaled by L / l when l >= L points touch (L = 0 disables it).
+  void Finish(const PenaltyParams& penalty, const Pose& X_WB, ContactResult* out) const {
     double scale = 1;
-    if (L > 0 && count_ >= L) {
-      scale = double(L) / double(count_);
-      k *= scale;
-    }
+    const double k = penalty.StiffnessFor(count_, &scale);
     const Eigen::Vector3d F_B = k * force_;
     const Eigen::Vector3d T_B = k * torque_;
     Matrix6d K_B;

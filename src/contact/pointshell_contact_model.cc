@@ -10,20 +10,19 @@
 namespace contactlab {
 namespace {
 
-// Adds point I (in contact, distance D) to ACC, in B's frame.
-inline void AddPoint(const Pointshell& s, const DistanceField& field, const FloatTransform& T, int i, float d,
-                     ContactGradient gradient, ContactAccumulator* acc) {
-  float p[3], n[3];
-  T.Apply(s.x[i], s.y[i], s.z[i], p);
-  T.Rotate(s.nx[i], s.ny[i], s.nz[i], n);
-  const Eigen::Vector3d p_B(p[0], p[1], p[2]);
-  const Eigen::Vector3d N_B(n[0], n[1], n[2]);
+// Adds point I of the shell, in contact at p_BQ (already in B's frame) with distance D < 0.
+inline void AddPoint(const Pointshell& s, const DistanceField& field, const FloatTransform& X_BA, int i,
+                     const float* p_BQ, float d, ContactGradient gradient, ContactAccumulator* acc) {
+  float n_B[3];
+  X_BA.Rotate(s.nx[i], s.ny[i], s.nz[i], n_B);
+  const Eigen::Vector3d p(p_BQ[0], p_BQ[1], p_BQ[2]);
+  const Eigen::Vector3d N(n_B[0], n_B[1], n_B[2]);
   if (gradient == ContactGradient::kHalfspace) {
-    acc->Add(p_B, N_B, d, N_B);
+    acc->Add(p, N, d, N);
   } else {
     Eigen::Vector3d g_B;
-    field.DistanceAndGradient(p_B, &g_B);
-    acc->Add(p_B, N_B, d, g_B);
+    field.DistanceAndGradient(p, &g_B);
+    acc->Add(p, N, d, g_B);
   }
 }
 
@@ -36,7 +35,7 @@ PointshellContactModel::PointshellContactModel(Variant variant, std::shared_ptr<
   const std::string where = std::string("contact model ") + std::string(name());
   if (!shell_ || shell_->num_points() == 0 || shell_->num_levels() == 0) Fail(where, "needs a non-empty pointshell");
   if (!field_ || field_->empty()) Fail(where, "needs a distance field");
-  if (!(params.k_C >= 0) || !std::isfinite(params.k_C)) Fail(where, "k_C must be a finite non-negative stiffness");
+  CheckPenaltyParams(params.penalty, where);
   if (params.level >= shell_->num_levels() || params.level < -1) {
     Fail(where, "level " + std::to_string(params.level) + " is out of range (the pointshell has " +
                     std::to_string(shell_->num_levels()) + " levels)");
@@ -66,7 +65,7 @@ ContactResult PointshellContactModel::Evaluate(const ContactQuery& query) {
 ContactResult PointshellContactModel::EvaluateLinear(const ContactQuery& query) {
   const Pointshell& s = *shell_;
   const DistanceField& field = *field_;
-  const FloatTransform T(query.X_WB.Inverse() * query.X_WA);
+  const FloatTransform X_BA(query.X_WB.Inverse() * query.X_WA);
   ContactAccumulator acc;
   const int n = s.level_point_end[max_level_];
   const float* xs = s.x.data();
@@ -74,13 +73,13 @@ ContactResult PointshellContactModel::EvaluateLinear(const ContactQuery& query) 
   const float* zs = s.z.data();
   // Every point of the level: transform into B, look the field up, add if in contact.
   for (int i = 0; i < n; ++i) {
-    float p[3];
-    T.Apply(xs[i], ys[i], zs[i], p);
-    const float d = field.Distance(p[0], p[1], p[2]);
-    if (d < 0.f) AddPoint(s, field, T, i, d, params_.gradient, &acc);
+    float p_BQ[3];
+    X_BA.Apply(xs[i], ys[i], zs[i], p_BQ);
+    const float d = field.Distance(p_BQ[0], p_BQ[1], p_BQ[2]);
+    if (d < 0.f) AddPoint(s, field, X_BA, i, p_BQ, d, params_.gradient, &acc);
   }
   ContactResult result;
-  acc.Finish(params_.k_C, params_.L, query.X_WB, &result);
+  acc.Finish(params_.penalty, query.X_WB, &result);
   result.stats.nodes_visited = n;
   result.stats.level_rendered = max_level_;
   return result;
@@ -89,7 +88,7 @@ ContactResult PointshellContactModel::EvaluateLinear(const ContactQuery& query) 
 ContactResult PointshellContactModel::EvaluateTree(const ContactQuery& query) {
   const Pointshell& s = *shell_;
   const DistanceField& field = *field_;
-  const FloatTransform T(query.X_WB.Inverse() * query.X_WA);
+  const FloatTransform X_BA(query.X_WB.Inverse() * query.X_WA);
   ContactAccumulator acc;
 
   // A new stamp marks which points already have their distance (and force) this cycle.
@@ -138,12 +137,12 @@ ContactResult PointshellContactModel::EvaluateTree(const ContactQuery& query) {
       if (point_stamp_[i] == stamp_) {
         d = point_d_[i];  // an instance of this point was evaluated (and counted) already
       } else {
-        float p[3];
-        T.Apply(s.x[i], s.y[i], s.z[i], p);
-        d = field.Distance(p[0], p[1], p[2]);
+        float p_BQ[3];
+        X_BA.Apply(s.x[i], s.y[i], s.z[i], p_BQ);
+        d = field.Distance(p_BQ[0], p_BQ[1], p_BQ[2]);
         point_stamp_[i] = stamp_;
         point_d_[i] = d;
-        if (d < 0.f) AddPoint(s, field, T, i, d, params_.gradient, &acc);
+        if (d < 0.f) AddPoint(s, field, X_BA, i, p_BQ, d, params_.gradient, &acc);
       }
       const float radius = leaf_level ? 0.f : s.node_radius[node];
       if (d > lip * radius) {
@@ -164,7 +163,7 @@ ContactResult PointshellContactModel::EvaluateTree(const ContactQuery& query) {
   last_level_rendered_ = rendered;
 
   ContactResult result;
-  acc.Finish(params_.k_C, params_.L, query.X_WB, &result);
+  acc.Finish(params_.penalty, query.X_WB, &result);
   result.stats.nodes_visited = visited;
   result.stats.level_rendered = rendered;
   result.stats.nodes_skipped_coherence = skipped;

@@ -17,29 +17,19 @@
 
 #include "contact/contact_accumulator.h"
 #include "contact/contact_model.h"
+#include "contact/pointshell_contact_params.h"
 #include "pointshell/pointshell.h"
 #include "sdf/distance_field.h"
 
 namespace contactlab {
 
-struct PointshellContactParams {
-  double k_C = 1000;       // contact penalty stiffness, N/m (per point, before L/l scaling)
-  int L = 10;              // k_C -> k_C L / l when l >= L points touch; <= 0 disables it
-  int level = -1;          // linear variant: tree level rendered (-1: deepest); tree: deepest level allowed
-  bool coherence = false;  // tree variant: temporal coherence
-  double max_point_speed = 1.0;  // m/s, largest speed of any pointshell point relative to B
-  double cycle_seconds = 1e-3;   // duration of one haptic cycle
-  double lipschitz = 1.0;  // bound on |grad d| assumed by culling and coherence (paper: 1)
-  double cold_fraction = 0.8;    // V_C = cold_fraction * V_W
-  ContactGradient gradient = ContactGradient::kHalfspace;
-};
 
 class PointshellContactModel final : public ContactModel {
  public:
   enum class Variant { kLinear, kTree };
 
-  // SHELL and FIELD must outlive the model. Throws Error for invalid parameters (k_C < 0,
-  // L < 0 treated as disabled, level out of range, non-positive speed or cycle time).
+  // SHELL and FIELD must outlive the model. Throws Error for invalid parameters (k_C < 0 or
+  // not finite, L < 0, level out of range, non-positive speed or cycle time).
   PointshellContactModel(Variant variant, std::shared_ptr<const Pointshell> shell,
                          std::shared_ptr<const DistanceField> field, const PointshellContactParams& params);
 

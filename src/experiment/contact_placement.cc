@@ -3,7 +3,6 @@
 #include <cmath>
 
 #include "contact/pointshell_contact_model.h"
-#include "experiment/model_factory.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -51,7 +50,7 @@ Placement PlaceAtDepth(ContactModel& model, const Pose& X_WA_start, const Pose& 
 Pose TouchAlong(const Scene& scene, SceneAssets& assets, bool move_B, const Pose& X_WA, const Pose& X_WB,
                 const Eigen::Vector3d& direction, double depth, const std::string& where) {
   const Eigen::Vector3d dir = direction.normalized();
-  PointshellContactParams params = PointshellParamsFromScene(scene);
+  PointshellContactParams params = scene.model;
   params.level = -1;
   PointshellContactModel probe(PointshellContactModel::Variant::kLinear, assets.A.pointshell(), assets.B.field(), params);
   // Moving B by s along DIR is moving A by s against it; start a full reach back.

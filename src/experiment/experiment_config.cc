@@ -1,24 +1,93 @@
 #include "experiment/experiment_config.h"
 
+#include <map>
 #include <sstream>
 
 #include "util/atomic_file.h"
 #include "util/data_path.h"
 #include "util/error.h"
-#include "util/parse_number.h"
 
 namespace contactlab {
 namespace {
 
-const char* const kAxes[] = {"points",     "levels",   "method",          "resolution", "pointshell_resolution",
-                             "k_C",        "node_budget", "coherence",     "max_point_speed", "level",
-                             "model",      "roles",    "gradient",        "scene",      "offset"};
+// Short sweep-axis names and the key paths they stand for.
+const std::map<std::string, std::string>& AxisAliases() {
+  static const std::map<std::string, std::string> aliases = [] {
+    std::map<std::string, std::string> a;
+    for (const char* k : {"points", "levels", "method", "offset", "seed"}) {
+      a[k] = std::string("scene.bodies[role=pointshell].pointshell.") + k;
+    }
+    a["resolution"] = "scene.bodies[role=field].field.resolution";
+    a["pointshell_resolution"] = "scene.bodies[role=pointshell].field.resolution";
+    for (const char* k : {"k_C", "L", "node_budget", "coherence", "max_point_speed", "level", "gradient",
+                          "cold_fraction", "lipschitz", "cycle_seconds"}) {
+      a[k] = std::string("scene.model.") + k;
+    }
+    a["model"] = "models";
+    a["scene"] = "scene";
+    a["roles"] = "";
+    return a;
+  }();
+  return aliases;
+}
 
-// Sets ROOT[path] = VALUE (YAML text), creating maps along the path.
+std::string AliasList() {
+  std::string list;
+  for (const auto& [name, path] : AxisAliases()) list += (list.empty() ? "" : ", ") + name;
+  return list;
+}
+
+// One step of a key path: a key, optionally picking an element of the list it holds.
+struct PathStep {
+  std::string key;
+  bool pick = false;
+  std::string field;  // "" with pick: by index
+  std::string value;  // the index, or the field's value
+};
+
+std::vector<PathStep> ParsePath(const std::string& path, const std::string& where) {
+  std::vector<PathStep> steps;
+  std::size_t i = 0;
+  while (i <= path.size()) {
+    std::size_t end = path.find('.', i);
+    // A dot inside [...] belongs to the selector.
+    const std::size_t open = path.find('[', i);
+    if (open != std::string::npos && open < end) {
+      const std::size_t close = path.find(']', open);
+      if (close == std::string::npos) Fail(where, "unclosed '[' in key path '" + path + "'");
+      end = path.find('.', close);
+    }
+    if (end == std::string::npos) end = path.size();
+    const std::string part = path.substr(i, end - i);
+    PathStep step;
+    const std::size_t b = part.find('[');
+    step.key = part.substr(0, b);
+    if (b != std::string::npos) {
+      if (part.back() != ']') Fail(where, "key path '" + path + "': text after ']'");
+      const std::string sel = part.substr(b + 1, part.size() - b - 2);
+      step.pick = true;
+      const std::size_t eq = sel.find('=');
+      if (eq == std::string::npos) {
+        step.value = sel;
+        if (sel.empty() || sel.find_first_not_of("0123456789") != std::string::npos) {
+          Fail(where, "key path '" + path + "': '[" + sel + "]' is neither an index nor field=value");
+        }
+      } else {
+        step.field = sel.substr(0, eq);
+        step.value = sel.substr(eq + 1);
+      }
+    }
+    if (step.key.empty()) Fail(where, "empty key in key path '" + path + "'");
+    steps.push_back(step);
+    i = end + 1;
+  }
+  return steps;
+}
+
+// Sets ROOT[path] = VALUE (YAML text), creating maps along the path, for --set.
 void ApplyOverride(YAML::Node root, const std::string& assignment, const std::string& file) {
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0) Fail("--set " + assignment, "expected key.path=value");
-  const std::string path = assignment.substr(0, eq);
   YAML::Node value;
   try {
     // An empty value means an empty string ("--set reference=" turns the reference off).
@@ -26,23 +95,7 @@ void ApplyOverride(YAML::Node root, const std::string& assignment, const std::st
   } catch (const YAML::Exception& e) {
     Fail("--set " + assignment, "the value is not valid YAML: " + e.msg);
   }
-  std::vector<std::string> keys;
-  std::stringstream ss(path);
-  for (std::string k; std::getline(ss, k, '.');) {
-    if (k.empty()) Fail("--set " + assignment, "empty key in the path");
-    keys.push_back(k);
-  }
-  std::vector<YAML::Node> chain{root};
-  for (std::size_t i = 0; i + 1 < keys.size(); ++i) {
-    YAML::Node next = chain.back()[keys[i]];
-    if (next && !next.IsMap()) Fail("--set " + assignment, "'" + keys[i] + "' in " + file + " is not a mapping");
-    if (!next) {
-      chain.back()[keys[i]] = YAML::Node(YAML::NodeType::Map);
-      next = chain.back()[keys[i]];
-    }
-    chain.push_back(next);
-  }
-  chain.back()[keys.back()] = value;
+  SetAtPath(root, assignment.substr(0, eq), value, "--set " + assignment + " (in " + file + ")");
 }
 
 std::string ScalarText(const ConfigNode& n) {
@@ -50,7 +103,178 @@ std::string ScalarText(const ConfigNode& n) {
   return n.AsString();
 }
 
+// The documents one job is parsed from.
+struct JobDocuments {
+  YAML::Node config;
+  YAML::Node scene;
+  std::string scene_file;
+  bool roles_swapped = false;
+};
+
+// Loads the scene file NAME (data search path) as a document.
+void LoadSceneDocument(const std::string& name, JobDocuments* docs) {
+  const std::filesystem::path file = RequireDataFile(name);
+  docs->scene = YAML::Clone(ConfigNode::LoadFile(file).yaml());
+  docs->scene_file = file.string();
+}
+
+// Exchanges the roles of the scene's two bodies.
+void SwapRoles(JobDocuments* docs, const std::string& where) {
+  YAML::Node bodies = docs->scene["bodies"];
+  if (!bodies || !bodies.IsSequence()) Fail(where, "the scene has no list of bodies to swap");
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    YAML::Node role = bodies[i]["role"];
+    if (!role || !role.IsScalar()) continue;  // the scene parser names the missing role
+    const std::string r = role.Scalar();
+    bodies[i]["role"] = r == "pointshell" ? "field" : r == "field" ? "pointshell" : r;
+  }
+  docs->roles_swapped = !docs->roles_swapped;
+}
+
+// Writes one sweep value of AXIS into DOCS.
+void ApplyAxis(const SweepAxis& axis, const std::string& value, JobDocuments* docs, const std::string& where) {
+  if (axis.name == "roles") {
+    if (value == "swapped") {
+      SwapRoles(docs, where);
+    } else if (value != "normal") {
+      Fail(where, "must be normal or swapped");
+    }
+    return;
+  }
+  if (axis.path == "scene") {
+    LoadSceneDocument(value, docs);
+    docs->config["scene"] = value;
+    return;
+  }
+  std::optional<YAML::Node> node;
+  if (value != "default") node = YAML::Node(value);
+  if (axis.path == "models" && node) {
+    YAML::Node list(YAML::NodeType::Sequence);
+    list.push_back(value);
+    node = list;
+  }
+  if (axis.path.rfind("scene.", 0) == 0) {
+    SetAtPath(docs->scene, axis.path.substr(6), node, where);
+  } else {
+    SetAtPath(docs->config, axis.path, node, where);
+  }
+}
+
+// The field body's name in a scene document (what the scene parser would name it).
+std::string FieldBodyName(const YAML::Node& scene) {
+  const YAML::Node bodies = scene["bodies"];
+  if (!bodies || !bodies.IsSequence()) return "";
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const YAML::Node b = bodies[i];
+    if (b["role"] && b["role"].IsScalar() && b["role"].Scalar() == "field") {
+      if (b["name"] && b["name"].IsScalar()) return b["name"].Scalar();
+      if (b["mesh"] && b["mesh"].IsScalar()) return b["mesh"].Scalar();
+    }
+  }
+  return "";
+}
+
+// Builds job INDEX with the axis values PICK (one index per axis) from CONFIG's documents.
+Job BuildJob(const ExperimentConfig& config, int index, const std::vector<std::size_t>& pick) {
+  JobDocuments docs{YAML::Clone(config.document), YAML::Clone(config.scene_document), config.scene_file};
+  auto at = [&](std::size_t a) {
+    return config.file + ": sweep." + config.sweep[a].name + " value '" + config.sweep[a].values[pick[a]] + "'";
+  };
+  // The scene first, then roles, so the other axes apply to the bodies' final roles.
+  std::string moving_body = config.moving_body;
+  for (const char* first : {"scene", "roles", ""}) {
+    for (std::size_t a = 0; a < config.sweep.size(); ++a) {
+      const std::string& name = config.sweep[a].name;
+      const bool early = name == "scene" || name == "roles";
+      if (*first ? name != first : early) continue;
+      ApplyAxis(config.sweep[a], config.sweep[a].values[pick[a]], &docs, at(a));
+    }
+    // Unless the config names it, the moving body is the field body of the job's scene
+    // (before a role swap, so the same physical body moves in both role orders).
+    if (std::string(first) == "scene" && config.moving_body_is_default) moving_body = FieldBodyName(docs.scene);
+  }
+  Job job;
+  job.index = index;
+  for (std::size_t a = 0; a < config.sweep.size(); ++a) {
+    job.axis_values.emplace_back(config.sweep[a].name, config.sweep[a].values[pick[a]]);
+  }
+  const auto file = std::make_shared<const std::string>(config.file);
+  // An inline scene's keys are named from the config's top ("scene.bodies[0]...").
+  const std::string scene_path = docs.scene_file == config.file ? "scene" : "";
+  job.scene = ParseScene(ConfigNode(docs.scene, std::make_shared<const std::string>(docs.scene_file), scene_path));
+  if (docs.roles_swapped) job.scene.name += " (roles swapped)";
+  const ConfigNode root(docs.config, file, "");
+  job.models = config.models;
+  if (auto m = root.Find("models")) {
+    job.models.clear();
+    for (const ConfigNode& e : m->Elements()) job.models.push_back(e.AsString());
+    if (job.models.empty()) m->Fail("lists no model");
+  }
+  job.moving_body = moving_body;
+  if (job.moving_body != job.scene.field_body.name && job.moving_body != job.scene.pointshell_body.name) {
+    Fail(config.file, "moving_body '" + job.moving_body + "' is not a body of the scene of job " +
+                          std::to_string(index));
+  }
+  job.trajectory_node = root.Get("trajectory");
+  return job;
+}
+
 }  // namespace
+
+void SetAtPath(YAML::Node doc, const std::string& path, const std::optional<YAML::Node>& value,
+               const std::string& where) {
+  const std::vector<PathStep> steps = ParsePath(path, where);
+  std::vector<YAML::Node> chain{doc};
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    const PathStep& s = steps[i];
+    const bool last = i + 1 == steps.size();
+    YAML::Node parent = chain.back();
+    if (!parent.IsMap() && !(parent.IsNull() && !parent.IsDefined())) {
+      Fail(where, "cannot set '" + path + "': the value before '" + s.key + "' is not a mapping");
+    }
+    if (last && !s.pick) {
+      if (value) {
+        parent[s.key] = *value;
+      } else {
+        parent.remove(s.key);
+      }
+      return;
+    }
+    YAML::Node next = parent[s.key];
+    if (!s.pick) {
+      if (next && !next.IsMap()) Fail(where, "cannot set '" + path + "': '" + s.key + "' is not a mapping");
+      if (!next) {
+        parent[s.key] = YAML::Node(YAML::NodeType::Map);
+        next = parent[s.key];
+      }
+      chain.push_back(next);
+      continue;
+    }
+    // Pick an element of the list under s.key.
+    if (!next || !next.IsSequence()) Fail(where, "cannot set '" + path + "': '" + s.key + "' is not a list");
+    std::size_t found = next.size();
+    for (std::size_t e = 0; e < next.size(); ++e) {
+      const bool match = s.field.empty() ? std::to_string(e) == s.value
+                                         : (next[e].IsMap() && next[e][s.field] && next[e][s.field].IsScalar() &&
+                                            next[e][s.field].Scalar() == s.value);
+      if (match) {
+        if (found != next.size()) Fail(where, "key path '" + path + "': more than one element of '" + s.key +
+                                                  "' has " + s.field + " = " + s.value);
+        found = e;
+      }
+    }
+    if (found == next.size()) {
+      Fail(where, "key path '" + path + "': no element of '" + s.key + "' " +
+                      (s.field.empty() ? "at index " + s.value : "has " + s.field + " = " + s.value));
+    }
+    if (last) {
+      if (!value) Fail(where, "key path '" + path + "': a list element cannot be removed");
+      next[found] = *value;
+      return;
+    }
+    chain.push_back(next[found]);
+  }
+}
 
 std::string Job::Label() const {
   std::string s;
@@ -98,14 +322,22 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
   c.trajectory_node = root.Get("trajectory");
   c.file = root.file();
   c.resolved_yaml = std::move(resolved_yaml);
+  c.document = YAML::Clone(root.yaml());
   c.name = root.String("name", std::filesystem::path(root.file()).stem().string());
   c.description = root.String("description", "");
   const ConfigNode scene = root.Get("scene");
   if (scene.IsScalar()) {
-    c.scene = LoadScene(RequireDataFile(scene.AsString()));
+    JobDocuments docs;
+    LoadSceneDocument(scene.AsString(), &docs);
+    c.scene_document = docs.scene;
+    c.scene_file = docs.scene_file;
   } else {
-    c.scene = ParseScene(scene);
+    scene.ExpectMap();
+    c.scene_document = YAML::Clone(scene.yaml());
+    c.scene_file = root.file();
   }
+  c.scene = ParseScene(ConfigNode(c.scene_document, std::make_shared<const std::string>(c.scene_file),
+                                  scene.IsScalar() ? "" : "scene"));
   if (auto m = root.Find("models")) {
     for (const ConfigNode& e : m->Elements()) c.models.push_back(e.AsString());
     if (c.models.empty()) m->Fail("lists no model");
@@ -136,12 +368,14 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
   }
   if (auto s = root.Find("sweep")) {
     for (const std::string& key : s->Keys()) {
-      bool known = false;
-      for (const char* a : kAxes) known = known || key == a;
       const ConfigNode axis = s->Get(key);
-      if (!known) axis.Fail("unknown sweep axis (points, levels, method, resolution, pointshell_resolution, k_C, "
-                            "node_budget, coherence, max_point_speed, level, model, roles, gradient, scene, offset)");
-      SweepAxis a{key, {}};
+      SweepAxis a{key, key, {}};
+      if (auto alias = AxisAliases().find(key); alias != AxisAliases().end()) {
+        a.path = alias->second;
+      } else if (key.find_first_of(".[") == std::string::npos) {
+        axis.Fail("unknown sweep axis: give a key path (e.g. scene.model.k_C, trajectory.depth) or one of " +
+                  AliasList());
+      }
       if (axis.IsSequence()) {
         for (const ConfigNode& v : axis.Elements()) a.values.push_back(ScalarText(v));
       } else {
@@ -151,85 +385,25 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
       c.sweep.push_back(a);
     }
   }
-  // Check every sweep value and the trajectory now, so errors come before any work.
-  for (Job& job : ExpandJobs(c)) (void)job;
-  (void)ParseTrajectory(c.trajectory_node);
-  return c;
-}
-
-void ApplySweepValue(const std::string& axis, const std::string& value, Job* job, const std::string& where) {
-  const std::string at = where + ": sweep." + axis + " value '" + value + "'";
-  auto as_int = [&]() {
-    const std::optional<long long> v = ParseInteger(value);
-    if (!v) Fail(at, "is not an integer");
-    return *v;
-  };
-  auto as_double = [&]() {
-    const std::optional<double> v = ParseDouble(value);
-    if (!v) Fail(at, "is not a number");
-    return *v;
-  };
-  Scene& s = job->scene;
-  if (axis == "points") {
-    const long long v = as_int();
-    if (v <= 0) Fail(at, "must be positive");
-    s.pointshell_body.pointshell.points = int(v);
-  } else if (axis == "levels") {
-    const long long v = as_int();
-    if (v <= 0) Fail(at, "must be positive");
-    s.pointshell_body.pointshell.levels = int(v);
-  } else if (axis == "method") {
-    if (value != "repulsion" && value != "voxel" && value != "vertices" && value != "random") {
-      Fail(at, "must be repulsion, voxel, vertices or random");
+  // Check every sweep value on its own first (so an error names its axis and value), then
+  // every combination, and the trajectory, so errors come before any work.
+  for (std::size_t a = 0; a < c.sweep.size(); ++a) {
+    for (std::size_t v = 0; v < c.sweep[a].values.size(); ++v) {
+      ExperimentConfig one = c;
+      one.sweep = {c.sweep[a]};
+      one.sweep[0].values = {c.sweep[a].values[v]};
+      try {
+        (void)BuildJob(one, 0, {0});
+      } catch (const Error& e) {
+        const std::string at = c.file + ": sweep." + c.sweep[a].name + " value '" + c.sweep[a].values[v] + "'";
+        const std::string msg = e.what();
+        if (msg.rfind(at, 0) == 0) throw;
+        Fail(at, msg);
+      }
     }
-    s.pointshell_body.pointshell.method = value;
-  } else if (axis == "resolution" || axis == "pointshell_resolution") {
-    const long long v = as_int();
-    if (v < 8 || v > 1024) Fail(at, "must be between 8 and 1024");
-    (axis == "resolution" ? s.field_body : s.pointshell_body).field.resolution = int(v);
-  } else if (axis == "k_C") {
-    const double v = as_double();
-    if (v < 0) Fail(at, "must not be negative");
-    s.model.k_C = v;
-  } else if (axis == "node_budget") {
-    const long long v = as_int();
-    if (v < 0) Fail(at, "must not be negative");
-    s.model.node_budget = v;
-  } else if (axis == "coherence") {
-    if (value != "true" && value != "false") Fail(at, "must be true or false");
-    s.model.coherence = value == "true";
-  } else if (axis == "max_point_speed") {
-    const double v = as_double();
-    if (!(v > 0)) Fail(at, "must be positive");
-    s.model.max_point_speed = v;
-  } else if (axis == "level") {
-    s.model.level = int(as_int());
-  } else if (axis == "gradient") {
-    if (value != "halfspace" && value != "field") Fail(at, "must be halfspace or field");
-    s.model.gradient = value == "field" ? ContactGradient::kField : ContactGradient::kHalfspace;
-  } else if (axis == "model") {
-    job->models = {value};
-  } else if (axis == "offset") {
-    // The pointshell's level-set offset in metres, or "default" (half a field spacing).
-    if (value == "default") {
-      s.pointshell_body.pointshell.offset = -1;
-    } else {
-      const double v = as_double();
-      if (v < 0) Fail(at, "must not be negative (or 'default')");
-      s.pointshell_body.pointshell.offset = v;
-    }
-  } else if (axis == "scene") {
-    job->scene = LoadScene(RequireDataFile(value));
-    job->models = job->models.empty() ? job->scene.models : job->models;
-  } else if (axis == "roles") {
-    if (value == "swapped") {
-      s = s.Swapped();
-    } else if (value != "normal") {
-      Fail(at, "must be normal or swapped");
-    }
-  } else {
-    Fail(at, "unknown sweep axis");
   }
+  for (Job& job : ExpandJobs(c)) (void)ParseTrajectory(job.trajectory_node);
+  return c;
 }
 
 std::vector<Job> ExpandJobs(const ExperimentConfig& config) {
@@ -237,37 +411,23 @@ std::vector<Job> ExpandJobs(const ExperimentConfig& config) {
   std::size_t total = 1;
   for (const SweepAxis& a : config.sweep) total *= a.values.size();
   for (std::size_t index = 0; index < total; ++index) {
-    Job job;
-    job.index = int(index);
-    job.scene = config.scene;
-    job.models = config.models;
-    job.moving_body = config.moving_body;
     std::size_t rest = index;
     std::vector<std::size_t> pick(config.sweep.size());
     for (std::size_t a = config.sweep.size(); a-- > 0;) {
       pick[a] = rest % config.sweep[a].values.size();
       rest /= config.sweep[a].values.size();
     }
-    // The scene first, then roles, so the other axes apply to the bodies' final roles.
-    for (const char* first : {"scene", "roles", ""}) {
+    try {
+      jobs.push_back(BuildJob(config, int(index), pick));
+    } catch (const Error& e) {
+      std::string label;
       for (std::size_t a = 0; a < config.sweep.size(); ++a) {
-        const std::string& name = config.sweep[a].name;
-        const bool early = name == "scene" || name == "roles";
-        if (*first ? name != first : early) continue;
-        ApplySweepValue(name, config.sweep[a].values[pick[a]], &job, config.file);
+        label += (label.empty() ? "" : " ") + config.sweep[a].name + "=" + config.sweep[a].values[pick[a]];
       }
-      // Unless the config names it, the moving body is the field body of the job's scene
-      // (before a role swap, so the same physical body moves in both role orders).
-      if (std::string(first) == "scene" && config.moving_body_is_default) job.moving_body = job.scene.field_body.name;
+      const std::string msg = e.what();
+      if (msg.rfind(config.file + ": sweep.", 0) == 0) throw;
+      Fail(config.file + ": job " + std::to_string(index) + " (" + label + ")", msg);
     }
-    if (job.moving_body != job.scene.field_body.name && job.moving_body != job.scene.pointshell_body.name) {
-      Fail(config.file, "moving_body '" + job.moving_body + "' is not a body of the scene of job " +
-                            std::to_string(index));
-    }
-    for (std::size_t a = 0; a < config.sweep.size(); ++a) {
-      job.axis_values.emplace_back(config.sweep[a].name, config.sweep[a].values[pick[a]]);
-    }
-    jobs.push_back(std::move(job));
   }
   return jobs;
 }

@@ -12,15 +12,28 @@
 //   reference: {model: pointshell-linear, points: 65536, levels: 1}  # a denser version of the scene
 //   reference_every: 10                    # evaluate the reference every N cycles
 //   metrics: {cutoff_hz: 100, timing: false}
-//   sweep: {points: [1024, 4096, 16384]}   # axes: points levels method resolution
-//                                          # pointshell_resolution k_C node_budget coherence
-//                                          # max_point_speed level model roles gradient
-//                                          # scene (a scene file per job), offset (the
-//                                          # pointshell's level-set offset, m, or default)
+//   sweep: {points: [1024, 4096, 16384]}   # an axis is a key path or a short alias (below)
 //   profiles: {paper: {sweep.points: [...]}} # named sets of overrides: --profile paper
+//
+// Sweeps are overrides: each job's value is written at the axis's key path into the config
+// document (paths under "scene." into the scene's document, also when the scene is a file),
+// then the scene is parsed again, so every check lives in the scene parser and any key is
+// sweepable. A path is dot-separated keys; a list element is picked by index or by a field,
+// e.g. scene.bodies[role=field].field.resolution, scene.bodies[name=dragon].scale,
+// trajectory.depth. The value `default` removes the key (its default applies). Aliases:
+//   points levels method offset  -> scene.bodies[role=pointshell].pointshell.<same>
+//   resolution                   -> scene.bodies[role=field].field.resolution
+//   pointshell_resolution        -> scene.bodies[role=pointshell].field.resolution
+//   k_C L node_budget coherence max_point_speed level gradient cold_fraction lipschitz
+//                                -> scene.model.<same>
+//   model                        -> models (a one-model list)
+//   scene                        -> scene (a scene file per job; applied first)
+//   roles                        -> normal | swapped: exchanges the bodies' roles (applied
+//                                   second, so the other axes act on the final roles)
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -32,8 +45,9 @@
 namespace contactlab {
 
 struct SweepAxis {
-  std::string name;
-  std::vector<std::string> values;  // scalar texts, applied by ApplySweepValue
+  std::string name;                 // as written in the config: an alias or a key path
+  std::string path;                 // the key path it writes ("" for roles)
+  std::vector<std::string> values;  // scalar texts
 };
 
 struct ExperimentConfig {
@@ -41,7 +55,10 @@ struct ExperimentConfig {
   std::string description;
   std::string file;
   std::string resolved_yaml;   // the config after --set overrides, as YAML text
-  Scene scene;
+  YAML::Node document;         // the config after --set overrides
+  YAML::Node scene_document;   // the scene's document (the file's, or the inline mapping)
+  std::string scene_file;      // where the scene was read from (error messages)
+  Scene scene;                 // the scene without sweep values
   std::vector<std::string> models;
   std::string moving_body;     // body name
   bool moving_body_is_default = true;  // not given: each job's field body
@@ -62,6 +79,7 @@ struct Job {
   Scene scene;
   std::vector<std::string> models;
   std::string moving_body;
+  ConfigNode trajectory_node;  // the job's trajectory section
   std::string Label() const;  // "points=1024 model=vps"
 };
 
@@ -74,10 +92,15 @@ ExperimentConfig LoadExperimentConfig(const std::filesystem::path& config_file,
                                       const std::string& profile = "");
 ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resolved_yaml);
 
-// The cartesian product of the sweep axes, in order (the last axis varies fastest).
+// The cartesian product of the sweep axes, in order (the last axis varies fastest). Throws
+// Error naming the config file, the job and its values when a combination does not parse.
 std::vector<Job> ExpandJobs(const ExperimentConfig& config);
 
-// Applies one sweep value to JOB (scene, models, roles); throws Error naming the axis.
-void ApplySweepValue(const std::string& axis, const std::string& value, Job* job, const std::string& where);
+// Sets DOC at PATH (dot-separated keys; "key[N]", "key[field=value]" pick a list element) to
+// VALUE (a YAML node), creating mappings along the way; no VALUE (nullopt) removes the key. Throws
+// Error("WHERE: ...") when the path runs into a value that is not a mapping or a list
+// element that does not exist.
+void SetAtPath(YAML::Node doc, const std::string& path, const std::optional<YAML::Node>& value,
+               const std::string& where);
 
 }  // namespace contactlab

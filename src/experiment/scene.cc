@@ -42,36 +42,19 @@ BodySpec ParseBody(const ConfigNode& n) {
   return b;
 }
 
-ModelSpec ParseModel(const ConfigNode& n) {
-  n.ExpectKeys({"k_C", "L", "node_budget", "warm_threshold", "cold_fraction", "max_point_speed", "cycle_seconds",
-                "coherence", "level", "lipschitz", "gradient"});
-  ModelSpec m;
-  m.k_C = n.NonNegative("k_C", m.k_C);
-  if (auto c = n.Find("L")) {
-    m.L = int(c->AsInt());
-    if (m.L < 0) c->Fail("must not be negative");
-  }
+// The model section: the paper's model's parameters (checked where they are defined) and the
+// node budget.
+void ParseModel(const ConfigNode& n, Scene* scene) {
+  n.ExpectKeys({"k_C", "L", "level", "coherence", "max_point_speed", "cycle_seconds", "lipschitz", "cold_fraction",
+                "gradient", "node_budget", "warm_threshold"});
+  scene->model = ParsePointshellContactParams(n);
   if (n.Has("node_budget") && n.Has("warm_threshold")) n.Fail("give node_budget or warm_threshold, not both");
   for (const char* key : {"node_budget", "warm_threshold"}) {
     if (auto c = n.Find(key)) {
-      m.node_budget = c->AsInt();
-      if (m.node_budget < 0) c->Fail("must not be negative");
+      scene->node_budget = c->AsInt();
+      if (scene->node_budget < 0) c->Fail("must not be negative");
     }
   }
-  m.cold_fraction = n.Positive("cold_fraction", m.cold_fraction);
-  if (m.cold_fraction > 1) n.Get("cold_fraction").Fail("must be at most 1");
-  m.max_point_speed = n.Positive("max_point_speed", m.max_point_speed);
-  m.cycle_seconds = n.Positive("cycle_seconds", m.cycle_seconds);
-  m.coherence = n.Bool("coherence", m.coherence);
-  if (auto c = n.Find("level")) {
-    m.level = int(c->AsInt());
-    if (m.level < -1) c->Fail("must be -1 (deepest) or a level index");
-  }
-  m.lipschitz = n.Positive("lipschitz", m.lipschitz);
-  if (m.lipschitz < 1) n.Get("lipschitz").Fail("must be at least 1");
-  m.gradient = n.OneOf("gradient", "halfspace", {"halfspace", "field"}) == "field" ? ContactGradient::kField
-                                                                                   : ContactGradient::kHalfspace;
-  return m;
 }
 
 }  // namespace
@@ -120,7 +103,7 @@ Scene ParseScene(const ConfigNode& n) {
   if (a.role == "field") std::swap(a, b);
   scene.pointshell_body = a;
   scene.field_body = b;
-  if (auto m = n.Find("model")) scene.model = ParseModel(*m);
+  if (auto m = n.Find("model")) ParseModel(*m, &scene);
   if (auto ms = n.Find("models")) {
     for (const ConfigNode& e : ms->Elements()) scene.models.push_back(e.AsString());
     if (scene.models.empty()) ms->Fail("lists no model");

@@ -16,6 +16,10 @@
 //       ...
 //       role: field
 //   model: {k_C: 2000, L: 10, node_budget: 0, max_point_speed: 1.0, coherence: true, ...}
+//
+// The model section is the paper's model's parameters (contact/pointshell_contact_params.h,
+// which every registered model draws its shared parameters from) plus node_budget (alias
+// warm_threshold), the warm threshold V_W handed to each query.
 #pragma once
 
 #include <filesystem>
@@ -23,7 +27,7 @@
 #include <string>
 #include <vector>
 
-#include "contact/contact_accumulator.h"
+#include "contact/pointshell_contact_params.h"
 #include "geometry/pose.h"
 #include "util/config_node.h"
 
@@ -55,25 +59,14 @@ struct BodySpec {
   PointshellSpec pointshell;
 };
 
-struct ModelSpec {
-  double k_C = 1000;          // N/m
-  int L = 10;                 // many-point scaling threshold
-  long long node_budget = 0;  // warm threshold V_W (nodes per cycle); 0 = unlimited
-  double cold_fraction = 0.8; // V_C / V_W
-  double max_point_speed = 1.0;  // m/s, for temporal coherence
-  double cycle_seconds = 1e-3;
-  bool coherence = false;
-  int level = -1;             // deepest level (-1: all)
-  double lipschitz = 1.0;
-  ContactGradient gradient = ContactGradient::kHalfspace;
-};
 
 struct Scene {
   std::string name;
   std::string file;                  // where it was read from
   BodySpec pointshell_body;          // body A
   BodySpec field_body;               // body B
-  ModelSpec model;
+  PointshellContactParams model;     // the "model:" section
+  std::int64_t node_budget = 0;      // warm threshold V_W, nodes per cycle; 0 = unlimited
   std::vector<std::string> models;   // model names to compare (default: pointshell)
 
   // The same scene with the roles of the two bodies exchanged.

@@ -203,4 +203,9 @@ std::shared_ptr<const Pointshell> BodyAssets::pointshell() {
   return pointshell_;
 }
 
+std::unique_ptr<ContactModel> MakeSceneContactModel(std::string_view name, const Scene& scene, SceneAssets& assets) {
+  return MakeContactModel(name, ContactModelInputs{assets.A, assets.B, scene.model},
+                          scene.file.empty() ? std::string_view("scene") : std::string_view(scene.file));
+}
+
 }  // namespace contactlab

@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "contact/model_registry.h"
 #include "experiment/scene.h"
 #include "geometry/triangle_mesh.h"
 #include "pointshell/pointshell.h"
@@ -30,14 +31,18 @@ std::filesystem::path DefaultCacheDir();
 // Applies the body's scale and centring. Throws Error naming the body and the mesh.
 TriangleMesh LoadBodyMesh(const BodySpec& body);
 
-class BodyAssets {
+// One scene body's data for the contact models (contact/model_registry.h ContactBody),
+// built on first use and cached.
+class BodyAssets final : public ContactBody {
  public:
   BodyAssets(BodySpec spec, AssetOptions options);
 
   const BodySpec& spec() const { return spec_; }
-  std::shared_ptr<const TriangleMesh> mesh();
-  std::shared_ptr<const DistanceField> field();
-  std::shared_ptr<const Pointshell> pointshell();
+  std::string_view body_name() const override { return spec_.name; }
+  std::shared_ptr<const TriangleMesh> mesh() override;
+  std::shared_ptr<const DistanceField> field() override;
+  std::shared_ptr<const Pointshell> pointshell() override;
+  std::uint64_t sampling_seed() const override { return spec_.pointshell.seed; }
   // A key of the mesh content and load parameters (hex), part of every cache key.
   const std::string& mesh_key();
 
@@ -57,5 +62,10 @@ struct SceneAssets {
   BodyAssets A;
   BodyAssets B;
 };
+
+// Makes the registered contact model NAME between SCENE's bodies, with the scene's model
+// parameters; only what the model needs is built. Throws Error naming the scene file when NAME
+// is unknown.
+std::unique_ptr<ContactModel> MakeSceneContactModel(std::string_view name, const Scene& scene, SceneAssets& assets);
 
 }  // namespace contactlab

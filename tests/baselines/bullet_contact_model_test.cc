@@ -13,8 +13,8 @@ namespace {
 std::unique_ptr<ContactModel> MakeBullet(std::shared_ptr<const TriangleMesh> A, std::shared_ptr<const TriangleMesh> B,
                                       double k_C, int L) {
   BulletContactParams p;
-  p.k_C = k_C;
-  p.L = L;
+  p.penalty.k_C = k_C;
+  p.penalty.L = L;
   return std::make_unique<BulletContactModel>(std::move(A), std::move(B), p);
 }
 

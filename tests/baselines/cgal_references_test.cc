@@ -36,8 +36,8 @@ TEST(QuadratureReference, MatchesExactPolyhedronHalfspaceLimitForTiltedBox) {
   for (const auto& v : A->vertices) lowest = std::min(lowest, (X_WA * v).z());
   X_WA.translation = Eigen::Vector3d(0.004, 0.002, -lowest - 0.003);
   QuadratureReferenceParams params;
-  params.k_C = kC;
-  params.L = kL;
+  params.penalty.k_C = kC;
+  params.penalty.L = kL;
   params.target_edge = 2e-4;
   QuadratureReference reference(A, B.mesh, params);
   const ForceLimit q = reference.Limit(X_WA, B.X_WB);
@@ -64,8 +64,8 @@ TEST(QuadratureReference, HalfspaceGradientMatchesFiniteDifferencesForFlatContac
   WideBox B;
   auto A = std::make_shared<TriangleMesh>(MakeBox(Eigen::Vector3d(1.0 / 30, 1.0 / 40, 1.0 / 50), 1));
   QuadratureReferenceParams params;
-  params.k_C = kC;
-  params.L = kL;
+  params.penalty.k_C = kC;
+  params.penalty.L = kL;
   params.target_edge = 1e-3;
   QuadratureReference reference(A, B.mesh, params);
   ContactQuery q;

@@ -20,9 +20,8 @@
 
 #include "baselines/reference/analytic_references.h"
 #include "baselines/register_baselines.h"
-#include "experiment/model_factory.h"
-#include "experiment/scene.h"
 #include "experiment/scene_assets.h"
+#include "experiment/scene.h"
 #include "geometry/procedural_shapes.h"
 #include "test_support.h"
 #ifdef CONTACTLAB_HAVE_CGAL
@@ -199,8 +198,8 @@ TEST(Characterization, EveryModelWithinRecordedErrorOfReferences) {
       scene.name = c.pair + (order == 0 ? " (A,B)" : " (B,A)");
       scene.pointshell_body = MakeBodySpec("A", a, "pointshell");
       scene.field_body = MakeBodySpec("B", b, "field");
-      scene.model.k_C = kC;
-      scene.model.L = kL;
+      scene.model.penalty.k_C = kC;
+      scene.model.penalty.L = kL;
       SceneAssets assets(scene, options);
       const Pose X_WA = scene.pointshell_body.pose, X_WB = scene.field_body.pose;
 
@@ -216,8 +215,8 @@ TEST(Characterization, EveryModelWithinRecordedErrorOfReferences) {
       } else {
 #ifdef CONTACTLAB_HAVE_CGAL
         QuadratureReferenceParams params;
-        params.k_C = kC;
-        params.L = kL;
+        params.penalty.k_C = kC;
+        params.penalty.L = kL;
         params.target_edge = 7e-4;
         F_ref = QuadratureReference(assets.A.mesh(), assets.B.mesh(), params).Limit(X_WA, X_WB).on_B.force;
         const Vector6d g = PenetrationVolume(*assets.A.mesh(), *assets.B.mesh()).Gradient(X_WA, X_WB, 1e-4, 1e-3, false);
@@ -233,7 +232,7 @@ TEST(Characterization, EveryModelWithinRecordedErrorOfReferences) {
       // Every registered model on the same query.
       for (const std::string& name : ContactModelNames()) {
         if (name == "reference") continue;  // the quadrature reference itself
-        std::unique_ptr<ContactModel> model = MakeContactModel(name, scene, assets);
+        std::unique_ptr<ContactModel> model = MakeSceneContactModel(name, scene, assets);
         ContactQuery q;
         q.X_WA = X_WA;
         q.X_WB = X_WB;

@@ -183,7 +183,7 @@ TEST(PointshellContactModel, SpherePressedIntoHalfspaceConvergesToTheVolumeInteg
     std::vector<Eigen::Vector3d> p, nn;
     testing::FibonacciSphere(R, n, 1, &p, &nn, false);
     auto shell = testing::MakeNestedShell(p, nn, {n});
-    PointshellContactModel model(Variant::kLinear, shell, field, {.k_C = k, .L = 10});
+    PointshellContactModel model(Variant::kLinear, shell, field, {.penalty = {.k_C = k, .L = 10}});
     // Average over a few rotations of the sphere to remove the lattice's orientation bias.
     Eigen::Vector3d F = Eigen::Vector3d::Zero();
     const int rotations = 8;
@@ -217,7 +217,7 @@ TEST(PointshellContactModel, RoleReversalOnTwoSpheresAgreesAsResolutionGrows) {
     p.clear(), nn.clear();
     testing::FibonacciSphere(Rb, int(n * (Rb * Rb) / (Ra * Ra)), 3, &p, &nn, false);
     auto sb = testing::MakeNestedShell(p, nn, {int(p.size())});
-    PointshellContactParams params{.k_C = 800, .L = 10};
+    PointshellContactParams params{.penalty = {.k_C = 800, .L = 10}};
     // Sphere a is the pointshell, b the field; then the reverse. Compare the force on b.
     PointshellContactModel ab(Variant::kLinear, sa, fb, params), ba(Variant::kLinear, sb, fa, params);
     ContactQuery q1;
@@ -256,7 +256,7 @@ Matrix6d FiniteDifferenceGradient(PointshellContactModel& model, ContactQuery q,
 TEST(PointshellContactModel, FieldGradientMatchesFiniteDifferences) {
   auto shell = SphereShell(0.05, 200, 1);
   auto field = SphereField(0.06, 0.002);
-  PointshellContactParams params{.k_C = 1000, .L = 0, .gradient = ContactGradient::kField};
+  PointshellContactParams params{.penalty = {.k_C = 1000, .L = 0}, .gradient = ContactGradient::kField};
   PointshellContactModel model(Variant::kLinear, shell, field, params);
   ContactQuery q;
   q.X_WB = {RotationFromVector(Eigen::Vector3d(0.2, -0.1, 0.4)), Eigen::Vector3d(0.01, 0.02, -1.0 / 300)};
@@ -278,7 +278,7 @@ TEST(PointshellContactModel, HalfspaceGradientIsExactForFlatContact) {
     }
   auto shell = testing::MakeNestedShell(p, n, {400});
   auto field = HalfspaceField(0.1, 0.01);
-  PointshellContactModel model(Variant::kLinear, shell, field, {.k_C = 300, .L = 0});
+  PointshellContactModel model(Variant::kLinear, shell, field, {.penalty = {.k_C = 300, .L = 0}});
   ContactQuery q;
   // B turned about the plane normal only, so the plane stays parallel to the patch.
   q.X_WB = {RotationFromVector(Eigen::Vector3d(0, 0, 0.3)), Eigen::Vector3d(0.003, -0.001, 0.002)};
@@ -299,8 +299,8 @@ TEST(PointshellContactModel, ManyPointScalingDividesStiffnessByLOverL) {
   auto field = HalfspaceField(0.1, 0.01);
   ContactQuery q;
   q.X_WA = Pose::FromTranslation(Eigen::Vector3d(0, 0, -0.001));  // every point 1 mm deep
-  PointshellContactModel scaled(Variant::kLinear, shell, field, {.k_C = 100, .L = 10});
-  PointshellContactModel unscaled(Variant::kLinear, shell, field, {.k_C = 100, .L = 0});
+  PointshellContactModel scaled(Variant::kLinear, shell, field, {.penalty = {.k_C = 100, .L = 10}});
+  PointshellContactModel unscaled(Variant::kLinear, shell, field, {.penalty = {.k_C = 100, .L = 0}});
   const ContactResult rs = scaled.Evaluate(q), ru = unscaled.Evaluate(q);
   EXPECT_NEAR(ru.on_B.force.z(), -40 * 100 * 0.001, 1e-5);  // d is a float
   EXPECT_NEAR(rs.on_B.force.z(), -10 * 100 * 0.001, 1e-5);  // k L / l * l * d = k L d
@@ -310,7 +310,7 @@ TEST(PointshellContactModel, ManyPointScalingDividesStiffnessByLOverL) {
 TEST(PointshellContactModel, InvalidParametersAreRejected) {
   auto shell = SphereShell(0.05, 48, 2);
   auto field = SphereField(0.06, 0.01);
-  EXPECT_THROW(PointshellContactModel(Variant::kTree, shell, field, {.k_C = -1}), Error);
+  EXPECT_THROW(PointshellContactModel(Variant::kTree, shell, field, {.penalty = {.k_C = -1}}), Error);
   EXPECT_THROW(PointshellContactModel(Variant::kTree, shell, field, {.level = 2}), Error);
   PointshellContactParams bad_speed;
   bad_speed.max_point_speed = 0;

@@ -53,8 +53,8 @@ TEST(Scene, ParsesBodiesRolesAndModelParameters) {
   EXPECT_EQ(s.pointshell_body.pointshell.levels, 3);
   EXPECT_EQ(s.field_body.field.resolution, 48);
   EXPECT_DOUBLE_EQ(s.pointshell_body.pose.translation.x(), 0.1);
-  EXPECT_DOUBLE_EQ(s.model.k_C, 1500);
-  EXPECT_EQ(s.model.node_budget, 5000);
+  EXPECT_DOUBLE_EQ(s.model.penalty.k_C, 1500);
+  EXPECT_EQ(s.node_budget, 5000);
   EXPECT_TRUE(s.model.coherence);
   EXPECT_EQ(s.models, std::vector<std::string>{"pointshell"});
 }

@@ -11,10 +11,11 @@
 #include <cmath>
 #include <random>
 
+#include "baselines/register_baselines.h"
 #include "baselines/vps/vps_pointshell.h"
 #include "contact/pointshell_contact_model.h"
 #include "contact/test_shells.h"
-#include "experiment/model_factory.h"
+#include "experiment/scene_assets.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -59,8 +60,8 @@ Pose RandomPose(std::mt19937& rng, double spread) {
 TEST(VpsContactModel, FlatPlateForceIsKLTimesTheTangentPlaneDepthAlongTheNormal) {
   auto shell = PointGrid(Eigen::Vector3d::UnitZ());
   VpsContactParams params;
-  params.k_C = 2000;
-  params.L = 10;
+  params.penalty.k_C = 2000;
+  params.penalty.L = 10;
   VpsContactModel model("vps", shell, PlateField(), params);
   const int n = shell->num_points();
   std::mt19937 rng(3);
@@ -81,16 +82,16 @@ TEST(VpsContactModel, FlatPlateForceIsKLTimesTheTangentPlaneDepthAlongTheNormal)
       q.X_WA = X_WB * Pose::FromTranslation(shift + Eigen::Vector3d(0, 0, c.z));
       const ContactResult r = model.Evaluate(q);
       // Force on B: down (-z in B), k_C L / n per point times n points times the depth.
-      const Eigen::Vector3d F_B(0, 0, -params.k_C * params.L * c.depth);
-      EXPECT_LT((r.on_B.force - R * F_B).norm(), 1e-4 * params.k_C * kH) << "z " << c.z;
+      const Eigen::Vector3d F_B(0, 0, -params.penalty.k_C * params.penalty.L * c.depth);
+      EXPECT_LT((r.on_B.force - R * F_B).norm(), 1e-4 * params.penalty.k_C * kH) << "z " << c.z;
       // Torque about B's origin: the grid's centroid (in B) cross the force.
       Eigen::Vector3d centroid_B = Eigen::Vector3d::Zero();
       for (int i = 0; i < n; ++i) centroid_B += Eigen::Vector3d(shell->x[i], shell->y[i], shell->z[i]);
       centroid_B = centroid_B / n + shift + Eigen::Vector3d(0, 0, c.z);
-      EXPECT_LT((r.on_B.torque - R * centroid_B.cross(F_B)).norm(), 1e-6 * params.k_C * kH) << "z " << c.z;
+      EXPECT_LT((r.on_B.torque - R * centroid_B.cross(F_B)).norm(), 1e-6 * params.penalty.k_C * kH) << "z " << c.z;
       EXPECT_EQ(r.stats.points_in_contact, c.depth > 0 ? n : 0) << "z " << c.z;
       EXPECT_NEAR(r.stats.max_penetration, c.depth, 1e-4 * kH);
-      EXPECT_DOUBLE_EQ(r.stats.stiffness_scale, c.depth > 0 ? double(params.L) / n : 1.0);
+      EXPECT_DOUBLE_EQ(r.stats.stiffness_scale, c.depth > 0 ? double(params.penalty.L) / n : 1.0);
       EXPECT_EQ(r.stats.nodes_visited, n);
     }
   }
@@ -103,10 +104,10 @@ TEST(VpsContactModel, ForceJumpsAtVoxelFacesButThePointshellModelsForceIsContinu
   auto shell = OnePoint(N);
   auto field = PlateField();
   VpsContactParams vps_params;
-  vps_params.k_C = 2000;
+  vps_params.penalty.k_C = 2000;
   VpsContactModel vps("vps", shell, field, vps_params);
   PointshellContactParams ps_params;
-  ps_params.k_C = 2000;
+  ps_params.penalty.k_C = 2000;
   PointshellContactModel pointshell(PointshellContactModel::Variant::kLinear, shell, field, ps_params);
   const double face_x = vps.voxmap().origin().x() + 25 * kH;  // a voxel face near x = 0
   const double eps = 1e-4 * kH;
@@ -115,7 +116,7 @@ TEST(VpsContactModel, ForceJumpsAtVoxelFacesButThePointshellModelsForceIsContinu
     q.X_WA = Pose::FromTranslation(Eigen::Vector3d(x, 0.0013, 0.1 * kH));
     return m.Evaluate(q).on_B.force;
   };
-  const double k = vps_params.k_C;
+  const double k = vps_params.penalty.k_C;
   // Across the face: a jump of about k kH N.x, never more than k times the voxel size.
   const double vps_jump = (force(vps, face_x + eps) - force(vps, face_x - eps)).norm();
   EXPECT_NEAR(vps_jump, k * kH * N.x(), 0.01 * k * kH);
@@ -138,10 +139,10 @@ TEST(VpsContactModel, SlidingSphereForceStepsAreLargerThanThePointshellModels) {
   auto field = PlateField();
   // No L / l scaling: its jumps when a point enters contact would hide the voxel artefact.
   VpsContactParams vps_params;
-  vps_params.L = 0;
+  vps_params.penalty.L = 0;
   VpsContactModel vps("vps", shell, field, vps_params);
   PointshellContactParams ps_params;
-  ps_params.L = 0;
+  ps_params.penalty.L = 0;
   PointshellContactModel pointshell(PointshellContactModel::Variant::kLinear, shell, field, ps_params);
   const double step = 2e-6;  // metres per step
   double max_vps = 0, max_ps = 0;
@@ -164,7 +165,7 @@ TEST(VpsContactModel, SlidingSphereForceStepsAreLargerThanThePointshellModels) {
 TEST(VpsContactModel, TranslationGradientMatchesFiniteDifferencesWithinAVoxel) {
   auto shell = PointGrid(Eigen::Vector3d(0.2, -0.1, 1));
   VpsContactParams params;
-  params.k_C = 1500;
+  params.penalty.k_C = 1500;
   VpsContactModel model("vps", shell, PlateField(), params);
   std::mt19937 rng(11);
   ContactQuery q;
@@ -274,7 +275,7 @@ TEST(VpsContactModel, BadParametersThrow) {
   auto shell = PointGrid(Eigen::Vector3d::UnitZ());
   auto field = PlateField();
   VpsContactParams params;
-  params.k_C = -1;
+  params.penalty.k_C = -1;
   EXPECT_THROW(VpsContactModel("vps", shell, field, params), Error);
   params = {};
   params.max_point_speed = 0;
@@ -323,12 +324,12 @@ Scene BallOnPlateScene() {
   scene.field_body.role = "field";
   scene.field_body.pose = Pose::FromTranslation(Eigen::Vector3d(0, 0, -0.01));
   scene.field_body.field.resolution = 40;
-  scene.model.k_C = 2000;
+  scene.model.penalty.k_C = 2000;
   return scene;
 }
 
 TEST(VpsRegistration, BothModelsAreMadeByNameAndPushThePlateDown) {
-  RegisterVpsContactModels();
+  RegisterBaselineContactModels();
   const std::vector<std::string> names = ContactModelNames();
   EXPECT_NE(std::find(names.begin(), names.end(), "vps"), names.end());
   EXPECT_NE(std::find(names.begin(), names.end(), "vps-repulsion"), names.end());
@@ -344,7 +345,7 @@ TEST(VpsRegistration, BothModelsAreMadeByNameAndPushThePlateDown) {
   int slot = 0;
   for (const char* name : {"vps", "vps-repulsion"}) {
     SCOPED_TRACE(name);
-    std::unique_ptr<ContactModel> model = MakeContactModel(name, scene, assets);
+    std::unique_ptr<ContactModel> model = MakeSceneContactModel(name, scene, assets);
     ASSERT_NE(model, nullptr);
     EXPECT_EQ(model->name(), name);
     auto* vps = dynamic_cast<VpsContactModel*>(model.get());

@@ -1,0 +1,27 @@
+// Registers "reference" (QuadratureReference: the eq. (2) limit by dense quadrature with exact
+// distances to B's closed mesh) with the contact-model registry. The limit needs L > 0: a
+// scene that turns the L / l scaling off (L = 0) gets the default L for its reference.
+#include <memory>
+
+#include "baselines/reference/surface_quadrature_reference.h"
+#include "contact/model_registry.h"
+
+namespace contactlab {
+
+void RegisterReferenceContactModels() {
+  ContactModelEntry e;
+  e.name = "reference";
+  e.description = "eq. (2) limit of the pointshell model: dense quadrature on A, exact CGAL distances to B (offline)";
+  e.needs.mesh_A = true;
+  e.needs.mesh_B = true;
+  e.needs.closed_mesh_B = true;
+  e.make = [](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
+    QuadratureReferenceParams p;
+    p.penalty = in.params.penalty;
+    if (p.penalty.L <= 0) p.penalty.L = PenaltyParams::kDefaultManyPointThreshold;
+    return std::make_unique<QuadratureReference>(in.A.mesh(), in.B.mesh(), p);
+  };
+  RegisterContactModel(std::move(e));
+}
+
+}  // namespace contactlab

@@ -1,0 +1,70 @@
+#include "contact/model_registry.h"
+
+#include <algorithm>
+#include <map>
+
+#include "contact/pointshell_contact_model.h"
+#include "util/error.h"
+
+namespace contactlab {
+namespace {
+
+ContactModelEntry PaperModel(PointshellContactModel::Variant variant) {
+  const bool linear = variant == PointshellContactModel::Variant::kLinear;
+  ContactModelEntry e;
+  e.name = linear ? "pointshell-linear" : "pointshell";
+  e.description = linear ? "Barbič & James 2008: every point of one pointshell level against B's field"
+                         : "Barbič & James 2008: breadth-first pointshell tree against B's field";
+  e.needs.pointshell_A = true;
+  e.needs.field_B = true;
+  e.needs.depth_in_field_voxels = true;
+  e.make = [variant](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
+    return std::make_unique<PointshellContactModel>(variant, in.A.pointshell(), in.B.field(), in.params);
+  };
+  return e;
+}
+
+std::map<std::string, ContactModelEntry, std::less<>>& Registry() {
+  static std::map<std::string, ContactModelEntry, std::less<>> registry = [] {
+    std::map<std::string, ContactModelEntry, std::less<>> r;
+    for (auto v : {PointshellContactModel::Variant::kTree, PointshellContactModel::Variant::kLinear}) {
+      ContactModelEntry e = PaperModel(v);
+      r[e.name] = std::move(e);
+    }
+    return r;
+  }();
+  return registry;
+}
+
+}  // namespace
+
+void RegisterContactModel(ContactModelEntry entry) {
+  if (entry.name.empty() || !entry.make) Fail("contact model registry", "an entry needs a name and a factory");
+  std::string name = entry.name;
+  Registry()[name] = std::move(entry);
+}
+
+const ContactModelEntry* FindContactModel(std::string_view name) {
+  const auto& registry = Registry();
+  const auto it = registry.find(name);
+  return it == registry.end() ? nullptr : &it->second;
+}
+
+std::unique_ptr<ContactModel> MakeContactModel(std::string_view name, const ContactModelInputs& inputs,
+                                               std::string_view where) {
+  const ContactModelEntry* entry = FindContactModel(name);
+  if (entry == nullptr) {
+    std::string known;
+    for (const std::string& n : ContactModelNames()) known += (known.empty() ? "" : ", ") + n;
+    Fail(where, "unknown contact model '" + std::string(name) + "' (known: " + known + ")");
+  }
+  return entry->make(inputs);
+}
+
+std::vector<std::string> ContactModelNames() {
+  std::vector<std::string> names;
+  for (const auto& [n, e] : Registry()) names.push_back(n);
+  return names;
+}
+
+}  // namespace contactlab

@@ -1,0 +1,79 @@
+// Contact models made by name (DESIGN.md), so a scene or an experiment config can list several
+// and compare them. The paper's two models register here; every baseline folder registers its
+// own through contactlab_contact_model() in its CMakeLists (baselines/README.md, "adding a
+// model"). A model declares what it needs from the two bodies, so callers build only that and
+// never guess from a model's name.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "contact/contact_model.h"
+#include "contact/pointshell_contact_params.h"
+
+namespace contactlab {
+
+struct TriangleMesh;
+class DistanceField;
+struct Pointshell;
+
+// One body's data, built on demand (and cached) by the caller: experiment/ implements it for
+// scene bodies. Each accessor throws Error naming the body when the data cannot be built.
+class ContactBody {
+ public:
+  virtual ~ContactBody() = default;
+  virtual std::string_view body_name() const = 0;
+  virtual std::shared_ptr<const TriangleMesh> mesh() = 0;            // body frame, metres
+  virtual std::shared_ptr<const DistanceField> field() = 0;          // body frame
+  virtual std::shared_ptr<const Pointshell> pointshell() = 0;        // body frame
+  virtual std::uint64_t sampling_seed() const = 0;                   // seed of the body's point sampling
+};
+
+// What a model reads of the two bodies (A: pointshell role, B: field role).
+struct ContactModelNeeds {
+  bool pointshell_A = false;  // A's pointshell
+  bool field_A = false;       // A's distance field (e.g. to sample another pointshell)
+  bool field_B = false;       // B's distance field
+  bool mesh_A = false;        // A's triangle mesh
+  bool mesh_B = false;        // B's triangle mesh
+  bool closed_mesh_B = false; // B's mesh must be closed (an inside test)
+  // Its penetration depth is measured on B's field grid, so reports may give it in voxels
+  // of B's field (experiment column depth_voxels).
+  bool depth_in_field_voxels = false;
+};
+
+// What a factory is given: the two bodies and the scene's model parameters.
+struct ContactModelInputs {
+  ContactBody& A;
+  ContactBody& B;
+  const PointshellContactParams& params;  // the scene's "model:" section
+};
+
+using ContactModelFactory = std::function<std::unique_ptr<ContactModel>(const ContactModelInputs&)>;
+
+struct ContactModelEntry {
+  std::string name;         // what scenes and configs write: "pointshell", "fcl", ...
+  std::string description;  // one line for listings
+  ContactModelNeeds needs;
+  ContactModelFactory make;
+};
+
+// Adds (or replaces) the entry of ENTRY.name.
+void RegisterContactModel(ContactModelEntry entry);
+
+// The entry registered as NAME, or null.
+const ContactModelEntry* FindContactModel(std::string_view name);
+
+// Makes model NAME from INPUTS. Throws Error("WHERE: unknown contact model 'x' (known: ...)")
+// when NAME is unknown, and the factory's errors otherwise.
+std::unique_ptr<ContactModel> MakeContactModel(std::string_view name, const ContactModelInputs& inputs,
+                                               std::string_view where);
+
+// Every registered name, sorted.
+std::vector<std::string> ContactModelNames();
+
+}  // namespace contactlab

@@ -1,0 +1,32 @@
+// Parameters of the paper's contact model (Barbič & James 2008, sec. 2.1, 3, 5), read from a
+// scene's "model:" section. The scene holds this struct itself; the baselines take what they
+// share with it (the penalty law, the coherence bound) from it.
+#pragma once
+
+#include "contact/contact_accumulator.h"
+#include "contact/penalty_params.h"
+
+namespace contactlab {
+
+class ConfigNode;
+
+struct PointshellContactParams {
+  PenaltyParams penalty;         // k_C and L (sec. 2.1)
+  int level = -1;                // linear variant: tree level rendered (-1: deepest); tree: deepest level allowed
+  bool coherence = false;        // tree variant: temporal coherence (sec. 3)
+  double max_point_speed = 1.0;  // m/s, largest speed of any pointshell point relative to B
+  double cycle_seconds = 1e-3;   // duration of one haptic cycle, seconds
+  double lipschitz = 1.0;        // bound on |grad d| assumed by culling and coherence (paper: 1)
+  double cold_fraction = 0.8;    // V_C = cold_fraction * V_W (sec. 3, graceful degradation)
+  ContactGradient gradient = ContactGradient::kHalfspace;  // sec. 5 halfspace rule, or the field's gradient
+};
+
+// The keys ParsePointshellContactParams reads.
+inline constexpr const char* kPointshellContactParamKeys[] = {
+    "k_C", "L", "level", "coherence", "max_point_speed", "cycle_seconds", "lipschitz", "cold_fraction", "gradient"};
+
+// Reads the keys above from SECTION (a mapping; absent keys keep their defaults) and checks
+// each value, the error naming file, line and key. Other keys are left to the caller.
+PointshellContactParams ParsePointshellContactParams(const ConfigNode& section);
+
+}  // namespace contactlab

@@ -1,0 +1,133 @@
+#include "experiment/result_csv.h"
+
+#include <cstdio>
+#include <sstream>
+
+namespace contactlab {
+namespace {
+
+// One line of a table being written.
+class CsvLine {
+ public:
+  explicit CsvLine(std::string* out) : out_(out) {}
+  void Text(const std::string& s) { Cell(s.data(), s.size()); }
+  void Num(const char* format, double v) { Format(format, v); }
+  void Int(long long v) { Format("%lld", v); }
+  void Empty() { Cell("", 0); }
+
+ private:
+  template <class T>
+  void Format(const char* format, T v) {
+    char buf[64];
+    const int n = std::snprintf(buf, sizeof buf, format, v);
+    Cell(buf, std::size_t(n));
+  }
+  void Cell(const char* s, std::size_t n) {
+    if (!first_) *out_ += ',';
+    out_->append(s, n);
+    first_ = false;
+  }
+  std::string* out_;
+  bool first_ = true;
+};
+
+template <class Row>
+struct Column {
+  const char* name;
+  void (*write)(const Row&, CsvLine&);
+};
+
+// cycles.csv: the model's wrench on the moving body, its contact statistics and time per cycle,
+// and the reference force where one was evaluated (empty cells elsewhere).
+const Column<CycleRow> kCycleColumns[] = {
+    {"model", [](const CycleRow& r, CsvLine& l) { l.Text(r.model); }},
+    {"cycle", [](const CycleRow& r, CsvLine& l) { l.Int(r.cycle); }},
+    {"t", [](const CycleRow& r, CsvLine& l) { l.Num("%.6f", r.t); }},
+    {"x", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.position.x()); }},
+    {"y", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.position.y()); }},
+    {"z", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.position.z()); }},
+    {"fx", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.force.x()); }},
+    {"fy", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.force.y()); }},
+    {"fz", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.force.z()); }},
+    {"tx", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.torque.x()); }},
+    {"ty", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.torque.y()); }},
+    {"tz", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.torque.z()); }},
+    {"contacts", [](const CycleRow& r, CsvLine& l) { l.Int(r.contacts); }},
+    {"nodes", [](const CycleRow& r, CsvLine& l) { l.Int(r.nodes); }},
+    {"level", [](const CycleRow& r, CsvLine& l) { l.Int(r.level); }},
+    {"max_penetration", [](const CycleRow& r, CsvLine& l) { l.Num("%.6g", r.max_penetration); }},
+    {"depth_voxels", [](const CycleRow& r, CsvLine& l) { l.Num("%.4g", r.depth_voxels); }},
+    {"time_us", [](const CycleRow& r, CsvLine& l) { l.Num("%.3f", r.time_us); }},
+    {"ref_fx", [](const CycleRow& r, CsvLine& l) { r.has_reference ? l.Num("%.9g", r.reference_force.x()) : l.Empty(); }},
+    {"ref_fy", [](const CycleRow& r, CsvLine& l) { r.has_reference ? l.Num("%.9g", r.reference_force.y()) : l.Empty(); }},
+    {"ref_fz", [](const CycleRow& r, CsvLine& l) { r.has_reference ? l.Num("%.9g", r.reference_force.z()) : l.Empty(); }},
+};
+
+// summary.csv: per model and job, continuity, timing, error against the reference and force
+// magnitude metrics (an error of -1: no reference).
+const Column<SummaryRow> kSummaryColumns[] = {
+    {"model", [](const SummaryRow& r, CsvLine& l) { l.Text(r.model); }},
+    {"points", [](const SummaryRow& r, CsvLine& l) { l.Int(r.points); }},
+    {"cycles", [](const SummaryRow& r, CsvLine& l) { l.Int(r.cycles); }},
+    {"max_jump_N", [](const SummaryRow& r, CsvLine& l) { l.Num("%.6g", r.max_jump); }},
+    {"lipschitz_N_per_m", [](const SummaryRow& r, CsvLine& l) { l.Num("%.6g", r.lipschitz); }},
+    {"hf_share", [](const SummaryRow& r, CsvLine& l) { l.Num("%.6g", r.hf_share); }},
+    {"median_us", [](const SummaryRow& r, CsvLine& l) { l.Num("%.3f", r.median_us); }},
+    {"p99_us", [](const SummaryRow& r, CsvLine& l) { l.Num("%.3f", r.p99_us); }},
+    {"max_us", [](const SummaryRow& r, CsvLine& l) { l.Num("%.3f", r.max_us); }},
+    {"mean_nodes", [](const SummaryRow& r, CsvLine& l) { l.Num("%.1f", r.mean_nodes); }},
+    {"level_switches_per_s", [](const SummaryRow& r, CsvLine& l) { l.Num("%.3f", r.level_switches_per_s); }},
+    {"rms_rel_error", [](const SummaryRow& r, CsvLine& l) { l.Num("%.6g", r.rms_rel_error); }},
+    {"max_dir_error_deg", [](const SummaryRow& r, CsvLine& l) { l.Num("%.4g", r.max_dir_error_deg); }},
+    {"max_force_N", [](const SummaryRow& r, CsvLine& l) { l.Num("%.6g", r.max_force); }},
+    {"mean_force_N", [](const SummaryRow& r, CsvLine& l) { l.Num("%.6g", r.mean_force); }},
+    {"max_depth_voxels", [](const SummaryRow& r, CsvLine& l) { l.Num("%.4g", r.max_depth_voxels); }},
+};
+
+// experiment,job,<axis names>,<column names>
+template <class Row, std::size_t N>
+std::string Header(const ExperimentConfig& config, const Column<Row> (&columns)[N]) {
+  std::string h;
+  CsvLine line(&h);
+  line.Text("experiment");
+  line.Text("job");
+  for (const SweepAxis& a : config.sweep) line.Text(a.name);
+  for (const Column<Row>& c : columns) line.Text(c.name);
+  return h + "\n";
+}
+
+template <class Row, std::size_t N>
+void AppendRows(const ExperimentConfig& config, const JobResult& r, const std::vector<Row>& rows,
+                const Column<Row> (&columns)[N], std::string* out) {
+  for (const Row& row : rows) {
+    CsvLine line(out);
+    line.Text(config.name);
+    line.Int(r.job.index);
+    for (const auto& [axis, value] : r.job.axis_values) line.Text(value);
+    for (const Column<Row>& c : columns) c.write(row, line);
+    *out += '\n';
+  }
+}
+
+}  // namespace
+
+std::string CyclesCsvHeader(const ExperimentConfig& config) { return Header(config, kCycleColumns); }
+std::string SummaryCsvHeader(const ExperimentConfig& config) { return Header(config, kSummaryColumns); }
+
+void AppendCyclesCsv(const ExperimentConfig& config, const JobResult& r, std::string* out) {
+  AppendRows(config, r, r.cycles, kCycleColumns, out);
+}
+void AppendSummaryCsv(const ExperimentConfig& config, const JobResult& r, std::string* out) {
+  AppendRows(config, r, r.summary, kSummaryColumns, out);
+}
+
+std::vector<std::string> SplitCsvLine(const std::string& line) {
+  std::vector<std::string> cells;
+  std::stringstream ss(line);
+  std::string cell;
+  while (std::getline(ss, cell, ',')) cells.push_back(cell);
+  if (!line.empty() && line.back() == ',') cells.emplace_back();
+  return cells;
+}
+
+}  // namespace contactlab

@@ -1,0 +1,169 @@
+// One job of an experiment: the moving body follows the trajectory cycle by cycle, every
+// model of the job is evaluated at each pose (and the reference every reference_every
+// cycles), and the per-cycle rows and per-model summary metrics are collected.
+#include <chrono>
+#include <cmath>
+
+#include "experiment/contact_placement.h"
+#include "experiment/metrics.h"
+#include "experiment/runner.h"
+#include "util/error.h"
+
+namespace contactlab {
+namespace {
+
+// The trajectory of a job with a scalar "direction: toward" resolved to the unit vector from the
+// moving body's start to the other body's origin.
+ConfigNode ResolvedTrajectoryNode(const ConfigNode& trajectory, const Pose& X_moving0, const Pose& X_other0) {
+  YAML::Node tyaml = YAML::Clone(trajectory.yaml());
+  if (tyaml["direction"] && tyaml["direction"].IsScalar()) {
+    const Eigen::Vector3d toward = (X_other0.translation - X_moving0.translation).normalized();
+    tyaml["direction"] = std::vector<double>{toward.x(), toward.y(), toward.z()};
+  }
+  return ConfigNode(tyaml, std::make_shared<const std::string>(trajectory.file()), trajectory.path());
+}
+
+// The reference model of the job: the config's reference model on the same scene, or on a
+// denser version of it (more points, levels or field resolution), always at full depth.
+std::unique_ptr<ContactModel> MakeReference(const ExperimentConfig& config, const Scene& scene,
+                                            const RunOptions& options, std::unique_ptr<SceneAssets>* assets) {
+  if (config.reference_model.empty()) return nullptr;
+  Scene ref_scene = scene;
+  if (config.reference_points > 0) ref_scene.pointshell_body.pointshell.points = config.reference_points;
+  if (config.reference_levels > 0) ref_scene.pointshell_body.pointshell.levels = config.reference_levels;
+  if (config.reference_resolution > 0) ref_scene.field_body.field.resolution = config.reference_resolution;
+  ref_scene.model.level = -1;
+  ref_scene.node_budget = 0;
+  *assets = std::make_unique<SceneAssets>(ref_scene, options.assets);
+  return MakeSceneContactModel(config.reference_model, ref_scene, **assets);
+}
+
+// Wrench on the moving body about its own origin, from the wrench on B of query Q.
+void OnMovingBody(bool moving_is_B, const ContactQuery& q, const Wrench& on_B, Eigen::Vector3d* F, Eigen::Vector3d* T) {
+  if (moving_is_B) {
+    *F = on_B.force;
+    *T = on_B.torque;
+  } else {
+    *F = -on_B.force;
+    *T = -on_B.torque - (q.X_WB.translation - q.X_WA.translation).cross(on_B.force);
+  }
+}
+
+}  // namespace
+
+JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOptions& options) {
+  JobResult result;
+  result.job = job;
+  const Scene& scene = job.scene;
+  SceneAssets assets(scene, options.assets);
+  const bool moving_is_B = scene.field_body.name == job.moving_body;
+  Pose X_WA0 = scene.pointshell_body.pose, X_WB0 = scene.field_body.pose;
+
+  // The trajectory, and with touch: true the moving body moved along its direction until the
+  // deepest point of the paper's model (linear, deepest level) is touch_depth deep.
+  const ConfigNode tn = ResolvedTrajectoryNode(job.trajectory_node, moving_is_B ? X_WB0 : X_WA0, moving_is_B ? X_WA0 : X_WB0);
+  const Trajectory trajectory = ParseTrajectory(tn);
+  if (tn.Bool("touch", false)) {
+    Eigen::Vector3d dir(0, 0, -1);
+    if (auto d = tn.Find("direction")) {
+      const std::vector<double> v = d->AsDoubles();
+      dir = Eigen::Vector3d(v[0], v[1], v[2]).normalized();
+    }
+    const double depth = tn.Positive("touch_depth", 1e-4);
+    const Pose moved = TouchAlong(scene, assets, moving_is_B, X_WA0, X_WB0, dir, depth,
+                                  config.file + ": job " + std::to_string(job.index));
+    (moving_is_B ? X_WB0 : X_WA0) = moved;
+  }
+  const Pose start = moving_is_B ? X_WB0 : X_WA0;
+  const double dt = scene.model.cycle_seconds;
+  const std::int64_t cycles = std::int64_t(std::floor(trajectory.duration() / dt + 1e-9)) + 1;
+
+  std::unique_ptr<SceneAssets> reference_assets;
+  const std::unique_ptr<ContactModel> reference = MakeReference(config, scene, options, &reference_assets);
+
+  for (const std::string& name : job.models) {
+    std::unique_ptr<ContactModel> model = MakeSceneContactModel(name, scene, assets);
+    // Depths in voxels only for models whose depth is measured on B's field grid.
+    const bool in_voxels = FindContactModel(name)->needs.depth_in_field_voxels;
+    const double spacing = in_voxels ? assets.B.field()->spacing() : 0.0;
+    std::vector<Eigen::Vector3d> forces, refs;
+    std::vector<Pose> poses;
+    std::vector<bool> has_ref;
+    std::vector<double> times;
+    std::vector<int> levels;
+    double nodes_sum = 0, max_depth = 0;
+    for (std::int64_t k = 0; k < cycles; ++k) {
+      // The moving body follows the trajectory from its start pose; the other stays put.
+      const Pose d = trajectory.At(trajectory.start_time() + double(k) * dt);
+      const Pose X_moving{(d.rotation * start.rotation).normalized(), start.translation + d.translation};
+      ContactQuery q;
+      q.X_WA = moving_is_B ? X_WA0 : X_moving;
+      q.X_WB = moving_is_B ? X_moving : X_WB0;
+      q.cycle = k;
+      q.node_budget = scene.node_budget;
+      const auto t0 = std::chrono::steady_clock::now();
+      const ContactResult r = model->Evaluate(q);
+      const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+      CycleRow row;
+      row.job = job.index;
+      row.model = name;
+      row.cycle = k;
+      row.t = double(k) * dt;
+      row.position = X_moving.translation;
+      OnMovingBody(moving_is_B, q, r.on_B, &row.force, &row.torque);
+      row.contacts = r.stats.points_in_contact;
+      row.nodes = r.stats.nodes_visited;
+      row.level = r.stats.level_rendered;
+      row.max_penetration = r.stats.max_penetration;
+      row.depth_voxels = spacing > 0 ? r.stats.max_penetration / spacing : 0.0;
+      row.time_us = us;
+      if (reference && k % config.reference_every == 0) {
+        Eigen::Vector3d T;
+        ContactQuery rq = q;
+        rq.node_budget = 0;
+        OnMovingBody(moving_is_B, rq, reference->Evaluate(rq).on_B, &row.reference_force, &T);
+        row.has_reference = true;
+      }
+      forces.push_back(row.force);
+      refs.push_back(row.reference_force);
+      has_ref.push_back(row.has_reference);
+      poses.push_back(X_moving);
+      times.push_back(us);
+      levels.push_back(row.level);
+      nodes_sum += double(row.nodes);
+      max_depth = std::max(max_depth, row.depth_voxels);
+      result.cycles.push_back(row);
+    }
+    // Per-model metrics over the trajectory.
+    SummaryRow s;
+    s.job = job.index;
+    s.model = name;
+    s.points = scene.pointshell_body.pointshell.points;
+    s.cycles = cycles;
+    const double radius = assets.A.mesh()->Bounds().size().norm() / 2;
+    const ContinuityMetrics c = ForceContinuity(forces, poses, dt, radius, config.cutoff_hz);
+    s.max_jump = c.max_jump;
+    s.lipschitz = c.lipschitz;
+    s.hf_share = c.high_frequency_share;
+    const TimingMetrics t = Timing(times, levels, dt);
+    s.median_us = t.median_us;
+    s.p99_us = t.p99_us;
+    s.max_us = t.max_us;
+    s.level_switches_per_s = t.level_switches_per_second;
+    s.mean_nodes = nodes_sum / double(cycles);
+    if (reference) {
+      const ErrorMetrics e = ErrorAgainstReference(forces, refs, has_ref);
+      s.rms_rel_error = e.rms_relative;
+      s.max_dir_error_deg = e.max_direction_deg;
+    }
+    for (const Eigen::Vector3d& f : forces) {
+      s.max_force = std::max(s.max_force, f.norm());
+      s.mean_force += f.norm() / double(cycles);
+    }
+    s.max_depth_voxels = max_depth;
+    result.summary.push_back(s);
+  }
+  return result;
+}
+
+}  // namespace contactlab

@@ -1,0 +1,116 @@
+// The contact-model registry of contact/: models made by name from two bodies and the
+// scene's parameters, each declaring what it needs.
+#include "contact/model_registry.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "contact/pointshell_contact_model.h"
+#include "contact/test_shells.h"
+#include "util/error.h"
+
+namespace contactlab {
+namespace {
+
+// A body with hand-made data; counts what a factory asked for.
+class FakeBody final : public ContactBody {
+ public:
+  std::string_view body_name() const override { return "fake"; }
+  std::shared_ptr<const TriangleMesh> mesh() override {
+    ++meshes;
+    return nullptr;
+  }
+  std::shared_ptr<const DistanceField> field() override {
+    ++fields;
+    return field_;
+  }
+  std::shared_ptr<const Pointshell> pointshell() override {
+    ++shells;
+    return shell_;
+  }
+  std::uint64_t sampling_seed() const override { return 1; }
+
+  std::shared_ptr<const DistanceField> field_;
+  std::shared_ptr<const Pointshell> shell_;
+  int meshes = 0, fields = 0, shells = 0;
+};
+
+// A model of no force, standing for one a user adds in a folder of their own.
+class NoForceModel final : public ContactModel {
+ public:
+  std::string_view name() const override { return "no-force"; }
+  ContactResult Evaluate(const ContactQuery&) override { return {}; }
+  void Reset() override {}
+};
+
+TEST(ModelRegistry, ThePapersModelsAreBuiltInAndDeclareWhatTheyNeed) {
+  for (const char* name : {"pointshell", "pointshell-linear"}) {
+    const ContactModelEntry* e = FindContactModel(name);
+    ASSERT_NE(e, nullptr) << name;
+    EXPECT_TRUE(e->needs.pointshell_A);
+    EXPECT_TRUE(e->needs.field_B);
+    EXPECT_FALSE(e->needs.mesh_A || e->needs.mesh_B || e->needs.field_A);
+    EXPECT_TRUE(e->needs.depth_in_field_voxels);
+  }
+}
+
+TEST(ModelRegistry, AFactoryGetsTheBodiesAndTheScenesParameters) {
+  // A unit sphere of points (A) against the halfspace z < 0 (B), A 0.1 below the plane's top.
+  FakeBody A, B;
+  std::vector<Eigen::Vector3d> p, n;
+  for (int i = 0; i < 64; ++i) {
+    const double z = -1 + (i + 0.5) / 32, r = std::sqrt(1 - z * z), phi = 2.39996 * i;
+    p.emplace_back(r * std::cos(phi), r * std::sin(phi), z);
+    n.push_back(-p.back());
+  }
+  A.shell_ = testing::MakeNestedShell(p, n, {16, 64});
+  B.field_ = testing::SampleField([](const Eigen::Vector3d& x) { return x.z(); }, Eigen::Vector3d(-2, -2, -2),
+                                  Eigen::Vector3d(2, 2, 2), 0.05);
+  PointshellContactParams params;
+  params.penalty = {.k_C = 123, .L = 0};
+  std::unique_ptr<ContactModel> model = MakeContactModel("pointshell-linear", {A, B, params}, "test");
+  EXPECT_EQ(A.shells, 1);
+  EXPECT_EQ(B.fields, 1);
+  EXPECT_EQ(A.fields + A.meshes + B.shells + B.meshes, 0);  // nothing it does not need
+  auto* paper = dynamic_cast<PointshellContactModel*>(model.get());
+  ASSERT_NE(paper, nullptr);
+  EXPECT_EQ(paper->params().penalty.k_C, 123);
+  ContactQuery q;
+  q.X_WA = Pose::FromTranslation(Eigen::Vector3d(0, 0, 0.9));
+  const ContactResult r = model->Evaluate(q);
+  EXPECT_GT(r.stats.points_in_contact, 0);
+  EXPECT_LT(r.on_B.force.z(), 0);  // B (below) is pushed down
+}
+
+TEST(ModelRegistry, AModelRegisteredFromOutsideIsMadeByName) {
+  ContactModelEntry e;
+  e.name = "no-force";
+  e.description = "test model";
+  e.make = [](const ContactModelInputs&) -> std::unique_ptr<ContactModel> { return std::make_unique<NoForceModel>(); };
+  RegisterContactModel(e);
+  const std::vector<std::string> names = ContactModelNames();
+  EXPECT_TRUE(std::is_sorted(names.begin(), names.end()));
+  EXPECT_NE(std::find(names.begin(), names.end(), "no-force"), names.end());
+  FakeBody A, B;
+  const PointshellContactParams params;
+  EXPECT_EQ(MakeContactModel("no-force", {A, B, params}, "test")->name(), "no-force");
+}
+
+TEST(ModelRegistry, AnUnknownNameListsTheKnownOnes) {
+  FakeBody A, B;
+  const PointshellContactParams params;
+  try {
+    MakeContactModel("pointshel", {A, B, params}, "scene.yaml");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("scene.yaml: unknown contact model 'pointshel'"), std::string::npos) << m;
+    EXPECT_NE(m.find("pointshell-linear"), std::string::npos) << m;
+  }
+  ContactModelEntry nameless;
+  EXPECT_THROW(RegisterContactModel(nameless), Error);
+}
+
+}  // namespace
+}  // namespace contactlab

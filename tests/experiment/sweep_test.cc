@@ -1,0 +1,160 @@
+// Sweeps as overrides: each value is written at its key path into the config or scene
+// document and the scene is parsed again, so the scene parser's checks apply to every value.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "experiment/experiment_config.h"
+#include "test_support.h"
+#include "util/error.h"
+
+namespace contactlab {
+namespace {
+
+using testing::TempDir;
+
+const char* kScene = R"(name: ball-plate
+bodies:
+  - name: ball
+    mesh: "sphere:0.02,3"
+    pose: [0, 0, 0.0215, 1, 0, 0, 0]
+    role: pointshell
+    pointshell: {points: 256, levels: 2, seed: 3}
+    field: {resolution: 24}
+  - name: plate
+    mesh: "box:0.05,0.05,0.01,2"
+    pose: [0, 0, -0.01, 1, 0, 0, 0]
+    role: field
+    field: {resolution: 24}
+model: {k_C: 1000}
+)";
+
+// A config over the scene file, with SWEEP (YAML lines under "sweep:").
+ExperimentConfig Load(const TempDir& dir, const std::string& sweep) {
+  std::ofstream(dir / "scene.yaml") << kScene;
+  std::ofstream(dir / "config.yaml") << "name: s\nscene: " << (dir / "scene.yaml").string()
+                                     << "\nmodels: [pointshell-linear]\n"
+                                        "trajectory: {type: approach-press, direction: [0, 0, -1], depth: 0.001, "
+                                        "duration: 0.01}\nsweep:\n"
+                                     << sweep;
+  return LoadExperimentConfig(dir / "config.yaml");
+}
+
+std::string ErrorOf(const TempDir& dir, const std::string& sweep) {
+  try {
+    Load(dir, sweep);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Sweep, AliasesAndTheirKeyPathsMakeTheSameJobs) {
+  TempDir dir;
+  const std::vector<Job> by_alias = ExpandJobs(Load(dir, "  points: [64, 1024]\n  resolution: [32]\n  k_C: [250]\n"));
+  const std::vector<Job> by_path = ExpandJobs(Load(dir,
+      "  scene.bodies[role=pointshell].pointshell.points: [64, 1024]\n"
+      "  scene.bodies[name=plate].field.resolution: [32]\n  scene.model.k_C: [250]\n"));
+  ASSERT_EQ(by_alias.size(), 2u);
+  ASSERT_EQ(by_path.size(), 2u);
+  for (std::size_t j = 0; j < 2; ++j) {
+    for (const std::vector<Job>* jobs : {&by_alias, &by_path}) {
+      const Scene& s = (*jobs)[j].scene;
+      EXPECT_EQ(s.pointshell_body.pointshell.points, j == 0 ? 64 : 1024);
+      EXPECT_EQ(s.field_body.field.resolution, 32);
+      EXPECT_EQ(s.pointshell_body.field.resolution, 24);
+      EXPECT_EQ(s.model.penalty.k_C, 250);
+      EXPECT_EQ(s.pointshell_body.pointshell.seed, 3u);  // untouched keys stay
+    }
+  }
+}
+
+TEST(Sweep, AnyKeyIsSweepableByItsPath) {
+  TempDir dir;
+  const std::vector<Job> jobs =
+      ExpandJobs(Load(dir, "  scene.model.lipschitz: [1, 2.5]\n  trajectory.depth: [0.0005]\n"
+                           "  scene.bodies[1].scale: [2]\n"));
+  ASSERT_EQ(jobs.size(), 2u);
+  EXPECT_EQ(jobs[0].scene.model.lipschitz, 1);
+  EXPECT_EQ(jobs[1].scene.model.lipschitz, 2.5);
+  EXPECT_EQ(jobs[1].trajectory_node.Double("depth", 0), 0.0005);
+  EXPECT_EQ(jobs[1].scene.field_body.scale, 2);
+  EXPECT_EQ(jobs[1].Label(), "scene.model.lipschitz=2.5 trajectory.depth=0.0005 scene.bodies[1].scale=2");
+}
+
+TEST(Sweep, TheValueDefaultRemovesTheKey) {
+  TempDir dir;
+  const std::vector<Job> jobs = ExpandJobs(Load(dir, "  offset: [default, 0.001]\n  scene.bodies[0].pointshell.seed: [default]\n"));
+  ASSERT_EQ(jobs.size(), 2u);
+  EXPECT_EQ(jobs[0].scene.pointshell_body.pointshell.offset, -1);  // the builder's default
+  EXPECT_EQ(jobs[1].scene.pointshell_body.pointshell.offset, 0.001);
+  EXPECT_EQ(jobs[0].scene.pointshell_body.pointshell.seed, PointshellSpec{}.seed);
+}
+
+TEST(Sweep, RolesApplyBeforeTheOtherAxes) {
+  TempDir dir;
+  const std::vector<Job> jobs = ExpandJobs(Load(dir, "  resolution: [40]\n  roles: [normal, swapped]\n"));
+  ASSERT_EQ(jobs.size(), 2u);
+  EXPECT_EQ(jobs[0].scene.field_body.name, "plate");
+  EXPECT_EQ(jobs[1].scene.field_body.name, "ball");
+  // "resolution" is the field body's, whichever body that is after the swap.
+  EXPECT_EQ(jobs[0].scene.field_body.field.resolution, 40);
+  EXPECT_EQ(jobs[1].scene.field_body.field.resolution, 40);
+  EXPECT_EQ(jobs[1].scene.pointshell_body.field.resolution, 24);
+  // The same physical body moves in both role orders.
+  EXPECT_EQ(jobs[0].moving_body, "plate");
+  EXPECT_EQ(jobs[1].moving_body, "plate");
+}
+
+TEST(Sweep, ABadValueNamesTheConfigTheAxisTheValueAndTheSceneKey) {
+  TempDir dir;
+  std::string e = ErrorOf(dir, "  points: [64, -5]\n");
+  EXPECT_NE(e.find("config.yaml: sweep.points value '-5'"), std::string::npos) << e;
+  EXPECT_NE(e.find("pointshell.points"), std::string::npos) << e;
+  e = ErrorOf(dir, "  k_C: [-1]\n");
+  EXPECT_NE(e.find("sweep.k_C value '-1'"), std::string::npos) << e;
+  EXPECT_NE(e.find("model.k_C"), std::string::npos) << e;
+  e = ErrorOf(dir, "  scene.model.lipschitz: [0.5]\n");
+  EXPECT_NE(e.find("sweep.scene.model.lipschitz value '0.5'"), std::string::npos) << e;
+  EXPECT_NE(e.find("at least 1"), std::string::npos) << e;
+  e = ErrorOf(dir, "  roles: [upside-down]\n");
+  EXPECT_NE(e.find("sweep.roles value 'upside-down'"), std::string::npos) << e;
+  e = ErrorOf(dir, "  model: [pointshel]\n");
+  EXPECT_EQ(e, "");  // model names are checked when the model is made, with the known names
+}
+
+TEST(Sweep, AnUnknownAxisOrABadPathIsNamed) {
+  TempDir dir;
+  std::string e = ErrorOf(dir, "  pionts: [64]\n");
+  EXPECT_NE(e.find("sweep.pionts"), std::string::npos) << e;
+  EXPECT_NE(e.find("unknown sweep axis"), std::string::npos) << e;
+  e = ErrorOf(dir, "  scene.bodies[role=nobody].scale: [1]\n");
+  EXPECT_NE(e.find("sweep.scene.bodies[role=nobody].scale value '1'"), std::string::npos) << e;
+  EXPECT_NE(e.find("no element of 'bodies' has role = nobody"), std::string::npos) << e;
+  e = ErrorOf(dir, "  scene.bodies[7].scale: [1]\n");
+  EXPECT_NE(e.find("at index 7"), std::string::npos) << e;
+  e = ErrorOf(dir, "  scene.model.k_C.x: [1]\n");
+  EXPECT_NE(e.find("'k_C' is not a mapping"), std::string::npos) << e;
+  e = ErrorOf(dir, "  scene.bodies[0].colour: [red]\n");
+  EXPECT_NE(e.find("colour"), std::string::npos) << e;
+  EXPECT_NE(e.find("unknown key"), std::string::npos) << e;
+}
+
+TEST(SetAtPath, CreatesMappingsPicksElementsAndRemovesKeys) {
+  YAML::Node doc = YAML::Load("a: {b: 1}\nlist: [{name: x, v: 1}, {name: y, v: 2}]\n");
+  SetAtPath(doc, "a.c.d", YAML::Node(5), "t");
+  EXPECT_EQ(doc["a"]["c"]["d"].as<int>(), 5);
+  EXPECT_EQ(doc["a"]["b"].as<int>(), 1);
+  SetAtPath(doc, "list[name=y].v", YAML::Node(7), "t");
+  SetAtPath(doc, "list[0].v", YAML::Node(8), "t");
+  EXPECT_EQ(doc["list"][1]["v"].as<int>(), 7);
+  EXPECT_EQ(doc["list"][0]["v"].as<int>(), 8);
+  SetAtPath(doc, "a.b", std::nullopt, "t");
+  EXPECT_FALSE(doc["a"]["b"]);
+  EXPECT_THROW(SetAtPath(doc, "a..b", YAML::Node(1), "t"), Error);
+  EXPECT_THROW(SetAtPath(doc, "list[2].v", YAML::Node(1), "t"), Error);
+  EXPECT_THROW(SetAtPath(doc, "list[name=y.v", YAML::Node(1), "t"), Error);
+}
+
+}  // namespace
+}  // namespace contactlab
