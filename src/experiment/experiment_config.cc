@@ -102,7 +102,7 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
   c.description = root.String("description", "");
   const ConfigNode scene = root.Get("scene");
   if (scene.IsScalar()) {
-    c.scene = LoadScene(RequireDataFile(scene.AsString()));
+    c.scene = LoadScene(RequireDataFile(scene.AsString(), FolderOf(root.file())));
   } else {
     c.scene = ParseScene(scene);
   }
@@ -219,7 +219,7 @@ void ApplySweepValue(const std::string& axis, const std::string& value, Job* job
       s.pointshell_body.pointshell.offset = v;
     }
   } else if (axis == "scene") {
-    job->scene = LoadScene(RequireDataFile(value));
+    job->scene = LoadScene(RequireDataFile(value, FolderOf(where)));
     job->models = job->models.empty() ? job->scene.models : job->models;
   } else if (axis == "roles") {
     if (value == "swapped") {

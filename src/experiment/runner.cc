@@ -21,6 +21,7 @@
 #include "experiment/contact_placement.h"
 #include "experiment/metrics.h"
 #include "experiment/model_factory.h"
+#include "experiment/source_revision.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
 #include "util/progress.h"
@@ -143,17 +144,6 @@ std::string ConvergenceCsv(const std::string& summary_csv) {
   return out;
 }
 
-std::string CommandOutput(const std::string& command) {
-  std::string out;
-  if (FILE* p = ::popen(command.c_str(), "r")) {
-    char buf[256];
-    while (std::fgets(buf, sizeof buf, p)) out += buf;
-    ::pclose(p);
-  }
-  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
-  return out;
-}
-
 std::string CpuModel() {
   std::ifstream in("/proc/cpuinfo");
   for (std::string line; std::getline(in, line);) {
@@ -172,12 +162,8 @@ nlohmann::json MetaJson(const ExperimentConfig& config, const std::vector<int>& 
   j["jobs"] = jobs;
   j["parallel_jobs"] = parallel;
   j["wall_seconds"] = wall_seconds;
-  std::string commit = CommandOutput(std::string("git -C '") + CONTACTLAB_SOURCE_DIR + "' rev-parse HEAD 2>/dev/null");
-  if (commit.empty()) commit = "unknown";
-  if (!CommandOutput(std::string("git -C '") + CONTACTLAB_SOURCE_DIR + "' status --porcelain --untracked-files=no 2>/dev/null").empty()) {
-    commit += " (with uncommitted changes)";
-  }
-  j["git_commit"] = commit;
+  j["git_commit"] = ConfigRevision(config.file);  // the checkout holding the config
+  j["build_commit"] = BuildRevision();             // the checkout the binary was built from
   j["contactlab_version"] = CONTACTLAB_VERSION;
   j["compiler"] = CONTACTLAB_COMPILER;
   j["compiler_flags"] = CONTACTLAB_CXX_FLAGS;
