@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Installs ContactLab's build, test and figure dependencies from Debian 12 packages.
-# Does nothing when everything is present; uses sudo when not root.
+# Installs ContactLab's build, test and figure dependencies from Debian 12 packages (with
+# slurm-wlm and munge for the single-node Slurm cluster test, tests/slurm/). Does nothing when
+# everything is present; uses sudo when not root.
 set -euo pipefail
 
 packages=(
@@ -12,6 +13,7 @@ packages=(
   libspectra-dev libnanoflann-dev libspnav-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-numpy python3-matplotlib python3-yaml
+  slurm-wlm munge
 )
 
 missing=()

@@ -8,14 +8,23 @@
 #include <string>
 
 #include "util/data_path.h"
+#include "util/error.h"
 
 namespace contactlab::testing {
 
-// Path of a shared mesh, or nullopt (the caller skips) when ../shared/data is absent.
-inline std::optional<std::filesystem::path> SharedMesh(const std::string& name) {
-  auto dir = SharedMeshDir();
-  if (!dir) return std::nullopt;
-  return *dir / name;
+// Path of a mesh the repository ships in data/meshes (SOURCES.md), found as the program
+// finds it: in the data folder beside the test executable (build/share/contactlab/data is the
+// checkout's data/). Throws Error, failing the test, when it is absent: tests never skip for data.
+inline std::filesystem::path TestMesh(const std::string& name) {
+  const auto data = InstalledDataDir();
+  if (!data) {
+    throw Error("test data: no data folder beside the test program (expected <build>/share/contactlab/data, "
+                "made by CMake's configure step); " + name + " is needed");
+  }
+  for (const std::string& file : {name + ".gz", name}) {
+    if (std::filesystem::is_regular_file(*data / "meshes" / file)) return *data / "meshes" / file;
+  }
+  throw Error((*data / "meshes" / name).string() + "(.gz): test mesh absent from the repository's data/meshes");
 }
 
 // A fresh temporary folder under the system temp dir, removed at destruction.
@@ -40,9 +49,3 @@ class TempDir {
 };
 
 }  // namespace contactlab::testing
-
-// Skips the current test with a stated reason when a shared mesh is absent.
-#define CONTACTLAB_REQUIRE_SHARED_MESH(var, name)                                          \
-  const auto var##_opt = ::contactlab::testing::SharedMesh(name);                          \
-  if (!var##_opt) GTEST_SKIP() << "../shared/data/meshes is absent; " name " is needed";   \
-  const std::filesystem::path var = *var##_opt

@@ -70,7 +70,7 @@ void RegisterAll() {
     scenes = {{"scenes/sphere-on-plate.yaml", 1024, 3}};  // small repulsion shell: seconds to build
   } else {
     scenes = {{"scenes/sphere-on-plate.yaml", 8192, 4}};  // the scene as written
-    if (SharedMeshDir()) scenes.push_back({"scenes/dragon-bunny.yaml", 16384, 4});  // real meshes, 128^3 fields
+    scenes.push_back({"scenes/dragon-bunny.yaml", 16384, 4});  // real meshes, 128^3 fields
   }
   struct ModelCase {
     const char* name;

@@ -1,7 +1,9 @@
-// `contactlab run CONFIG.yaml [--out DIR] [--set key=value ...] [--list-jobs] [--job I]`
-// and `contactlab merge DIR... --out DIR`: the experiment harness's entry points. A sweep
-// can be spread over a cluster: --list-jobs prints the sweep points, --job I runs one of them
-// (e.g. as a Slurm array task), and merge joins the pieces.
+// `contactlab run CONFIG.yaml [--out DIR] [--set key=value ...] [--list-jobs] [--job I]
+// [--slurm [--dry-run] [--partition P] [--time T] [--cpus-per-task C] [--mem M]]` and
+// `contactlab merge DIR... --out DIR` / `contactlab merge --sweep DIR --jobs N --out DIR`: the
+// experiment harness's entry points. A sweep can be spread over a cluster: --list-jobs prints
+// the sweep points, --job I runs one of them, --slurm writes and submits a Slurm array of them
+// plus a merge job (experiment/slurm_script.h), and merge joins the pieces.
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -11,6 +13,7 @@
 #include "cli/command_registry.h"
 #include "experiment/experiment_config.h"
 #include "experiment/runner.h"
+#include "experiment/slurm_script.h"
 #include "util/data_path.h"
 #include "util/error.h"
 
@@ -27,7 +30,39 @@ struct RunArgs {
   int parallel = 0;
   std::string cache;
   bool no_cache = false;
+  bool slurm = false;
+  bool dry_run = false;
+  SlurmOptions slurm_options;
 };
+
+// --slurm: the array and merge scripts for every sweep point, submitted unless --dry-run.
+void SubmitToSlurm(const RunArgs& args, const ExperimentConfig& config, int jobs) {
+  if (!args.jobs.empty()) Fail("--slurm", "runs the whole sweep; it cannot be combined with --job");
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  SweepCommand command;
+  command.contactlab = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) Fail("/proc/self/exe", "cannot find the running program: " + ec.message());
+  command.config = fs::absolute(config.file);
+  for (const std::string& o : args.overrides) command.run_args.insert(command.run_args.end(), {"--set", o});
+  if (!args.profile.empty()) command.run_args.insert(command.run_args.end(), {"--profile", args.profile});
+  if (!args.cache.empty()) command.run_args.insert(command.run_args.end(), {"--cache", fs::absolute(args.cache).string()});
+  if (args.no_cache) command.run_args.push_back("--no-cache");
+  command.out_dir = fs::absolute(args.out.empty() ? fs::path("results") / config.name : fs::path(args.out)).lexically_normal();
+  command.name = config.name;
+  command.jobs = jobs;
+  const fs::path dir = WriteSlurmScripts(command, args.slurm_options);
+  if (args.dry_run) {
+    std::printf("wrote %s/array.sbatch (%d tasks), %s/merge.sbatch and %s/submit.sh; not submitted\n",
+                dir.c_str(), jobs, dir.c_str(), dir.c_str());
+    std::printf("submit with: %s/submit.sh\n", dir.c_str());
+    return;
+  }
+  const SlurmSubmission sub = SubmitSlurmScripts(dir);
+  std::printf("submitted array job %s (%d tasks) and merge job %s (after the array); results: %s\n",
+              sub.array_job.c_str(), jobs, sub.merge_job.c_str(), command.out_dir.c_str());
+  std::printf("array_job=%s\nmerge_job=%s\n", sub.array_job.c_str(), sub.merge_job.c_str());
+}
 
 void RunRun(const RunArgs& args) {
   const ExperimentConfig config = LoadExperimentConfig(RequireDataFile(args.config), args.overrides, args.profile);
@@ -36,6 +71,11 @@ void RunRun(const RunArgs& args) {
     for (const Job& j : jobs) std::printf("%d\t%s\n", j.index, j.Label().c_str());
     return;
   }
+  if (args.slurm) {
+    SubmitToSlurm(args, config, static_cast<int>(jobs.size()));
+    return;
+  }
+  if (args.dry_run) Fail("--dry-run", "only applies with --slurm");
   RunOptions options;
   options.out_dir = args.out.empty() ? std::filesystem::path("results") / config.name : std::filesystem::path(args.out);
   if (args.jobs.size() == 1 && args.out.empty()) options.out_dir /= "job-" + std::to_string(args.jobs.front());
@@ -71,17 +111,41 @@ const CommandRegistration kRunCommands([](CLI::App& app) {
       ->check(CLI::NonNegativeNumber);
   run->add_option("--cache", args->cache, "cache folder for fields and pointshells");
   run->add_flag("--no-cache", args->no_cache, "neither read nor write cached fields and pointshells");
+  run->add_flag("--slurm", args->slurm,
+                "write a Slurm array script (task I runs --job I into OUT/job-I) and a merge job after it "
+                "into OUT/slurm/, submit both and print their ids");
+  run->add_flag("--dry-run", args->dry_run, "with --slurm: write the scripts, do not submit");
+  run->add_option("--partition", args->slurm_options.partition, "with --slurm: Slurm partition (default: the cluster's)");
+  run->add_option("--time", args->slurm_options.time, "with --slurm: time limit per task (default 01:00:00)");
+  run->add_option("--cpus-per-task", args->slurm_options.cpus_per_task, "with --slurm: CPUs per task (default 1)");
+  run->add_option("--mem", args->slurm_options.mem, "with --slurm: memory per task, e.g. 4G (default: the cluster's)");
   run->callback([args] { RunRun(*args); });
 
-  auto dirs = std::make_shared<std::vector<std::string>>();
-  auto out = std::make_shared<std::string>();
+  struct MergeArgs {
+    std::vector<std::string> dirs;
+    std::string out;
+    std::string sweep;
+    int jobs = 0;
+  };
+  auto margs = std::make_shared<MergeArgs>();
   CLI::App* merge = app.add_subcommand("merge", "Join the results of single-job runs into one results folder");
-  merge->add_option("DIRS", *dirs, "job result folders")->required();
-  merge->add_option("--out", *out, "merged results folder")->required();
-  merge->callback([dirs, out] {
-    std::vector<std::filesystem::path> paths(dirs->begin(), dirs->end());
-    MergeResults(paths, *out);
-    std::printf("merged %zu folders into %s\n", paths.size(), out->c_str());
+  merge->add_option("DIRS", margs->dirs, "job result folders, joined in this order");
+  merge->add_option("--sweep", margs->sweep,
+                    "instead of DIRS: SWEEP/job-0 .. SWEEP/job-(N-1) of a --slurm run, each checked for complete "
+                    "results (every failed task is named)");
+  merge->add_option("--jobs", margs->jobs, "with --sweep: the number of sweep points N")->check(CLI::PositiveNumber);
+  merge->add_option("--out", margs->out, "merged results folder")->required();
+  merge->callback([margs] {
+    std::vector<std::filesystem::path> paths(margs->dirs.begin(), margs->dirs.end());
+    if (!margs->sweep.empty()) {
+      if (!paths.empty()) Fail("merge", "give either result folders or --sweep, not both");
+      if (margs->jobs < 1) Fail("--sweep", "needs --jobs N (the number of sweep points)");
+      paths = SweepTaskFolders(margs->sweep, margs->jobs);
+    } else if (paths.empty()) {
+      Fail("merge", "no result folders given (DIRS or --sweep DIR --jobs N)");
+    }
+    MergeResults(paths, margs->out);
+    std::printf("merged %zu folders into %s\n", paths.size(), margs->out.c_str());
   });
 });
 

@@ -111,9 +111,10 @@ struct JobDocuments {
   bool roles_swapped = false;
 };
 
-// Loads the scene file NAME (data search path) as a document.
-void LoadSceneDocument(const std::string& name, JobDocuments* docs) {
-  const std::filesystem::path file = RequireDataFile(name);
+// Loads the scene file NAME (data search path, first from the folder of CONFIG_FILE) as a
+// document.
+void LoadSceneDocument(const std::string& name, const std::string& config_file, JobDocuments* docs) {
+  const std::filesystem::path file = RequireDataFile(name, FolderOf(config_file));
   docs->scene = YAML::Clone(ConfigNode::LoadFile(file).yaml());
   docs->scene_file = file.string();
 }
@@ -132,7 +133,8 @@ void SwapRoles(JobDocuments* docs, const std::string& where) {
 }
 
 // Writes one sweep value of AXIS into DOCS.
-void ApplyAxis(const SweepAxis& axis, const std::string& value, JobDocuments* docs, const std::string& where) {
+void ApplyAxis(const SweepAxis& axis, const std::string& value, const std::string& config_file, JobDocuments* docs,
+               const std::string& where) {
   if (axis.name == "roles") {
     if (value == "swapped") {
       SwapRoles(docs, where);
@@ -142,7 +144,7 @@ void ApplyAxis(const SweepAxis& axis, const std::string& value, JobDocuments* do
     return;
   }
   if (axis.path == "scene") {
-    LoadSceneDocument(value, docs);
+    LoadSceneDocument(value, config_file, docs);
     docs->config["scene"] = value;
     return;
   }
@@ -187,7 +189,7 @@ Job BuildJob(const ExperimentConfig& config, int index, const std::vector<std::s
       const std::string& name = config.sweep[a].name;
       const bool early = name == "scene" || name == "roles";
       if (*first ? name != first : early) continue;
-      ApplyAxis(config.sweep[a], config.sweep[a].values[pick[a]], &docs, at(a));
+      ApplyAxis(config.sweep[a], config.sweep[a].values[pick[a]], config.file, &docs, at(a));
     }
     // Unless the config names it, the moving body is the field body of the job's scene
     // (before a role swap, so the same physical body moves in both role orders).
@@ -328,7 +330,7 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
   const ConfigNode scene = root.Get("scene");
   if (scene.IsScalar()) {
     JobDocuments docs;
-    LoadSceneDocument(scene.AsString(), &docs);
+    LoadSceneDocument(scene.AsString(), root.file(), &docs);
     c.scene_document = docs.scene;
     c.scene_file = docs.scene_file;
   } else {

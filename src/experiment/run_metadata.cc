@@ -1,5 +1,7 @@
 #include "experiment/run_metadata.h"
 
+#include "experiment/source_revision.h"
+
 #include <unistd.h>
 
 #include <cstdio>
@@ -10,17 +12,6 @@
 
 namespace contactlab {
 namespace {
-
-std::string CommandOutput(const std::string& command) {
-  std::string out;
-  if (FILE* p = ::popen(command.c_str(), "r")) {
-    char buf[256];
-    while (std::fgets(buf, sizeof buf, p)) out += buf;
-    ::pclose(p);
-  }
-  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
-  return out;
-}
 
 std::string CpuModel() {
   std::ifstream in("/proc/cpuinfo");
@@ -42,12 +33,8 @@ nlohmann::json RunMetadata(const ExperimentConfig& config, const std::vector<int
   j["jobs"] = jobs;
   j["parallel_jobs"] = parallel;
   j["wall_seconds"] = wall_seconds;
-  std::string commit = CommandOutput(std::string("git -C '") + CONTACTLAB_SOURCE_DIR + "' rev-parse HEAD 2>/dev/null");
-  if (commit.empty()) commit = "unknown";
-  if (!CommandOutput(std::string("git -C '") + CONTACTLAB_SOURCE_DIR + "' status --porcelain --untracked-files=no 2>/dev/null").empty()) {
-    commit += " (with uncommitted changes)";
-  }
-  j["git_commit"] = commit;
+  j["git_commit"] = ConfigRevision(config.file);  // the checkout holding the config
+  j["build_commit"] = BuildRevision();             // the checkout the binary was built from
   j["contactlab_version"] = CONTACTLAB_VERSION;
   j["compiler"] = CONTACTLAB_COMPILER;
   j["compiler_flags"] = CONTACTLAB_CXX_FLAGS;

@@ -80,10 +80,10 @@ fs::path DefaultCacheDir() {
   return fs::temp_directory_path() / "contactlab-cache";
 }
 
-TriangleMesh LoadBodyMesh(const BodySpec& body) {
+TriangleMesh LoadBodyMesh(const BodySpec& body, const fs::path& mesh_dir) {
   const std::string where = "body '" + body.name + "'";
   TriangleMesh mesh;
-  const bool procedural = body.mesh.find(':') != std::string::npos && !FindDataFile(body.mesh);
+  const bool procedural = body.mesh.find(':') != std::string::npos && !FindDataFile(body.mesh, mesh_dir);
   if (procedural) {
     mesh = MakeShape(body.mesh, where + " mesh '" + body.mesh + "'");
     if (body.center) {
@@ -95,7 +95,7 @@ TriangleMesh LoadBodyMesh(const BodySpec& body) {
     MeshLoadOptions options;
     options.scale = body.scale;
     options.center = body.center;
-    mesh = LoadMesh(RequireDataFile(body.mesh), options);
+    mesh = LoadMesh(RequireDataFile(body.mesh, mesh_dir), options);
   }
   return mesh;
 }
@@ -105,7 +105,7 @@ BodyAssets::BodyAssets(BodySpec spec, AssetOptions options) : spec_(std::move(sp
 }
 
 std::shared_ptr<const TriangleMesh> BodyAssets::mesh() {
-  if (!mesh_) mesh_ = std::make_shared<const TriangleMesh>(LoadBodyMesh(spec_));
+  if (!mesh_) mesh_ = std::make_shared<const TriangleMesh>(LoadBodyMesh(spec_, options_.mesh_dir));
   return mesh_;
 }
 

@@ -12,6 +12,7 @@
 #include "geometry/triangle_mesh.h"
 #include "pointshell/pointshell.h"
 #include "sdf/distance_field.h"
+#include "util/data_path.h"
 
 namespace contactlab {
 
@@ -19,6 +20,7 @@ struct AssetOptions {
   std::filesystem::path cache_dir;  // empty: DefaultCacheDir()
   bool use_cache = true;            // read and write cached fields and pointshells
   bool verbose = true;              // say on stderr what is built or reused
+  std::filesystem::path mesh_dir;   // searched first for mesh files (the scene file's folder)
 };
 
 // $CONTACTLAB_CACHE, else $XDG_CACHE_HOME/contactlab, else $HOME/.cache/contactlab, else
@@ -28,8 +30,9 @@ std::filesystem::path DefaultCacheDir();
 // Reads a body's mesh: a file through the data search path, or a procedural shape written
 // "sphere:R[,subdivisions]", "box:HX,HY,HZ", "torus:MAJOR,MINOR", "capsule:R,HALF_LENGTH",
 // "bumpy-plate:SIZE,THICKNESS,BUMPS,HEIGHT[,RESOLUTION]" (metres; scale still applies).
-// Applies the body's scale and centring. Throws Error naming the body and the mesh.
-TriangleMesh LoadBodyMesh(const BodySpec& body);
+// Applies the body's scale and centring. MESH_DIR (the scene file's folder) is searched before
+// the rest of the data search path. Throws Error naming the body and the mesh.
+TriangleMesh LoadBodyMesh(const BodySpec& body, const std::filesystem::path& mesh_dir = {});
 
 // One scene body's data for the contact models (contact/model_registry.h ContactBody),
 // built on first use and cached.
@@ -57,10 +60,17 @@ class BodyAssets final : public ContactBody {
 
 // Body A (pointshell role) and body B (field role) of a scene.
 struct SceneAssets {
+  // Mesh names are looked up first beside the scene's file (unless OPTIONS names a folder).
   SceneAssets(const Scene& scene, const AssetOptions& options = {})
-      : A(scene.pointshell_body, options), B(scene.field_body, options) {}
+      : A(scene.pointshell_body, WithMeshDir(options, scene)), B(scene.field_body, WithMeshDir(options, scene)) {}
   BodyAssets A;
   BodyAssets B;
+
+ private:
+  static AssetOptions WithMeshDir(AssetOptions options, const Scene& scene) {
+    if (options.mesh_dir.empty() && !scene.file.empty()) options.mesh_dir = FolderOf(scene.file);
+    return options;
+  }
 };
 
 // Makes the registered contact model NAME between SCENE's bodies, with the scene's model

@@ -128,7 +128,7 @@ Trajectory ParseTrajectory(const ConfigNode& n) {
   const std::string type = n.Get("type").AsString();
   if (type == "recorded") {
     n.ExpectKeys({"type", "file", "touch", "touch_depth", "direction"});
-    return LoadTrajectoryCsv(RequireDataFile(n.Get("file").AsString()));
+    return LoadTrajectoryCsv(RequireDataFile(n.Get("file").AsString(), FolderOf(n.file())));
   }
   n.ExpectKeys({"type", "direction", "tangent", "approach", "depth", "length", "radius", "angle", "duration", "rate",
                 "touch", "touch_depth"});

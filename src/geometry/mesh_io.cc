@@ -14,6 +14,7 @@
 #include "geometry/mesh_readers.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
+#include "util/gzip_file.h"
 
 namespace contactlab {
 namespace {
@@ -158,14 +159,18 @@ TriangleMesh LoadMesh(const std::filesystem::path& path, const MeshLoadOptions& 
   if (!options.rotation.allFinite() || !options.translation.allFinite()) {
     Fail(file, "load rotation and translation must be finite");
   }
-  const std::string ext = LowerExtension(path);
+  // A ".gz" name holds the format named before it ("dragon.obj.gz").
+  const bool gzipped = IsGzipName(path);
+  const std::filesystem::path inner = WithoutGzipSuffix(path);
+  const std::string ext = LowerExtension(inner);
   if (ext != ".obj" && ext != ".off" && ext != ".stl" && ext != ".ply") {
-    Fail(file, "unknown mesh format '" + ext + "' (expected .obj, .off, .stl or .ply)");
+    Fail(file, "unknown mesh format '" + ext + (gzipped ? ".gz" : "") +
+                   "' (expected .obj, .off, .stl or .ply, optionally gzip-compressed as .obj.gz etc.)");
   }
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) Fail(file, "mesh file not found");
   if (std::filesystem::is_directory(path, ec)) Fail(file, "is a directory, not a mesh file");
-  const std::string bytes = ReadWholeFile(path);
+  const std::string bytes = gzipped ? ReadGzipFile(path) : ReadWholeFile(path);
 
   // Parse.
   TriangleMesh mesh;
@@ -178,7 +183,7 @@ TriangleMesh LoadMesh(const std::filesystem::path& path, const MeshLoadOptions& 
   } else {
     mesh = internal::ReadPly(bytes, file);
   }
-  mesh.name = path.filename().string();
+  mesh.name = inner.filename().string();
 
   // p <- R (s p - c) + t, c the centre of the scaled bounding box when centring.
   const double s = options.scale;

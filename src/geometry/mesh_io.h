@@ -1,4 +1,5 @@
-// Mesh readers: OBJ, OFF, STL (ASCII and binary), PLY (ASCII and binary little/big endian).
+// Mesh readers: OBJ, OFF, STL (ASCII and binary), PLY (ASCII and binary little/big endian),
+// each also read gzip-compressed (.obj.gz, .off.gz, .stl.gz, .ply.gz) through zlib.
 // Quads and n-gons are fan-triangulated. Polygon soups are accepted as they are.
 // Format details (readers in obj_reader.cc, off_reader.cc, stl_reader.cc, ply_reader.cc):
 //  - OBJ: "v" and "f" records only (v, v/vt, v//vn, v/vt/vn; negative indices relative to the
@@ -26,11 +27,13 @@ struct MeshLoadOptions {
   bool center = false;  // translate the bounding-box centre to the origin before rotating
 };
 
-// Reads PATH (format from its extension, case-insensitive: .obj .off .stl .ply) and applies
+// Reads PATH (format from its extension, case-insensitive: .obj .off .stl .ply, each also
+// gzip-compressed as .obj.gz etc.; the mesh is named without ".gz") and applies
 // p <- rotation * (scale * p - c) + translation, c the box centre when CENTER is set, else 0.
 // Throws Error naming the file and the line (text formats) or record (binary formats) for: a
 // missing or unreadable file, an unknown extension, a malformed or truncated file, NaN or Inf
-// coordinates, out-of-range or negative indices, and a mesh with no triangles.
+// coordinates, out-of-range or negative indices, a corrupt or truncated .gz, and a mesh with
+// no triangles.
 TriangleMesh LoadMesh(const std::filesystem::path& path, const MeshLoadOptions& options = {});
 
 // Writes MESH as OBJ, OFF, STL (binary) or PLY (binary) by extension, atomically (temporary

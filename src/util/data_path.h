@@ -1,6 +1,16 @@
-// The data search path of DESIGN.md: $CONTACTLAB_DATA, then the project's data/, then
-// ../shared/data beside the project. Names may be bare ("dragon.obj") or relative
-// ("meshes/dragon.obj"); a bare name is also looked for under meshes/.
+// The data search path of DESIGN.md. A name ("dragon.obj", "scenes/dragon-bunny.yaml") is
+// resolved, first hit wins, from:
+//   1. the name as given when it is absolute;
+//   2. the folder of the scene or config file that names it (BASE_DIR), when there is one;
+//   3. the name as given, relative to the working folder;
+//   4. $CONTACTLAB_DATA;
+//   5. the installed data folder: <folder of the running program>/../share/contactlab/data
+//      (the build tree mirrors this layout: build/share/contactlab/data is the repository's
+//      data/), then its parent share/contactlab (experiments/ and scripts/ live there);
+//   6. ../shared/data beside the working folder and beside the repository, when present.
+// In each data folder a bare name is also looked for under meshes/, and "NAME" also matches
+// "NAME.gz" (meshes ship gzip-compressed: "dragon.obj" finds meshes/dragon.obj.gz).
+// Nothing here depends on where the program was built.
 #pragma once
 
 #include <filesystem>
@@ -10,18 +20,21 @@
 
 namespace contactlab {
 
-// The folders searched, in order (only those that exist).
+// The folders of steps 4-6, in order (only those that exist, each once).
 std::vector<std::filesystem::path> DataSearchPath();
 
-// Resolves NAME: an existing path as given, else the first hit on the search path.
+// The installed data folder of step 5 (it holds meshes/, scenes/, trajectories/), or nullopt
+// when it does not exist beside the running program.
+std::optional<std::filesystem::path> InstalledDataDir();
+
+// Resolves NAME as above. BASE_DIR: the folder of the file that names NAME (empty: none).
 // Returns nullopt when nothing is found.
-std::optional<std::filesystem::path> FindDataFile(std::string_view name);
+std::optional<std::filesystem::path> FindDataFile(std::string_view name, const std::filesystem::path& base_dir = {});
 
-// As FindDataFile, but throws Error naming NAME and the folders searched.
-std::filesystem::path RequireDataFile(std::string_view name);
+// As FindDataFile, but throws Error naming NAME and every folder searched.
+std::filesystem::path RequireDataFile(std::string_view name, const std::filesystem::path& base_dir = {});
 
-// The shared mesh folder (../shared/data/meshes or $CONTACTLAB_DATA/meshes), if present;
-// tests that need real meshes skip when this is nullopt.
-std::optional<std::filesystem::path> SharedMeshDir();
+// The folder holding FILE ("." for a bare file name): the BASE_DIR for names read from FILE.
+std::filesystem::path FolderOf(const std::filesystem::path& file);
 
 }  // namespace contactlab

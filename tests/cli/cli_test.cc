@@ -3,10 +3,13 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "test_support.h"
 #include "util/atomic_file.h"
@@ -114,6 +117,66 @@ TEST(Cli, RunListsJobsOfASweep) {
   const Outcome bad = RunCli("run " + (dir / "exp.yaml").string() + " --set sweep.pionts=[1]");
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_NE(bad.output.find("sweep.pionts"), std::string::npos) << bad.output;
+}
+
+// The CSV TEXT without its timing columns (header names ending in "_us"), which differ run to run.
+std::string WithoutTimings(const std::string& text) {
+  std::vector<bool> keep;
+  std::string out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells;
+    std::istringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+    if (keep.empty()) {
+      for (const std::string& h : cells) keep.push_back(!(h.size() > 3 && h.compare(h.size() - 3, 3, "_us") == 0));
+    }
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      if (c < keep.size() && keep[c]) out += cells[c] + ",";
+    }
+    out += "\n";
+  }
+  return out;
+}
+
+// --slurm --dry-run writes the scripts; running each array task and then the merge with bash
+// (as Slurm's nodes would) gives the summary.csv of a local run, timings aside. With a task's
+// results missing, the merge fails naming that task and writes nothing.
+TEST(Cli, SlurmScriptsRunByHandMergeToTheLocalRunsSummary) {
+  testing::TempDir dir;
+  std::ofstream(dir / "scene.yaml") << kScene;
+  std::ofstream(dir / "exp.yaml") << "name: e\nscene: scene.yaml\ntrajectory: {type: approach-press, duration: 0.02}"
+                                  << "\nsweep: {points: [64, 128, 256]}\n";
+  const std::string cache = " --cache " + (dir / "cache").string();
+  const Outcome local = RunCli("run " + (dir / "exp.yaml").string() + " --out " + (dir / "local").string() + cache);
+  ASSERT_EQ(local.exit_code, 0) << local.output;
+  const std::filesystem::path out = dir / "cluster";
+  const Outcome dry = RunCli("run " + (dir / "exp.yaml").string() + " --slurm --dry-run --time 5 --out " + out.string() + cache);
+  ASSERT_EQ(dry.exit_code, 0) << dry.output;
+  EXPECT_NE(dry.output.find("not submitted"), std::string::npos) << dry.output;
+  const std::string array = ReadWholeFile(out / "slurm" / "array.sbatch");
+  EXPECT_NE(array.find("#SBATCH --array=0-2\n"), std::string::npos) << array;
+  EXPECT_NE(array.find("#SBATCH --time=5\n"), std::string::npos) << array;
+  EXPECT_FALSE(std::filesystem::exists(out / "summary.csv"));
+  for (int task = 2; task >= 0; --task) {
+    const std::string cmd = "SLURM_ARRAY_TASK_ID=" + std::to_string(task) + " bash " + (out / "slurm" / "array.sbatch").string() +
+                            " > /dev/null 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  }
+  // One task's results gone: the merge names it and writes nothing.
+  std::filesystem::rename(out / "job-1", dir / "job-1-aside");
+  const std::string merge = "bash " + (out / "slurm" / "merge.sbatch").string() + " > " + (dir / "merge.txt").string() + " 2>&1";
+  EXPECT_NE(std::system(merge.c_str()), 0);
+  const std::string said = ReadWholeFile(dir / "merge.txt");
+  EXPECT_NE(said.find("task 1: " + (out / "job-1").string()), std::string::npos) << said;
+  EXPECT_FALSE(std::filesystem::exists(out / "summary.csv"));
+  // All back: the merge matches the local run.
+  std::filesystem::rename(dir / "job-1-aside", out / "job-1");
+  ASSERT_EQ(std::system(merge.c_str()), 0) << ReadWholeFile(dir / "merge.txt");
+  const std::string summary_local = ReadWholeFile(dir / "local" / "summary.csv");
+  EXPECT_EQ(WithoutTimings(ReadWholeFile(out / "summary.csv")), WithoutTimings(summary_local));
+  EXPECT_EQ(WithoutTimings(ReadWholeFile(out / "cycles.csv")), WithoutTimings(ReadWholeFile(dir / "local" / "cycles.csv")));
+  EXPECT_GT(std::count(summary_local.begin(), summary_local.end(), '\n'), 3);
 }
 
 }  // namespace

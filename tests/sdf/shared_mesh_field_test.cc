@@ -1,4 +1,4 @@
-// Distance fields of the real shared meshes against brute-force references: every closed mesh
+// Distance fields of the real meshes the repository ships (data/meshes) against brute-force references: every closed mesh
 // (exact distance to all triangles, winding-number sign) and the polygon soups (closed zero
 // set, offset-surface distances, sign far inside and outside). Barbič & James 2008, sec. 2.3.
 #include <gtest/gtest.h>
@@ -36,10 +36,7 @@ std::string TestName(const ::testing::TestParamInfo<std::string>& info) {
 class ClosedSharedMesh : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(ClosedSharedMesh, SignAndDistanceMatchBruteForce) {
-  const auto dir = SharedMeshDir();
-  if (!dir) GTEST_SKIP() << "../shared/data/meshes is absent; " << GetParam() << " is needed";
-  const std::filesystem::path path = *dir / GetParam();
-  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is absent";
+  const std::filesystem::path path = testing::TestMesh(GetParam());
   const TriangleMesh mesh = LoadMesh(path);
   const DistanceField f = BuildDistanceField(mesh, Quiet(40, FieldMode::kClosed));
   const double h = f.spacing();
@@ -93,10 +90,7 @@ struct SoupCase {
 class SoupSharedMesh : public ::testing::TestWithParam<SoupCase> {};
 
 TEST_P(SoupSharedMesh, ZeroSetIsClosedAndFieldIsTheOffsetSurfaceDistance) {
-  const auto dir = SharedMeshDir();
-  if (!dir) GTEST_SKIP() << "../shared/data/meshes is absent; " << GetParam().file << " is needed";
-  const std::filesystem::path path = *dir / GetParam().file;
-  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is absent";
+  const std::filesystem::path path = testing::TestMesh(GetParam().file);
   const TriangleMesh mesh = LoadMesh(path);
   DistanceFieldOptions options = Quiet(48, FieldMode::kAuto);
   options.soup_offset = GetParam().offset;
