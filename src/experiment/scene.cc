@@ -27,8 +27,63 @@ PointshellSpec ParsePointshell(const ConfigNode& n) {
   return s;
 }
 
+// anchor: none | {below: [axis, value]} | {box: [x0, y0, z0, x1, y1, z1]}.
+Anchoring ParseAnchor(const ConfigNode& n) {
+  if (n.IsScalar()) {
+    if (n.AsString() != "none") n.Fail("expected none, {below: [axis, value]} or {box: [x0, y0, z0, x1, y1, z1]}");
+    return Anchoring::Free();
+  }
+  n.ExpectKeys({"below", "box"});
+  if (n.Has("below") == n.Has("box")) n.Fail("give exactly one of below and box");
+  if (auto b = n.Find("below")) {
+    const std::vector<ConfigNode> e = b->Elements();
+    if (e.size() != 2) b->Fail("needs [axis, value], e.g. [y, -0.02]");
+    const std::string axis = e[0].AsString();
+    if (axis != "x" && axis != "y" && axis != "z") e[0].Fail("the axis must be x, y or z, got '" + axis + "'");
+    return Anchoring::BelowPlane(Eigen::Vector3d::Unit(axis[0] - 'x'), e[1].AsDouble());
+  }
+  const ConfigNode box = n.Get("box");
+  const std::vector<double> v = box.AsDoubles();
+  if (v.size() != 6) box.Fail("needs 6 numbers x0, y0, z0, x1, y1, z1");
+  Aabb a;
+  a.min = Eigen::Vector3d(v[0], v[1], v[2]);
+  a.max = Eigen::Vector3d(v[3], v[4], v[5]);
+  if (!(a.min.array() < a.max.array()).all()) box.Fail("the first corner must be below the second on every axis");
+  return Anchoring::InBox(a);
+}
+
+DeformableSpec ParseDeformable(const ConfigNode& n) {
+  n.ExpectKeys({"model", "modes", "cells", "E", "nu", "rho", "damping", "anchor"});
+  DeformableSpec d;
+  d.kind = n.OneOf("model", "stvk", {"stvk", "linear"}) == "linear" ? ReducedModelKind::kLinear
+                                                                    : ReducedModelKind::kStVK;
+  if (auto c = n.Find("modes")) {
+    const long long r = c->AsInt();
+    if (r < 1 || r > kMaxReducedModes) c->Fail("must be between 1 and " + std::to_string(kMaxReducedModes));
+    d.modes = int(r);
+  }
+  if (auto c = n.Find("cells")) {
+    const long long cells = c->AsInt();
+    if (cells < 1 || cells > 256) c->Fail("must be between 1 and 256");
+    d.cells = int(cells);
+  }
+  d.material.youngs_modulus = n.Positive("E", d.material.youngs_modulus);
+  if (auto c = n.Find("nu")) {
+    d.material.poisson_ratio = c->AsDouble();
+    if (!(d.material.poisson_ratio > -1 && d.material.poisson_ratio < 0.5)) c->Fail("must be in (-1, 0.5)");
+  }
+  d.material.density = n.Positive("rho", d.material.density);
+  if (auto c = n.Find("damping")) {
+    c->ExpectKeys({"alpha", "beta"});
+    d.mass_damping = c->NonNegative("alpha", d.mass_damping);
+    d.stiffness_damping = c->NonNegative("beta", d.stiffness_damping);
+  }
+  if (auto c = n.Find("anchor")) d.anchor = ParseAnchor(*c);
+  return d;
+}
+
 BodySpec ParseBody(const ConfigNode& n) {
-  n.ExpectKeys({"name", "mesh", "scale", "center", "pose", "role", "field", "pointshell"});
+  n.ExpectKeys({"name", "mesh", "scale", "center", "pose", "role", "field", "pointshell", "deformable"});
   BodySpec b;
   b.mesh = n.Get("mesh").AsString();
   b.name = n.String("name", b.mesh);
@@ -39,6 +94,7 @@ BodySpec ParseBody(const ConfigNode& n) {
   if (b.role != "pointshell" && b.role != "field") n.Get("role").Fail("must be 'pointshell' or 'field', got '" + b.role + "'");
   if (auto f = n.Find("field")) b.field = ParseField(*f);
   if (auto s = n.Find("pointshell")) b.pointshell = ParsePointshell(*s);
+  if (auto d = n.Find("deformable")) b.deformable = ParseDeformable(*d);
   return b;
 }
 

@@ -12,6 +12,16 @@
 //       role: pointshell          # pointshell | field
 //       pointshell: {points: 16000, levels: 4, method: repulsion, seed: 1, offset: 0}
 //       field: {resolution: 128, mode: auto}
+//       deformable:               # optional: a reduced deformable model (paper sec. 4.1)
+//         model: stvk             # stvk | linear (modal)
+//         modes: 15               # r
+//         cells: 16               # voxel cells of the coarse tet mesh along the longest side
+//         E: 1e6                  # Young's modulus, Pa
+//         nu: 0.45                # Poisson's ratio
+//         rho: 1000               # density, kg/m^3
+//         damping: {alpha: 0, beta: 0}   # Rayleigh: D = alpha M + beta K
+//         anchor: {below: [y, -0.02]}    # or {box: [x0, y0, z0, x1, y1, z1]}, or none
+//                                 # (body frame, metres, after scale and centring)
 //     - name: bunny
 //       ...
 //       role: field
@@ -28,6 +38,10 @@
 #include <vector>
 
 #include "contact/pointshell_contact_params.h"
+#include "deform/anchoring.h"
+#include "deform/reduced_forces.h"
+#include "deform/reduced_state.h"
+#include "deform/stvk_fem.h"
 #include "geometry/pose.h"
 #include "util/config_node.h"
 
@@ -48,6 +62,18 @@ struct PointshellSpec {
   double offset = -1;                // level-set offset delta, metres (< 0: builder's default)
 };
 
+// A body's reduced deformable model: reduced StVK or linear modal dynamics on a voxel tet mesh
+// built from the body's field (paper sec. 4.1). Defaults are those of deform/.
+struct DeformableSpec {
+  ReducedModelKind kind = ReducedModelKind::kStVK;
+  int modes = 15;                    // r
+  int cells = 16;                    // voxel cells along the longest side
+  StVKMaterial material;             // E, nu, rho
+  double mass_damping = 0;           // Rayleigh alpha, 1/s
+  double stiffness_damping = 0;      // Rayleigh beta, s
+  Anchoring anchor;                  // free unless given
+};
+
 struct BodySpec {
   std::string name;
   std::string mesh;                  // file name (data search path) or "shape:params"
@@ -57,6 +83,7 @@ struct BodySpec {
   std::string role;                  // "pointshell" or "field"
   FieldSpec field;
   PointshellSpec pointshell;
+  std::optional<DeformableSpec> deformable;  // none: rigid
 };
 
 

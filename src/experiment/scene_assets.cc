@@ -203,6 +203,48 @@ std::shared_ptr<const Pointshell> BodyAssets::pointshell() {
   return pointshell_;
 }
 
+std::shared_ptr<const ReducedModel> BodyAssets::reduced_model() {
+  if (reduced_model_) return reduced_model_;
+  if (!spec_.deformable) Fail("body '" + spec_.name + "'", "is rigid (it has no deformable block)");
+  const DeformableSpec& d = *spec_.deformable;
+  const auto f = field();
+  Hasher h;
+  h.Text(mesh_key());
+  h.Text("reduced-model");
+  h.Value(spec_.field.resolution);
+  h.Text(spec_.field.mode);
+  h.Value(spec_.field.padding);
+  h.Value(spec_.field.offset);
+  h.Value(std::int32_t(d.kind));
+  h.Value(d.modes);
+  h.Value(d.cells);
+  h.Value(d.material.youngs_modulus);
+  h.Value(d.material.poisson_ratio);
+  h.Value(d.material.density);
+  h.Value(std::int32_t(d.anchor.kind));
+  h.Value(d.anchor.normal.x()), h.Value(d.anchor.normal.y()), h.Value(d.anchor.normal.z());
+  h.Value(d.anchor.offset);
+  if (d.anchor.kind == Anchoring::Kind::kInBox) {
+    for (int a = 0; a < 3; ++a) h.Value(d.anchor.box.min[a]), h.Value(d.anchor.box.max[a]);
+  }
+  const std::string where = "body '" + spec_.name + "' deformable";
+  reduced_model_ = CachedOrBuilt<ReducedModel>(
+      options_.cache_dir / ("reduced-" + h.Hex() + ".rm"), options_,
+      "the r = " + std::to_string(d.modes) + " reduced model of " + spec_.name, LoadReducedModel, SaveReducedModel,
+      [&] {
+        VoxelMeshOptions vo;
+        vo.cells = d.cells;
+        ReducedModelOptions o;
+        o.modes = d.modes;
+        o.kind = d.kind;
+        o.material = d.material;
+        o.anchoring = d.anchor;
+        o.show_progress = options_.verbose;
+        return BuildReducedModel(BuildVoxelTetMesh(*f, vo), o, where);
+      });
+  return reduced_model_;
+}
+
 std::unique_ptr<ContactModel> MakeSceneContactModel(std::string_view name, const Scene& scene, SceneAssets& assets) {
   return MakeContactModel(name, ContactModelInputs{assets.A, assets.B, scene.model},
                           scene.file.empty() ? std::string_view("scene") : std::string_view(scene.file));

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "contact/model_registry.h"
+#include "deform/reduced_model.h"
 #include "experiment/scene.h"
 #include "geometry/triangle_mesh.h"
 #include "pointshell/pointshell.h"
@@ -46,6 +47,11 @@ class BodyAssets final : public ContactBody {
   std::shared_ptr<const DistanceField> field() override;
   std::shared_ptr<const Pointshell> pointshell() override;
   std::uint64_t sampling_seed() const override { return spec_.pointshell.seed; }
+  // The body's reduced deformable model (paper sec. 4.1): the voxel tet mesh of its field at
+  // spec().deformable->cells, anchored and reduced as the spec says; body frame, metres.
+  // Cached like fields, keyed by the mesh content, the field's and every deformable
+  // parameter. Throws Error naming the body when it has no deformable block.
+  std::shared_ptr<const ReducedModel> reduced_model();
   // A key of the mesh content and load parameters (hex), part of every cache key.
   const std::string& mesh_key();
 
@@ -55,6 +61,7 @@ class BodyAssets final : public ContactBody {
   std::shared_ptr<const TriangleMesh> mesh_;
   std::shared_ptr<const DistanceField> field_;
   std::shared_ptr<const Pointshell> pointshell_;
+  std::shared_ptr<const ReducedModel> reduced_model_;
   std::string mesh_key_;
 };
 
