@@ -152,9 +152,12 @@ BENCHMARK(BM_ReducedForces)
     ->Args({20, 1})  // r = 20, force and stiffness
     ->Unit(benchmark::kMicrosecond);
 
-// Deformed position and normal of embedded surface points (one haptic cycle's worth: 1000).
+// Deformed position and normal of embedded surface points (one haptic cycle's worth: 1000);
+// the normal by the exact push-forward F^{-T} n (normal = 0) or the linear normal
+// correction n + N q, renormalised (normal = 1).
 void BM_EmbeddedPoints(benchmark::State& state) {
   const int r = int(state.range(0));
+  const bool corrected = state.range(1) != 0;
   const ReducedModel& model = GetModel(r, ReducedModelKind::kStVK);
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(0, 1);
@@ -172,7 +175,7 @@ void BM_EmbeddedPoints(benchmark::State& state) {
   for (auto _ : state) {
     for (int i = 0; i < embedded.size(); ++i) {
       Eigen::Vector3d p = embedded.Position(i, q.data());
-      Eigen::Vector3d n = embedded.Normal(i, q.data());
+      Eigen::Vector3d n = corrected ? embedded.CorrectedNormal(i, q.data()) : embedded.Normal(i, q.data());
       benchmark::DoNotOptimize(p);
       benchmark::DoNotOptimize(n);
     }
@@ -180,8 +183,11 @@ void BM_EmbeddedPoints(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * embedded.size());
 }
 BENCHMARK(BM_EmbeddedPoints)
-    ->Args({15})  // r = 15
-    ->Args({20})  // r = 20
+    ->ArgNames({"r", "corrected"})
+    ->Args({15, 0})  // r = 15, exact push-forward normal
+    ->Args({15, 1})  // r = 15, linear normal correction
+    ->Args({20, 0})  // r = 20, exact push-forward normal
+    ->Args({20, 1})  // r = 20, linear normal correction
     ->Unit(benchmark::kMicrosecond);
 
 }  // namespace

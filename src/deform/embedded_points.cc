@@ -12,6 +12,51 @@
 namespace contactlab {
 namespace {
 
+// Gradients of tet T's four shape functions (rows), constant over the tet.
+Eigen::Matrix<double, 4, 3> ShapeGradients(const TetMesh& mesh, int t) {
+  const Eigen::Vector4i& v = mesh.tets[t];
+  Eigen::Matrix3d Dm;
+  for (int c = 0; c < 3; ++c) Dm.col(c) = mesh.vertices[v[c + 1]] - mesh.vertices[v[0]];
+  const Eigen::Matrix3d inv = Dm.inverse();
+  Eigen::Matrix<double, 4, 3> grad;
+  grad.row(1) = inv.row(0);
+  grad.row(2) = inv.row(1);
+  grad.row(3) = inv.row(2);
+  grad.row(0) = -(inv.row(0) + inv.row(1) + inv.row(2));
+  return grad;
+}
+
+// The gradient of mode J's displacement over tet T: sum_a U_a grad_a^T.
+Eigen::Matrix3d TetGradientMode(const TetMesh& mesh, const Eigen::MatrixXd& U, int t,
+                                const Eigen::Matrix<double, 4, 3>& grad, int j) {
+  Eigen::Matrix3d Fj = Eigen::Matrix3d::Zero();
+  for (int a = 0; a < 4; ++a) Fj.noalias() += U.block<3, 1>(3 * mesh.tets[t][a], j) * grad.row(a);
+  return Fj;
+}
+
+// Per-vertex gradient modes: the volume-weighted mean of the incident tets' gradient modes,
+// #V x r matrices (vertex v, mode j at [v * r + j]).
+std::vector<Eigen::Matrix3d> VertexGradientModes(const TetMesh& mesh, const Eigen::MatrixXd& U) {
+  const int r = int(U.cols());
+  std::vector<Eigen::Matrix3d> G(std::size_t(mesh.num_vertices()) * r, Eigen::Matrix3d::Zero());
+  std::vector<double> weight(std::size_t(mesh.num_vertices()), 0.0);
+  for (int t = 0; t < mesh.num_tets(); ++t) {
+    const double vol = std::abs(mesh.TetVolume(t));
+    const Eigen::Matrix<double, 4, 3> grad = ShapeGradients(mesh, t);
+    for (int j = 0; j < r; ++j) {
+      const Eigen::Matrix3d Fj = vol * TetGradientMode(mesh, U, t, grad, j);
+      for (int a = 0; a < 4; ++a) G[std::size_t(mesh.tets[t][a]) * r + j] += Fj;
+    }
+    for (int a = 0; a < 4; ++a) weight[mesh.tets[t][a]] += vol;
+  }
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    if (weight[v] > 0) {
+      for (int j = 0; j < r; ++j) G[std::size_t(v) * r + j] /= weight[v];
+    }
+  }
+  return G;
+}
+
 Eigen::Vector4d Barycentric(const TetMesh& mesh, int t, const Eigen::Vector3d& p) {
   const Eigen::Vector4i& v = mesh.tets[t];
   Eigen::Matrix3d Dm;
@@ -96,11 +141,12 @@ int LocateInTetMesh(const TetMesh& mesh, const Eigen::Vector3d& p, Eigen::Vector
 
 EmbeddedPoints::EmbeddedPoints(const TetMesh& mesh, const Eigen::MatrixXd& U,
                                const std::vector<Eigen::Vector3d>& points,
-                               const std::vector<Eigen::Vector3d>& normals) {
+                               const std::vector<Eigen::Vector3d>& normals, GradientScheme scheme) {
   if (mesh.tets.empty()) Fail("embedded points", "the simulation mesh has no tets");
   if (U.rows() != 3 * mesh.num_vertices()) Fail("embedded points", "the basis row count is not 3 x #vertices");
   if (!normals.empty() && normals.size() != points.size()) Fail("embedded points", "normals and points differ in count");
   r_ = int(U.cols());
+  scheme_ = scheme;
   const std::size_t np = points.size();
   tet_.resize(np);
   bary_.resize(4 * np);
@@ -108,6 +154,9 @@ EmbeddedPoints::EmbeddedPoints(const TetMesh& mesh, const Eigen::MatrixXd& U,
   normal_.assign(3 * np, 0.f);
   u_.resize(np * 3 * r_);
   f_.resize(np * 9 * r_);
+  nc_.resize(np * 3 * r_);
+  const std::vector<Eigen::Matrix3d> vertex_modes =
+      scheme == GradientScheme::kSmooth ? VertexGradientModes(mesh, U) : std::vector<Eigen::Matrix3d>();
   const TetGrid grid(mesh);
   for (std::size_t i = 0; i < np; ++i) {
     const Eigen::Vector3d& p = points[i];
@@ -115,30 +164,29 @@ EmbeddedPoints::EmbeddedPoints(const TetMesh& mesh, const Eigen::MatrixXd& U,
     int t = grid.FindContaining(p, &b);
     if (t < 0) t = LocateInTetMesh(mesh, p, &b);
     tet_[i] = t;
+    const Eigen::Vector3d n = normals.empty() ? Eigen::Vector3d::Zero() : normals[i];
     for (int a = 0; a < 4; ++a) bary_[4 * i + a] = b[a];
     for (int c = 0; c < 3; ++c) {
       rest_[3 * i + c] = float(p[c]);
-      if (!normals.empty()) normal_[3 * i + c] = float(normals[i][c]);
+      normal_[3 * i + c] = float(n[c]);
     }
-    // Shape-function gradients of tet t.
     const Eigen::Vector4i& v = mesh.tets[t];
-    Eigen::Matrix3d Dm;
-    for (int c = 0; c < 3; ++c) Dm.col(c) = mesh.vertices[v[c + 1]] - mesh.vertices[v[0]];
-    const Eigen::Matrix3d inv = Dm.inverse();
-    Eigen::Matrix<double, 4, 3> grad;
-    grad.row(1) = inv.row(0);
-    grad.row(2) = inv.row(1);
-    grad.row(3) = inv.row(2);
-    grad.row(0) = -(inv.row(0) + inv.row(1) + inv.row(2));
+    const Eigen::Matrix<double, 4, 3> grad = ShapeGradients(mesh, t);
     for (int j = 0; j < r_; ++j) {
+      // Displacement mode and gradient mode at the point.
       Eigen::Vector3d uj = Eigen::Vector3d::Zero();
+      for (int a = 0; a < 4; ++a) uj += b[a] * U.block<3, 1>(3 * v[a], j);
       Eigen::Matrix3d Fj = Eigen::Matrix3d::Zero();
-      for (int a = 0; a < 4; ++a) {
-        const Eigen::Vector3d ua = U.block<3, 1>(3 * v[a], j);
-        uj += b[a] * ua;
-        Fj.noalias() += ua * grad.row(a);
+      if (scheme == GradientScheme::kSmooth) {
+        for (int a = 0; a < 4; ++a) Fj += b[a] * vertex_modes[std::size_t(v[a]) * r_ + j];
+      } else {
+        Fj = TetGradientMode(mesh, U, t, grad, j);
       }
-      for (int c = 0; c < 3; ++c) u_[(3 * i + c) * r_ + j] = float(uj[c]);
+      const Eigen::Vector3d nj = -Fj.transpose() * n;  // column j of the normal correction
+      for (int c = 0; c < 3; ++c) {
+        u_[(3 * i + c) * r_ + j] = float(uj[c]);
+        nc_[(3 * i + c) * r_ + j] = float(nj[c]);
+      }
       for (int a = 0; a < 3; ++a)
         for (int c = 0; c < 3; ++c) f_[(9 * i + 3 * a + c) * r_ + j] = float(Fj(a, c));
     }
@@ -184,6 +232,18 @@ Eigen::Vector3d EmbeddedPoints::Normal(int i, const double* q) const {
   const double det = F.col(0).dot(F.col(1).cross(F.col(2)));
   const double len = m.norm();
   return len > 0 ? Eigen::Vector3d(m * ((det < 0 ? -1.0 : 1.0) / len)) : m;
+}
+
+Eigen::Vector3d EmbeddedPoints::CorrectedNormal(int i, const double* q) const {
+  Eigen::Vector3d m;
+  for (int c = 0; c < 3; ++c) {
+    const float* row = &nc_[(3 * std::size_t(i) + c) * r_];
+    double s = normal_[3 * i + c];
+    for (int j = 0; j < r_; ++j) s += double(row[j]) * q[j];
+    m[c] = s;
+  }
+  const double len = m.norm();
+  return len > 0 ? Eigen::Vector3d(m / len) : m;
 }
 
 void EmbeddedPoints::AddPointForce(int i, const Eigen::Vector3d& force, double* f_q) const {

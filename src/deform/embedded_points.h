@@ -3,6 +3,18 @@
 // functions, and deformed normals by deformation-gradient push-forward n' ~ F^{-T} n, with
 // F = I + sum_j F_j q_j. Precomputed once per point in flat arrays; evaluated per haptic
 // cycle without allocation.
+//
+// Gradient modes F_j. The gradient of the piecewise-linear displacement is constant per tet
+// and jumps across tet faces, so normals computed from it jump as a point's tet changes
+// (kPerTet). kSmooth instead averages the tets' gradient modes at each vertex (weighted by tet
+// volume) and interpolates those vertex gradients with the point's barycentric coordinates:
+// F_j is then continuous across faces, and still exact wherever the displacement is affine
+// (every tet has the same gradient there).
+//
+// Normal correction (paper sec. 4.1). To first order in q, F^{-T} n = n - sum_j (F_j^T n) q_j,
+// so each point stores the 3 x r normal-correction matrix N_i = -[F_1^T n ... F_r^T n] and
+// CorrectedNormal(i, q) = normalize(n + N_i q): 3r multiply-adds like the position, linear in
+// q, and continuous across faces with kSmooth.
 #pragma once
 
 #include <Eigen/Core>
@@ -13,14 +25,17 @@
 
 namespace contactlab {
 
+enum class GradientScheme { kPerTet, kSmooth };
+
 class EmbeddedPoints {
  public:
   EmbeddedPoints() = default;
   // Embeds POINTS (rest frame, metres) with rest NORMALS (unit, or empty for none) into MESH
   // with basis U (3#V x r). A point outside every tet uses the tet it is least outside of
   // (barycentric extrapolation). Throws Error when sizes disagree or the mesh is empty.
+  // SCHEME: how the gradient modes F_j (and so the normals) are formed (see above).
   EmbeddedPoints(const TetMesh& mesh, const Eigen::MatrixXd& U, const std::vector<Eigen::Vector3d>& points,
-                 const std::vector<Eigen::Vector3d>& normals = {});
+                 const std::vector<Eigen::Vector3d>& normals = {}, GradientScheme scheme = GradientScheme::kSmooth);
 
   int size() const { return int(tet_.size()); }
   int r() const { return r_; }
@@ -37,18 +52,23 @@ class EmbeddedPoints {
   Eigen::Vector3d Displacement(int i, const double* q) const;
   Eigen::Vector3d Position(int i, const double* q) const { return rest_position(i) + Displacement(i, q); }
   Eigen::Matrix3d DeformationGradient(int i, const double* q) const;
-  Eigen::Vector3d Normal(int i, const double* q) const;
+  Eigen::Vector3d Normal(int i, const double* q) const;  // exact push-forward F^{-T} n, unit
+  // normalize(n + N_i q): the linear normal correction, renormalised (unit; n at q = 0).
+  Eigen::Vector3d CorrectedNormal(int i, const double* q) const;
+  GradientScheme scheme() const { return scheme_; }
   // F_q += U_i^T FORCE: the reduced force of a point force (newtons) applied at point I.
   void AddPointForce(int i, const Eigen::Vector3d& force, double* f_q) const;
 
  private:
   int r_ = 0;
+  GradientScheme scheme_ = GradientScheme::kSmooth;
   std::vector<int> tet_;       // #P enclosing tet
   std::vector<double> bary_;   // #P x 4 barycentric coordinates
   std::vector<float> rest_;    // #P x 3 rest positions
   std::vector<float> normal_;  // #P x 3 rest normals (zero when none were given)
   std::vector<float> u_;       // #P x 3 x r: row c of U_i at u_[(3 i + c) r]
   std::vector<float> f_;       // #P x 9 x r: entry (a, b) of F_j at f_[(9 i + 3 a + b) r + j]
+  std::vector<float> nc_;      // #P x 3 x r: row c of N_i at nc_[(3 i + c) r]
 };
 
 // Index of the tet containing P, or the one P is least outside of, and its barycentric
