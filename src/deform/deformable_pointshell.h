@@ -1,0 +1,47 @@
+// The deformable pointshell and its point-based BD-tree (Barbič & James 2008, sec. 4.1).
+// Every point of a pointshell is embedded in the reduced model's simulation mesh, so at
+// reduced coordinates q it sits at x = X + U q with normal normalize(n + N q)
+// (EmbeddedPoints, smooth gradient modes). The tree's spheres are centred on the deformed
+// points themselves; a node's radius at q is the conservative bound
+//     R(q) = R_0 + sum_j |q_j| rho_j,
+// R_0 the rest radius (Pointshell::node_radius) and rho_j the largest distance, over the
+// node's subtree, between mode j's displacement at a point and at the node's own point:
+// |x_Q - x_C| = |X_Q - X_C + sum_j q_j (U_Qj - U_Cj)| <= R_0 + sum_j |q_j| rho_j.
+// Radii are evaluated only for the nodes a traversal visits, with |q| computed once a cycle.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "deform/embedded_points.h"
+#include "pointshell/pointshell.h"
+
+namespace contactlab {
+
+class DeformablePointshell {
+ public:
+  // Embeds SHELL (body frame, metres) in MESH with basis U (3#V x r). Throws Error as
+  // EmbeddedPoints does.
+  DeformablePointshell(std::shared_ptr<const Pointshell> shell, const TetMesh& mesh, const Eigen::MatrixXd& U);
+
+  const Pointshell& shell() const { return *shell_; }
+  const EmbeddedPoints& points() const { return points_; }
+  int r() const { return points_.r(); }
+
+  // rho_j of NODE, r entries (metres per unit q_j).
+  const float* node_spread(int node) const { return &rho_[std::size_t(node) * r()]; }
+  // R(q) of NODE; ABS_Q holds |q_j| (r entries). No allocation.
+  double Radius(int node, const double* abs_q) const {
+    const float* rho = node_spread(node);
+    double R = shell_->node_radius[node];
+    for (int j = 0; j < r(); ++j) R += double(rho[j]) * abs_q[j];
+    return R;
+  }
+
+ private:
+  std::shared_ptr<const Pointshell> shell_;
+  EmbeddedPoints points_;
+  std::vector<float> rho_;  // (#N x r) rho_[n r + j], rounded up to float
+};
+
+}  // namespace contactlab

@@ -1,0 +1,81 @@
+// The deformable pointshell's BD-tree bound R(q) = R_0 + sum |q_j| rho_j (paper sec. 4.1):
+// every point of a node's subtree lies in the sphere of radius R(q) around the node's
+// deformed point, for random q, and the bound is reasonably tight.
+#include "deform/deformable_pointshell.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "beam_fixture.h"
+#include "contact/test_shells.h"
+
+namespace contactlab {
+namespace {
+
+// Random points on the surface of the beam [0,1] x [0,0.25] x [0,0.25] with inward normals,
+// nested in 4 levels (16, 64, 256, 1024 points).
+std::shared_ptr<Pointshell> BeamShell() {
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> u(0, 1);
+  const Eigen::Vector3d size(1, 0.25, 0.25);
+  const double area[3] = {2 * 0.25 * 0.25, 2 * 0.25, 2 * 0.25};  // faces normal to x, y, z
+  std::vector<Eigen::Vector3d> p, n;
+  while (p.size() < 1024) {
+    const double pick = u(rng) * (area[0] + area[1] + area[2]);
+    const int axis = pick < area[0] ? 0 : pick < area[0] + area[1] ? 1 : 2;
+    Eigen::Vector3d x(u(rng) * size.x(), u(rng) * size.y(), u(rng) * size.z());
+    const bool high = u(rng) < 0.5;
+    x[axis] = high ? size[axis] : 0;
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+    normal[axis] = high ? -1 : 1;
+    p.push_back(x);
+    n.push_back(normal);
+  }
+  return testing::MakeNestedShell(p, n, {16, 64, 256, 1024});
+}
+
+TEST(DeformablePointshell, TreeRadiiBoundEverySubtreePointAtRandomDeformations) {
+  const ReducedModel model =
+      BuildReducedModel(testing::MakeBeam(), testing::BeamOptions(8, ReducedModelKind::kStVK), "beam");
+  const auto shell = BeamShell();
+  const DeformablePointshell deformable(shell, model.mesh, model.basis);
+  ASSERT_EQ(deformable.r(), 8);
+  const Pointshell& s = *shell;
+  std::mt19937 rng(22);
+  double slack_sum = 0;
+  int slack_count = 0;
+  for (double scale : {0.0, 0.05, 0.3, 1.5}) {
+    for (int trial = 0; trial < 5; ++trial) {
+      const Eigen::VectorXd q = testing::RandomVector(deformable.r(), scale, &rng);
+      const Eigen::VectorXd abs_q = q.cwiseAbs();
+      std::vector<Eigen::Vector3d> x(std::size_t(s.num_points()));
+      for (int i = 0; i < s.num_points(); ++i) x[i] = deformable.points().Position(i, q.data());
+      // Largest distance from each node's deformed point to a point of its subtree.
+      std::vector<double> reach(std::size_t(s.num_nodes()), 0.0);
+      const int deepest = s.num_levels() - 1;
+      for (int leaf = s.level_node_begin[deepest]; leaf < s.level_node_begin[deepest + 1]; ++leaf) {
+        for (int node = s.node_parent[leaf]; node >= 0; node = s.node_parent[node]) {
+          reach[node] = std::max(reach[node], (x[s.node_point[leaf]] - x[s.node_point[node]]).norm());
+        }
+      }
+      for (int node = 0; node < s.level_node_begin[deepest]; ++node) {
+        const double R = deformable.Radius(node, abs_q.data());
+        ASSERT_LE(reach[node], R * (1 + 1e-5) + 1e-7)
+            << "node " << node << " scale " << scale << " trial " << trial;
+        if (scale > 0 && R > 0) {
+          slack_sum += (R - reach[node]) / R;
+          ++slack_count;
+        }
+        if (scale == 0) EXPECT_EQ(R, double(s.node_radius[node]));
+      }
+    }
+  }
+  const double mean_slack = slack_sum / slack_count;
+  std::printf("mean relative slack of R(q) over %d node samples: %.3f\n", slack_count, mean_slack);
+  RecordProperty("mean_slack", std::to_string(mean_slack));
+  EXPECT_LT(mean_slack, 0.6);  // a bound mostly made of its rest radius, not a blanket
+}
+
+}  // namespace
+}  // namespace contactlab
