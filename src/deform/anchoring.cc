@@ -24,6 +24,12 @@ Anchoring Anchoring::InBox(const Aabb& box) {
   return a;
 }
 
+Anchoring Anchoring::OutsideBox(const Aabb& box) {
+  Anchoring a = InBox(box);
+  a.kind = Kind::kOutsideBox;
+  return a;
+}
+
 std::string Anchoring::Describe() const {
   std::ostringstream s;
   switch (kind) {
@@ -34,6 +40,9 @@ std::string Anchoring::Describe() const {
       break;
     case Kind::kInBox:
       s << "fixed inside box [" << box.min.transpose() << "] .. [" << box.max.transpose() << "]";
+      break;
+    case Kind::kOutsideBox:
+      s << "fixed outside box [" << box.min.transpose() << "] .. [" << box.max.transpose() << "]";
       break;
   }
   return s.str();
@@ -49,9 +58,13 @@ std::vector<std::uint8_t> FindFixedVertices(const TetMesh& mesh, const Anchoring
   int count = 0;
   for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
     const Eigen::Vector3d& p = mesh.vertices[i];
-    const bool f = anchoring.kind == Anchoring::Kind::kBelowPlane
-                       ? anchoring.normal.dot(p) <= anchoring.offset
-                       : anchoring.box.Contains(p);
+    bool f = false;
+    switch (anchoring.kind) {
+      case Anchoring::Kind::kFree: break;
+      case Anchoring::Kind::kBelowPlane: f = anchoring.normal.dot(p) <= anchoring.offset; break;
+      case Anchoring::Kind::kInBox: f = anchoring.box.Contains(p); break;
+      case Anchoring::Kind::kOutsideBox: f = !anchoring.box.Contains(p); break;
+    }
     fixed[i] = f ? 1 : 0;
     count += f;
   }

@@ -12,17 +12,18 @@
 namespace contactlab {
 
 struct Anchoring {
-  enum class Kind { kFree, kBelowPlane, kInBox };
+  enum class Kind { kFree, kBelowPlane, kInBox, kOutsideBox };
   Kind kind = Kind::kFree;
   // kBelowPlane: vertices with normal . p <= offset are fixed (e.g. normal (0,1,0): y <= c).
   Eigen::Vector3d normal = Eigen::Vector3d::UnitY();
   double offset = 0;
-  Aabb box;  // kInBox: vertices inside BOX are fixed
+  Aabb box;  // kInBox: vertices inside BOX are fixed; kOutsideBox: those outside (a bridge's ends)
 
   static Anchoring Free() { return {}; }
   static Anchoring BelowY(double y);
   static Anchoring BelowPlane(const Eigen::Vector3d& normal, double offset);
   static Anchoring InBox(const Aabb& box);
+  static Anchoring OutsideBox(const Aabb& box);
   bool anchored() const { return kind != Kind::kFree; }
   // "free", "below plane n=(...) c=...", "in box [...]".
   std::string Describe() const;

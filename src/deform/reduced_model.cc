@@ -154,7 +154,7 @@ ReducedModel LoadReducedModel(const std::filesystem::path& path) {
   model.material.Validate(r.file());
   Anchoring& a = model.anchoring;
   const auto akind = r.Get<std::int32_t>("anchoring kind");
-  if (akind < 0 || akind > 2) r.Corrupt("unknown anchoring kind " + std::to_string(akind));
+  if (akind < 0 || akind > 3) r.Corrupt("unknown anchoring kind " + std::to_string(akind));
   a.kind = Anchoring::Kind(akind);
   for (int c = 0; c < 3; ++c) a.normal[c] = r.Get<double>("anchoring normal");
   a.offset = r.Get<double>("anchoring offset");

@@ -27,14 +27,19 @@ PointshellSpec ParsePointshell(const ConfigNode& n) {
   return s;
 }
 
-// anchor: none | {below: [axis, value]} | {box: [x0, y0, z0, x1, y1, z1]}.
+// anchor: none | {below: [axis, value]} | {box: [x0, y0, z0, x1, y1, z1]} (fixed inside) |
+// {outside: [x0, y0, z0, x1, y1, z1]} (fixed outside, e.g. both ends of a bridge).
 Anchoring ParseAnchor(const ConfigNode& n) {
   if (n.IsScalar()) {
-    if (n.AsString() != "none") n.Fail("expected none, {below: [axis, value]} or {box: [x0, y0, z0, x1, y1, z1]}");
+    if (n.AsString() != "none") {
+      n.Fail("expected none, {below: [axis, value]}, {box: [x0, y0, z0, x1, y1, z1]} or {outside: [...]}");
+    }
     return Anchoring::Free();
   }
-  n.ExpectKeys({"below", "box"});
-  if (n.Has("below") == n.Has("box")) n.Fail("give exactly one of below and box");
+  n.ExpectKeys({"below", "box", "outside"});
+  if (int(n.Has("below")) + int(n.Has("box")) + int(n.Has("outside")) != 1) {
+    n.Fail("give exactly one of below, box and outside");
+  }
   if (auto b = n.Find("below")) {
     const std::vector<ConfigNode> e = b->Elements();
     if (e.size() != 2) b->Fail("needs [axis, value], e.g. [y, -0.02]");
@@ -42,14 +47,15 @@ Anchoring ParseAnchor(const ConfigNode& n) {
     if (axis != "x" && axis != "y" && axis != "z") e[0].Fail("the axis must be x, y or z, got '" + axis + "'");
     return Anchoring::BelowPlane(Eigen::Vector3d::Unit(axis[0] - 'x'), e[1].AsDouble());
   }
-  const ConfigNode box = n.Get("box");
+  const bool outside = n.Has("outside");
+  const ConfigNode box = n.Get(outside ? "outside" : "box");
   const std::vector<double> v = box.AsDoubles();
   if (v.size() != 6) box.Fail("needs 6 numbers x0, y0, z0, x1, y1, z1");
   Aabb a;
   a.min = Eigen::Vector3d(v[0], v[1], v[2]);
   a.max = Eigen::Vector3d(v[3], v[4], v[5]);
   if (!(a.min.array() < a.max.array()).all()) box.Fail("the first corner must be below the second on every axis");
-  return Anchoring::InBox(a);
+  return outside ? Anchoring::OutsideBox(a) : Anchoring::InBox(a);
 }
 
 DeformableSpec ParseDeformable(const ConfigNode& n) {

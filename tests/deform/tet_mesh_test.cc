@@ -122,6 +122,17 @@ TEST(Anchoring, FixesVerticesBelowPlaneAndInBoxAndRejectsEmptySets) {
   box.max = Eigen::Vector3d(2, 2, 2);
   const auto in_box = FindFixedVertices(mesh, Anchoring::InBox(box));
   EXPECT_EQ(std::count(in_box.begin(), in_box.end(), 1), 2 * 4 * 4);
+  // Outside a box spanning the middle: both ends fixed, as for a bridge.
+  Aabb span;
+  span.min = Eigen::Vector3d(0.01, -1, -1);
+  span.max = Eigen::Vector3d(0.9, 2, 2);
+  const auto ends = FindFixedVertices(mesh, Anchoring::OutsideBox(span));
+  const auto middle = FindFixedVertices(mesh, Anchoring::InBox(span));
+  for (std::size_t v = 0; v < ends.size(); ++v) {
+    EXPECT_NE(ends[v], middle[v]);
+    const double x = mesh.vertices[v].x();
+    EXPECT_EQ(ends[v], (x < 0.01 || x > 0.9) ? 1 : 0);
+  }
   EXPECT_THROW(FindFixedVertices(mesh, Anchoring::BelowY(-0.1)), Error);
   EXPECT_THROW(FindFixedVertices(mesh, Anchoring::BelowY(10)), Error);
   const auto none = FindFixedVertices(mesh, Anchoring::Free());

@@ -67,6 +67,11 @@ TEST(DeformableBody, TheBlockIsParsedAndARigidBodyHasNone) {
   EXPECT_EQ(d.anchor.offset, -0.09);
   const Scene boxed = Parse(Replace(kBeamScene, "{below: [x, -0.09]}", "{box: [-0.2, -1, -1, -0.09, 1, 1]}"));
   EXPECT_EQ(boxed.field_body.deformable->anchor.kind, Anchoring::Kind::kInBox);
+  const Scene ends = Parse(Replace(kBeamScene, "{below: [x, -0.09]}", "{outside: [-0.09, -1, -1, 0.09, 1, 1]}"));
+  EXPECT_EQ(ends.field_body.deformable->anchor.kind, Anchoring::Kind::kOutsideBox);
+  EXPECT_NE(ErrorOf(Replace(kBeamScene, "{below: [x, -0.09]}", "{below: [x, 0], outside: [0, 0, 0, 1, 1, 1]}"))
+                .find("exactly one of below, box and outside"),
+            std::string::npos);
   EXPECT_EQ(Parse(Replace(kBeamScene, "{below: [x, -0.09]}", "none")).field_body.deformable->anchor.kind,
             Anchoring::Kind::kFree);
   EXPECT_EQ(Parse(Replace(kBeamScene, "model: stvk", "model: linear")).field_body.deformable->kind,
