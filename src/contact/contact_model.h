@@ -11,11 +11,10 @@
 #include <cstdint>
 #include <string_view>
 
+#include "deform/reduced_state.h"
 #include "geometry/pose.h"
 
 namespace contactlab {
-
-struct ReducedState;  // deform/: reduced coordinates q of a deformable body
 
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
@@ -42,8 +41,15 @@ struct ContactStats {
 struct ContactQuery {
   Pose X_WA;                            // world pose of body A
   Pose X_WB;                            // world pose of body B
-  const ReducedState* q_A = nullptr;    // deformation of A, null when rigid
+  const ReducedState* q_A = nullptr;    // deformation of A (r entries), null: at rest
   const ReducedState* q_B = nullptr;    // deformation of B, null when rigid
+  // Out: the reduced contact force on deformable A, sum_i U_i^T F_i over its points' forces
+  // F_i (A's body frame), r entries. Written by models that deform A; null: not wanted.
+  ReducedVector* reduced_force_A = nullptr;
+  // Out, with reduced_force_A: its derivative -d(reduced force)/dq (r x r, symmetric positive
+  // semidefinite) under the sec. 5 halfspace rule, k sum_i (U_i^T N_i)(U_i^T N_i)^T, for an
+  // integrator that treats the contact force linearly implicitly. Null: not wanted.
+  ReducedMatrix* reduced_stiffness_A = nullptr;
   std::int64_t cycle = 0;               // haptic cycle index, for temporal coherence
   std::int64_t node_budget = 0;         // graceful degradation; <= 0 means unlimited
 };

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 
+#include "contact/deformable_pointshell_contact_model.h"
 #include "contact/pointshell_contact_model.h"
 #include "util/error.h"
 
@@ -18,7 +19,12 @@ ContactModelEntry PaperModel(PointshellContactModel::Variant variant) {
   e.needs.pointshell_A = true;
   e.needs.field_B = true;
   e.needs.depth_in_field_voxels = true;
+  e.needs.deformable_A = true;
   e.make = [variant](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
+    if (in.A.deformable()) {
+      return std::make_unique<DeformablePointshellContactModel>(variant, in.A.deformable_pointshell(), in.B.field(),
+                                                                in.params);
+    }
     return std::make_unique<PointshellContactModel>(variant, in.A.pointshell(), in.B.field(), in.params);
   };
   return e;
@@ -57,6 +63,16 @@ std::unique_ptr<ContactModel> MakeContactModel(std::string_view name, const Cont
     std::string known;
     for (const std::string& n : ContactModelNames()) known += (known.empty() ? "" : ", ") + n;
     Fail(where, "unknown contact model '" + std::string(name) + "' (known: " + known + ")");
+  }
+  if (inputs.A.deformable() && !entry->needs.deformable_A) {
+    Fail(where, "contact model '" + std::string(name) + "' treats body A as rigid, but '" +
+                    std::string(inputs.A.body_name()) + "' is deformable (models that deform it: pointshell, "
+                    "pointshell-linear)");
+  }
+  if (inputs.B.deformable()) {
+    Fail(where, "body '" + std::string(inputs.B.body_name()) +
+                    "' is deformable, but no contact model renders a deformed distance field yet; only the "
+                    "pointshell body may deform");
   }
   return entry->make(inputs);
 }

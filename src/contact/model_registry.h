@@ -20,6 +20,7 @@ namespace contactlab {
 struct TriangleMesh;
 class DistanceField;
 struct Pointshell;
+class DeformablePointshell;
 
 // One body's data, built on demand (and cached) by the caller: experiment/ implements it for
 // scene bodies. Each accessor throws Error naming the body when the data cannot be built.
@@ -31,6 +32,10 @@ class ContactBody {
   virtual std::shared_ptr<const DistanceField> field() = 0;          // body frame
   virtual std::shared_ptr<const Pointshell> pointshell() = 0;        // body frame
   virtual std::uint64_t sampling_seed() const = 0;                   // seed of the body's point sampling
+  // A deformable body (paper sec. 4) carries a reduced model; rigid bodies answer false.
+  virtual bool deformable() const { return false; }
+  // The pointshell embedded in the body's reduced model, body frame.
+  virtual std::shared_ptr<const DeformablePointshell> deformable_pointshell() { return nullptr; }
 };
 
 // What a model reads of the two bodies (A: pointshell role, B: field role).
@@ -44,6 +49,9 @@ struct ContactModelNeeds {
   // Its penetration depth is measured on B's field grid, so reports may give it in voxels
   // of B's field (experiment column depth_voxels).
   bool depth_in_field_voxels = false;
+  // It renders A's deformation (A's deformable pointshell when A is deformable). Models
+  // without it refuse a deformable A rather than treat it as rigid.
+  bool deformable_A = false;
 };
 
 // What a factory is given: the two bodies and the scene's model parameters.
@@ -69,7 +77,8 @@ void RegisterContactModel(ContactModelEntry entry);
 const ContactModelEntry* FindContactModel(std::string_view name);
 
 // Makes model NAME from INPUTS. Throws Error("WHERE: unknown contact model 'x' (known: ...)")
-// when NAME is unknown, and the factory's errors otherwise.
+// when NAME is unknown, Error when A is deformable and the model does not render it or B is
+// deformable (no model renders a deformed field yet), and the factory's errors otherwise.
 std::unique_ptr<ContactModel> MakeContactModel(std::string_view name, const ContactModelInputs& inputs,
                                                std::string_view where);
 

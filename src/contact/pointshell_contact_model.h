@@ -7,7 +7,7 @@
 //   "pointshell-linear"  every point of one tree level, no tree (the tree-less reference);
 //   "pointshell"         breadth-first traversal culling a subtree when d exceeds the node's
 //                        bounding radius, optionally with temporal coherence and a node budget.
-// Both bodies are rigid here (deformable pointshells and fields come with src/deform).
+// Both bodies are rigid here; DeformablePointshellContactModel deforms body A.
 #pragma once
 
 #include <cstdint>
@@ -18,11 +18,17 @@
 #include "contact/contact_accumulator.h"
 #include "contact/contact_model.h"
 #include "contact/pointshell_contact_params.h"
+#include "contact/pointshell_traversal.h"
 #include "pointshell/pointshell.h"
 #include "sdf/distance_field.h"
 
 namespace contactlab {
 
+
+// Checks what both pointshell models need (a non-empty SHELL and FIELD, valid PARAMS) and
+// returns the deepest level they render. Throws Error naming WHERE.
+int ValidatePointshellModelInputs(const Pointshell* shell, const DistanceField* field,
+                                  const PointshellContactParams& params, const std::string& where);
 
 class PointshellContactModel final : public ContactModel {
  public:
@@ -45,7 +51,7 @@ class PointshellContactModel final : public ContactModel {
   const Pointshell& shell() const { return *shell_; }
   const DistanceField& field() const { return *field_; }
   // Deepest level rendered in the previous cycle (tree variant), -1 before the first.
-  int last_level_rendered() const { return last_level_rendered_; }
+  int last_level_rendered() const { return traversal_.last_level_rendered(); }
 
  private:
   ContactResult EvaluateLinear(const ContactQuery& query);
@@ -58,12 +64,8 @@ class PointshellContactModel final : public ContactModel {
   int max_level_;  // deepest level this model renders
 
   // Scratch sized once at construction.
-  std::vector<std::int32_t> queue_a_, queue_b_;   // (#N) traversal queues
-  std::vector<std::uint32_t> point_stamp_;        // (#P) evaluation stamp of each point's d
-  std::vector<float> point_d_;                    // (#P) d cached for the stamp
-  std::vector<std::int64_t> earliest_cycle_;      // (#N) temporal coherence
-  std::uint32_t stamp_ = 0;
-  int last_level_rendered_ = -1;
+  TreeTraversalState traversal_;
+  std::vector<std::int64_t> earliest_cycle_;  // (#N) temporal coherence
 };
 
 }  // namespace contactlab

@@ -1,6 +1,7 @@
 // Barbič & James 2008, sec. 4.1: deformable pointshell and BD-tree bounds.
 #include "deform/deformable_pointshell.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "util/error.h"
@@ -48,6 +49,12 @@ DeformablePointshell::DeformablePointshell(std::shared_ptr<const Pointshell> she
   // Stored as float, rounded up so the bound stays conservative.
   rho_.resize(rho.size());
   for (std::size_t k = 0; k < rho.size(); ++k) rho_[k] = std::nextafter(float(rho[k]), INFINITY);
+  for (int j = 0; j < r; ++j) {
+    double spread = 0, displacement = 0;
+    for (int n = 0; n < N; ++n) spread = std::max(spread, rho[std::size_t(n) * r + j]);
+    for (int i = 0; i < s.num_points(); ++i) displacement = std::max(displacement, basis[i].col(j).norm());
+    travel_.push_back(std::nextafter(float(spread + displacement), INFINITY));
+  }
 }
 
 }  // namespace contactlab

@@ -30,6 +30,18 @@ class DeformablePointshell {
 
   // rho_j of NODE, r entries (metres per unit q_j).
   const float* node_spread(int node) const { return &rho_[std::size_t(node) * r()]; }
+  // Largest displacement per unit q_j of any point relative to any node's own point, plus of
+  // any point itself: c_j = max_n rho_nj + max_i |U_ij|. A change dq moves every point and
+  // grows every radius by at most sum_j c_j |dq_j| together (temporal coherence under
+  // deformation).
+  float mode_travel(int j) const { return travel_[j]; }
+  // R(q) in single precision for the hot loop, ABS_Q as float.
+  float RadiusF(int node, const float* abs_q) const {
+    const float* rho = node_spread(node);
+    float R = shell_->node_radius[node];
+    for (int j = 0; j < r(); ++j) R += rho[j] * abs_q[j];
+    return R;
+  }
   // R(q) of NODE; ABS_Q holds |q_j| (r entries). No allocation.
   double Radius(int node, const double* abs_q) const {
     const float* rho = node_spread(node);
@@ -41,7 +53,8 @@ class DeformablePointshell {
  private:
   std::shared_ptr<const Pointshell> shell_;
   EmbeddedPoints points_;
-  std::vector<float> rho_;  // (#N x r) rho_[n r + j], rounded up to float
+  std::vector<float> rho_;     // (#N x r) rho_[n r + j], rounded up to float
+  std::vector<float> travel_;  // (r) mode_travel
 };
 
 }  // namespace contactlab

@@ -46,7 +46,7 @@ void ReducedIntegrator::SetState(const ReducedState& state) {
   accel_ = -f_ - damping_ * state_.qdot;
 }
 
-int ReducedIntegrator::Step(const ReducedVector& f_ext) {
+int ReducedIntegrator::Step(const ReducedVector& f_ext, const ReducedMatrix* K_ext) {
   const double h = options_.time_step;
   const ReducedVector& q = state_.q;
   const ReducedVector& v = state_.qdot;
@@ -56,16 +56,29 @@ int ReducedIntegrator::Step(const ReducedVector& f_ext) {
   for (; it < options_.newton_iterations; ++it) {
     a1_ = (4 / (h * h)) * (q1_ - q - h * v) - accel_;
     v1_ = (2 / h) * (q1_ - q) - v;
-    if (constant_jacobian_) {
+    if (constant_jacobian_ && K_ext == nullptr) {
       forces_->Evaluate(q1_, &f_, nullptr, &ws_);
+      if (factor_has_external_) {  // back to the constant factor
+        J_ = forces_->linear() + (2 / h) * damping_;
+        J_.diagonal().array() += 4 / (h * h);
+        llt_.compute(J_);
+        factor_has_external_ = false;
+      }
     } else {
-      forces_->Evaluate(q1_, &f_, &K_, &ws_);
-      J_ = K_ + (2 / h) * damping_;
+      factor_has_external_ = K_ext != nullptr;
+      forces_->Evaluate(q1_, &f_, constant_jacobian_ ? nullptr : &K_, &ws_);
+      if (constant_jacobian_) {
+        J_ = forces_->linear() + (2 / h) * damping_;
+      } else {
+        J_ = K_ + (2 / h) * damping_;
+      }
       J_.diagonal().array() += 4 / (h * h);
+      if (K_ext != nullptr) J_ += *K_ext;
       llt_.compute(J_);
     }
     residual_ = a1_ + f_ - f_ext;
     residual_.noalias() += damping_ * v1_;
+    if (K_ext != nullptr) residual_.noalias() += *K_ext * (q1_ - q);
     llt_.solveInPlace(residual_);
     q1_ -= residual_;
     if (options_.newton_tolerance > 0 && residual_.norm() <= options_.newton_tolerance * (1 + q1_.norm())) {

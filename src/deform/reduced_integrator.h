@@ -38,8 +38,11 @@ class ReducedIntegrator {
   void Reset() { SetState(ReducedState(r())); }
 
   // Advances one step with reduced external force F_EXT (r entries, e.g. U^T f for point
-  // forces). Returns the Newton iterations done. Allocates nothing, throws nothing.
-  int Step(const ReducedVector& f_ext);
+  // forces). With K_EXT (r x r), the external force is taken as F_EXT - K_EXT (q' - q) at the
+  // new state q' (linearly implicit, e.g. a penalty contact's stiffness), which keeps stiff
+  // contact stable at the haptic rate. Returns the Newton iterations done. Allocates
+  // nothing, throws nothing.
+  int Step(const ReducedVector& f_ext, const ReducedMatrix* K_ext = nullptr);
 
   double KineticEnergy() const { return 0.5 * state_.qdot.squaredNorm(); }
   double PotentialEnergy();
@@ -55,6 +58,7 @@ class ReducedIntegrator {
   ReducedMatrix K_, J_, damping_;
   Eigen::LLT<ReducedMatrix> llt_;
   bool constant_jacobian_ = false;  // linear model: J is factored once
+  bool factor_has_external_ = false;  // the factor includes the last step's K_ext
 };
 
 // Static equilibrium f(q) = F_EXT by Newton's method with LOAD_STEPS equal load increments

@@ -1,12 +1,15 @@
 // One job of an experiment: the moving body follows the trajectory cycle by cycle, every
 // model of the job is evaluated at each pose (and the reference every reference_every
 // cycles), and the per-cycle rows and per-model summary metrics are collected.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include "experiment/contact_placement.h"
 #include "experiment/metrics.h"
 #include "experiment/runner.h"
+#include "deform/reduced_integrator.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -48,6 +51,58 @@ void OnMovingBody(bool moving_is_B, const ContactQuery& q, const Wrench& on_B, E
     *T = -on_B.torque - (q.X_WB.translation - q.X_WA.translation).cross(on_B.force);
   }
 }
+
+// The two-way coupling of a deformable pointshell body A (paper sec. 4 and 5): the contact
+// query reads q, writes the reduced contact force, and the integrator then takes one step.
+class DeformableCoupling {
+ public:
+  DeformableCoupling(const BodyAssets& body, std::shared_ptr<const ReducedModel> model, double dt)
+      : model_(std::move(model)), integrator_(model_->forces, Options(*body.spec().deformable, dt)) {
+    f_.setZero(model_->r());
+    K_.setZero(model_->r(), model_->r());
+  }
+  int r() const { return model_->r(); }
+  // Points the query at the current state and at the reduced force it fills.
+  void Prepare(ContactQuery* q) {
+    f_.setZero(model_->r());
+    q->q_A = &integrator_.state();
+    q->reduced_force_A = &f_;
+    q->reduced_stiffness_A = &K_;
+  }
+  // Steps with the force of the query just made, and records the state in ROW.
+  void Step(CycleRow* row) {
+    const auto t0 = std::chrono::steady_clock::now();
+    integrator_.Step(f_, &K_);
+    row->step_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+    row->deformable = true;
+    row->elastic_energy = integrator_.PotentialEnergy();
+    row->kinetic_energy = integrator_.KineticEnergy();
+    const ReducedVector& q = integrator_.state().q;
+    const Eigen::VectorXd u = model_->basis * Eigen::VectorXd(q);
+    double max2 = 0;
+    for (Eigen::Index v = 0; v + 2 < u.size(); v += 3) max2 = std::max(max2, u.segment<3>(v).squaredNorm());
+    row->max_displacement = std::sqrt(max2);
+    row->q.clear();
+    char buf[32];
+    for (int j = 0; j < q.size(); ++j) {
+      std::snprintf(buf, sizeof buf, j == 0 ? "%.9g" : " %.9g", q[j]);
+      row->q += buf;
+    }
+  }
+
+ private:
+  static IntegratorOptions Options(const DeformableSpec& d, double dt) {
+    IntegratorOptions o;
+    o.time_step = dt;
+    o.mass_damping = d.mass_damping;
+    o.stiffness_damping = d.stiffness_damping;
+    return o;
+  }
+  std::shared_ptr<const ReducedModel> model_;
+  ReducedIntegrator integrator_;
+  ReducedVector f_;
+  ReducedMatrix K_;  // the contact's reduced stiffness: the step treats contact linearly implicitly
+};
 
 }  // namespace
 
@@ -92,6 +147,10 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
     std::vector<double> times;
     std::vector<int> levels;
     double nodes_sum = 0, max_depth = 0;
+    std::unique_ptr<DeformableCoupling> coupling;
+    if (assets.A.deformable()) coupling = std::make_unique<DeformableCoupling>(assets.A, assets.A.reduced_model(), dt);
+    std::vector<double> step_times;
+    double max_displacement = 0;
     for (std::int64_t k = 0; k < cycles; ++k) {
       // The moving body follows the trajectory from its start pose; the other stays put.
       const Pose d = trajectory.At(trajectory.start_time() + double(k) * dt);
@@ -101,6 +160,7 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
       q.X_WB = moving_is_B ? X_moving : X_WB0;
       q.cycle = k;
       q.node_budget = scene.node_budget;
+      if (coupling) coupling->Prepare(&q);
       const auto t0 = std::chrono::steady_clock::now();
       const ContactResult r = model->Evaluate(q);
       const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
@@ -121,8 +181,15 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
         Eigen::Vector3d T;
         ContactQuery rq = q;
         rq.node_budget = 0;
+        rq.reduced_force_A = nullptr;
+        rq.reduced_stiffness_A = nullptr;
         OnMovingBody(moving_is_B, rq, reference->Evaluate(rq).on_B, &row.reference_force, &T);
         row.has_reference = true;
+      }
+      if (coupling) {  // the deformation advances after the query, held fixed during it
+        coupling->Step(&row);
+        step_times.push_back(row.step_us);
+        max_displacement = std::max(max_displacement, row.max_displacement);
       }
       forces.push_back(row.force);
       refs.push_back(row.reference_force);
@@ -161,6 +228,12 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
       s.mean_force += f.norm() / double(cycles);
     }
     s.max_depth_voxels = max_depth;
+    if (coupling) {
+      s.modes = coupling->r();
+      std::nth_element(step_times.begin(), step_times.begin() + std::ptrdiff_t(step_times.size() / 2), step_times.end());
+      s.median_step_us = step_times[step_times.size() / 2];
+      s.max_displacement = max_displacement;
+    }
     result.summary.push_back(s);
   }
   return result;

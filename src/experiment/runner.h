@@ -37,6 +37,13 @@ struct CycleRow {
   double time_us = 0;
   bool has_reference = false;
   Eigen::Vector3d reference_force = Eigen::Vector3d::Zero();
+  // A deformable pointshell body (paper sec. 4): its state after this cycle's step.
+  bool deformable = false;
+  double step_us = 0;            // the reduced integrator's step, after the contact query
+  double elastic_energy = 0;     // J (mass-normalised coordinates: kg m^2 / s^2)
+  double kinetic_energy = 0;     // J
+  double max_displacement = 0;   // m, largest |U q| over the simulation mesh's vertices
+  std::string q;                 // q_1 .. q_r separated by spaces
 };
 
 // Metrics of one model over one job's trajectory.
@@ -50,6 +57,9 @@ struct SummaryRow {
   double rms_rel_error = -1, max_dir_error_deg = -1;  // -1: no reference
   double max_force = 0, mean_force = 0;
   double max_depth_voxels = 0;
+  int modes = 0;                // r of a deformable pointshell body, 0 when rigid
+  double median_step_us = 0;    // reduced integrator step (deformable body)
+  double max_displacement = 0;  // m, over the trajectory (deformable body)
 };
 
 struct JobResult {

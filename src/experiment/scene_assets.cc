@@ -224,7 +224,7 @@ std::shared_ptr<const ReducedModel> BodyAssets::reduced_model() {
   h.Value(std::int32_t(d.anchor.kind));
   h.Value(d.anchor.normal.x()), h.Value(d.anchor.normal.y()), h.Value(d.anchor.normal.z());
   h.Value(d.anchor.offset);
-  if (d.anchor.kind == Anchoring::Kind::kInBox) {
+  if (d.anchor.kind == Anchoring::Kind::kInBox || d.anchor.kind == Anchoring::Kind::kOutsideBox) {
     for (int a = 0; a < 3; ++a) h.Value(d.anchor.box.min[a]), h.Value(d.anchor.box.max[a]);
   }
   const std::string where = "body '" + spec_.name + "' deformable";
@@ -243,6 +243,14 @@ std::shared_ptr<const ReducedModel> BodyAssets::reduced_model() {
         return BuildReducedModel(BuildVoxelTetMesh(*f, vo), o, where);
       });
   return reduced_model_;
+}
+
+std::shared_ptr<const DeformablePointshell> BodyAssets::deformable_pointshell() {
+  if (!deformable_pointshell_) {
+    const auto model = reduced_model();
+    deformable_pointshell_ = std::make_shared<const DeformablePointshell>(pointshell(), model->mesh, model->basis);
+  }
+  return deformable_pointshell_;
 }
 
 std::unique_ptr<ContactModel> MakeSceneContactModel(std::string_view name, const Scene& scene, SceneAssets& assets) {

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "contact/model_registry.h"
+#include "deform/deformable_pointshell.h"
 #include "deform/reduced_model.h"
 #include "experiment/scene.h"
 #include "geometry/triangle_mesh.h"
@@ -52,6 +53,9 @@ class BodyAssets final : public ContactBody {
   // Cached like fields, keyed by the mesh content, the field's and every deformable
   // parameter. Throws Error naming the body when it has no deformable block.
   std::shared_ptr<const ReducedModel> reduced_model();
+  bool deformable() const override { return spec_.deformable.has_value(); }
+  // The body's pointshell embedded in its reduced model (built in memory on first use).
+  std::shared_ptr<const DeformablePointshell> deformable_pointshell() override;
   // A key of the mesh content and load parameters (hex), part of every cache key.
   const std::string& mesh_key();
 
@@ -62,6 +66,7 @@ class BodyAssets final : public ContactBody {
   std::shared_ptr<const DistanceField> field_;
   std::shared_ptr<const Pointshell> pointshell_;
   std::shared_ptr<const ReducedModel> reduced_model_;
+  std::shared_ptr<const DeformablePointshell> deformable_pointshell_;
   std::string mesh_key_;
 };
 

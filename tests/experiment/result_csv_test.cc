@@ -44,7 +44,7 @@ TEST(ResultCsv, HeaderAndRowsHaveTheSameColumnsAndEmptyCellsWithoutAReference) {
   EXPECT_EQ(c[0][2], "points");
   EXPECT_EQ(c[0][3], "k_C");
   EXPECT_EQ(c[0][4], "model");
-  EXPECT_EQ(c[0].back(), "ref_fz");
+  EXPECT_EQ(c[0].back(), "q");
   for (const auto& row : c) EXPECT_EQ(row.size(), c[0].size());
   const auto col = [&](const std::string& name) {
     return std::size_t(std::find(c[0].begin(), c[0].end(), name) - c[0].begin());
@@ -56,6 +56,9 @@ TEST(ResultCsv, HeaderAndRowsHaveTheSameColumnsAndEmptyCellsWithoutAReference) {
   EXPECT_EQ(c[1][col("ref_fx")], "");
   EXPECT_EQ(c[1][col("ref_fz")], "");
   EXPECT_EQ(std::stod(c[2][col("ref_fy")]), 4);
+  // A rigid body's rows leave the deformation columns empty.
+  EXPECT_EQ(c[1][col("elastic_energy_J")], "");
+  EXPECT_EQ(c[1][col("q")], "");
 
   std::string summary = SummaryCsvHeader(config);
   AppendSummaryCsv(config, r, &summary);

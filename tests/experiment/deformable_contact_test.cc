@@ -1,0 +1,306 @@
+// A deformable pointshell in contact (paper sec. 4.1 and 5), checked against references that
+// do not share its code: Euler–Bernoulli beam theory for a cantilever pressed by a probe, the
+// tree-less traversal for the BD-tree culling, a double-precision recomputation of the point
+// forces for the reduced force and Newton's third law, and energy bookkeeping for the
+// two-way coupling.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "contact/deformable_pointshell_contact_model.h"
+#include "contact/model_registry.h"
+#include "deform/reduced_integrator.h"
+#include "experiment/experiment_config.h"
+#include "experiment/runner.h"
+#include "experiment/scene_assets.h"
+#include "test_support.h"
+#include "util/error.h"
+
+namespace contactlab {
+namespace {
+
+using testing::TempDir;
+
+// A 20 x 2 x 2 cm beam clamped at x <= -9 cm (body A, deformable) and a 1 cm probe above its
+// free end (body B). CELLS, KIND and the damping are filled in per test.
+std::string BeamScene(int cells, const std::string& kind, double alpha, double beta, double probe_z = 0.0205,
+                      double L = 10) {
+  std::ostringstream s;
+  s << "name: beam-probe\n"
+       "bodies:\n"
+       "  - name: beam\n"
+       "    mesh: \"box:0.1,0.01,0.01,4\"\n"
+       "    role: pointshell\n"
+       "    pointshell: {points: 2048, levels: 4, seed: 1}\n"
+       "    field: {resolution: 96}\n"
+       "    deformable: {model: "
+    << kind << ", modes: 10, cells: " << cells
+    << ", E: 5.0e7, nu: 0.3, rho: 1100, damping: {alpha: " << alpha << ", beta: " << beta
+    << "}, anchor: {below: [x, -0.09]}}\n"
+       "  - name: probe\n"
+       "    mesh: \"sphere:0.01,3\"\n"
+       "    pose: [0.07, 0, "
+    << probe_z
+    << ", 1, 0, 0, 0]\n"
+       "    role: field\n"
+       "    field: {resolution: 48}\n"
+       "model: {k_C: 1000, L: "
+    << L << ", max_point_speed: 0.5}\n";
+  return s.str();
+}
+
+Scene ParseBeam(const std::string& text) { return ParseScene(ConfigNode::LoadString(text, "beam.yaml")); }
+
+AssetOptions Assets(const TempDir& dir) {
+  AssetOptions o;
+  o.cache_dir = dir / "cache";
+  o.verbose = false;
+  return o;
+}
+
+// A random deformation whose largest surface displacement is about AMPLITUDE metres.
+ReducedState RandomState(const ReducedModel& model, double amplitude, std::mt19937* rng) {
+  std::normal_distribution<double> normal;
+  ReducedState s(model.r());
+  for (int j = 0; j < model.r(); ++j) s.q[j] = normal(*rng);
+  const Eigen::VectorXd u = model.basis * Eigen::VectorXd(s.q);
+  double max_u = 0;
+  for (Eigen::Index v = 0; v < u.size(); v += 3) max_u = std::max(max_u, u.segment<3>(v).norm());
+  s.q *= amplitude / max_u;
+  return s;
+}
+
+TEST(DeformableContact, TheTreeFindsExactlyTheLinearTraversalsContactsAtDeformedStates) {
+  TempDir dir;
+  const Scene scene = ParseBeam(BeamScene(20, "stvk", 0, 0, 0.0195));
+  SceneAssets assets(scene, Assets(dir));
+  const auto tree = MakeSceneContactModel("pointshell", scene, assets);
+  const auto linear = MakeSceneContactModel("pointshell-linear", scene, assets);
+  ASSERT_NE(dynamic_cast<DeformablePointshellContactModel*>(tree.get()), nullptr);
+  std::mt19937 rng(5);
+  int touching = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    const ReducedState state = RandomState(*assets.A.reduced_model(), 0.004, &rng);
+    ReducedVector f_tree, f_linear;
+    ContactQuery q;
+    q.X_WA = scene.pointshell_body.pose;
+    q.X_WB = scene.field_body.pose;
+    q.q_A = &state;
+    q.reduced_force_A = &f_tree;
+    const ContactResult a = tree->Evaluate(q);
+    q.reduced_force_A = &f_linear;
+    const ContactResult b = linear->Evaluate(q);
+    // The BD-tree bound culls only subtrees with no point in contact: same points, same sums.
+    EXPECT_EQ(a.stats.points_in_contact, b.stats.points_in_contact) << "trial " << trial;
+    EXPECT_LT(a.stats.nodes_visited, b.stats.nodes_visited);
+    const double scale = 1e-5 * (1 + b.on_B.force.norm());
+    EXPECT_LT((a.on_B.force - b.on_B.force).norm(), scale) << "trial " << trial;
+    EXPECT_LT((a.on_B.torque - b.on_B.torque).norm(), scale * 0.1) << "trial " << trial;
+    EXPECT_LT((f_tree - f_linear).norm(), 1e-5 * (1 + f_linear.norm())) << "trial " << trial;
+    touching += b.stats.points_in_contact > 0;
+  }
+  EXPECT_GE(touching, 10);  // the deformations move the beam into and out of the probe
+}
+
+TEST(DeformableContact, ReducedForceIsUTransposeOfThePointForcesAndOppositeForcesBalance) {
+  TempDir dir;
+  const Scene scene = ParseBeam(BeamScene(20, "stvk", 0, 0, 0.0195, 0));
+  SceneAssets assets(scene, Assets(dir));
+  const auto model = MakeSceneContactModel("pointshell-linear", scene, assets);
+  const auto dps = assets.A.deformable_pointshell();
+  const auto field = assets.B.field();
+  const Pointshell& s = dps->shell();
+  std::mt19937 rng(9);
+  for (int trial = 0; trial < 5; ++trial) {
+    const ReducedState state = RandomState(*assets.A.reduced_model(), 0.003, &rng);
+    ReducedVector f_q;
+    ContactQuery q;
+    q.X_WA = scene.pointshell_body.pose;
+    q.X_WB = scene.field_body.pose;
+    q.q_A = &state;
+    q.reduced_force_A = &f_q;
+    const ContactResult res = model->Evaluate(q);
+    // The reference, in double precision: every point at X + U q, its corrected normal, the
+    // penalty force -k d N on A, summed as point forces and as U^T F.
+    const Pose X_BA = q.X_WB.Inverse() * q.X_WA;
+    Eigen::VectorXd f_ref = Eigen::VectorXd::Zero(dps->r());
+    Eigen::Vector3d F_on_A = Eigen::Vector3d::Zero();
+    int contacts = 0;
+    for (int i = 0; i < s.level_point_end.back(); ++i) {
+      const Eigen::Vector3d x_A = dps->points().Position(i, state.q.data());
+      const double d = field->Distance(X_BA * x_A);
+      if (d >= 0) continue;
+      ++contacts;
+      const Eigen::Vector3d F_A = -scene.model.penalty.k_C * d * dps->points().CorrectedNormal(i, state.q.data());
+      f_ref += dps->points().Basis(i).transpose() * F_A;
+      F_on_A += q.X_WA.R() * F_A;
+    }
+    ASSERT_EQ(res.stats.points_in_contact, contacts) << "trial " << trial;
+    if (contacts == 0) continue;
+    EXPECT_LT((Eigen::VectorXd(f_q) - f_ref).norm(), 1e-3 * f_ref.norm()) << "trial " << trial;
+    EXPECT_LT((F_on_A + res.on_B.force).norm(), 1e-3 * F_on_A.norm()) << "trial " << trial;
+  }
+}
+
+// Elastic + kinetic energy plus the penalty contact's potential (1/2) k sum d^2 (L = 0: k fixed).
+struct CoupledRun {
+  double initial = 0, max_total = 0, final_kinetic = 0, peak_kinetic = 0;
+  bool finite = true;
+};
+
+CoupledRun RunCoupled(double alpha, double beta, double seconds) {
+  TempDir dir;
+  const Scene scene = ParseBeam(BeamScene(20, "stvk", alpha, beta, 0.0185, 0));
+  SceneAssets assets(scene, Assets(dir));
+  const auto model = MakeSceneContactModel("pointshell-linear", scene, assets);
+  const auto rm = assets.A.reduced_model();
+  IntegratorOptions io;
+  io.mass_damping = alpha;
+  io.stiffness_damping = beta;
+  ReducedIntegrator integrator(rm->forces, io);
+  const auto dps = assets.A.deformable_pointshell();
+  const auto field = assets.B.field();
+  const Pose X_BA = scene.field_body.pose.Inverse() * scene.pointshell_body.pose;
+  const auto contact_energy = [&](const ReducedState& st) {
+    double e = 0;
+    for (int i = 0; i < dps->shell().level_point_end.back(); ++i) {
+      const double d = field->Distance(X_BA * dps->points().Position(i, st.q.data()));
+      if (d < 0) e += 0.5 * scene.model.penalty.k_C * d * d;
+    }
+    return e;
+  };
+  CoupledRun run;
+  ReducedVector f;
+  ReducedMatrix K;
+  const int cycles = int(std::lround(seconds / io.time_step));
+  for (int k = 0; k <= cycles; ++k) {
+    const ReducedState& st = integrator.state();
+    const double total = integrator.PotentialEnergy() + integrator.KineticEnergy() +
+                         (k % 50 == 0 || k == cycles ? contact_energy(st) : 0.0);
+    if (k == 0) run.initial = total;
+    if (k % 50 == 0) run.max_total = std::max(run.max_total, total);
+    run.peak_kinetic = std::max(run.peak_kinetic, integrator.KineticEnergy());
+    run.finite = run.finite && std::isfinite(total);
+    if (k == cycles) break;
+    ContactQuery q;
+    q.X_WA = scene.pointshell_body.pose;
+    q.X_WB = scene.field_body.pose;
+    q.cycle = k;
+    q.q_A = &st;
+    q.reduced_force_A = &f;
+    q.reduced_stiffness_A = &K;
+    model->Evaluate(q);
+    integrator.Step(f, &K);
+  }
+  run.final_kinetic = integrator.KineticEnergy();
+  return run;
+}
+
+TEST(DeformableContact, UndampedCouplingGainsNoEnergyAndDampedCouplingSettles) {
+  // The probe starts 2.5 mm deep in the beam at rest; all the energy is the contact's.
+  const CoupledRun undamped = RunCoupled(0, 0, 10.0);
+  EXPECT_TRUE(undamped.finite);
+  EXPECT_GT(undamped.initial, 0);
+  EXPECT_LE(undamped.max_total, 1.02 * undamped.initial) << "initial " << undamped.initial;
+  std::printf("undamped 10 s: initial %.6g J, largest total %.6g J\n", undamped.initial, undamped.max_total);
+  const CoupledRun damped = RunCoupled(8, 5e-4, 3.0);
+  EXPECT_TRUE(damped.finite);
+  EXPECT_LT(damped.final_kinetic, 1e-6 * damped.peak_kinetic);
+}
+
+// The cantilever's quasi-static tip deflection under the probe's contact load, against
+// Euler–Bernoulli: delta = F a^2 (3 l - a) / (6 E I) for a load at distance a from the clamp,
+// tip at l. The simulation mesh is made of whole voxels that enclose the beam, so its
+// section is larger than the nominal 2 x 2 cm; the reference uses the mesh's own section.
+// Linear tets lock in bending: the deflection approaches the reference from below as cells
+// grow.
+TEST(DeformableContact, CantileverDeflectionApproachesEulerBernoulliAsCellsGrow) {
+  TempDir dir;
+  std::vector<double> ratios;
+  std::printf("cells  F [N]   tip [mm]  EB mesh [mm]  ratio  EB nominal [mm]\n");
+  for (int cells : {20, 40, 60}) {
+    const std::string scene_text = BeamScene(cells, "stvk", 8, 5e-4);
+    std::ofstream(dir / "beam.yaml") << scene_text;
+    std::ofstream(dir / "run.yaml") << "name: cantilever\nscene: beam.yaml\nmodels: [pointshell]\n"
+                                       "moving_body: probe\n"
+                                       "trajectory: {type: slide, direction: [0, 0, -1], depth: 0.004, length: 0, "
+                                       "duration: 3.0}\n";
+    const ExperimentConfig config = LoadExperimentConfig(dir / "run.yaml");
+    RunOptions options;
+    options.assets = Assets(dir);
+    options.progress = false;
+    const std::vector<Job> jobs = ExpandJobs(config);
+    const JobResult result = RunJob(config, jobs.at(0), options);
+    // Middle of the hold (the press ends at 0.6 s, the release starts at 2.4 s).
+    const CycleRow& row = result.cycles.at(2300);
+    ASSERT_TRUE(row.deformable);
+    const double F = row.force.z();  // on the probe, up; the beam gets -F
+    ASSERT_GT(F, 0.5);
+    ReducedState st;
+    std::istringstream qs(row.q);
+    std::vector<double> qv;
+    for (double v; qs >> v;) qv.push_back(v);
+    const Scene scene = LoadScene(dir / "beam.yaml");
+    SceneAssets assets(scene, Assets(dir));
+    const auto rm = assets.A.reduced_model();
+    ASSERT_EQ(int(qv.size()), rm->r());
+    const EmbeddedPoints tip(rm->mesh, rm->basis, {Eigen::Vector3d(0.1, 0, 0)});
+    const double deflection = -tip.Displacement(0, qv.data()).z();
+    // Clamp: the largest x of the fixed vertices; section: the mesh's extent in y and z.
+    double clamp = -1;
+    for (std::size_t v = 0; v < rm->fixed.size(); ++v)
+      if (rm->fixed[v]) clamp = std::max(clamp, rm->mesh.vertices[v].x());
+    const Aabb box = rm->mesh.Bounds();
+    const double b = box.size().y(), h = box.size().z();
+    const double E = 5e7, a = 0.07 - clamp, l = 0.1 - clamp;
+    const auto eb = [&](double I) { return F * a * a * (3 * l - a) / (6 * E * I); };
+    const double reference = eb(b * h * h * h / 12);
+    const double nominal = eb(0.02 * 0.02 * 0.02 * 0.02 / 12);
+    ratios.push_back(deflection / reference);
+    std::printf("%5d  %6.3f  %8.3f  %12.3f  %5.3f  %15.3f\n", cells, F, 1e3 * deflection, 1e3 * reference,
+                ratios.back(), 1e3 * nominal);
+  }
+  // Stiffer than the beam theory (locking) but converging toward it.
+  EXPECT_GT(ratios[1], ratios[0] + 0.05);
+  EXPECT_GT(ratios[2], ratios[1]);
+  for (double r : ratios) {
+    EXPECT_GT(r, 0.5);
+    EXPECT_LT(r, 1.25);  // the mesh-section reference itself is approximate (bounding-box section)
+  }
+}
+
+TEST(DeformableContact, ModelsThatTreatTheBodyAsRigidRefuseADeformableBody) {
+  TempDir dir;
+  Scene scene = ParseBeam(BeamScene(20, "stvk", 0, 0));
+  SceneAssets assets(scene, Assets(dir));
+  // A model that declares no deformable_A, as every baseline does.
+  ContactModelEntry rigid_only;
+  rigid_only.name = "test-rigid-only";
+  rigid_only.needs.pointshell_A = true;
+  rigid_only.needs.field_B = true;
+  rigid_only.make = [](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
+    return std::make_unique<PointshellContactModel>(PointshellContactModel::Variant::kLinear, in.A.pointshell(),
+                                                    in.B.field(), in.params);
+  };
+  RegisterContactModel(rigid_only);
+  try {
+    MakeSceneContactModel("test-rigid-only", scene, assets);
+    ADD_FAILURE() << "a rigid-only model accepted a deformable body";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("'beam' is deformable"), std::string::npos) << e.what();
+  }
+  const Scene swapped = scene.Swapped();
+  SceneAssets swapped_assets(swapped, Assets(dir));
+  try {
+    MakeSceneContactModel("pointshell", swapped, swapped_assets);
+    ADD_FAILURE() << "a deformable field body was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("deformed distance field"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace contactlab
