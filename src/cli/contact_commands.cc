@@ -1,4 +1,4 @@
-// `contactlab contact SCENE.yaml [--model NAME] [--pose-a ...] [--pose-b ...] [--json]`:
+// `contactlab contact SCENE.yaml [--model NAME] [--pose-a ...] [--pose-b ...] [--q-a Q] [--q-b Q] [--json]`:
 // evaluates one contact query of a scene (Barbič & James 2008, sec. 2.1 and 3) and prints
 // the wrench on the field body, points in contact, nodes visited and level rendered.
 // `contactlab models`: the registered contact models, what each needs and what it is.
@@ -12,6 +12,7 @@
 
 #include "cli/command_registry.h"
 #include "contact/model_registry.h"
+#include "experiment/reduced_coordinates.h"
 #include "experiment/scene_assets.h"
 #include "experiment/scene.h"
 #include "util/data_path.h"
@@ -23,6 +24,7 @@ struct ContactArgs {
   std::string scene;
   std::string model;
   std::string pose_a, pose_b;
+  std::string q_a, q_b;
   std::string cache;
   bool no_cache = false;
   bool json = false;
@@ -37,12 +39,19 @@ void RunContact(const ContactArgs& args) {
   options.verbose = !args.json;
   SceneAssets assets(scene, options);
   const std::string model_name = args.model.empty() ? scene.models.front() : args.model;
+  std::unique_ptr<ReducedState> q_A, q_B;
+  if (!args.q_a.empty()) q_A = std::make_unique<ReducedState>(ParseReducedCoordinates(args.q_a, assets.A, "--q-a"));
+  if (!args.q_b.empty()) q_B = std::make_unique<ReducedState>(ParseReducedCoordinates(args.q_b, assets.B, "--q-b"));
   auto model = MakeSceneContactModel(model_name, scene, assets);
+  ReducedVector reduced_force;
 
   ContactQuery q;
   q.X_WA = args.pose_a.empty() ? scene.pointshell_body.pose : ParsePose(args.pose_a, "--pose-a");
   q.X_WB = args.pose_b.empty() ? scene.field_body.pose : ParsePose(args.pose_b, "--pose-b");
   q.node_budget = args.budget >= 0 ? args.budget : scene.node_budget;
+  q.q_A = q_A.get();
+  q.q_B = q_B.get();
+  if (assets.A.deformable()) q.reduced_force_A = &reduced_force;
   const auto t0 = std::chrono::steady_clock::now();
   const ContactResult r = model->Evaluate(q);
   const double micros = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
@@ -66,6 +75,9 @@ void RunContact(const ContactArgs& args) {
       K.push_back(row);
     }
     j["K_B"] = K;
+    if (q.reduced_force_A != nullptr) {
+      j["reduced_force_A"] = std::vector<double>(reduced_force.data(), reduced_force.data() + reduced_force.size());
+    }
     std::cout << j.dump(2) << "\n";
     return;
   }
@@ -77,6 +89,12 @@ void RunContact(const ContactArgs& args) {
   std::printf("points in contact %d, nodes visited %lld, level rendered %d, max penetration %.3g m, %.1f us\n",
               r.stats.points_in_contact, static_cast<long long>(r.stats.nodes_visited), r.stats.level_rendered,
               r.stats.max_penetration, micros);
+  if (q.reduced_force_A != nullptr) {
+    std::printf("reduced contact force on %s (U^T F, r = %d):", scene.pointshell_body.name.c_str(),
+                int(reduced_force.size()));
+    for (int j = 0; j < reduced_force.size(); ++j) std::printf(" %+.6g", reduced_force[j]);
+    std::printf("\n");
+  }
 }
 
 const CommandRegistration kContactCommands([](CLI::App& app) {
@@ -87,6 +105,8 @@ const CommandRegistration kContactCommands([](CLI::App& app) {
   cmd->add_option("--model", args->model, "contact model name (default: the scene's first model)");
   cmd->add_option("--pose-a", args->pose_a, "pose of the pointshell body: x,y,z,qw,qx,qy,qz (metres)");
   cmd->add_option("--pose-b", args->pose_b, "pose of the field body: x,y,z,qw,qx,qy,qz (metres)");
+  cmd->add_option("--q-a", args->q_a, "deformation of body A held fixed: q1,...,qr or @FILE (default: rest)");
+  cmd->add_option("--q-b", args->q_b, "deformation of body B: q1,...,qr or @FILE");
   cmd->add_option("--budget", args->budget, "node budget (warm threshold); overrides the scene's");
   cmd->add_option("--cache", args->cache, "cache folder for fields and pointshells");
   cmd->add_flag("--no-cache", args->no_cache, "neither read nor write cached fields and pointshells");

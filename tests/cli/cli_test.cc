@@ -1,5 +1,6 @@
 // End-to-end checks of the `contactlab` program: exit codes, error messages that name the
 // file, no output left behind on failure, and the session and run commands on small scenes.
+#include <Eigen/Core>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -177,6 +178,119 @@ TEST(Cli, SlurmScriptsRunByHandMergeToTheLocalRunsSummary) {
   EXPECT_EQ(WithoutTimings(ReadWholeFile(out / "summary.csv")), WithoutTimings(summary_local));
   EXPECT_EQ(WithoutTimings(ReadWholeFile(out / "cycles.csv")), WithoutTimings(ReadWholeFile(dir / "local" / "cycles.csv")));
   EXPECT_GT(std::count(summary_local.begin(), summary_local.end(), '\n'), 3);
+}
+
+}  // namespace
+}  // namespace contactlab
+
+namespace contactlab {
+namespace {
+
+// A small deformable beam (body A) under a probe, for the commands that take reduced coordinates.
+const char* kBeamScene = R"(name: cli-beam
+bodies:
+  - name: beam
+    mesh: "box:0.1,0.01,0.01,4"
+    role: pointshell
+    pointshell: {points: 512, levels: 3}
+    field: {resolution: 48}
+    deformable: {model: stvk, modes: 4, cells: 16, E: 5.0e7, nu: 0.3, rho: 1100, anchor: {below: [x, -0.09]}}
+  - name: probe
+    mesh: "sphere:0.01,2"
+    pose: [0.07, 0, 0.0195, 1, 0, 0, 0]
+    role: field
+    field: {resolution: 24}
+model: {k_C: 1000}
+)";
+
+std::vector<std::vector<double>> ReadNumbers(const std::filesystem::path& file, char separator, bool header) {
+  std::istringstream in(ReadWholeFile(file));
+  std::vector<std::vector<double>> rows;
+  std::string line;
+  if (header) std::getline(in, line);
+  while (std::getline(in, line)) {
+    std::vector<double> row;
+    std::istringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, separator);) row.push_back(std::stod(cell));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+TEST(CliDeformable, ContactAtQAndBodyExportAreConsistentAndBadQIsRefused) {
+  testing::TempDir dir;
+  std::ofstream(dir / "beam.yaml") << kBeamScene;
+  const std::string scene = (dir / "beam.yaml").string() + " --cache " + (dir / "cache").string();
+  // At q = 0 the wrench is the rigid one; the reduced force has r entries.
+  const Outcome rest = RunCli("contact " + scene + " --json");
+  const Outcome zero = RunCli("contact " + scene + " --json --q-a 0,0,0,0");
+  ASSERT_EQ(zero.exit_code, 0) << zero.output;
+  const auto force_of = [](const std::string& out) { return out.substr(out.find("\"force\"")); };
+  EXPECT_EQ(force_of(rest.output).substr(0, 80), force_of(zero.output).substr(0, 80));
+  EXPECT_NE(zero.output.find("\"reduced_force_A\""), std::string::npos) << zero.output;
+
+  // The exported mesh is linear in q: the mean of +q and -q is the rest mesh.
+  ASSERT_EQ(RunCli("body-export " + scene + " --body beam --mesh " + (dir / "rest.obj").string()).exit_code, 0);
+  std::ofstream(dir / "q.csv") << "# q\n0.02, -0.01\n0.005 0.001\n";
+  std::ofstream(dir / "mq.csv") << "-0.02,0.01,-0.005,-0.001\n";
+  ASSERT_EQ(RunCli("body-export " + scene + " --body beam --q @" + (dir / "q.csv").string() + " --mesh " +
+                   (dir / "plus.obj").string()).exit_code, 0);
+  ASSERT_EQ(RunCli("body-export " + scene + " --body beam --q @" + (dir / "mq.csv").string() + " --mesh " +
+                   (dir / "minus.obj").string()).exit_code, 0);
+  const auto vertices = [](const std::filesystem::path& f) {
+    std::vector<Eigen::Vector3d> v;
+    std::istringstream in(ReadWholeFile(f));
+    for (std::string tag; in >> tag;) {
+      if (tag == "v") {
+        Eigen::Vector3d p;
+        in >> p.x() >> p.y() >> p.z();
+        v.push_back(p);
+      } else {
+        std::string rest_of_line;
+        std::getline(in, rest_of_line);
+      }
+    }
+    return v;
+  };
+  const auto r0 = vertices(dir / "rest.obj"), rp = vertices(dir / "plus.obj"), rm = vertices(dir / "minus.obj");
+  ASSERT_EQ(r0.size(), rp.size());
+  ASSERT_EQ(r0.size(), rm.size());
+  double moved = 0;
+  for (std::size_t i = 0; i < r0.size(); ++i) {
+    EXPECT_LT((0.5 * (rp[i] + rm[i]) - r0[i]).norm(), 1e-6);
+    moved = std::max(moved, (rp[i] - r0[i]).norm());
+  }
+  EXPECT_GT(moved, 1e-4);
+
+  // The exported BD-tree radii at q contain every point of each node's subtree.
+  ASSERT_EQ(RunCli("body-export " + scene + " --body beam --q @" + (dir / "q.csv").string() + " --pointshell " +
+                   (dir / "ps.csv").string()).exit_code, 0);
+  const auto rows = ReadNumbers(dir / "ps.csv", ',', true);
+  ASSERT_GT(rows.size(), 512u);
+  for (const auto& row : rows) {
+    ASSERT_EQ(row.size(), 9u);
+    const Eigen::Vector3d x(row[0], row[1], row[2]);
+    EXPECT_NEAR(Eigen::Vector3d(row[3], row[4], row[5]).norm(), 1.0, 1e-5);
+    for (int p = int(row[7]); p >= 0; p = int(rows[p][7])) {
+      EXPECT_LE((x - Eigen::Vector3d(rows[p][0], rows[p][1], rows[p][2])).norm(), rows[p][8] * (1 + 1e-6) + 1e-9);
+    }
+  }
+
+  // Bad q: an error naming the argument, exit 1, no output written.
+  const Outcome count = RunCli("contact " + scene + " --q-a 1,2");
+  EXPECT_EQ(count.exit_code, 1);
+  EXPECT_NE(count.output.find("--q-a (body 'beam'): 2 values given; the body has r = 4"), std::string::npos)
+      << count.output;
+  const Outcome nan = RunCli("contact " + scene + " --q-a 0,nan,0,0");
+  EXPECT_EQ(nan.exit_code, 1);
+  EXPECT_NE(nan.output.find("value 2 'nan' is not a finite number"), std::string::npos) << nan.output;
+  const Outcome rigid = RunCli("body-export " + scene + " --body probe --q 1 --mesh " + (dir / "no.obj").string());
+  EXPECT_EQ(rigid.exit_code, 1);
+  EXPECT_NE(rigid.output.find("--q (body 'probe'): the body is rigid"), std::string::npos) << rigid.output;
+  const Outcome unknown = RunCli("body-export " + scene + " --body nobody --mesh " + (dir / "no.obj").string());
+  EXPECT_EQ(unknown.exit_code, 1);
+  EXPECT_NE(unknown.output.find("no body 'nobody'"), std::string::npos) << unknown.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "no.obj"));
 }
 
 }  // namespace

@@ -1,0 +1,58 @@
+#include "experiment/reduced_coordinates.h"
+
+#include <cmath>
+#include <vector>
+
+#include "experiment/scene_assets.h"
+#include "util/atomic_file.h"
+#include "util/error.h"
+#include "util/parse_number.h"
+
+namespace contactlab {
+
+ReducedState ParseReducedCoordinates(const std::string& text, BodyAssets& body, const std::string& option) {
+  const std::string who = option + " (body '" + body.spec().name + "')";
+  if (!body.deformable()) Fail(who, "the body is rigid: it has no deformable block, so it takes no q");
+  std::string values = text;
+  std::string source = who;
+  if (!text.empty() && text[0] == '@') {
+    const std::string file = text.substr(1);
+    try {
+      values = ReadWholeFile(file);
+    } catch (const Error& e) {
+      Fail(who, std::string("cannot read the q file: ") + e.what());
+    }
+    source = who + " file " + file;
+  }
+  // Comments out, then split on commas and white space.
+  std::vector<std::string> tokens;
+  std::string token;
+  bool comment = false;
+  for (const char c : values + "\n") {
+    if (c == '\n') comment = false;
+    if (c == '#') comment = true;
+    const bool separator = comment || c == ',' || c == ' ' || c == '\t' || c == '\n' || c == '\r';
+    if (!separator) {
+      token += c;
+    } else if (!token.empty()) {
+      tokens.push_back(token);
+      token.clear();
+    }
+  }
+  const int r = body.reduced_model()->r();
+  if (int(tokens.size()) != r) {
+    Fail(source, std::to_string(tokens.size()) + " values given; the body has r = " + std::to_string(r) +
+                     " reduced coordinates");
+  }
+  ReducedState state(r);
+  for (int j = 0; j < r; ++j) {
+    const std::optional<double> v = ParseDouble(tokens[j]);
+    if (!v || !std::isfinite(*v)) {
+      Fail(source, "value " + std::to_string(j + 1) + " '" + tokens[j] + "' is not a finite number");
+    }
+    state.q[j] = *v;
+  }
+  return state;
+}
+
+}  // namespace contactlab
