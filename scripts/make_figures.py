@@ -204,6 +204,80 @@ class Figures:
         os.replace(md + ".tmp", md)
         return True
 
+    # Paper sec. 4.1: the deformable pointshell two-way coupled, on a cantilever pressed by a probe.
+    def deformable_cantilever(self):
+        rows = self.load("deformable-cantilever", "cycles")
+        summary = self.load("deformable-cantilever", "summary")
+        if not rows or not summary:
+            return False
+        fig, axes = plt.subplots(1, 3, figsize=(14, 4))
+        for cells in sorted({r["cells"] for r in rows}, key=int):
+            rs = [r for r in rows if r["cells"] == cells and r["model"] == "pointshell"]
+            t = [num(r, "t") for r in rs]
+            axes[0].plot(t, [1e3 * num(r, "max_displacement") for r in rs], lw=0.9, label=f"{cells} cells")
+            axes[1].plot(t, [num(r, "fz") for r in rs], lw=0.9, label=f"{cells} cells")
+        axes[0].set_ylabel("largest displacement, free end (mm)")
+        axes[0].set_title("beam deflection")
+        axes[1].set_ylabel("contact force on the probe, z (N)")
+        axes[1].set_title("contact force")
+        for a in axes[:2]:
+            a.set_xlabel("time (s)")
+        tree = [r for r in summary if r["model"] == "pointshell"]
+        lin = {r["cells"]: r for r in summary if r["model"] == "pointshell-linear"}
+        x = [int(r["cells"]) for r in tree]
+        axes[2].plot(x, [num(r, "median_us") for r in tree], "o-", label="tree traversal")
+        axes[2].plot(x, [num(lin.get(r["cells"], {}), "median_us") for r in tree], "s-", label="tree-less")
+        axes[2].plot(x, [num(r, "median_step_us") for r in tree], "^-", label="reduced StVK step")
+        axes[2].set_xlabel("simulation mesh cells along the beam")
+        axes[2].set_ylabel("median time per cycle (µs)")
+        axes[2].set_yscale("log")
+        axes[2].set_title("cycle cost")
+        for a in axes:
+            a.grid(True, alpha=0.3)
+            a.legend(fontsize=8)
+        self.save(fig, "deformable_cantilever.png")
+        return True
+
+    # Paper Table 1, deformable rows.
+    def table1_deformable(self):
+        rows = self.load("table1-deformable", "summary")
+        if not rows:
+            return False
+        levels = defaultdict(lambda: defaultdict(int))
+        for r in self.load("table1-deformable", "cycles") or []:
+            if r["model"] == "pointshell" and r["coherence"] == "false":
+                levels[os.path.splitext(os.path.basename(r["scene"]))[0]][r["level"]] += 1
+        table = defaultdict(dict)
+        for r in rows:
+            table[os.path.splitext(os.path.basename(r["scene"]))[0]][(r["model"], r["coherence"])] = r
+        header = ["scene", "points", "r", "StVK step µs", "nodes (tree)", "tree µs (median)", "tree+TC µs", "level",
+                  "tree-less µs"]
+        lines = []
+        for scene, cells in sorted(table.items()):
+            tree = cells.get(("pointshell", "false"), {})
+            tc = cells.get(("pointshell", "true"), {})
+            lin = cells.get(("pointshell-linear", "false"), {})
+            lines.append([scene, tree.get("points", ""), tree.get("modes", ""), f"{num(tree, 'median_step_us'):.1f}",
+                          f"{num(tree, 'mean_nodes'):.0f}", f"{num(tree, 'median_us'):.1f}",
+                          f"{num(tc, 'median_us'):.1f}",
+                          max(levels[scene], key=levels[scene].get) if levels[scene] else "",
+                          f"{num(lin, 'median_us'):.1f}"])
+        fig, ax = plt.subplots(figsize=(11, 0.6 + 0.45 * len(lines)))
+        ax.axis("off")
+        t = ax.table(cellText=lines, colLabels=header, loc="center")
+        t.auto_set_font_size(False)
+        t.set_fontsize(9)
+        t.scale(1, 1.4)
+        ax.set_title("Table 1, deformable pointshells: traversal and reduced StVK step (circling contact)")
+        self.save(fig, "table1_deformable.png")
+        md = os.path.join(self.out, "table1_deformable.md")
+        with open(md + ".tmp", "w") as f:
+            f.write("| " + " | ".join(header) + " |\n|" + "---|" * len(header) + "\n")
+            for line in lines:
+                f.write("| " + " | ".join(str(c) for c in line) + " |\n")
+        os.replace(md + ".tmp", md)
+        return True
+
     # Beyond the paper: continuity across models.
     def continuity(self):
         rows = self.load("continuity-models", "cycles")
@@ -278,7 +352,8 @@ def main():
     parser.add_argument("--results", default=os.path.join(os.path.dirname(__file__), "..", "results"))
     args = parser.parse_args()
     figs = Figures(os.path.abspath(args.results))
-    for name in ["fig05b", "fig11", "fig14b", "fig15", "table1", "continuity", "speed_vs_error"]:
+    for name in ["fig05b", "fig11", "fig14b", "fig15", "table1", "table1_deformable", "deformable_cantilever",
+                 "continuity", "speed_vs_error"]:
         try:
             if not getattr(figs, name)():
                 print(f"make_figures: {name}: no results yet (run its experiment first)", file=sys.stderr)

@@ -19,6 +19,7 @@ const std::map<std::string, std::string>& AxisAliases() {
     }
     a["resolution"] = "scene.bodies[role=field].field.resolution";
     a["pointshell_resolution"] = "scene.bodies[role=pointshell].field.resolution";
+    for (const char* k : {"modes", "cells"}) a[k] = std::string("scene.bodies[role=pointshell].deformable.") + k;
     for (const char* k : {"k_C", "L", "node_budget", "coherence", "max_point_speed", "level", "gradient",
                           "cold_fraction", "lipschitz", "cycle_seconds"}) {
       a[k] = std::string("scene.model.") + k;

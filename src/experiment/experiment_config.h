@@ -24,6 +24,7 @@
 //   points levels method offset  -> scene.bodies[role=pointshell].pointshell.<same>
 //   resolution                   -> scene.bodies[role=field].field.resolution
 //   pointshell_resolution        -> scene.bodies[role=pointshell].field.resolution
+//   modes cells                  -> scene.bodies[role=pointshell].deformable.<same>
 //   k_C L node_budget coherence max_point_speed level gradient cold_fraction lipschitz
 //                                -> scene.model.<same>
 //   model                        -> models (a one-model list)
