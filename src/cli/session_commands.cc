@@ -2,7 +2,9 @@
 // session (Barbič & James 2008, sec. 5). The scene's field body is the haptic body: the device
 // workspace is centred on its start pose; the pointshell body stays where the scene puts it.
 // A one-line status shows rate, 99th-percentile cycle time, points in contact, level
-// rendered and clamps; the log (CSV) replays as a recorded trajectory.
+// rendered and clamps; the log (CSV) replays as a recorded trajectory. A deformable pointshell
+// body (a bridge or a hose the user pushes with the rigid haptic body) is two-way coupled:
+// its reduced deformation takes one step at the end of every cycle (paper sec. 4.1).
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -48,19 +50,19 @@ struct SessionArgs {
 constexpr const char* kLogHeader =
     "t,x,y,z,qw,qx,qy,qz,body_x,body_y,body_z,body_qw,body_qx,body_qy,body_qz,"
     "force_x,force_y,force_z,torque_x,torque_y,torque_z,contact_fx,contact_fy,contact_fz,"
-    "points_in_contact,level_rendered,nodes_visited,work_us,safety_flags,buttons\n";
+    "points_in_contact,level_rendered,nodes_visited,work_us,safety_flags,buttons,step_us,q_norm\n";
 
 void WriteRecord(std::ostream& out, const CycleRecord& r, std::int64_t t0_ns) {
-  char line[640];
+  char line[720];
   std::snprintf(line, sizeof line,
                 "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,"
-                "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%d,%lld,%.3f,%u,%u\n",
+                "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%d,%lld,%.3f,%u,%u,%.3f,%.9g\n",
                 double(r.now_ns - t0_ns) * 1e-9, r.p_WD[0], r.p_WD[1], r.p_WD[2], r.q_WD[0], r.q_WD[1], r.q_WD[2],
                 r.q_WD[3], r.p_WH[0], r.p_WH[1], r.p_WH[2], r.q_WH[0], r.q_WH[1], r.q_WH[2], r.q_WH[3],
                 r.device_force[0], r.device_force[1], r.device_force[2], r.device_torque[0], r.device_torque[1],
                 r.device_torque[2], r.contact_force[0], r.contact_force[1], r.contact_force[2], r.points_in_contact,
                 r.level_rendered, static_cast<long long>(r.nodes_visited), double(r.work_ns) * 1e-3,
-                r.safety_flags, r.buttons);
+                r.safety_flags, r.buttons, double(r.step_ns) * 1e-3, r.q_norm);
   out << line;
 }
 
@@ -85,6 +87,17 @@ void RunSession(const SessionArgs& args) {
   config.X_WA = scene.pointshell_body.pose;
   config.node_budget = scene.node_budget;
   if (args.k_vc > 0) config.coupling.k_vc = args.k_vc;
+  // A deformable pointshell body: its reduced model steps at the haptic rate.
+  std::unique_ptr<ReducedIntegrator> deformation;
+  if (assets.A.deformable()) {
+    const DeformableSpec& d = *scene.pointshell_body.deformable;
+    IntegratorOptions io;
+    io.time_step = scene.model.cycle_seconds;
+    io.mass_damping = d.mass_damping;
+    io.stiffness_damping = d.stiffness_damping;
+    deformation = std::make_unique<ReducedIntegrator>(assets.A.reduced_model()->forces, io);
+    config.deformation_A = deformation.get();
+  }
   HapticCycle cycle(mapped, model.get(), config);
 
   HapticLoopOptions loop_options;
@@ -104,8 +117,11 @@ void RunSession(const SessionArgs& args) {
         << kLogHeader;
   }
 
-  std::printf("session: scene %s, model %s, device %s, %.1f s (Ctrl-C stops)\n", scene.name.c_str(),
-              model_name.c_str(), args.device.c_str(), args.duration);
+  std::printf("session: scene %s, model %s, device %s, %.1f s (Ctrl-C stops)%s\n", scene.name.c_str(),
+              model_name.c_str(), args.device.c_str(), args.duration,
+              deformation ? (", " + scene.pointshell_body.name + " deformable, r = " +
+                             std::to_string(deformation->r())).c_str()
+                          : "");
   std::atomic<bool> done{false};
   std::thread consumer([&] {
     CycleRecord rec;

@@ -1,6 +1,7 @@
 // One haptic cycle (Barbič & James 2008, sec. 5).
 #include "haptics/haptic_cycle.h"
 
+#include <chrono>
 #include <limits>
 
 namespace contactlab {
@@ -27,6 +28,12 @@ void HapticCycle::Start(std::int64_t now_ns) {
   coupling_.Reset(state_.X_WD);
   safety_.Start(now_ns);
   if (model_ != nullptr) model_->Reset();
+  if (config_.deformation_A != nullptr) {
+    config_.deformation_A->Reset();
+    const int r = config_.deformation_A->r();
+    f_A_.setZero(r);
+    K_A_.setZero(r, r);
+  }
   cycle_ = 0;
 }
 
@@ -47,6 +54,11 @@ CycleRecord HapticCycle::Step(std::int64_t now_ns) {
     q.X_WB = coupling_.X_WH();
     q.cycle = cycle_;
     q.node_budget = config_.node_budget;
+    if (config_.deformation_A != nullptr) {
+      q.q_A = &config_.deformation_A->state();
+      q.reduced_force_A = &f_A_;
+      q.reduced_stiffness_A = &K_A_;
+    }
     contact = model_->Evaluate(q);
   }
 
@@ -82,6 +94,13 @@ CycleRecord HapticCycle::Step(std::int64_t now_ns) {
   const Eigen::Quaterniond& qh = step.X_WH.rotation;
   rec.q_WD[0] = qd.w(), rec.q_WD[1] = qd.x(), rec.q_WD[2] = qd.y(), rec.q_WD[3] = qd.z();
   rec.q_WH[0] = qh.w(), rec.q_WH[1] = qh.x(), rec.q_WH[2] = qh.y(), rec.q_WH[3] = qh.z();
+  // Body A's deformation advances at the end of the cycle (paper sec. 4.1).
+  if (config_.deformation_A != nullptr && model_ != nullptr) {
+    const auto t0 = std::chrono::steady_clock::now();
+    config_.deformation_A->Step(f_A_, &K_A_);
+    rec.step_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0).count();
+    rec.q_norm = config_.deformation_A->state().q.norm();
+  }
   ++cycle_;
   return rec;
 }

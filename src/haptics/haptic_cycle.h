@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "contact/contact_model.h"
+#include "deform/reduced_integrator.h"
 #include "haptics/haptic_device.h"
 #include "haptics/safety_filter.h"
 #include "haptics/virtual_coupling.h"
@@ -19,6 +20,10 @@ struct HapticCycleConfig {
   SafetyParams safety{.max_force = 0, .max_torque = 0};
   Pose X_WA;                       // pose of the static contact body A (world)
   std::int64_t node_budget = 0;    // passed to the contact model; <= 0 means unlimited
+  // Body A's reduced deformation when A is a deformable pointshell (paper sec. 4): held fixed
+  // during the contact query, then stepped once at the end of the cycle with the reduced
+  // contact force (and stiffness). Null: A is rigid. Must outlive the cycle.
+  ReducedIntegrator* deformation_A = nullptr;
 };
 
 // What one cycle did; trivially copyable so it can travel through an SpscRing.
@@ -35,6 +40,8 @@ struct CycleRecord {
   std::int32_t level_rendered = -1;   // deepest tree level the contact model rendered
   std::int64_t nodes_visited = 0;
   std::int64_t work_ns = 0;           // time the cycle took (set by the loop), ns
+  std::int64_t step_ns = 0;           // body A's deformation step within it (deformable A), ns
+  double q_norm = 0;                  // |q| of body A after the step (deformable A)
   double p_WD[3] = {0, 0, 0};         // device position, m
   double q_WD[4] = {1, 0, 0, 0};      // device orientation (w, x, y, z)
   double p_WH[3] = {0, 0, 0};         // simulated body position, m
@@ -75,6 +82,8 @@ class HapticCycle {
   DeviceState state_;
   std::int64_t last_sample_ns_ = 0;
   std::int64_t cycle_ = 0;
+  ReducedVector f_A_;  // body A's reduced contact force and stiffness, this cycle
+  ReducedMatrix K_A_;
 };
 
 }  // namespace contactlab

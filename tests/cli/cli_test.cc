@@ -291,6 +291,13 @@ TEST(CliDeformable, ContactAtQAndBodyExportAreConsistentAndBadQIsRefused) {
   EXPECT_EQ(unknown.exit_code, 1);
   EXPECT_NE(unknown.output.find("no body 'nobody'"), std::string::npos) << unknown.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "no.obj"));
+
+  // A device session couples the deformable body; its log gains the step time and |q|.
+  const Outcome session = RunCli("session " + scene + " --device sim --duration 0.3 --no-realtime --quiet --log " +
+                                 (dir / "session.csv").string());
+  ASSERT_EQ(session.exit_code, 0) << session.output;
+  EXPECT_NE(session.output.find("beam deformable, r = 4"), std::string::npos) << session.output;
+  EXPECT_NE(ReadWholeFile(dir / "session.csv").find(",step_us,q_norm\n"), std::string::npos);
 }
 
 }  // namespace
