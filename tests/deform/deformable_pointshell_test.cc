@@ -77,5 +77,52 @@ TEST(DeformablePointshell, TreeRadiiBoundEverySubtreePointAtRandomDeformations) 
   EXPECT_LT(mean_slack, 0.6);  // a bound mostly made of its rest radius, not a blanket
 }
 
+// Deformed normals are orthogonal to the deformed surface: for neighbouring points on the same
+// face, the chord between their deformed positions (a finite difference of the deformation,
+// computed without the normal correction) is nearly orthogonal to the corrected normal, far
+// more so than to the undeformed normal, which the deformation has rotated. (Continuity across
+// tet faces is tested in embedded_points_test.cc.)
+TEST(DeformablePointshell, CorrectedNormalsAreOrthogonalToTheDeformedSurface) {
+  const ReducedModel model =
+      BuildReducedModel(testing::MakeBeam(), testing::BeamOptions(8, ReducedModelKind::kStVK), "beam");
+  const auto shell = BeamShell();
+  const DeformablePointshell deformable(shell, model.mesh, model.basis);
+  const Pointshell& s = *shell;
+  const EmbeddedPoints& pts = deformable.points();
+  std::mt19937 rng(31);
+  for (double scale : {0.1, 0.3, 1.0}) {
+    const Eigen::VectorXd q = testing::RandomVector(deformable.r(), scale, &rng);
+    double corrected = 0, rotated = 0, exact = 0;
+    int pairs = 0;
+    for (int i = 0; i < s.num_points(); ++i) {
+      const Eigen::Vector3d n0(s.nx[i], s.ny[i], s.nz[i]);
+      const Eigen::Vector3d n = pts.CorrectedNormal(i, q.data());
+      const Eigen::Vector3d ne = pts.Normal(i, q.data());
+      const Eigen::Vector3d xi = pts.Position(i, q.data());
+      for (int j = 0; j < s.num_points(); ++j) {
+        const Eigen::Vector3d d0 = pts.rest_position(j) - pts.rest_position(i);
+        if (j == i || d0.norm() > 0.06 || Eigen::Vector3d(s.nx[j], s.ny[j], s.nz[j]).dot(n0) < 0.999) continue;
+        const Eigen::Vector3d chord = (pts.Position(j, q.data()) - xi).normalized();
+        corrected += std::fabs(n.dot(chord));
+        rotated += std::fabs(n0.dot(chord));
+        exact += std::fabs(ne.dot(chord));
+        ++pairs;
+      }
+    }
+    ASSERT_GT(pairs, 1000);
+    corrected /= pairs;
+    rotated /= pairs;
+    exact /= pairs;
+    std::printf("scale %.1f: mean |n . chord| corrected %.4f, exact push-forward %.4f, undeformed normal %.4f (%d pairs)\n",
+                scale, corrected, exact, rotated, pairs);
+    EXPECT_GT(rotated, 0.02);                // the deformation does rotate the faces
+    // The corrected normals follow them: the exact push-forward up to the chord's curvature,
+    // the linear correction (the hot path's) up to its first-order error, which grows as
+    // |q|^2 (about 5 degrees at a 20-degree rotation).
+    EXPECT_LT(exact, 0.1 * rotated);
+    EXPECT_LT(corrected, 0.3 * rotated);
+  }
+}
+
 }  // namespace
 }  // namespace contactlab
