@@ -314,6 +314,49 @@ TEST(DeformableContact, TemporalCoherenceSkipsNodesButNeverAContact) {
               nodes_on / double(on.cycles.size()));
 }
 
+// A free deformable body (no anchor: its reduced basis has no rigid modes, so it deforms
+// relative to its own frame, decoupled from the rigid motion the trajectory gives it): a soft
+// ball pressed onto a plate flattens while pressed and springs back when lifted.
+TEST(DeformableContact, AFreeDeformableBallFlattensOnAPlateAndSpringsBack) {
+  TempDir dir;
+  std::ofstream(dir / "ball.yaml") << R"(name: ball-plate
+bodies:
+  - name: ball
+    mesh: "sphere:0.02,3"
+    pose: [0, 0, 0.0205, 1, 0, 0, 0]
+    role: pointshell
+    pointshell: {points: 1024, levels: 3, seed: 2}
+    field: {resolution: 48}
+    deformable: {model: stvk, modes: 12, cells: 12, E: 2.0e5, nu: 0.4, rho: 1000,
+                 damping: {alpha: 10.0, beta: 0.001}, anchor: none}
+  - name: plate
+    mesh: "box:0.05,0.05,0.01,2"
+    pose: [0, 0, -0.01, 1, 0, 0, 0]
+    role: field
+    field: {resolution: 48}
+model: {k_C: 1000, L: 10}
+)";
+  std::ofstream(dir / "run.yaml") << "name: free\nscene: ball.yaml\nmodels: [pointshell]\nmoving_body: ball\n"
+                                     "trajectory: {type: approach-press, direction: [0, 0, -1], approach: 0.0, "
+                                     "depth: 0.003, duration: 3.0}\n";
+  const ExperimentConfig config = LoadExperimentConfig(dir / "run.yaml");
+  RunOptions options;
+  options.assets = Assets(dir);
+  options.progress = false;
+  const JobResult r = RunJob(config, ExpandJobs(config).at(0), options);
+  double peak = 0;
+  for (const CycleRow& row : r.cycles) {
+    ASSERT_TRUE(std::isfinite(row.elastic_energy) && std::isfinite(row.max_displacement));
+    peak = std::max(peak, row.max_displacement);
+  }
+  const CycleRow& deepest = r.cycles.at(1500);
+  EXPECT_GT(deepest.max_displacement, 2e-4);  // flattened while pressed
+  EXPECT_GT(deepest.force.z(), 0);            // the plate pushes the ball up
+  EXPECT_LT(r.cycles.back().max_displacement, 0.1 * peak);  // back to round once lifted
+  std::printf("free ball: deflection %.3f mm at the deepest press, %.4f mm at the end\n",
+              1e3 * deepest.max_displacement, 1e3 * r.cycles.back().max_displacement);
+}
+
 TEST(DeformableContact, ModelsThatTreatTheBodyAsRigidRefuseADeformableBody) {
   TempDir dir;
   Scene scene = ParseBeam(BeamScene(20, "stvk", 0, 0));
