@@ -52,6 +52,24 @@ class Figures:
         os.replace(tmp, path)
         self.made.append(path)
 
+    # A table as a figure (NAME.png) and as Markdown (NAME.md).
+    def save_table(self, header, lines, title, name, width):
+        fig, ax = plt.subplots(figsize=(width, 0.6 + 0.45 * len(lines)))
+        ax.axis("off")
+        t = ax.table(cellText=lines, colLabels=header, loc="center")
+        t.auto_set_font_size(False)
+        t.set_fontsize(9)
+        t.scale(1, 1.4)
+        ax.set_title(title)
+        self.save(fig, name + ".png")
+        md = os.path.join(self.out, name + ".md")
+        with open(md + ".tmp", "w") as f:
+            f.write("| " + " | ".join(header) + " |\n|" + "---|" * len(header) + "\n")
+            for line in lines:
+                f.write("| " + " | ".join(str(c) for c in line) + " |\n")
+        os.replace(md + ".tmp", md)
+        self.made.append(md)
+
     # Paper Fig. 5(b): error against the eq. (2) limit as the pointshell grows.
     def fig05b(self):
         rows = self.load("fig05b-convergence", "summary")
@@ -163,21 +181,26 @@ class Figures:
         self.save(fig, "fig15_asymmetry.png")
         return True
 
-    # Paper Table 1: statistics per scene.
-    def table1(self):
-        rows = self.load("table1-statistics", "summary")
+    # Table 1's summary rows of EXPERIMENT by scene and (model, coherence), and the most
+    # frequent level the tree model rendered per scene; (None, None) without results.
+    def table1_cells(self, experiment):
+        rows = self.load(experiment, "summary")
         if not rows:
-            return False
-        # Level rendered: the most frequent level of the tree model's cycles per scene.
+            return None, None
         levels = defaultdict(lambda: defaultdict(int))
-        for r in self.load("table1-statistics", "cycles") or []:
+        for r in self.load(experiment, "cycles") or []:
             if r["model"] == "pointshell" and r["coherence"] == "false":
                 levels[os.path.splitext(os.path.basename(r["scene"]))[0]][r["level"]] += 1
         table = defaultdict(dict)
         for r in rows:
-            scene = os.path.splitext(os.path.basename(r["scene"]))[0]
-            key = (r["model"], r["coherence"])
-            table[scene][key] = r
+            table[os.path.splitext(os.path.basename(r["scene"]))[0]][(r["model"], r["coherence"])] = r
+        return table, levels
+
+    # Paper Table 1: statistics per scene.
+    def table1(self):
+        table, levels = self.table1_cells("table1-statistics")
+        if table is None:
+            return False
         header = ["scene", "points", "nodes (tree)", "tree µs (median)", "tree+TC µs", "level", "tree-less µs"]
         lines = []
         for scene, cells in sorted(table.items()):
@@ -188,20 +211,8 @@ class Figures:
                           f"{num(tree, 'median_us'):.1f}", f"{num(tc, 'median_us'):.1f}",
                           max(levels[scene], key=levels[scene].get) if levels[scene] else "",
                           f"{num(lin, 'median_us'):.1f}"])
-        fig, ax = plt.subplots(figsize=(9, 0.6 + 0.45 * len(lines)))
-        ax.axis("off")
-        t = ax.table(cellText=lines, colLabels=header, loc="center")
-        t.auto_set_font_size(False)
-        t.set_fontsize(9)
-        t.scale(1, 1.4)
-        ax.set_title("Table 1: traversal statistics per scene (circling contact, 1 mm deep)")
-        self.save(fig, "table1_statistics.png")
-        md = os.path.join(self.out, "table1_statistics.md")
-        with open(md + ".tmp", "w") as f:
-            f.write("| " + " | ".join(header) + " |\n|" + "---|" * len(header) + "\n")
-            for line in lines:
-                f.write("| " + " | ".join(str(c) for c in line) + " |\n")
-        os.replace(md + ".tmp", md)
+        self.save_table(header, lines, "Table 1: traversal statistics per scene (circling contact, 1 mm deep)",
+                        "table1_statistics", 9)
         return True
 
     # Paper sec. 4.1: the deformable pointshell two-way coupled, on a cantilever pressed by a probe.
@@ -240,16 +251,9 @@ class Figures:
 
     # Paper Table 1, deformable rows.
     def table1_deformable(self):
-        rows = self.load("table1-deformable", "summary")
-        if not rows:
+        table, levels = self.table1_cells("table1-deformable")
+        if table is None:
             return False
-        levels = defaultdict(lambda: defaultdict(int))
-        for r in self.load("table1-deformable", "cycles") or []:
-            if r["model"] == "pointshell" and r["coherence"] == "false":
-                levels[os.path.splitext(os.path.basename(r["scene"]))[0]][r["level"]] += 1
-        table = defaultdict(dict)
-        for r in rows:
-            table[os.path.splitext(os.path.basename(r["scene"]))[0]][(r["model"], r["coherence"])] = r
         header = ["scene", "points", "r", "StVK step µs", "nodes (tree)", "tree µs (median)", "tree+TC µs", "level",
                   "tree-less µs"]
         lines = []
@@ -262,20 +266,9 @@ class Figures:
                           f"{num(tc, 'median_us'):.1f}",
                           max(levels[scene], key=levels[scene].get) if levels[scene] else "",
                           f"{num(lin, 'median_us'):.1f}"])
-        fig, ax = plt.subplots(figsize=(11, 0.6 + 0.45 * len(lines)))
-        ax.axis("off")
-        t = ax.table(cellText=lines, colLabels=header, loc="center")
-        t.auto_set_font_size(False)
-        t.set_fontsize(9)
-        t.scale(1, 1.4)
-        ax.set_title("Table 1, deformable pointshells: traversal and reduced StVK step (circling contact)")
-        self.save(fig, "table1_deformable.png")
-        md = os.path.join(self.out, "table1_deformable.md")
-        with open(md + ".tmp", "w") as f:
-            f.write("| " + " | ".join(header) + " |\n|" + "---|" * len(header) + "\n")
-            for line in lines:
-                f.write("| " + " | ".join(str(c) for c in line) + " |\n")
-        os.replace(md + ".tmp", md)
+        self.save_table(header, lines,
+                        "Table 1, deformable pointshells: traversal and reduced StVK step (circling contact)",
+                        "table1_deformable", 11)
         return True
 
     # Beyond the paper: continuity across models.

@@ -61,6 +61,17 @@ AssetOptions Assets(const TempDir& dir) {
   return o;
 }
 
+// Runs every job of the experiment config DIR/run.yaml (its scene beside it), caching in DIR.
+std::vector<JobResult> RunAllJobs(const TempDir& dir) {
+  const ExperimentConfig config = LoadExperimentConfig(dir / "run.yaml");
+  RunOptions options;
+  options.assets = Assets(dir);
+  options.progress = false;
+  std::vector<JobResult> results;
+  for (const Job& job : ExpandJobs(config)) results.push_back(RunJob(config, job, options));
+  return results;
+}
+
 // A random deformation whose largest surface displacement is about AMPLITUDE metres.
 ReducedState RandomState(const ReducedModel& model, double amplitude, std::mt19937* rng) {
   std::normal_distribution<double> normal;
@@ -228,12 +239,7 @@ TEST(DeformableContact, CantileverDeflectionApproachesEulerBernoulliAsCellsGrow)
                                        "moving_body: probe\n"
                                        "trajectory: {type: slide, direction: [0, 0, -1], depth: 0.004, length: 0, "
                                        "duration: 3.0}\n";
-    const ExperimentConfig config = LoadExperimentConfig(dir / "run.yaml");
-    RunOptions options;
-    options.assets = Assets(dir);
-    options.progress = false;
-    const std::vector<Job> jobs = ExpandJobs(config);
-    const JobResult result = RunJob(config, jobs.at(0), options);
+    const JobResult result = RunAllJobs(dir).at(0);
     // Middle of the hold (the press ends at 0.6 s, the release starts at 2.4 s).
     const CycleRow& row = result.cycles.at(2300);
     ASSERT_TRUE(row.deformable);
@@ -285,14 +291,10 @@ TEST(DeformableContact, TemporalCoherenceSkipsNodesButNeverAContact) {
                                      "trajectory: {type: slide, direction: [0, 0, -1], depth: 0.004, length: 0.01, "
                                      "tangent: [1, 0, 0], duration: 2.0}\n"
                                      "sweep: {coherence: [false, true]}\n";
-  const ExperimentConfig config = LoadExperimentConfig(dir / "run.yaml");
-  RunOptions options;
-  options.assets = Assets(dir);
-  options.progress = false;
-  const std::vector<Job> jobs = ExpandJobs(config);
-  ASSERT_EQ(jobs.size(), 2u);
-  const JobResult off = RunJob(config, jobs[0], options);
-  const JobResult on = RunJob(config, jobs[1], options);
+  const std::vector<JobResult> runs = RunAllJobs(dir);
+  ASSERT_EQ(runs.size(), 2u);
+  const JobResult& off = runs[0];
+  const JobResult& on = runs[1];
   ASSERT_EQ(off.cycles.size(), on.cycles.size());
   double nodes_off = 0, nodes_on = 0, max_q = 0;
   int touching = 0;
@@ -339,11 +341,7 @@ model: {k_C: 1000, L: 10}
   std::ofstream(dir / "run.yaml") << "name: free\nscene: ball.yaml\nmodels: [pointshell]\nmoving_body: ball\n"
                                      "trajectory: {type: approach-press, direction: [0, 0, -1], approach: 0.0, "
                                      "depth: 0.003, duration: 3.0}\n";
-  const ExperimentConfig config = LoadExperimentConfig(dir / "run.yaml");
-  RunOptions options;
-  options.assets = Assets(dir);
-  options.progress = false;
-  const JobResult r = RunJob(config, ExpandJobs(config).at(0), options);
+  const JobResult r = RunAllJobs(dir).at(0);
   double peak = 0;
   for (const CycleRow& row : r.cycles) {
     ASSERT_TRUE(std::isfinite(row.elastic_energy) && std::isfinite(row.max_displacement));
