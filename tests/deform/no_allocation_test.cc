@@ -53,6 +53,10 @@ TEST(NoAllocation, TimeStepForcesAndPointQueriesAllocateNothing) {
     auto ws = model.forces.MakeWorkspace();
     ReducedVector f_ext = ReducedVector::Zero(20), f(20);
     ReducedMatrix K(20, 20);
+    // A contact stiffness (symmetric positive semidefinite), given on every other step.
+    ReducedMatrix K_contact = ReducedMatrix::Zero(20, 20);
+    K_contact(0, 0) = K_contact(1, 1) = 50;
+    K_contact(0, 1) = K_contact(1, 0) = 10;
     double sink = 0;
 
     g_allocations = 0;
@@ -60,7 +64,7 @@ TEST(NoAllocation, TimeStepForcesAndPointQueriesAllocateNothing) {
     for (int step = 0; step < 20; ++step) {
       f_ext.setZero();
       embedded.AddPointForce(0, Eigen::Vector3d(0, -100, 0), f_ext.data());
-      integrator.Step(f_ext);
+      integrator.Step(f_ext, step % 2 == 0 ? &K_contact : nullptr);
       const double* q = integrator.state().q.data();
       sink += embedded.Position(0, q).y() + embedded.Normal(1, q).x() + embedded.DeformationGradient(1, q)(0, 0);
       model.forces.Evaluate(integrator.state().q, &f, &K, &ws);

@@ -44,6 +44,48 @@ TEST(ReducedIntegrator, UndampedNewmarkConservesEnergy) {
   EXPECT_GT(integrator.KineticEnergy(), 0);
 }
 
+// A step with the contact stiffness K solves the equation of motion with the external force
+// linearised about the step's start, a1 + f(q1) + D v1 = f_ext - K (q1 - q0), exactly for the
+// linear model (one Newton iteration suffices); a step without K after it solves the plain
+// equation again (the linear model's constant factor is restored).
+TEST(ReducedIntegrator, ContactStiffnessEntersTheStepImplicitlyAndLeavesWithIt) {
+  for (auto kind : {ReducedModelKind::kLinear, ReducedModelKind::kStVK}) {
+    const ReducedModel model = BuildReducedModel(MakeBeam(), BeamOptions(6, kind), "beam");
+    IntegratorOptions options;
+    options.time_step = 1e-3;
+    options.mass_damping = 0.5;
+    options.stiffness_damping = 1e-3;
+    options.newton_iterations = kind == ReducedModelKind::kLinear ? 1 : 30;
+    options.newton_tolerance = kind == ReducedModelKind::kLinear ? 0 : 1e-14;
+    ReducedIntegrator integrator(model.forces, options);
+    const Eigen::MatrixXd D = 0.5 * Eigen::MatrixXd::Identity(6, 6) + 1e-3 * model.forces.linear();
+    ReducedMatrix K = ReducedMatrix::Zero(6, 6);
+    for (int j = 0; j < 6; ++j) K(j, j) = 1e3 * (j + 1);
+    K(0, 1) = K(1, 0) = 200;
+    ReducedVector f_ext(6);
+    f_ext << 3, -1, 0.5, 0, 2, -0.7;
+    auto ws = model.forces.MakeWorkspace();
+    ReducedVector f_int(6);
+    for (int step = 0; step < 6; ++step) {
+      const bool with_k = step % 2 == 0;
+      const ReducedVector q0 = integrator.state().q;
+      integrator.Step(f_ext, with_k ? &K : nullptr);
+      const ReducedState& s = integrator.state();
+      model.forces.Evaluate(s.q, &f_int, nullptr, &ws);
+      Eigen::VectorXd residual = integrator.acceleration() + f_int + D * Eigen::VectorXd(s.qdot) - f_ext;
+      if (with_k) residual += K * (s.q - q0);
+      EXPECT_LT(residual.norm(), 1e-8 * f_ext.norm()) << "step " << step << (with_k ? " with K" : " without K");
+    }
+    // The stiffness matters: the same force with a K comparable to the step's inertia term
+    // (4 / h^2) moves the body less.
+    const ReducedMatrix stiff = 1e7 * ReducedMatrix::Identity(6, 6);
+    ReducedIntegrator a(model.forces, options), b(model.forces, options);
+    a.Step(f_ext);
+    b.Step(f_ext, &stiff);
+    EXPECT_LT(b.state().q.norm(), 0.9 * a.state().q.norm());
+  }
+}
+
 TEST(ReducedIntegrator, DampingDissipatesEnergy) {
   const ReducedModel model = BuildReducedModel(MakeBeam(), BeamOptions(6, ReducedModelKind::kLinear), "beam");
   IntegratorOptions options;
