@@ -97,6 +97,7 @@ void RunSession(const SessionArgs& args) {
     io.stiffness_damping = d.stiffness_damping;
     deformation = std::make_unique<ReducedIntegrator>(assets.A.reduced_model()->forces, io);
     config.deformation_A = deformation.get();
+    config.implicit_contact_A = d.implicit_contact;
   }
   HapticCycle cycle(mapped, model.get(), config);
 

@@ -57,7 +57,9 @@ void OnMovingBody(bool moving_is_B, const ContactQuery& q, const Wrench& on_B, E
 class DeformableCoupling {
  public:
   DeformableCoupling(const BodyAssets& body, std::shared_ptr<const ReducedModel> model, double dt)
-      : model_(std::move(model)), integrator_(model_->forces, Options(*body.spec().deformable, dt)) {
+      : model_(std::move(model)),
+        integrator_(model_->forces, Options(*body.spec().deformable, dt)),
+        implicit_contact_(body.spec().deformable->implicit_contact) {
     f_.setZero(model_->r());
     K_.setZero(model_->r(), model_->r());
   }
@@ -67,12 +69,12 @@ class DeformableCoupling {
     f_.setZero(model_->r());
     q->q_A = &integrator_.state();
     q->reduced_force_A = &f_;
-    q->reduced_stiffness_A = &K_;
+    q->reduced_stiffness_A = implicit_contact_ ? &K_ : nullptr;
   }
   // Steps with the force of the query just made, and records the state in ROW.
   void Step(CycleRow* row) {
     const auto t0 = std::chrono::steady_clock::now();
-    integrator_.Step(f_, &K_);
+    integrator_.Step(f_, implicit_contact_ ? &K_ : nullptr);
     row->step_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
     row->deformable = true;
     row->elastic_energy = integrator_.PotentialEnergy();
@@ -102,6 +104,7 @@ class DeformableCoupling {
   ReducedIntegrator integrator_;
   ReducedVector f_;
   ReducedMatrix K_;  // the contact's reduced stiffness: the step treats contact linearly implicitly
+  bool implicit_contact_;
 };
 
 }  // namespace

@@ -59,7 +59,7 @@ Anchoring ParseAnchor(const ConfigNode& n) {
 }
 
 DeformableSpec ParseDeformable(const ConfigNode& n) {
-  n.ExpectKeys({"model", "modes", "cells", "E", "nu", "rho", "damping", "anchor"});
+  n.ExpectKeys({"model", "modes", "cells", "E", "nu", "rho", "damping", "anchor", "coupling"});
   DeformableSpec d;
   d.kind = n.OneOf("model", "stvk", {"stvk", "linear"}) == "linear" ? ReducedModelKind::kLinear
                                                                     : ReducedModelKind::kStVK;
@@ -85,6 +85,7 @@ DeformableSpec ParseDeformable(const ConfigNode& n) {
     d.stiffness_damping = c->NonNegative("beta", d.stiffness_damping);
   }
   if (auto c = n.Find("anchor")) d.anchor = ParseAnchor(*c);
+  d.implicit_contact = n.OneOf("coupling", "implicit", {"implicit", "explicit"}) == "implicit";
   return d;
 }
 

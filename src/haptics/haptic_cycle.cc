@@ -57,7 +57,7 @@ CycleRecord HapticCycle::Step(std::int64_t now_ns) {
     if (config_.deformation_A != nullptr) {
       q.q_A = &config_.deformation_A->state();
       q.reduced_force_A = &f_A_;
-      q.reduced_stiffness_A = &K_A_;
+      q.reduced_stiffness_A = config_.implicit_contact_A ? &K_A_ : nullptr;
     }
     contact = model_->Evaluate(q);
   }
@@ -97,7 +97,7 @@ CycleRecord HapticCycle::Step(std::int64_t now_ns) {
   // Body A's deformation advances at the end of the cycle (paper sec. 4.1).
   if (config_.deformation_A != nullptr && model_ != nullptr) {
     const auto t0 = std::chrono::steady_clock::now();
-    config_.deformation_A->Step(f_A_, &K_A_);
+    config_.deformation_A->Step(f_A_, config_.implicit_contact_A ? &K_A_ : nullptr);
     rec.step_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0).count();
     rec.q_norm = config_.deformation_A->state().q.norm();
   }

@@ -24,6 +24,9 @@ struct HapticCycleConfig {
   // during the contact query, then stepped once at the end of the cycle with the reduced
   // contact force (and stiffness). Null: A is rigid. Must outlive the cycle.
   ReducedIntegrator* deformation_A = nullptr;
+  // With deformation_A: the step also takes the contact's reduced stiffness (linearly
+  // implicit contact); false applies the contact force alone (the paper's explicit order).
+  bool implicit_contact_A = true;
 };
 
 // What one cycle did; trivially copyable so it can travel through an SpscRing.

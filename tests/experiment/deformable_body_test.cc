@@ -65,6 +65,11 @@ TEST(DeformableBody, TheBlockIsParsedAndARigidBodyHasNone) {
   EXPECT_EQ(d.anchor.kind, Anchoring::Kind::kBelowPlane);
   EXPECT_EQ(d.anchor.normal, Eigen::Vector3d::UnitX());
   EXPECT_EQ(d.anchor.offset, -0.09);
+  EXPECT_TRUE(d.implicit_contact);
+  EXPECT_FALSE(Parse(Replace(kBeamScene, "anchor: {below", "coupling: explicit, anchor: {below"))
+                   .field_body.deformable->implicit_contact);
+  EXPECT_NE(ErrorOf(Replace(kBeamScene, "anchor: {below", "coupling: sideways, anchor: {below")).find("coupling"),
+            std::string::npos);
   const Scene boxed = Parse(Replace(kBeamScene, "{below: [x, -0.09]}", "{box: [-0.2, -1, -1, -0.09, 1, 1]}"));
   EXPECT_EQ(boxed.field_body.deformable->anchor.kind, Anchoring::Kind::kInBox);
   const Scene ends = Parse(Replace(kBeamScene, "{below: [x, -0.09]}", "{outside: [-0.09, -1, -1, 0.09, 1, 1]}"));
