@@ -237,7 +237,7 @@ TEST(DeformableContact, UndampedCouplingGainsNoEnergyAndDampedCouplingSettles) {
 TEST(DeformableContact, CantileverDeflectionApproachesEulerBernoulliAsCellsGrow) {
   TempDir dir;
   std::vector<double> ratios;
-  std::printf("cells  F [N]   tip [mm]  EB mesh [mm]  ratio  EB nominal [mm]\n");
+  std::printf("cells  section [mm]  clamp x [mm]  F [N]   tip [mm]  EB mesh [mm]  ratio  EB nominal [mm]\n");
   for (int cells : {20, 40, 60}) {
     const std::string scene_text = BeamScene(cells, "stvk", 8, 5e-4);
     std::ofstream(dir / "beam.yaml") << scene_text;
@@ -272,8 +272,8 @@ TEST(DeformableContact, CantileverDeflectionApproachesEulerBernoulliAsCellsGrow)
     const double reference = eb(b * h * h * h / 12);
     const double nominal = eb(0.02 * 0.02 * 0.02 * 0.02 / 12);
     ratios.push_back(deflection / reference);
-    std::printf("%5d  %6.3f  %8.3f  %12.3f  %5.3f  %15.3f\n", cells, F, 1e3 * deflection, 1e3 * reference,
-                ratios.back(), 1e3 * nominal);
+    std::printf("%5d  %5.1f x %5.1f  %12.1f  %6.3f  %8.3f  %12.3f  %5.3f  %15.3f\n", cells, 1e3 * b, 1e3 * h,
+                1e3 * clamp, F, 1e3 * deflection, 1e3 * reference, ratios.back(), 1e3 * nominal);
   }
   // Stiffer than the beam theory (locking) but converging toward it.
   EXPECT_GT(ratios[1], ratios[0] + 0.05);
