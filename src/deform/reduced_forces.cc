@@ -169,7 +169,11 @@ void ReducedInternalForces::Evaluate(const ReducedVector& q, ReducedVector* f, R
 }
 
 double ReducedInternalForces::Energy(const ReducedVector& q, Workspace* ws) const {
-  if (kind_ == ReducedModelKind::kLinear) return 0.5 * q.dot(A_ * q);
+  if (kind_ == ReducedModelKind::kLinear) {
+    ReducedVector Aq(r_);  // bounded size: on the stack (A_ * q alone makes a heap temporary)
+    Aq.noalias() = A_ * q;
+    return 0.5 * q.dot(Aq);
+  }
   Evaluate(q, nullptr, nullptr, ws);  // fills Kb, Kc
   ws->T = 0.5 * A_ + ws->Kb / 3.0 + ws->Kc / 4.0;
   return q.dot(ws->T * q);
