@@ -1,16 +1,55 @@
-// Replaces the global operator new/delete of the test program with counting versions.
+// Counts every heap allocation of the test program: malloc, calloc, realloc and the aligned
+// allocators are interposed (Eigen and C code allocate through them, not through operator
+// new), and operator new/delete go through malloc/free. The interposers forward to glibc's
+// __libc_* entry points, which never call back into them.
 #include "allocation_counter.h"
 
 #include <atomic>
+#include <cerrno>
+#include <cstddef>
 #include <cstdlib>
 #include <new>
 
+extern "C" void* __libc_malloc(std::size_t);
+extern "C" void* __libc_calloc(std::size_t, std::size_t);
+extern "C" void* __libc_realloc(void*, std::size_t);
+extern "C" void* __libc_memalign(std::size_t, std::size_t);
+
 namespace {
 std::atomic<long> g_allocations{0};
+void Count() { g_allocations.fetch_add(1, std::memory_order_relaxed); }
 }  // namespace
 
+extern "C" void* malloc(std::size_t n) {
+  Count();
+  return __libc_malloc(n);
+}
+extern "C" void* calloc(std::size_t count, std::size_t n) {
+  Count();
+  return __libc_calloc(count, n);
+}
+extern "C" void* realloc(void* p, std::size_t n) {
+  Count();
+  return __libc_realloc(p, n);
+}
+extern "C" void* memalign(std::size_t alignment, std::size_t n) {
+  Count();
+  return __libc_memalign(alignment, n);
+}
+extern "C" void* aligned_alloc(std::size_t alignment, std::size_t n) {
+  Count();
+  return __libc_memalign(alignment, n);
+}
+extern "C" int posix_memalign(void** out, std::size_t alignment, std::size_t n) {
+  Count();
+  if (alignment < sizeof(void*) || (alignment & (alignment - 1)) != 0) return EINVAL;
+  void* p = __libc_memalign(alignment, n);
+  if (p == nullptr && n != 0) return ENOMEM;
+  *out = p;
+  return 0;
+}
+
 void* operator new(std::size_t n) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
   if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
   throw std::bad_alloc();
 }

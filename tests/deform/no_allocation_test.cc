@@ -1,40 +1,23 @@
 // The per-cycle operations (time step, reduced forces, embedded point queries) allocate
-// nothing: malloc is interposed in this test executable and counted while a flag is set.
+// nothing: malloc, calloc, realloc and operator new are counted (tests/allocation_counter.h).
 #include <gtest/gtest.h>
 
 #include <cstddef>
 
+#include "allocation_counter.h"
 #include "deform/embedded_points.h"
 #include "deform/reduced_integrator.h"
 #include "beam_fixture.h"
-
-extern "C" void* __libc_malloc(std::size_t);
-extern "C" void* __libc_realloc(void*, std::size_t);
-
-namespace {
-thread_local bool g_counting = false;
-thread_local long g_allocations = 0;
-}  // namespace
-
-extern "C" void* malloc(std::size_t n) {
-  if (g_counting) ++g_allocations;
-  return __libc_malloc(n);
-}
-extern "C" void* realloc(void* p, std::size_t n) {
-  if (g_counting) ++g_allocations;
-  return __libc_realloc(p, n);
-}
 
 namespace contactlab {
 namespace {
 
 TEST(NoAllocation, CounterSeesAllocations) {
-  g_allocations = 0;
-  g_counting = true;
+  const long before = testing::AllocationCount();
   Eigen::VectorXd* v = new Eigen::VectorXd(100);
-  g_counting = false;
+  const long allocations = testing::AllocationCount() - before;
   delete v;
-  EXPECT_GE(g_allocations, 2);
+  EXPECT_GE(allocations, 2);
 }
 
 TEST(NoAllocation, TimeStepForcesAndPointQueriesAllocateNothing) {
@@ -59,8 +42,7 @@ TEST(NoAllocation, TimeStepForcesAndPointQueriesAllocateNothing) {
     K_contact(0, 1) = K_contact(1, 0) = 10;
     double sink = 0;
 
-    g_allocations = 0;
-    g_counting = true;
+    const long before = testing::AllocationCount();
     for (int step = 0; step < 20; ++step) {
       f_ext.setZero();
       embedded.AddPointForce(0, Eigen::Vector3d(0, -100, 0), f_ext.data());
@@ -70,8 +52,8 @@ TEST(NoAllocation, TimeStepForcesAndPointQueriesAllocateNothing) {
       model.forces.Evaluate(integrator.state().q, &f, &K, &ws);
       sink += f[0] + K(0, 0) + model.forces.Energy(integrator.state().q, &ws);
     }
-    g_counting = false;
-    EXPECT_EQ(g_allocations, 0) << (kind == ReducedModelKind::kStVK ? "reduced StVK" : "linear");
+    const long allocations = testing::AllocationCount() - before;
+    EXPECT_EQ(allocations, 0) << (kind == ReducedModelKind::kStVK ? "reduced StVK" : "linear");
     EXPECT_TRUE(std::isfinite(sink));
     EXPECT_LT(integrator.state().q.norm(), 1e3);
   }

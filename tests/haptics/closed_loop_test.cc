@@ -151,6 +151,29 @@ TEST(ClosedLoop, StiffnessSweepReportsWhereStabilityStopsHolding) {
   }
 }
 
+// The counter must see what Eigen and C code allocate (malloc, calloc, realloc), not only
+// operator new, or CycleMakesNoHeapAllocation proves nothing about them.
+TEST(AllocationCounter, SeesMallocCallocReallocAndEigenAllocations) {
+  long before = testing::AllocationCount();
+  void* volatile p = std::malloc(64);
+  EXPECT_EQ(testing::AllocationCount() - before, 1) << "malloc";
+  before = testing::AllocationCount();
+  p = std::realloc(p, 4096);
+  EXPECT_EQ(testing::AllocationCount() - before, 1) << "realloc";
+  std::free(p);
+  before = testing::AllocationCount();
+  p = std::calloc(8, 8);
+  EXPECT_EQ(testing::AllocationCount() - before, 1) << "calloc";
+  std::free(p);
+  before = testing::AllocationCount();
+  {
+    Eigen::MatrixXd m(7, 7);
+    m.setRandom();
+    EXPECT_TRUE(std::isfinite(m.sum()));
+  }
+  EXPECT_GE(testing::AllocationCount() - before, 1) << "Eigen's dynamic matrix";
+}
+
 TEST(ClosedLoop, CycleMakesNoHeapAllocation) {
   HalfspaceContactModel model(MakeBoxSamplePoints(Eigen::Vector3d(0.02, 0.02, 0.01), 4), 1000.0);
   SimDevice device(SimDeviceParams{}, PressAndSlide);
