@@ -5,22 +5,13 @@
 #include <limits>
 
 namespace contactlab {
-namespace {
-
-SafetyParams ResolveSafety(SafetyParams s, const DeviceCapabilities& caps) {
-  if (s.max_force <= 0) s.max_force = caps.max_force;
-  if (s.max_torque <= 0) s.max_torque = caps.max_torque;
-  return s;
-}
-
-}  // namespace
 
 HapticCycle::HapticCycle(HapticDevice& device, ContactModel* model, const HapticCycleConfig& config)
     : device_(device),
       model_(model),
       config_(config),
       coupling_(config.coupling),
-      safety_(ResolveSafety(config.safety, device.capabilities())) {}
+      safety_(ResolveSafetyLimits(config.safety, device.capabilities())) {}
 
 void HapticCycle::Start(std::int64_t now_ns) {
   device_.Read(now_ns, &state_);

@@ -24,6 +24,15 @@ struct DeviceCapabilities {
   double max_rot_stiffness = 0;      // N m / rad
 };
 
+// An input-only device (dof_out 0, e.g. a SpaceMouse): CAPS with no force output. The haptic
+// cycle then writes zero wrenches and the safety filter accepts the zero force limits.
+inline DeviceCapabilities InputOnlyCapabilities(DeviceCapabilities caps) {
+  caps.dof_out = 0;
+  caps.max_force = caps.max_torque = 0;
+  caps.max_stiffness = caps.max_rot_stiffness = 0;
+  return caps;
+}
+
 // One pose sample. Timestamps are nanoseconds on the device's clock (see each backend).
 struct DeviceState {
   Pose X_WD;                         // manipulandum pose in world (device frame = world)

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "haptics/haptic_device.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -13,11 +14,26 @@ void SafetyParams::Validate(const char* where) const {
   auto check = [&](double v, bool ok, const char* name, const char* rule) {
     if (!std::isfinite(v) || !ok) Fail(where, std::string(name) + " must be " + rule + ", got " + std::to_string(v));
   };
-  check(max_force, max_force > 0, "max_force", "finite and > 0");
+  if (force_output) {
+    check(max_force, max_force > 0, "max_force", "finite and > 0 (0 only for an input-only device)");
+  } else {
+    check(max_force, max_force >= 0, "max_force", "finite and >= 0");
+  }
   check(max_torque, max_torque >= 0, "max_torque", "finite and >= 0");
   check(ramp_seconds, ramp_seconds >= 0, "ramp_seconds", "finite and >= 0");
   check(device_timeout_seconds, device_timeout_seconds > 0, "device_timeout_seconds", "finite and > 0");
   check(loop_stall_seconds, loop_stall_seconds > 0, "loop_stall_seconds", "finite and > 0");
+}
+
+SafetyParams ResolveSafetyLimits(SafetyParams s, const DeviceCapabilities& caps) {
+  if (caps.dof_out == 0) {
+    s.force_output = false;
+    s.max_force = s.max_torque = 0;
+    return s;
+  }
+  if (s.max_force <= 0) s.max_force = caps.max_force;
+  if (s.max_torque <= 0) s.max_torque = caps.max_torque;
+  return s;
 }
 
 SafetyFilter::SafetyFilter(const SafetyParams& params) : params_(params) { params_.Validate("safety parameters"); }
@@ -72,6 +88,10 @@ Wrench SafetyFilter::Filter(const Wrench& in, std::int64_t now_ns, std::int64_t 
   if (fault) {
     MarkFault(now_ns);
     out.force.setZero();
+    out.torque.setZero();
+  } else if (!params_.force_output) {
+    in_fault_ = false;
+    out.force.setZero();  // an input-only device: nothing to display, nothing clamped
     out.torque.setZero();
   } else {
     in_fault_ = false;

@@ -11,8 +11,9 @@
 namespace contactlab {
 
 struct SafetyParams {
-  double max_force = 0;                 // N, > 0 (usually the device's capability)
+  double max_force = 0;                 // N, > 0 (usually the device's capability); 0 only without output
   double max_torque = 0;                // N m, >= 0 (0 for a 3-DoF output device)
+  bool force_output = true;             // false: an input-only device, every wrench written is zero
   double ramp_seconds = 1.0;            // linear ramp 0 -> 1 at session start and after faults
   double device_timeout_seconds = 0.05; // no new device sample for longer -> zero output
   double loop_stall_seconds = 0.01;     // gap between two cycles longer than this -> zero output
@@ -20,6 +21,13 @@ struct SafetyParams {
   // Throws Error naming WHERE and the field when a value is non-finite or out of range.
   void Validate(const char* where) const;
 };
+
+struct DeviceCapabilities;
+
+// The safety limits for a device with CAPS: a limit <= 0 in S means "the device's own". An
+// input-only device (dof_out 0) gets force_output = false and zero limits, which Validate
+// accepts: such a device (a SpaceMouse) runs a session that displays no force.
+SafetyParams ResolveSafetyLimits(SafetyParams s, const DeviceCapabilities& caps);
 
 // Counters: every intervention is counted (read them after the loop, or copy them per cycle).
 struct SafetyStats {

@@ -8,9 +8,7 @@
 namespace contactlab {
 
 SpacenavDevice::SpacenavDevice(const SpacenavParams& params) : params_(params), X_WD_(params.X_W0) {
-  params_.capabilities.dof_in = 6;
-  params_.capabilities.dof_out = 0;
-  params_.capabilities.max_force = params_.capabilities.max_torque = 0;
+  params_.capabilities = Capabilities(params_.capabilities);
   if (spnav_open() == -1)
     Fail("spacenav device",
          "cannot connect to spacenavd (libspnav spnav_open failed): is the spacenavd daemon running and a "

@@ -23,6 +23,14 @@ class SpacenavDevice final : public HapticDevice {
   SpacenavDevice(const SpacenavDevice&) = delete;
   SpacenavDevice& operator=(const SpacenavDevice&) = delete;
 
+  // What a SpaceMouse reports given the configured CAPS: 6-DoF input, no force output (dof_out
+  // 0, zero limits), which the session's safety filter accepts as "display nothing".
+  static DeviceCapabilities Capabilities(const DeviceCapabilities& caps) {
+    DeviceCapabilities c = InputOnlyCapabilities(caps);
+    c.dof_in = 6;
+    return c;
+  }
+
   std::string_view name() const override { return "spacenav"; }
   DeviceCapabilities capabilities() const override { return params_.capabilities; }
   bool Read(std::int64_t now_ns, DeviceState* out) override;

@@ -1,14 +1,23 @@
 // Tests of the device backends other than UDP: replay CSV (slerp, errors naming file and
-// line), the dlopen'ed example plugin, spacenav without a device, the device factory.
+// line), the dlopen'ed example plugin, spacenav without a device (and its input-only
+// capabilities in a session), the device factory.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <memory>
 
 #include "haptics/device_factory.h"
+#include "haptics/halfspace_contact_model.h"
+#include "haptics/haptic_cycle.h"
 #include "haptics/plugin_device.h"
 #include "haptics/replay_device.h"
-#include "haptics/sim_device.h"
 #include "haptics/rotation_math.h"
+#include "haptics/safety_filter.h"
+#include "haptics/sim_device.h"
+#include "haptics/spacenav_device.h"
+#include "haptics/workspace_mapping.h"
 #include "test_support.h"
 #include "util/error.h"
 
@@ -110,6 +119,40 @@ TEST(SpacenavDevice, OpeningWithoutDaemonFailsWithAClearMessage) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("spacenavd"), std::string::npos) << e.what();
   }
+}
+
+// A SpaceMouse is input only: it reports no force output (max force 0). A session with it
+// must start and run, writing zero force, instead of the safety filter refusing the limits.
+// Checked without the hardware: a simulated hand behind the spacenav capabilities.
+TEST(SpacenavDevice, InputOnlyDeviceStartsASessionAndWritesZeroForce) {
+  const DeviceCapabilities caps = SpacenavDevice::Capabilities(SimDeviceParams::DefaultCapabilities());
+  EXPECT_EQ(caps.dof_out, 0);
+  EXPECT_EQ(caps.max_force, 0);
+  SimDeviceParams params;
+  params.capabilities = caps;
+  // Down onto the plane z = 0 (box half height 1 cm, target 5 mm below its bottom).
+  SimDevice hand(params, [](double t) {
+    return Pose::FromTranslation(Eigen::Vector3d(0, 0, t < 0.2 ? 0.03 : 0.005));
+  });
+  WorkspaceMappedDevice mapped(hand, Pose{});
+  HalfspaceContactModel model(MakeBoxSamplePoints(Eigen::Vector3d(0.02, 0.02, 0.01), 3), 1000.0);
+  std::unique_ptr<HapticCycle> cycle;
+  ASSERT_NO_THROW(cycle = std::make_unique<HapticCycle>(mapped, &model, HapticCycleConfig{}));
+  cycle->Start(0);
+  int touching = 0;
+  double max_force = 0;
+  for (int i = 1; i <= 1500; ++i) {
+    const CycleRecord rec = cycle->Step(i * kMs);
+    touching += rec.points_in_contact > 0;
+    max_force = std::max({max_force, std::abs(rec.device_force[0]), std::abs(rec.device_force[1]),
+                          std::abs(rec.device_force[2]), std::abs(rec.device_torque[0]),
+                          std::abs(rec.device_torque[1]), std::abs(rec.device_torque[2])});
+    EXPECT_FALSE(rec.safety_flags & (kSafetyForceClamped | kSafetyTorqueClamped)) << "cycle " << i;
+  }
+  EXPECT_GT(touching, 100);  // contact was rendered, only not displayed
+  EXPECT_EQ(max_force, 0.0);
+  EXPECT_EQ(hand.held_wrench().force.norm(), 0.0);
+  EXPECT_EQ(cycle->safety().stats().force_clamped, 0);
 }
 
 }  // namespace
