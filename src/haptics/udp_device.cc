@@ -9,15 +9,27 @@
 
 #include <cerrno>
 #include <cstring>
+#include <limits>
 #include <string>
 
 #include "util/error.h"
 
 namespace contactlab {
+namespace {
+
+// A - B, saturated to the int64 range (timestamps come from the network: any value).
+std::int64_t SatSub(std::int64_t a, std::int64_t b) {
+  std::int64_t d;
+  if (!__builtin_sub_overflow(a, b, &d)) return d;
+  return b < 0 ? std::numeric_limits<std::int64_t>::max() : std::numeric_limits<std::int64_t>::min();
+}
+
+}  // namespace
 
 UdpDevice::UdpDevice(const UdpDeviceParams& params) : params_(params) {
   const std::string where = "udp device 127.0.0.1:" + std::to_string(params.listen_port);
-  if (!(params.stale_seconds > 0)) Fail(where, "stale_seconds must be > 0");
+  if (!(params.stale_seconds > 0 && params.stale_seconds < 1e6)) Fail(where, "stale_seconds must lie in (0, 1e6)");
+  if (!(params.resync_seconds > 0 && params.resync_seconds < 1e6)) Fail(where, "resync_seconds must lie in (0, 1e6)");
   fd_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
   if (fd_ < 0) Fail(where, std::string("cannot open a UDP socket: ") + std::strerror(errno));
   sockaddr_in addr{};
@@ -60,6 +72,17 @@ bool UdpDevice::Read(std::int64_t now_ns, DeviceState* out) {
       case udp::DecodeStatus::kBadChecksum: ++stats_.bad_checksum; continue;
       case udp::DecodeStatus::kNonFinite: ++stats_.non_finite; continue;
     }
+    // A new stream: nothing accepted for resync_seconds (the sender fell silent, or every
+    // packet since was rejected), or a sequence far behind the last accepted (the sender
+    // restarted its count). The packet then sets the sequence and the delay reference.
+    if (have_pose_) {
+      const bool silence = SatSub(now_ns, last_accept_ns_) > std::int64_t(params_.resync_seconds * 1e9);
+      const bool restart = p.sequence < last_sequence_ && last_sequence_ - p.sequence > params_.reorder_window;
+      if (silence || restart) {
+        have_pose_ = false;
+        ++stats_.resyncs;
+      }
+    }
     if (have_pose_ && p.sequence == last_sequence_) {
       ++stats_.duplicate;
       continue;
@@ -68,15 +91,21 @@ bool UdpDevice::Read(std::int64_t now_ns, DeviceState* out) {
       ++stats_.out_of_order;
       continue;
     }
-    const std::int64_t delay = now_ns - p.timestamp_ns;
-    if (have_pose_ && delay - min_delay_ns_ > std::int64_t(params_.stale_seconds * 1e9)) {
+    const std::int64_t delay = SatSub(now_ns, p.timestamp_ns);
+    const std::int64_t tolerance = std::int64_t(params_.stale_seconds * 1e9);
+    if (have_pose_ && SatSub(delay, min_delay_ns_) > tolerance) {
       ++stats_.stale;
+      continue;
+    }
+    if (have_pose_ && SatSub(min_delay_ns_, delay) > tolerance) {
+      ++stats_.future;
       continue;
     }
     // Accept.
     if (!have_pose_ || delay < min_delay_ns_) min_delay_ns_ = delay;
     have_pose_ = true;
     last_sequence_ = p.sequence;
+    last_accept_ns_ = now_ns;
     Eigen::Quaterniond q(p.quaternion[0], p.quaternion[1], p.quaternion[2], p.quaternion[3]);
     last_.X_WD = Pose{q.normalized(), Eigen::Vector3d(p.position[0], p.position[1], p.position[2])};
     last_.timestamp_ns = p.timestamp_ns;

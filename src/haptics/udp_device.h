@@ -14,7 +14,10 @@ namespace contactlab {
 struct UdpDeviceParams {
   std::uint16_t listen_port = 0;   // port bound on 127.0.0.1; 0 picks a free one (see bound_port())
   std::uint16_t peer_port = 0;     // where wrench packets go on 127.0.0.1; 0: the sender of the last accepted pose
-  double stale_seconds = 0.05;     // a packet whose one-way delay exceeds the smallest seen by more is stale
+  double stale_seconds = 0.05;     // a packet whose one-way delay exceeds the smallest seen by more is stale,
+                                   // one whose delay is below it by more is from the future
+  double resync_seconds = 0.25;    // no packet accepted for longer: the next valid one starts a new stream
+  std::uint64_t reorder_window = 1000;  // a sequence further behind the last accepted: a sender restart
   DeviceCapabilities capabilities; // what the remote device reports (configuration)
 };
 
@@ -28,9 +31,13 @@ struct UdpStats {
   std::int64_t duplicate = 0;          // sequence equal to the last accepted
   std::int64_t out_of_order = 0;       // sequence below the last accepted
   std::int64_t stale = 0;              // too old (see UdpDeviceParams::stale_seconds)
+  std::int64_t future = 0;             // timestamp ahead of the local clock's elapsed time (same bound)
+  std::int64_t resyncs = 0;            // new streams started (after a silence or a sender restart)
   std::int64_t wrenches_sent = 0;
   std::int64_t send_errors = 0;
-  std::int64_t rejected() const { return bad_length + bad_header + bad_checksum + non_finite + duplicate + out_of_order + stale; }
+  std::int64_t rejected() const {
+    return bad_length + bad_header + bad_checksum + non_finite + duplicate + out_of_order + stale + future;
+  }
 };
 
 class UdpDevice final : public HapticDevice {
@@ -46,7 +53,12 @@ class UdpDevice final : public HapticDevice {
   DeviceCapabilities capabilities() const override { return params_.capabilities; }
   // Drains every queued datagram, keeps the newest valid pose. Staleness is judged on the
   // one-way delay NOW_NS - timestamp_ns relative to the smallest delay seen so far, so the
-  // two clocks need not share an origin (only a rate).
+  // two clocks need not share an origin (only a rate); a delay below that reference by more
+  // than stale_seconds claims a time the local clock has not reached and is rejected as
+  // "future" (it never becomes the reference). A stream resynchronises, taking its sequence
+  // and delay reference afresh from the next valid packet, when nothing was accepted for
+  // resync_seconds of NOW_NS, or when a sequence lies more than reorder_window behind the
+  // last accepted (a sender that restarted): one bad packet cannot lock the device out.
   bool Read(std::int64_t now_ns, DeviceState* out) override;
   void Write(const Wrench& wrench, std::int64_t now_ns) override;
   void EmergencyZero() noexcept override;
@@ -69,6 +81,7 @@ class UdpDevice final : public HapticDevice {
   bool have_pose_ = false;
   std::uint64_t last_sequence_ = 0;
   std::int64_t min_delay_ns_ = 0;
+  std::int64_t last_accept_ns_ = 0;  // NOW_NS of the last accepted packet
   DeviceState last_;
   UdpStats stats_;
 };

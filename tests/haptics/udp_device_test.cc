@@ -225,5 +225,110 @@ TEST(UdpDevice, PortInUseIsReportedWithThePort) {
   }
 }
 
+// One packet stamped 10 s ahead must not become the clock reference that makes every later
+// packet stale: it is rejected as "future", and the stream goes on.
+TEST(UdpDevice, StaleFutureTimestampDoesNotLockTheDeviceOut) {
+  UdpDevice dev(UdpDeviceParams{});
+  Peer peer(dev.bound_port());
+  DeviceState s;
+  const std::int64_t t0 = 1000 * kMs;
+  peer.SendPose(1, t0, 0.01);
+  Settle();
+  ASSERT_TRUE(dev.Read(t0 + kMs, &s));
+  peer.SendPose(2, t0 + 10000 * kMs, 0.5);  // 10 s in the future
+  Settle();
+  EXPECT_FALSE(dev.Read(t0 + 2 * kMs, &s));
+  EXPECT_EQ(s.X_WD.translation.x(), 0.01);
+  EXPECT_EQ(dev.stats().future, 1);
+  for (int i = 3; i < 10; ++i) {
+    peer.SendPose(std::uint64_t(i), t0 + i * kMs, 0.001 * i);
+    Settle();
+    ASSERT_TRUE(dev.Read(t0 + (i + 1) * kMs, &s)) << "packet " << i << " refused";
+    EXPECT_EQ(s.X_WD.translation.x(), 0.001 * i);
+  }
+  EXPECT_EQ(dev.stats().stale, 0);
+  EXPECT_EQ(dev.stats().accepted, 8);
+}
+
+// The same packet as the very first one: it sets the reference, the real stream is stale
+// until resync_seconds pass without an accepted packet; then the device resynchronises.
+TEST(UdpDevice, FutureFirstPacketIsForgottenAfterResyncSeconds) {
+  UdpDeviceParams params;
+  params.resync_seconds = 0.1;
+  UdpDevice dev(params);
+  Peer peer(dev.bound_port());
+  DeviceState s;
+  const std::int64_t t0 = 1000 * kMs;
+  peer.SendPose(1, t0 + 10000 * kMs, 0.5);
+  Settle();
+  ASSERT_TRUE(dev.Read(t0, &s));
+  bool recovered = false;
+  std::int64_t recovered_at = 0;
+  for (int i = 2; i < 300 && !recovered; ++i) {
+    peer.SendPose(std::uint64_t(i), t0 + i * kMs, 0.001);
+    Settle();
+    recovered = dev.Read(t0 + i * kMs, &s);
+    recovered_at = i;
+  }
+  ASSERT_TRUE(recovered) << "the device stayed locked out";
+  EXPECT_LE(recovered_at, 102);  // within resync_seconds (100 ms of cycles)
+  EXPECT_EQ(s.X_WD.translation.x(), 0.001);
+  EXPECT_EQ(dev.stats().resyncs, 1);
+  // And it stays in sync.
+  peer.SendPose(1000, t0 + (recovered_at + 1) * kMs, 0.002);
+  Settle();
+  ASSERT_TRUE(dev.Read(t0 + (recovered_at + 1) * kMs, &s));
+  EXPECT_EQ(s.X_WD.translation.x(), 0.002);
+  EXPECT_EQ(dev.stats().resyncs, 1);
+}
+
+// One packet with sequence 2^63 must not make every later packet "out of order": the real
+// sender's next packet lies far behind it, which reads as a sender restart.
+TEST(UdpDevice, HugeSequenceNumberDoesNotLockTheDeviceOut) {
+  UdpDevice dev(UdpDeviceParams{});
+  Peer peer(dev.bound_port());
+  DeviceState s;
+  const std::int64_t t0 = 1000 * kMs;
+  peer.SendPose(1, t0, 0.01);
+  Settle();
+  ASSERT_TRUE(dev.Read(t0 + kMs, &s));
+  peer.SendPose(std::uint64_t(1) << 63, t0 + kMs, 0.5);
+  Settle();
+  dev.Read(t0 + 2 * kMs, &s);
+  for (int i = 2; i < 10; ++i) {
+    peer.SendPose(std::uint64_t(i), t0 + i * kMs, 0.001 * i);
+    Settle();
+    ASSERT_TRUE(dev.Read(t0 + (i + 1) * kMs, &s)) << "packet " << i << " refused";
+    EXPECT_EQ(s.X_WD.translation.x(), 0.001 * i);
+  }
+  EXPECT_EQ(dev.stats().out_of_order, 0);
+  EXPECT_EQ(dev.stats().resyncs, 1);
+}
+
+// A sender that restarts from sequence 0 (and a new clock origin) after a pause is accepted.
+TEST(UdpDevice, SenderRestartAfterASilenceIsAccepted) {
+  UdpDevice dev(UdpDeviceParams{});
+  Peer peer(dev.bound_port());
+  DeviceState s;
+  const std::int64_t t0 = 1000 * kMs;
+  for (int i = 1; i <= 5; ++i) peer.SendPose(std::uint64_t(100 + i), t0 + i * kMs, 0.01);
+  Settle();
+  ASSERT_TRUE(dev.Read(t0 + 6 * kMs, &s));
+  // Restarted: sequence from 0, its clock 50 s behind; first within the silence (refused),
+  // then after it (accepted).
+  peer.SendPose(0, 7 * kMs, 0.02);
+  Settle();
+  EXPECT_FALSE(dev.Read(t0 + 7 * kMs, &s));
+  peer.SendPose(1, 400 * kMs, 0.03);
+  Settle();
+  ASSERT_TRUE(dev.Read(t0 + 400 * kMs, &s));
+  EXPECT_EQ(s.X_WD.translation.x(), 0.03);
+  peer.SendPose(2, 401 * kMs, 0.04);
+  Settle();
+  ASSERT_TRUE(dev.Read(t0 + 401 * kMs, &s));
+  EXPECT_EQ(s.X_WD.translation.x(), 0.04);
+  EXPECT_EQ(dev.stats().resyncs, 1);
+}
+
 }  // namespace
 }  // namespace contactlab
