@@ -123,6 +123,9 @@ void RunSession(const SessionArgs& args) {
               deformation ? (", " + scene.pointshell_body.name + " deformable, r = " +
                              std::to_string(deformation->r())).c_str()
                           : "");
+  // Where the device is (a udp device's bound port, also when udp:0 picked it).
+  std::printf("device: %s\n", device->description().c_str());
+  std::fflush(stdout);
   std::atomic<bool> done{false};
   std::thread consumer([&] {
     CycleRecord rec;
@@ -131,13 +134,22 @@ void RunSession(const SessionArgs& args) {
     work_us.reserve(4096);
     int points = 0, level = -1;
     std::uint64_t clamps = 0;
+    DeviceInputStats input;
     auto status = [&](std::int64_t now) {
       if (args.quiet || work_us.empty()) return;
       std::sort(work_us.begin(), work_us.end());
       const double p99 = work_us[std::min(work_us.size() - 1, std::size_t(0.99 * work_us.size()))];
       const double rate = window_cycles / std::max(1e-9, double(now - window_start) * 1e-9);
-      std::fprintf(stderr, "\r%7.0f Hz  p99 %7.1f us  contacts %5d  level %2d  clamps %6llu   ", rate, p99, points,
+      std::fprintf(stderr, "\r%7.0f Hz  p99 %7.1f us  contacts %5d  level %2d  clamps %6llu", rate, p99, points,
                    level, static_cast<unsigned long long>(clamps));
+      // A device that rejects samples (udp): what it rejected, so zero force has a reason.
+      if (input.received > 0 || input.rejected() > 0)
+        std::fprintf(stderr, "  rejected %lld (malformed %lld, dup %lld, order %lld, stale %lld, future %lld) resyncs %lld",
+                     static_cast<long long>(input.rejected()), static_cast<long long>(input.malformed),
+                     static_cast<long long>(input.duplicate), static_cast<long long>(input.out_of_order),
+                     static_cast<long long>(input.stale), static_cast<long long>(input.future),
+                     static_cast<long long>(input.resyncs));
+      std::fprintf(stderr, "   ");
       std::fflush(stderr);
     };
     for (;;) {
@@ -149,6 +161,7 @@ void RunSession(const SessionArgs& args) {
         ++window_cycles;
         points = rec.points_in_contact;
         level = rec.level_rendered;
+        input = rec.device_input;
         if (rec.safety_flags & (kSafetyForceClamped | kSafetyTorqueClamped)) ++clamps;
         if (rec.now_ns - window_start > 500'000'000) {
           status(rec.now_ns);

@@ -64,7 +64,7 @@ CycleRecord HapticCycle::Step(std::int64_t now_ns) {
     step.to_device.force.setConstant(std::numeric_limits<double>::quiet_NaN());
   }
   const Wrench out = safety_.Filter(step.to_device, now_ns, last_sample_ns_, &rec.safety_flags);
-  device_.Write(out, now_ns);
+  device_.Write(out, now_ns, rec.safety_flags);
 
   // Record.
   rec.device_timestamp_ns = state_.timestamp_ns;
@@ -74,6 +74,7 @@ CycleRecord HapticCycle::Step(std::int64_t now_ns) {
   rec.points_in_contact = contact.stats.points_in_contact;
   rec.level_rendered = contact.stats.level_rendered;
   rec.nodes_visited = contact.stats.nodes_visited;
+  rec.device_input = device_.input_stats();
   for (int i = 0; i < 3; ++i) {
     rec.p_WD[i] = state_.X_WD.translation[i];
     rec.p_WH[i] = step.X_WH.translation[i];
@@ -96,6 +97,6 @@ CycleRecord HapticCycle::Step(std::int64_t now_ns) {
   return rec;
 }
 
-void HapticCycle::WriteZero(std::int64_t now_ns) { device_.Write(Wrench{}, now_ns); }
+void HapticCycle::WriteZero(std::int64_t now_ns) { device_.Write(Wrench{}, now_ns, kSafetyNone); }
 
 }  // namespace contactlab

@@ -52,6 +52,7 @@ struct CycleRecord {
   double contact_force[3] = {0, 0, 0};    // contact force on H, N
   double device_force[3] = {0, 0, 0};     // force written to the device (after safety), N
   double device_torque[3] = {0, 0, 0};    // torque written, N m
+  DeviceInputStats device_input;          // the device's input counters after this cycle
 };
 
 class HapticCycle {

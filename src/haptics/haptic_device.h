@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <string>
 #include <string_view>
 
 #include "contact/contact_model.h"
@@ -33,6 +34,20 @@ inline DeviceCapabilities InputOnlyCapabilities(DeviceCapabilities caps) {
   return caps;
 }
 
+// Counters of a device that receives samples it may reject (udp); all zero for devices that
+// cannot reject a sample. Plain integers, so a CycleRecord can carry a copy each cycle.
+struct DeviceInputStats {
+  std::int64_t received = 0;      // datagrams or samples received
+  std::int64_t accepted = 0;
+  std::int64_t malformed = 0;     // bad length, header, checksum or a non-finite value
+  std::int64_t duplicate = 0;
+  std::int64_t out_of_order = 0;
+  std::int64_t stale = 0;         // too old
+  std::int64_t future = 0;        // timestamp ahead of what the local clock allows
+  std::int64_t resyncs = 0;       // stream restarts accepted (after a silence or a sender restart)
+  std::int64_t rejected() const { return malformed + duplicate + out_of_order + stale + future; }
+};
+
 // One pose sample. Timestamps are nanoseconds on the device's clock (see each backend).
 struct DeviceState {
   Pose X_WD;                         // manipulandum pose in world (device frame = world)
@@ -54,11 +69,20 @@ class HapticDevice {
   virtual bool Read(std::int64_t now_ns, DeviceState* out) = 0;
 
   // Sends WRENCH (force N, torque N m, world frame, about the manipulandum origin) to be held
-  // until the next Write. Called only from the haptic loop thread; never throws.
-  virtual void Write(const Wrench& wrench, std::int64_t now_ns) = 0;
+  // until the next Write. SAFETY_FLAGS: the cycle's SafetyFlag bits (safety_filter.h), for
+  // devices whose protocol carries them. Called only from the haptic loop thread; never throws.
+  virtual void Write(const Wrench& wrench, std::int64_t now_ns, std::uint32_t safety_flags) = 0;
 
   // Zeroes output at once; safe to call from any thread (watchdog, signal-driven stop).
   virtual void EmergencyZero() noexcept = 0;
+
+  // Rejection counters of the device's input stream (see DeviceInputStats). Called from the
+  // haptic loop thread; allocation-free; never throws.
+  virtual DeviceInputStats input_stats() const { return {}; }
+
+  // One line for the user: the kind and, where it matters, how to reach it (a udp device's
+  // bound port). Not for the haptic loop (it may allocate).
+  virtual std::string description() const { return std::string(name()); }
 };
 
 }  // namespace contactlab

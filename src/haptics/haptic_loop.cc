@@ -95,6 +95,7 @@ HapticLoopReport HapticLoop::Join() {
   if (watchdog_.joinable()) watchdog_.join();
   report_.watchdog_zeroes = watchdog_zeroes_.load();
   report_.safety = cycle_.safety().stats();
+  report_.device_input = cycle_.device().input_stats();
   return report_;
 }
 
@@ -186,6 +187,14 @@ void HapticLoop::ThreadMain() {
   running_.store(false, std::memory_order_release);
 }
 
+std::string FormatDeviceInputStats(const DeviceInputStats& s) {
+  std::ostringstream os;
+  os << "received " << s.received << ", accepted " << s.accepted << ", rejected " << s.rejected() << " (malformed "
+     << s.malformed << ", duplicate " << s.duplicate << ", out of order " << s.out_of_order << ", stale " << s.stale
+     << ", future " << s.future << "), resyncs " << s.resyncs;
+  return os.str();
+}
+
 std::string FormatLoopReport(const HapticLoopReport& r) {
   std::ostringstream os;
   auto us = [](double s) { return s * 1e6; };
@@ -202,6 +211,8 @@ std::string FormatLoopReport(const HapticLoopReport& r) {
   os << "  safety: non-finite " << r.safety.non_finite << ", force clamped " << r.safety.force_clamped
      << ", torque clamped " << r.safety.torque_clamped << ", device silent " << r.safety.device_silent
      << ", loop stalls " << r.safety.loop_stalls << ", faults " << r.safety.faults << "\n";
+  if (r.device_input.received > 0 || r.device_input.rejected() > 0)
+    os << "  device input: " << FormatDeviceInputStats(r.device_input) << "\n";
   return os.str();
 }
 

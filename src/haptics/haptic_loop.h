@@ -38,6 +38,7 @@ struct HapticLoopReport {
   TimingHistogram wake_latency;       // lateness of the wake-up after the release time
   TimingHistogram period;             // time between consecutive cycle starts
   SafetyStats safety;                 // the cycle's safety counters at the end
+  DeviceInputStats device_input;      // the device's input counters at the end (udp rejections)
 };
 
 // Cycle records for consumers; the loop drops records (counted) when the consumer lags.
@@ -90,6 +91,10 @@ void InstallStopSignalHandlers();
 bool StopSignalRequested();
 // Clears the flag (tests, or a new session).
 void ClearStopSignal();
+
+// "received N, accepted N, rejected N (malformed, duplicate, out of order, stale, future),
+// resyncs N": the input counters of a device that can reject samples.
+std::string FormatDeviceInputStats(const DeviceInputStats& s);
 
 // A human-readable summary of REPORT (percentiles in microseconds).
 std::string FormatLoopReport(const HapticLoopReport& report);

@@ -85,7 +85,7 @@ bool PluginDevice::Read(std::int64_t now_ns, DeviceState* out) {
   return false;
 }
 
-void PluginDevice::Write(const Wrench& wrench, std::int64_t now_ns) {
+void PluginDevice::Write(const Wrench& wrench, std::int64_t now_ns, std::uint32_t) {
   const double f[3] = {wrench.force.x(), wrench.force.y(), wrench.force.z()};
   const double t[3] = {wrench.torque.x(), wrench.torque.y(), wrench.torque.z()};
   if (api_->write(handle_, f, t, now_ns) != 0) ++write_errors_;

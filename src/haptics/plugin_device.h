@@ -24,7 +24,7 @@ class PluginDevice final : public HapticDevice {
   std::string_view name() const override { return name_; }
   DeviceCapabilities capabilities() const override { return capabilities_; }
   bool Read(std::int64_t now_ns, DeviceState* out) override;
-  void Write(const Wrench& wrench, std::int64_t now_ns) override;
+  void Write(const Wrench& wrench, std::int64_t now_ns, std::uint32_t safety_flags) override;
   void EmergencyZero() noexcept override;
 
   std::int64_t read_errors() const { return read_errors_; }

@@ -34,7 +34,7 @@ class ReplayDevice final : public HapticDevice {
   std::string_view name() const override { return "replay"; }
   DeviceCapabilities capabilities() const override { return capabilities_; }
   bool Read(std::int64_t now_ns, DeviceState* out) override;
-  void Write(const Wrench& wrench, std::int64_t now_ns) override { last_wrench_ = wrench; }
+  void Write(const Wrench& wrench, std::int64_t, std::uint32_t) override { last_wrench_ = wrench; }
   void EmergencyZero() noexcept override {}
 
   bool finished() const { return finished_; }

@@ -80,7 +80,7 @@ bool SimDevice::Read(std::int64_t now_ns, DeviceState* out) {
   return true;
 }
 
-void SimDevice::Write(const Wrench& wrench, std::int64_t now_ns) {
+void SimDevice::Write(const Wrench& wrench, std::int64_t, std::uint32_t) {
   held_ = wrench;
   if (zero_requested_.exchange(false, std::memory_order_relaxed)) held_ = Wrench{};
 }

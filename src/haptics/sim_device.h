@@ -39,7 +39,7 @@ class SimDevice final : public HapticDevice {
   std::string_view name() const override { return "sim"; }
   DeviceCapabilities capabilities() const override { return params_.capabilities; }
   bool Read(std::int64_t now_ns, DeviceState* out) override;
-  void Write(const Wrench& wrench, std::int64_t now_ns) override;
+  void Write(const Wrench& wrench, std::int64_t now_ns, std::uint32_t safety_flags) override;
   void EmergencyZero() noexcept override { zero_requested_.store(true, std::memory_order_relaxed); }
 
   // Test hooks: while silent, Read returns false (a stalled device); the handle still moves.

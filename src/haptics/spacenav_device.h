@@ -34,7 +34,7 @@ class SpacenavDevice final : public HapticDevice {
   std::string_view name() const override { return "spacenav"; }
   DeviceCapabilities capabilities() const override { return params_.capabilities; }
   bool Read(std::int64_t now_ns, DeviceState* out) override;
-  void Write(const Wrench&, std::int64_t) override {}  // input only
+  void Write(const Wrench&, std::int64_t, std::uint32_t) override {}  // input only
   void EmergencyZero() noexcept override {}
 
  private:

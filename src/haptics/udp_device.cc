@@ -141,13 +141,33 @@ bool UdpDevice::Send(const Wrench& w, std::int64_t now_ns, std::uint32_t flags, 
          ssize_t(bytes.size());
 }
 
-void UdpDevice::Write(const Wrench& wrench, std::int64_t now_ns) {
+void UdpDevice::Write(const Wrench& wrench, std::int64_t now_ns, std::uint32_t safety_flags) {
   if (peer_port_.load(std::memory_order_relaxed) == 0) return;
-  if (Send(wrench, now_ns, 0, last_sequence_)) {
+  // Bit 31 is reserved for the watchdog's emergency zero.
+  if (Send(wrench, now_ns, safety_flags & ~kEmergencyZeroFlag, last_sequence_)) {
     ++stats_.wrenches_sent;
   } else {
     ++stats_.send_errors;
   }
+}
+
+DeviceInputStats UdpDevice::input_stats() const {
+  DeviceInputStats d;
+  d.received = stats_.datagrams;
+  d.accepted = stats_.accepted;
+  d.malformed = stats_.bad_length + stats_.bad_header + stats_.bad_checksum + stats_.non_finite;
+  d.duplicate = stats_.duplicate;
+  d.out_of_order = stats_.out_of_order;
+  d.stale = stats_.stale;
+  d.future = stats_.future;
+  d.resyncs = stats_.resyncs;
+  return d;
+}
+
+std::string UdpDevice::description() const {
+  std::string s = "udp on 127.0.0.1:" + std::to_string(bound_port_) + ", wrenches to ";
+  s += params_.peer_port != 0 ? "127.0.0.1:" + std::to_string(params_.peer_port) : "the sender of the poses";
+  return s;
 }
 
 void UdpDevice::EmergencyZero() noexcept {

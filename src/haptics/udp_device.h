@@ -60,8 +60,12 @@ class UdpDevice final : public HapticDevice {
   // resync_seconds of NOW_NS, or when a sequence lies more than reorder_window behind the
   // last accepted (a sender that restarted): one bad packet cannot lock the device out.
   bool Read(std::int64_t now_ns, DeviceState* out) override;
-  void Write(const Wrench& wrench, std::int64_t now_ns) override;
+  // Sends the wrench with SAFETY_FLAGS in the packet's flags field (UDP_PROTOCOL.md).
+  void Write(const Wrench& wrench, std::int64_t now_ns, std::uint32_t safety_flags) override;
   void EmergencyZero() noexcept override;
+  DeviceInputStats input_stats() const override;
+  // "udp on 127.0.0.1:PORT, ..." with the bound port (the one picked when listen_port is 0).
+  std::string description() const override;
 
   std::uint16_t bound_port() const { return bound_port_; }
   const UdpStats& stats() const { return stats_; }

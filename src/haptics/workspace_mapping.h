@@ -27,14 +27,16 @@ class WorkspaceMappedDevice final : public HapticDevice {
     out->X_WD = X_WD0_ * s.X_WD;
     return fresh;
   }
-  void Write(const Wrench& wrench, std::int64_t now_ns) override {
+  void Write(const Wrench& wrench, std::int64_t now_ns, std::uint32_t safety_flags) override {
     const Eigen::Matrix3d R_D0W = X_WD0_.R().transpose();
     Wrench w;
     w.force = R_D0W * wrench.force;
     w.torque = R_D0W * wrench.torque;
-    inner_.Write(w, now_ns);
+    inner_.Write(w, now_ns, safety_flags);
   }
   void EmergencyZero() noexcept override { inner_.EmergencyZero(); }
+  DeviceInputStats input_stats() const override { return inner_.input_stats(); }
+  std::string description() const override { return inner_.description(); }
   HapticDevice& inner() { return inner_; }
 
  private:

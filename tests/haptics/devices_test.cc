@@ -88,7 +88,7 @@ TEST(PluginDevice, ExamplePluginLoadsReadsWritesAndZeroes) {
   EXPECT_NEAR(s.X_WD.translation.y(), 0.05, 1e-12);
   Wrench w;
   w.force.x() = 1;
-  dev.Write(w, 0);
+  dev.Write(w, 0, 0);
   dev.EmergencyZero();
   EXPECT_EQ(dev.write_errors(), 0);
 }

@@ -11,6 +11,11 @@
 #include <chrono>
 #include <thread>
 
+#include "haptics/device_factory.h"
+#include "haptics/haptic_cycle.h"
+#include "haptics/haptic_loop.h"
+#include "haptics/safety_filter.h"
+#include "haptics/sim_device.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -54,6 +59,13 @@ class Peer {
   int fd_;
   sockaddr_in to_{};
 };
+
+// Parameters of a device with force output, for a HapticCycle.
+UdpDeviceParams WithForceOutput() {
+  UdpDeviceParams p;
+  p.capabilities = SimDeviceParams::DefaultCapabilities();
+  return p;
+}
 
 // Loopback delivery is immediate in practice; give the kernel a moment anyway.
 void Settle() { std::this_thread::sleep_for(std::chrono::milliseconds(5)); }
@@ -193,7 +205,7 @@ TEST(UdpDevice, WrenchPacketsGoBackToTheSenderAndEmergencyZeroIsFlagged) {
   Wrench w;
   w.force = Eigen::Vector3d(1, 2, 3);
   w.torque = Eigen::Vector3d(-0.1, 0, 0.1);
-  dev.Write(w, 2 * kMs);
+  dev.Write(w, 2 * kMs, 0);
   std::uint8_t buf[256];
   ssize_t n = peer.Receive(buf, sizeof(buf));
   ASSERT_EQ(n, ssize_t(udp::kWrenchPacketSize));
@@ -248,6 +260,7 @@ TEST(UdpDevice, StaleFutureTimestampDoesNotLockTheDeviceOut) {
   }
   EXPECT_EQ(dev.stats().stale, 0);
   EXPECT_EQ(dev.stats().accepted, 8);
+  EXPECT_EQ(dev.input_stats().future, 1);
 }
 
 // The same packet as the very first one: it sets the reference, the real stream is stale
@@ -328,6 +341,73 @@ TEST(UdpDevice, SenderRestartAfterASilenceIsAccepted) {
   ASSERT_TRUE(dev.Read(t0 + 401 * kMs, &s));
   EXPECT_EQ(s.X_WD.translation.x(), 0.04);
   EXPECT_EQ(dev.stats().resyncs, 1);
+}
+
+// The wrench packet's flags field carries the cycle's SafetyFlag bits (UDP_PROTOCOL.md).
+TEST(UdpDevice, WrenchPacketCarriesTheCycleSafetyFlags) {
+  UdpDevice dev(WithForceOutput());
+  Peer peer(dev.bound_port());
+  peer.SendPose(1, 0, 0.0);
+  Settle();
+  HapticCycle cycle(dev, nullptr, HapticCycleConfig{});
+  cycle.Start(0);
+  const CycleRecord rec = cycle.Step(kMs);  // inside the start ramp
+  ASSERT_TRUE(rec.safety_flags & kSafetyRamping);
+  std::uint8_t buf[256];
+  const ssize_t n = peer.Receive(buf, sizeof(buf));
+  ASSERT_EQ(n, ssize_t(udp::kWrenchPacketSize));
+  udp::WrenchPacket got;
+  ASSERT_EQ(udp::DecodeWrench(buf, std::size_t(n), &got), udp::DecodeStatus::kOk);
+  EXPECT_EQ(got.flags, rec.safety_flags);
+  EXPECT_FALSE(got.flags & UdpDevice::kEmergencyZeroFlag);
+
+  // A silent device: the watchdog flag travels too.
+  const CycleRecord silent = cycle.Step(200 * kMs);
+  ASSERT_TRUE(silent.safety_flags & kSafetyDeviceSilent);
+  ASSERT_EQ(peer.Receive(buf, sizeof(buf)), ssize_t(udp::kWrenchPacketSize));
+  ASSERT_EQ(udp::DecodeWrench(buf, udp::kWrenchPacketSize, &got), udp::DecodeStatus::kOk);
+  EXPECT_EQ(got.flags, silent.safety_flags);
+}
+
+// The rejection counters reach each cycle record (the session's status line) and the loop
+// report (its summary).
+TEST(UdpDevice, RejectionCountersReachTheCycleRecordAndTheSummary) {
+  UdpDevice dev(WithForceOutput());
+  Peer peer(dev.bound_port());
+  const std::int64_t t0 = 1000 * kMs;
+  peer.SendPose(10, t0, 0.0);
+  peer.SendPose(9, t0, 0.0);                     // out of order
+  peer.SendPose(11, t0 - 300 * kMs, 0.0);        // stale
+  peer.SendPose(12, t0 + 10000 * kMs, 0.0);      // future
+  std::uint8_t junk[20] = {0};
+  peer.SendRaw(junk, sizeof(junk));              // malformed
+  Settle();
+  HapticCycle cycle(dev, nullptr, HapticCycleConfig{});
+  cycle.Start(t0);
+  const CycleRecord rec = cycle.Step(t0 + kMs);
+  EXPECT_EQ(rec.device_input.received, 5);
+  EXPECT_EQ(rec.device_input.accepted, 1);
+  EXPECT_EQ(rec.device_input.out_of_order, 1);
+  EXPECT_EQ(rec.device_input.stale, 1);
+  EXPECT_EQ(rec.device_input.future, 1);
+  EXPECT_EQ(rec.device_input.malformed, 1);
+  EXPECT_EQ(rec.device_input.rejected(), 4);
+
+  HapticLoopReport report;
+  report.device_input = dev.input_stats();
+  const std::string text = FormatLoopReport(report);
+  EXPECT_NE(text.find("rejected 4 (malformed 1, duplicate 0, out of order 1, stale 1, future 1)"), std::string::npos)
+      << text;
+}
+
+// udp:0 lets the system pick the port; the device says which, for the session to print.
+TEST(UdpDevice, RandomPortIsReported) {
+  auto dev = MakeDevice("udp:0");
+  const auto* udp = dynamic_cast<const UdpDevice*>(dev.get());
+  ASSERT_NE(udp, nullptr);
+  ASSERT_GT(udp->bound_port(), 0);
+  EXPECT_NE(dev->description().find("127.0.0.1:" + std::to_string(udp->bound_port())), std::string::npos)
+      << dev->description();
 }
 
 }  // namespace
