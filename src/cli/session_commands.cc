@@ -66,6 +66,13 @@ void WriteRecord(std::ostream& out, const CycleRecord& r, std::int64_t t0_ns) {
   out << line;
 }
 
+// Largest distance of a vertex of MESH from its body's origin, metres.
+double BoundingRadius(const TriangleMesh& mesh) {
+  double r = 0;
+  for (const Eigen::Vector3d& v : mesh.vertices) r = std::max(r, v.norm());
+  return r;
+}
+
 void RunSession(const SessionArgs& args) {
   const Scene scene = LoadScene(RequireDataFile(args.scene));
   AssetOptions options;
@@ -86,6 +93,10 @@ void RunSession(const SessionArgs& args) {
   HapticCycleConfig config;
   config.X_WA = scene.pointshell_body.pose;
   config.node_budget = scene.node_budget;
+  // The coherence guard: the haptic body's real motion against the scene's max_point_speed.
+  config.max_point_speed = scene.model.max_point_speed;
+  config.cycle_seconds = scene.model.cycle_seconds;
+  config.body_radius_H = BoundingRadius(*assets.B.mesh());
   if (args.k_vc > 0) config.coupling.k_vc = args.k_vc;
   // A deformable pointshell body: its reduced model steps at the haptic rate.
   std::unique_ptr<ReducedIntegrator> deformation;
@@ -134,14 +145,16 @@ void RunSession(const SessionArgs& args) {
     work_us.reserve(4096);
     int points = 0, level = -1;
     std::uint64_t clamps = 0;
+    std::int64_t coherence_resets = 0;
     DeviceInputStats input;
     auto status = [&](std::int64_t now) {
       if (args.quiet || work_us.empty()) return;
       std::sort(work_us.begin(), work_us.end());
       const double p99 = work_us[std::min(work_us.size() - 1, std::size_t(0.99 * work_us.size()))];
       const double rate = window_cycles / std::max(1e-9, double(now - window_start) * 1e-9);
-      std::fprintf(stderr, "\r%7.0f Hz  p99 %7.1f us  contacts %5d  level %2d  clamps %6llu", rate, p99, points,
-                   level, static_cast<unsigned long long>(clamps));
+      std::fprintf(stderr, "\r%7.0f Hz  p99 %7.1f us  contacts %5d  level %2d  clamps %6llu  coherence resets %lld", rate,
+                   p99, points, level, static_cast<unsigned long long>(clamps),
+                   static_cast<long long>(coherence_resets));
       // A device that rejects samples (udp): what it rejected, so zero force has a reason.
       if (input.received > 0 || input.rejected() > 0)
         std::fprintf(stderr, "  rejected %lld (malformed %lld, dup %lld, order %lld, stale %lld, future %lld) resyncs %lld",
@@ -161,6 +174,7 @@ void RunSession(const SessionArgs& args) {
         ++window_cycles;
         points = rec.points_in_contact;
         level = rec.level_rendered;
+        coherence_resets = rec.coherence_resets;
         input = rec.device_input;
         if (rec.safety_flags & (kSafetyForceClamped | kSafetyTorqueClamped)) ++clamps;
         if (rec.now_ns - window_start > 500'000'000) {

@@ -2,7 +2,10 @@
 #include "haptics/haptic_cycle.h"
 
 #include <chrono>
+#include <cmath>
 #include <limits>
+
+#include "util/error.h"
 
 namespace contactlab {
 
@@ -11,7 +14,13 @@ HapticCycle::HapticCycle(HapticDevice& device, ContactModel* model, const Haptic
       model_(model),
       config_(config),
       coupling_(config.coupling),
-      safety_(ResolveSafetyLimits(config.safety, device.capabilities())) {}
+      safety_(ResolveSafetyLimits(config.safety, device.capabilities())) {
+  if (!(config.max_point_speed <= 0 || (std::isfinite(config.max_point_speed) && config.cycle_seconds > 0 &&
+                                         std::isfinite(config.cycle_seconds) && config.body_radius_H >= 0 &&
+                                         std::isfinite(config.body_radius_H))))
+    Fail("haptic cycle", "max_point_speed, cycle_seconds and body_radius_H must be finite, cycle_seconds > 0 and "
+                         "body_radius_H >= 0");
+}
 
 void HapticCycle::Start(std::int64_t now_ns) {
   device_.Read(now_ns, &state_);
@@ -19,6 +28,8 @@ void HapticCycle::Start(std::int64_t now_ns) {
   coupling_.Reset(state_.X_WD);
   safety_.Start(now_ns);
   if (model_ != nullptr) model_->Reset();
+  last_query_X_WH_ = coupling_.X_WH();
+  coherence_resets_ = 0;
   if (config_.deformation_A != nullptr) {
     config_.deformation_A->Reset();
     const int r = config_.deformation_A->r();
@@ -40,9 +51,23 @@ CycleRecord HapticCycle::Step(std::int64_t now_ns) {
   // Contact at the simulated pose of H (body B of the model).
   ContactResult contact;
   if (model_ != nullptr) {
+    // Temporal-coherence guard: H's motion since the previous query, as a bound on the speed
+    // of its points (A is static), against the speed the model's coherence assumes.
+    const Pose& X_WH = coupling_.X_WH();
+    if (config_.max_point_speed > 0) {
+      const double moved = (X_WH.translation - last_query_X_WH_.translation).norm() +
+                           X_WH.rotation.angularDistance(last_query_X_WH_.rotation) * config_.body_radius_H;
+      rec.point_speed = moved / config_.cycle_seconds;
+      if (!(rec.point_speed <= config_.max_point_speed)) {
+        model_->Reset();  // this cycle traverses in full; coherence restarts from it
+        rec.coherence_reset = true;
+        ++coherence_resets_;
+      }
+    }
+    last_query_X_WH_ = X_WH;
     ContactQuery q;
     q.X_WA = config_.X_WA;
-    q.X_WB = coupling_.X_WH();
+    q.X_WB = X_WH;
     q.cycle = cycle_;
     q.node_budget = config_.node_budget;
     if (config_.deformation_A != nullptr) {
@@ -74,6 +99,7 @@ CycleRecord HapticCycle::Step(std::int64_t now_ns) {
   rec.points_in_contact = contact.stats.points_in_contact;
   rec.level_rendered = contact.stats.level_rendered;
   rec.nodes_visited = contact.stats.nodes_visited;
+  rec.coherence_resets = coherence_resets_;
   rec.device_input = device_.input_stats();
   for (int i = 0; i < 3; ++i) {
     rec.p_WD[i] = state_.X_WD.translation[i];

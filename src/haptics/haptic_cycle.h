@@ -27,6 +27,15 @@ struct HapticCycleConfig {
   // With deformation_A: the step also takes the contact's reduced stiffness (linearly
   // implicit contact); false applies the contact force alone (the paper's explicit order).
   bool implicit_contact_A = true;
+  // Guard of the contact model's temporal coherence (paper sec. 3.4): the coherence assumes
+  // no point of A moves faster than max_point_speed relative to B, i.e. no more than
+  // max_point_speed * cycle_seconds per cycle. Each cycle measures the motion of H between
+  // consecutive contact queries, |dp| + |dtheta| * body_radius_H over cycle_seconds, and when it
+  // exceeds max_point_speed resets the model (a full traversal this cycle) and counts the
+  // cycle. max_point_speed <= 0 disables the guard.
+  double max_point_speed = 0;      // m/s (the scene's model.max_point_speed)
+  double cycle_seconds = 1e-3;     // s, the cycle the coherence counts in (model.cycle_seconds)
+  double body_radius_H = 0;        // m, bounding radius of H's geometry about its origin
 };
 
 // What one cycle did; trivially copyable so it can travel through an SpscRing.
@@ -39,6 +48,8 @@ struct CycleRecord {
   std::uint32_t safety_flags = 0;     // SafetyFlag bits
   bool new_sample = false;
   bool solve_ok = true;
+  bool coherence_reset = false;       // H moved faster than max_point_speed: the model was reset
+  double point_speed = 0;             // measured bound on the speed of H's points, m/s
   std::int32_t points_in_contact = 0;
   std::int32_t level_rendered = -1;   // deepest tree level the contact model rendered
   std::int64_t nodes_visited = 0;
@@ -52,6 +63,7 @@ struct CycleRecord {
   double contact_force[3] = {0, 0, 0};    // contact force on H, N
   double device_force[3] = {0, 0, 0};     // force written to the device (after safety), N
   double device_torque[3] = {0, 0, 0};    // torque written, N m
+  std::int64_t coherence_resets = 0;      // such resets so far this session
   DeviceInputStats device_input;          // the device's input counters after this cycle
 };
 
@@ -75,6 +87,8 @@ class HapticCycle {
   const SafetyFilter& safety() const { return safety_; }
   const StaticVirtualCoupling& coupling() const { return coupling_; }
   const DeviceState& device_state() const { return state_; }
+  // Cycles whose measured speed of H exceeded max_point_speed (each reset the model).
+  std::int64_t coherence_resets() const { return coherence_resets_; }
   HapticDevice& device() { return device_; }
 
  private:
@@ -86,6 +100,8 @@ class HapticCycle {
   DeviceState state_;
   std::int64_t last_sample_ns_ = 0;
   std::int64_t cycle_ = 0;
+  std::int64_t coherence_resets_ = 0;
+  Pose last_query_X_WH_;  // H's pose at the previous contact query
   ReducedVector f_A_;  // body A's reduced contact force and stiffness, this cycle
   ReducedMatrix K_A_;
 };

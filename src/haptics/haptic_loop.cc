@@ -95,6 +95,7 @@ HapticLoopReport HapticLoop::Join() {
   if (watchdog_.joinable()) watchdog_.join();
   report_.watchdog_zeroes = watchdog_zeroes_.load();
   report_.safety = cycle_.safety().stats();
+  report_.coherence_resets = cycle_.coherence_resets();
   report_.device_input = cycle_.device().input_stats();
   return report_;
 }
@@ -211,6 +212,7 @@ std::string FormatLoopReport(const HapticLoopReport& r) {
   os << "  safety: non-finite " << r.safety.non_finite << ", force clamped " << r.safety.force_clamped
      << ", torque clamped " << r.safety.torque_clamped << ", device silent " << r.safety.device_silent
      << ", loop stalls " << r.safety.loop_stalls << ", faults " << r.safety.faults << "\n";
+  os << "  coherence resets (haptic body faster than max_point_speed): " << r.coherence_resets << "\n";
   if (r.device_input.received > 0 || r.device_input.rejected() > 0)
     os << "  device input: " << FormatDeviceInputStats(r.device_input) << "\n";
   return os.str();

@@ -38,6 +38,7 @@ struct HapticLoopReport {
   TimingHistogram wake_latency;       // lateness of the wake-up after the release time
   TimingHistogram period;             // time between consecutive cycle starts
   SafetyStats safety;                 // the cycle's safety counters at the end
+  std::int64_t coherence_resets = 0;  // cycles where H outran max_point_speed (model reset)
   DeviceInputStats device_input;      // the device's input counters at the end (udp rejections)
 };
 
