@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -105,6 +107,20 @@ TEST(Cli, SimSessionRunsAndWritesAReplayableLog) {
   const Outcome replay = RunCli("session " + (dir / "scene.yaml").string() + " --device replay:" + (dir / "log.csv").string() +
                              " --duration 0.1 --no-realtime --quiet --cache " + (dir / "cache").string());
   EXPECT_EQ(replay.exit_code, 0) << replay.output;
+}
+
+// udp:0 binds a port the system picks: the session must say which, or no device can reach it.
+TEST(Cli, UdpSessionOnAPickedPortPrintsThePort) {
+  testing::TempDir dir;
+  std::ofstream(dir / "scene.yaml") << kScene;
+  const Outcome o = RunCli("session " + (dir / "scene.yaml").string() + " --device udp:0 --duration 0.2 " +
+                           "--no-realtime --quiet --cache " + (dir / "cache").string());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const std::size_t at = o.output.find("device: udp on 127.0.0.1:");
+  ASSERT_NE(at, std::string::npos) << o.output;
+  const int port = std::atoi(o.output.c_str() + at + std::strlen("device: udp on 127.0.0.1:"));
+  EXPECT_GT(port, 0) << o.output;
+  EXPECT_NE(o.output.find("coherence resets"), std::string::npos) << o.output;
 }
 
 TEST(Cli, RunListsJobsOfASweep) {
