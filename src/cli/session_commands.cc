@@ -2,9 +2,11 @@
 // session (Barbič & James 2008, sec. 5). The scene's field body is the haptic body: the device
 // workspace is centred on its start pose; the pointshell body stays where the scene puts it.
 // A one-line status shows rate, 99th-percentile cycle time, points in contact, level
-// rendered and clamps; the log (CSV) replays as a recorded trajectory. A deformable pointshell
-// body (a bridge or a hose the user pushes with the rigid haptic body) is two-way coupled:
-// its reduced deformation takes one step at the end of every cycle (paper sec. 4.1).
+// rendered, clamps, coherence resets and, for a device that rejects samples (udp), its
+// rejection counters; the start names the device (a udp device's bound port); the log (CSV)
+// replays as a recorded trajectory. A deformable pointshell body (a bridge or a hose the user
+// pushes with the rigid haptic body) is two-way coupled: its reduced deformation takes one
+// step at the end of every cycle (paper sec. 4.1).
 #include <algorithm>
 #include <atomic>
 #include <chrono>
