@@ -178,6 +178,19 @@ TEST(CliOutputs, RunOutOntoAFileFailsBeforeAnyJob) {
   EXPECT_FALSE(std::filesystem::exists(dir / "cache"));  // no job ran
 }
 
+TEST(CliOutputs, RunNameThatIsAPathIsRefused) {
+  testing::TempDir dir;
+  std::filesystem::create_directories(dir / "a" / "b");
+  std::ofstream(dir / "scene.yaml") << kScene;
+  std::ofstream(dir / "exp.yaml") << "name: ../../x\nscene: scene.yaml\n"
+                                  << "trajectory: {type: approach-press, duration: 0.01}\n";
+  const Outcome o = RunCliAfter("cd " + (dir / "a" / "b").string() + " &&",
+                                "run " + (dir / "exp.yaml").string() + " --no-cache");
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  EXPECT_NE(o.output.find("name: must be a plain name"), std::string::npos) << o.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "a" / "x"));  // results/../../x from a/b
+}
+
 TEST(CliOutputs, FailedRunLeavesNoEmptyResultsFolder) {
   testing::TempDir dir;
   std::ofstream(dir / "scene.yaml") << kScene;
