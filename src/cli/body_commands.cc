@@ -14,6 +14,7 @@
 #include "util/atomic_file.h"
 #include "util/data_path.h"
 #include "util/error.h"
+#include "util/output_target.h"
 
 namespace contactlab::cli {
 namespace {
@@ -75,7 +76,16 @@ void ExportPointshell(BodyAssets& body, const ReducedState* q, int level, const 
 
 void RunBodyExport(const BodyExportArgs& args) {
   if (args.mesh_out.empty() == args.pointshell_out.empty()) Fail("body-export", "give exactly one of --mesh and --pointshell");
-  const Scene scene = LoadScene(RequireDataFile(args.scene));
+  // The output is checked first: never a device or folder, never the scene or a body's mesh file.
+  const std::string& out = args.mesh_out.empty() ? args.pointshell_out : args.mesh_out;
+  const char* out_option = args.mesh_out.empty() ? "--pointshell" : "--mesh";
+  CheckOutputTarget(out, out_option);
+  const std::filesystem::path scene_file = RequireDataFile(args.scene);
+  CheckOutputIsNotInput(out, scene_file, out_option);
+  const Scene scene = LoadScene(scene_file);
+  for (const BodySpec* b : {&scene.field_body, &scene.pointshell_body}) {
+    if (const auto mesh_file = FindDataFile(b->mesh, FolderOf(scene_file))) CheckOutputIsNotInput(out, *mesh_file, out_option);
+  }
   AssetOptions options;
   options.cache_dir = args.cache;
   SceneAssets assets(scene, options);

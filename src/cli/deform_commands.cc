@@ -14,6 +14,7 @@
 #include "sdf/build_distance_field.h"
 #include "util/data_path.h"
 #include "util/error.h"
+#include "util/output_target.h"
 
 namespace contactlab::cli {
 namespace {
@@ -39,6 +40,8 @@ struct ReduceArgs {
 
 void RunReduce(const ReduceArgs& args) {
   const std::filesystem::path path = RequireDataFile(args.mesh);
+  CheckOutputTarget(args.out, "--out");
+  CheckOutputIsNotInput(args.out, path, "--out");
   const std::string source = path.filename().string();
   StVKMaterial material;
   material.youngs_modulus = args.youngs;
@@ -167,6 +170,8 @@ const CommandRegistration kDeformCommands([](CLI::App& app) {
   exp->add_option("--out", ex->out, "output .vtk file")->required();
   exp->add_option("--scale", ex->scale, "displacement per unit reduced coordinate (multiplies the basis)");
   exp->callback([ex] {
+    CheckOutputTarget(ex->out, "--out");
+    CheckOutputIsNotInput(ex->out, ex->model, "--out");
     const ReducedModel model = LoadReducedModel(ex->model);
     ExportModesVtk(model, ex->out, ex->scale);
     std::cout << "wrote " << model.r() << " mode fields to " << ex->out << "\n";

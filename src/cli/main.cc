@@ -5,6 +5,7 @@
 #include "baselines/register_baselines.h"
 #include "cli/command_registry.h"
 #include "util/error.h"
+#include "util/temporary_files.h"
 
 namespace contactlab::cli {
 
@@ -16,6 +17,8 @@ std::vector<CommandAdder>& CommandRegistry() {
 }  // namespace contactlab::cli
 
 int main(int argc, char** argv) {
+  // SIGINT/SIGTERM while an output is being written removes its temporary file.
+  contactlab::InstallTemporaryFileCleanupOnSignals();
   contactlab::RegisterBaselineContactModels();
   CLI::App app{"ContactLab: a testbed for 6-DoF haptic contact (Barbič & James 2008 and baselines)"};
   app.set_version_flag("--version", std::string("contactlab ") + CONTACTLAB_VERSION);

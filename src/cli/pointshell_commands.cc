@@ -19,6 +19,7 @@
 #include "util/atomic_file.h"
 #include "util/data_path.h"
 #include "util/error.h"
+#include "util/output_target.h"
 
 namespace contactlab::cli {
 namespace {
@@ -45,6 +46,13 @@ bool HasExtension(const std::filesystem::path& path, const std::string& ext) {
 
 void RunPointshell(const PointshellArgs& args) {
   const std::filesystem::path path = RequireDataFile(args.input);
+  CheckOutputTarget(args.out, "--out");
+  CheckOutputIsNotInput(args.out, path, "--out");
+  if (!args.report.empty()) {
+    CheckOutputTarget(args.report, "--report");
+    CheckOutputIsNotInput(args.report, path, "--report");
+    CheckOutputIsNotInput(args.report, args.out, "--report");
+  }
   PointshellOptions options;
   options.method = ParsePointshellMethod(args.method, "--method");
   options.num_points = args.points;
@@ -165,6 +173,8 @@ const CommandRegistration kPointshellCommands([](CLI::App& app) {
   exp->add_option("--level", ex->level, "tree level (default: the deepest)");
   exp->add_option("--out", ex->out, "output file, .ply or .csv")->required();
   exp->callback([ex] {
+    CheckOutputTarget(ex->out, "--out");
+    CheckOutputIsNotInput(ex->out, ex->shell, "--out");
     const Pointshell shell = LoadPointshell(ex->shell);
     const int level = ex->level.value_or(shell.num_levels() - 1);
     ExportPointshell(shell, level, ex->out);

@@ -5,6 +5,7 @@
 // the sweep points, --job I runs one of them, --slurm writes and submits a Slurm array of them
 // plus a merge job (experiment/slurm_script.h), and merge joins the pieces.
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -16,6 +17,7 @@
 #include "experiment/slurm_script.h"
 #include "util/data_path.h"
 #include "util/error.h"
+#include "util/output_target.h"
 
 namespace contactlab::cli {
 namespace {
@@ -49,6 +51,7 @@ void SubmitToSlurm(const RunArgs& args, const ExperimentConfig& config, int jobs
   if (!args.cache.empty()) command.run_args.insert(command.run_args.end(), {"--cache", fs::absolute(args.cache).string()});
   if (args.no_cache) command.run_args.push_back("--no-cache");
   command.out_dir = fs::absolute(args.out.empty() ? fs::path("results") / config.name : fs::path(args.out)).lexically_normal();
+  CheckOutputFolder(command.out_dir, "--out");
   command.name = config.name;
   command.jobs = jobs;
   const fs::path dir = WriteSlurmScripts(command, args.slurm_options);
@@ -62,6 +65,28 @@ void SubmitToSlurm(const RunArgs& args, const ExperimentConfig& config, int jobs
   std::printf("submitted array job %s (%d tasks) and merge job %s (after the array); results: %s\n",
               sub.array_job.c_str(), jobs, sub.merge_job.c_str(), command.out_dir.c_str());
   std::printf("array_job=%s\nmerge_job=%s\n", sub.array_job.c_str(), sub.merge_job.c_str());
+}
+
+// Runs WORK; when it throws, removes the folders on the way to OUT_DIR that did not exist
+// before and are still empty, so that a failed run leaves no empty results folder behind.
+template <typename Work>
+auto RunRemovingNewEmptyFolders(const std::filesystem::path& out_dir, Work&& work) -> decltype(work()) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> created;  // innermost first
+  std::error_code ec;
+  for (fs::path p = fs::absolute(out_dir, ec).lexically_normal(); !p.empty() && !fs::exists(p, ec);
+       p = p.parent_path()) {
+    created.push_back(p);
+    if (p == p.parent_path()) break;
+  }
+  try {
+    return work();
+  } catch (...) {
+    for (const fs::path& p : created) {
+      if (!fs::is_directory(p, ec) || !fs::is_empty(p, ec) || !fs::remove(p, ec)) break;
+    }
+    throw;
+  }
 }
 
 void RunRun(const RunArgs& args) {
@@ -79,6 +104,10 @@ void RunRun(const RunArgs& args) {
   RunOptions options;
   options.out_dir = args.out.empty() ? std::filesystem::path("results") / config.name : std::filesystem::path(args.out);
   if (args.jobs.size() == 1 && args.out.empty()) options.out_dir /= "job-" + std::to_string(args.jobs.front());
+  // The results folder and its files are checked before any job runs.
+  CheckOutputFolder(options.out_dir, "--out");
+  for (const char* file : {"cycles.csv", "summary.csv", "convergence.csv", "meta.json"})
+    CheckOutputTarget(options.out_dir / file, "--out");
   options.assets.cache_dir = args.cache;
   options.assets.use_cache = !args.no_cache;
   options.assets.verbose = false;
@@ -87,7 +116,9 @@ void RunRun(const RunArgs& args) {
                args.jobs.empty() ? jobs.size() : args.jobs.size(), jobs.size());
   for (const auto& m : config.models) std::fprintf(stderr, " %s", m.c_str());
   std::fprintf(stderr, "\n");
-  const std::vector<SummaryRow> rows = RunExperiment(config, options, args.jobs);
+  const std::vector<SummaryRow> rows = RunRemovingNewEmptyFolders(options.out_dir, [&] {
+    return RunExperiment(config, options, args.jobs);
+  });
   std::printf("%-6s %-24s %-9s %10s %10s %10s %12s\n", "job", "model", "points", "max|F| N", "jump N", "p99 us",
               "rel.err");
   for (const SummaryRow& r : rows) {
@@ -144,6 +175,8 @@ const CommandRegistration kRunCommands([](CLI::App& app) {
     } else if (paths.empty()) {
       Fail("merge", "no result folders given (DIRS or --sweep DIR --jobs N)");
     }
+    CheckOutputFolder(margs->out, "--out");
+    for (const auto& p : paths) CheckOutputIsNotInput(margs->out, p, "--out");
     MergeResults(paths, margs->out);
     std::printf("merged %zu folders into %s\n", paths.size(), margs->out.c_str());
   });

@@ -11,6 +11,7 @@
 #include "sdf/point_csv.h"
 #include "util/data_path.h"
 #include "util/error.h"
+#include "util/output_target.h"
 
 namespace contactlab::cli {
 namespace {
@@ -27,6 +28,8 @@ struct SdfArgs {
 
 void RunSdf(const SdfArgs& args) {
   const std::filesystem::path path = RequireDataFile(args.mesh);
+  CheckOutputTarget(args.out, "--out");
+  CheckOutputIsNotInput(args.out, path, "--out");
   DistanceFieldOptions options;
   options.resolution = args.resolution;
   options.mode = ParseFieldMode(args.mode, "--mode");
@@ -49,6 +52,9 @@ struct SdfEvalArgs {
 };
 
 void RunSdfEval(const SdfEvalArgs& args) {
+  CheckOutputTarget(args.out, "--out");
+  CheckOutputIsNotInput(args.out, args.field, "--out");
+  CheckOutputIsNotInput(args.out, args.points, "--out");
   const DistanceField field = LoadDistanceField(args.field);
   const std::vector<Eigen::Vector3d> points = ReadPointsCsv(args.points);
   std::vector<double> d(points.size());

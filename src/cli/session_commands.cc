@@ -14,6 +14,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 #include <unistd.h>
@@ -28,8 +29,10 @@
 #include "haptics/haptic_loop.h"
 #include "haptics/safety_filter.h"
 #include "haptics/workspace_mapping.h"
+#include "util/atomic_file.h"
 #include "util/data_path.h"
 #include "util/error.h"
+#include "util/output_target.h"
 
 namespace contactlab::cli {
 namespace {
@@ -76,6 +79,7 @@ double BoundingRadius(const TriangleMesh& mesh) {
 }
 
 void RunSession(const SessionArgs& args) {
+  if (!args.log.empty()) CheckOutputTarget(args.log, "--log");  // before the session, not after it
   const Scene scene = LoadScene(RequireDataFile(args.scene));
   AssetOptions options;
   options.cache_dir = args.cache;
@@ -120,11 +124,13 @@ void RunSession(const SessionArgs& args) {
   InstallStopSignalHandlers();
   HapticLoop loop(cycle, loop_options);
 
-  // The log goes to a temporary name and is renamed when the session ends cleanly.
+  // The log goes to a temporary name and is renamed when the session ends cleanly; on any
+  // failure the temporary is removed.
   std::ofstream log;
-  const std::string tmp_log = args.log.empty() ? "" : args.log + ".tmp-" + std::to_string(::getpid());
+  std::optional<TemporaryOutput> log_output;
   if (!args.log.empty()) {
-    log.open(tmp_log, std::ios::trunc);
+    log_output.emplace(args.log);
+    log.open(log_output->temporary(), std::ios::trunc);
     if (!log) Fail(args.log, "cannot open the session log for writing");
     log << "# contactlab session log: scene " << scene.name << ", model " << model_name << ", device " << args.device
         << "\n"
@@ -199,10 +205,8 @@ void RunSession(const SessionArgs& args) {
               static_cast<unsigned long long>(loop.records().dropped()));
   if (log.is_open()) {
     log.close();
-    if (!log) Fail(args.log, "write failed");
-    std::error_code ec;
-    std::filesystem::rename(tmp_log, args.log, ec);
-    if (ec) Fail(args.log, "cannot rename the finished log: " + ec.message());
+    if (!log) Fail(args.log, "write failed (disk full or I/O error)");
+    log_output->Commit();
     std::printf("session log: %s\n", args.log.c_str());
   }
 }

@@ -1,5 +1,6 @@
 #include "experiment/experiment_config.h"
 
+#include <algorithm>
 #include <map>
 #include <sstream>
 
@@ -327,6 +328,11 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
   c.resolved_yaml = std::move(resolved_yaml);
   c.document = YAML::Clone(root.yaml());
   c.name = root.String("name", std::filesystem::path(root.file()).stem().string());
+  // The name chooses the results folder results/NAME: a plain name, never a path.
+  const bool plain = !c.name.empty() && c.name != "." && c.name != ".." &&
+                     std::none_of(c.name.begin(), c.name.end(),
+                                  [](char ch) { return ch == '/' || ch == '\\' || (unsigned char)ch < 0x20; });
+  if (!plain) root.Get("name").Fail("must be a plain name (it chooses the folder results/NAME), got '" + c.name + "'");
   c.description = root.String("description", "");
   const ConfigNode scene = root.Get("scene");
   if (scene.IsScalar()) {

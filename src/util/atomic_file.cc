@@ -6,36 +6,56 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "util/error.h"
+#include "util/output_target.h"
+#include "util/temporary_files.h"
 
 namespace contactlab {
 namespace fs = std::filesystem;
 
-void WriteFileAtomically(const fs::path& path, const std::function<void(std::ostream&)>& write,
-                         bool binary) {
+TemporaryOutput::TemporaryOutput(fs::path path) : path_(std::move(path)) {
+  CheckOutputTarget(path_, "the output");
   // Unique per process and per call, so threads writing the same target never collide.
   static std::atomic<unsigned> counter{0};
-  const fs::path tmp = path.string() + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  temporary_ = path_.string() + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
   std::error_code ec;
-  if (path.has_parent_path() && !fs::exists(path.parent_path(), ec)) {
-    fs::create_directories(path.parent_path(), ec);
-    if (ec) Fail(path.string(), "cannot create the output folder: " + ec.message());
+  if (path_.has_parent_path() && !fs::exists(path_.parent_path(), ec)) {
+    fs::create_directories(path_.parent_path(), ec);
+    if (ec) Fail(path_.string(), "cannot create the output folder: " + ec.message());
   }
-  try {
-    {
-      std::ofstream out(tmp, binary ? std::ios::binary | std::ios::trunc : std::ios::trunc);
-      if (!out) Fail(path.string(), "cannot open a temporary file for writing");
-      write(out);
-      out.flush();
-      if (!out) Fail(path.string(), "write failed (disk full or I/O error)");
-    }
-    fs::rename(tmp, path, ec);
-    if (ec) Fail(path.string(), "cannot rename the finished temporary file: " + ec.message());
-  } catch (...) {
-    fs::remove(tmp, ec);
-    throw;
+  slot_ = RegisterTemporaryFile(temporary_.c_str());
+}
+
+TemporaryOutput::~TemporaryOutput() {
+  if (!committed_) {
+    std::error_code ec;
+    fs::remove(temporary_, ec);
   }
+  UnregisterTemporaryFile(slot_);
+}
+
+void TemporaryOutput::Commit() {
+  // The target may have been replaced by something else while we wrote.
+  CheckOutputTarget(path_, "the output");
+  std::error_code ec;
+  fs::rename(temporary_, path_, ec);
+  if (ec) Fail(path_.string(), "cannot rename the finished temporary file: " + ec.message());
+  committed_ = true;
+}
+
+void WriteFileAtomically(const fs::path& path, const std::function<void(std::ostream&)>& write,
+                         bool binary) {
+  TemporaryOutput output(path);
+  {
+    std::ofstream out(output.temporary(), binary ? std::ios::binary | std::ios::trunc : std::ios::trunc);
+    if (!out) Fail(path.string(), "cannot open a temporary file for writing");
+    write(out);
+    out.flush();
+    if (!out) Fail(path.string(), "write failed (disk full or I/O error)");
+  }
+  output.Commit();
 }
 
 void WriteFileAtomically(const fs::path& path, std::string_view bytes) {

@@ -9,9 +9,32 @@
 
 namespace contactlab {
 
-// Calls WRITE with a stream onto "PATH.tmp-<pid>-<n>", flushes, checks the stream, and renames
-// the temporary file onto PATH. On any failure (including an exception thrown by WRITE) the
-// temporary file is removed and Error is thrown naming PATH. BINARY opens in binary mode.
+// A temporary file "PATH.tmp-<pid>-<n>" beside PATH that becomes PATH at Commit. Construction
+// checks PATH (CheckOutputTarget: absent or a regular file, never a device, folder or pipe),
+// creates the parent folder and registers the temporary for removal on SIGINT/SIGTERM; the
+// destructor removes it unless committed. Throws Error naming PATH.
+class TemporaryOutput {
+ public:
+  explicit TemporaryOutput(std::filesystem::path path);
+  ~TemporaryOutput();
+  TemporaryOutput(const TemporaryOutput&) = delete;
+  TemporaryOutput& operator=(const TemporaryOutput&) = delete;
+
+  const std::filesystem::path& path() const { return path_; }
+  const std::filesystem::path& temporary() const { return temporary_; }
+  // Renames the temporary onto PATH, checking PATH again first.
+  void Commit();
+
+ private:
+  std::filesystem::path path_;
+  std::filesystem::path temporary_;
+  int slot_ = -1;
+  bool committed_ = false;
+};
+
+// Calls WRITE with a stream onto a TemporaryOutput for PATH, flushes, checks the stream, and
+// renames the temporary file onto PATH. On any failure (including an exception thrown by WRITE)
+// the temporary file is removed and Error is thrown naming PATH. BINARY opens in binary mode.
 void WriteFileAtomically(const std::filesystem::path& path,
                          const std::function<void(std::ostream&)>& write, bool binary = false);
 

@@ -2,6 +2,7 @@
 // file, no output left behind on failure, and the session and run commands on small scenes.
 #include <Eigen/Core>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 
 #include <algorithm>
@@ -25,8 +26,9 @@ struct Outcome {
   std::string output;  // stdout and stderr
 };
 
-Outcome RunCli(const std::string& args) {
-  const std::string command = std::string(CONTACTLAB_CLI) + " " + args + " 2>&1";
+// Runs `contactlab ARGS` through the shell, after the shell commands PREFIX (e.g. "cd DIR;").
+Outcome RunCliAfter(const std::string& prefix, const std::string& args) {
+  const std::string command = prefix + " " + std::string(CONTACTLAB_CLI) + " " + args + " 2>&1";
   Outcome o;
   FILE* pipe = ::popen(command.c_str(), "r");
   if (!pipe) return o;
@@ -36,6 +38,20 @@ Outcome RunCli(const std::string& args) {
   o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return o;
 }
+
+Outcome RunCli(const std::string& args) { return RunCliAfter("", args); }
+
+// Shell commands that make every write to a regular file fail beyond 512 bytes, as on a full
+// disk (EFBIG instead of ENOSPC; the signal SIGXFSZ is ignored so the write just fails).
+const char* kSmallDisk = "trap '' XFSZ; ulimit -f 1;";
+
+int CountFiles(const std::filesystem::path& dir) {
+  int files = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++files;
+  return files;
+}
+
+const char* kTetrahedron = "v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nv 0 0 0.1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
 
 const char* kScene = R"(name: cli-ball-plate
 bodies:
@@ -90,6 +106,101 @@ TEST(Cli, FailedFieldBuildLeavesNoOutputFile) {
   int files = 0;
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path())) ++files;
   EXPECT_EQ(files, 1);  // only the input
+}
+
+// A named pipe stands for a device (as root, /dev/full or /dev/null would have been replaced).
+TEST(CliOutputs, OutputOntoASpecialFileIsRefusedBeforeAnyWork) {
+  testing::TempDir dir;
+  std::ofstream(dir / "tet.obj") << kTetrahedron;
+  const auto pipe = dir / "out.sdf";
+  ASSERT_EQ(::mkfifo(pipe.c_str(), 0600), 0);
+  const Outcome o = RunCli("sdf " + (dir / "tet.obj").string() + " --resolution 16 --out " + pipe.string());
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  EXPECT_NE(o.output.find(pipe.string() + ": --out is a named pipe"), std::string::npos) << o.output;
+  EXPECT_EQ(o.output.find("written to"), std::string::npos) << o.output;
+  EXPECT_TRUE(std::filesystem::is_fifo(pipe));
+  EXPECT_EQ(CountFiles(dir.path()), 2);
+}
+
+TEST(CliOutputs, OutputEqualToTheInputIsRefusedNamingBoth) {
+  testing::TempDir dir;
+  const auto mesh = dir / "tet.obj";
+  std::ofstream(mesh) << kTetrahedron;
+  // The same file under another spelling.
+  const Outcome o = RunCli("sdf " + mesh.string() + " --resolution 16 --out " + (dir / "." / "tet.obj").string());
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  EXPECT_NE(o.output.find("is the input " + mesh.string()), std::string::npos) << o.output;
+  EXPECT_EQ(ReadWholeFile(mesh), kTetrahedron);
+  // sdf-eval onto its points file.
+  ASSERT_EQ(RunCli("sdf " + mesh.string() + " --resolution 16 --out " + (dir / "tet.sdf").string()).exit_code, 0);
+  const std::string points = "x,y,z\n0.01,0.01,0.01\n";
+  std::ofstream(dir / "points.csv") << points;
+  const Outcome eval = RunCli("sdf-eval " + (dir / "tet.sdf").string() + " --points " + (dir / "points.csv").string() +
+                              " --out " + (dir / "points.csv").string());
+  EXPECT_EQ(eval.exit_code, 1) << eval.output;
+  EXPECT_NE(eval.output.find("is the input"), std::string::npos) << eval.output;
+  EXPECT_EQ(ReadWholeFile(dir / "points.csv"), points);
+}
+
+TEST(CliOutputs, SessionLogOntoAFolderFailsBeforeTheSession) {
+  testing::TempDir dir;
+  std::ofstream(dir / "scene.yaml") << kScene;
+  std::filesystem::create_directory(dir / "logs");
+  const Outcome o = RunCli("session " + (dir / "scene.yaml").string() + " --device sim --duration 5 --no-realtime " +
+                           "--quiet --log " + (dir / "logs").string() + " --cache " + (dir / "cache").string());
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  EXPECT_NE(o.output.find((dir / "logs").string() + ": --log is a folder"), std::string::npos) << o.output;
+  EXPECT_EQ(o.output.find("session: scene"), std::string::npos) << o.output;  // it never started
+  EXPECT_FALSE(std::filesystem::exists(dir / "cache"));                       // nor built anything
+}
+
+TEST(CliOutputs, FailedSessionLogWriteLeavesNoTemporary) {
+  testing::TempDir dir;
+  std::ofstream(dir / "scene.yaml") << kScene;
+  const std::string cache = " --cache " + (dir / "cache").string();
+  ASSERT_EQ(RunCli("contact " + (dir / "scene.yaml").string() + cache).exit_code, 0);  // fills the cache
+  const Outcome o = RunCliAfter(kSmallDisk, "session " + (dir / "scene.yaml").string() +
+                                                " --device sim --duration 0.3 --no-realtime --quiet --log " +
+                                                (dir / "log.csv").string() + cache);
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  EXPECT_NE(o.output.find((dir / "log.csv").string()), std::string::npos) << o.output;
+  EXPECT_EQ(CountFiles(dir.path()), 2) << "scene.yaml and cache/ only";
+}
+
+TEST(CliOutputs, RunOutOntoAFileFailsBeforeAnyJob) {
+  testing::TempDir dir;
+  std::ofstream(dir / "scene.yaml") << kScene;
+  std::ofstream(dir / "exp.yaml") << "name: e\nscene: scene.yaml\ntrajectory: {type: approach-press, duration: 0.01}\n";
+  std::ofstream(dir / "taken") << "x";
+  const Outcome o = RunCli("run " + (dir / "exp.yaml").string() + " --out " + (dir / "taken").string() + " --cache " +
+                           (dir / "cache").string());
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  EXPECT_NE(o.output.find((dir / "taken").string() + ": --out is a file, not a folder"), std::string::npos) << o.output;
+  EXPECT_EQ(o.output.find("internal error"), std::string::npos) << o.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "cache"));  // no job ran
+}
+
+TEST(CliOutputs, RunNameThatIsAPathIsRefused) {
+  testing::TempDir dir;
+  std::filesystem::create_directories(dir / "a" / "b");
+  std::ofstream(dir / "scene.yaml") << kScene;
+  std::ofstream(dir / "exp.yaml") << "name: ../../x\nscene: scene.yaml\n"
+                                  << "trajectory: {type: approach-press, duration: 0.01}\n";
+  const Outcome o = RunCliAfter("cd " + (dir / "a" / "b").string() + " &&",
+                                "run " + (dir / "exp.yaml").string() + " --no-cache");
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  EXPECT_NE(o.output.find("name: must be a plain name"), std::string::npos) << o.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "a" / "x"));  // results/../../x from a/b
+}
+
+TEST(CliOutputs, FailedRunLeavesNoEmptyResultsFolder) {
+  testing::TempDir dir;
+  std::ofstream(dir / "scene.yaml") << kScene;
+  std::ofstream(dir / "exp.yaml") << "name: e\nscene: scene.yaml\ntrajectory: {type: approach-press, duration: 0.02}\n";
+  const Outcome o = RunCliAfter(std::string("cd ") + dir.path().string() + " && " + kSmallDisk, "run exp.yaml --no-cache");
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  EXPECT_NE(o.output.find("cycles.csv"), std::string::npos) << o.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "results")) << o.output;
 }
 
 TEST(Cli, SimSessionRunsAndWritesAReplayableLog) {
