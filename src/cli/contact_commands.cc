@@ -107,7 +107,8 @@ const CommandRegistration kContactCommands([](CLI::App& app) {
   cmd->add_option("--pose-b", args->pose_b, "pose of the field body: x,y,z,qw,qx,qy,qz (metres)");
   cmd->add_option("--q-a", args->q_a, "deformation of body A held fixed: q1,...,qr or @FILE (default: rest)");
   cmd->add_option("--q-b", args->q_b, "deformation of body B: q1,...,qr or @FILE");
-  cmd->add_option("--budget", args->budget, "node budget (warm threshold); overrides the scene's");
+  cmd->add_option("--budget", args->budget, "node budget (warm threshold, >= 0); overrides the scene's")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--cache", args->cache, "cache folder for fields and pointshells");
   cmd->add_flag("--no-cache", args->no_cache, "neither read nor write cached fields and pointshells");
   cmd->add_flag("--json", args->json, "print JSON (with the 6x6 gradient K_B)");

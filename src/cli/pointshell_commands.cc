@@ -140,10 +140,10 @@ const CommandRegistration kPointshellCommands([](CLI::App& app) {
                     "distance field (particle repulsion, or voxel / vertices / random sampling) and save it");
   build->add_option("INPUT", ps->input, "mesh file (a distance field is built first) or field file (.sdf)")
       ->required();
-  build->add_option("--points", ps->points, "points of the deepest level (voxel: approximate)")
+  build->add_option("--points", ps->points, "points of the deepest level (voxel: approximate), at most 2^24")
       ->required()
-      ->check(CLI::PositiveNumber);
-  build->add_option("--levels", ps->levels, "tree levels")->required()->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, 1 << 24));
+  build->add_option("--levels", ps->levels, "tree levels, 1 to 12")->required()->check(CLI::Range(1, 12));
   build->add_option("--offset", ps->offset, "level-set offset in metres (default: half the field spacing)");
   build->add_option("--method", ps->method, "repulsion (default) | voxel | vertices (mesh input) | random");
   build->add_option("--seed", ps->seed, "random seed (default 1)");

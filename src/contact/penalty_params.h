@@ -27,7 +27,7 @@ struct PenaltyParams {
   }
 };
 
-// Throws Error("WHERE: ...") unless k_C is finite and non-negative and L is not negative.
+// Throws Error("WHERE: ...") unless k_C is finite and positive and L is not negative.
 void CheckPenaltyParams(const PenaltyParams& params, std::string_view where);
 
 // Reads keys "k_C" and "L" of SECTION (a mapping; absent keys keep BASE's values) and checks

@@ -363,9 +363,9 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
   if (auto r = root.Find("reference"); r && r->IsMap()) {
     r->ExpectKeys({"model", "points", "levels", "resolution"});
     c.reference_model = r->Get("model").AsString();
-    c.reference_points = int(r->PositiveInt("points", 0));
-    c.reference_levels = int(r->PositiveInt("levels", 0));
-    c.reference_resolution = int(r->PositiveInt("resolution", 0));
+    c.reference_points = int(r->IntInRange("points", 0, 1, kMaxPointshellPoints));
+    c.reference_levels = int(r->IntInRange("levels", 0, 1, kMaxPointshellLevels));
+    c.reference_resolution = int(r->IntInRange("resolution", 0, 8, kMaxFieldResolution));
   } else {
     c.reference_model = root.String("reference", "");
   }

@@ -134,6 +134,14 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
   }
   const Pose start = moving_is_B ? X_WB0 : X_WA0;
   const double dt = scene.model.cycle_seconds;
+  // Bounded before the per-cycle records are allocated.
+  if (!(trajectory.duration() / dt <= kMaxTrajectorySamples)) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  "trajectory.duration: %.3g s at a cycle of %.3g s is %.3g cycles, more than the limit of %.0e",
+                  trajectory.duration(), dt, trajectory.duration() / dt, kMaxTrajectorySamples);
+    Fail(config.file, buf);
+  }
   const std::int64_t cycles = std::int64_t(std::floor(trajectory.duration() / dt + 1e-9)) + 1;
 
   std::unique_ptr<SceneAssets> reference_assets;

@@ -8,8 +8,7 @@ namespace {
 FieldSpec ParseField(const ConfigNode& n) {
   n.ExpectKeys({"resolution", "mode", "padding", "offset"});
   FieldSpec f;
-  f.resolution = int(n.PositiveInt("resolution", f.resolution));
-  if (f.resolution < 8 || f.resolution > 1024) n.Get("resolution").Fail("must be between 8 and 1024");
+  f.resolution = int(n.IntInRange("resolution", f.resolution, 8, kMaxFieldResolution));
   f.mode = n.OneOf("mode", f.mode, {"auto", "closed", "soup"});
   f.padding = n.NonNegative("padding", f.padding);
   if (n.Has("offset")) f.offset = n.Positive("offset", 0);
@@ -19,8 +18,8 @@ FieldSpec ParseField(const ConfigNode& n) {
 PointshellSpec ParsePointshell(const ConfigNode& n) {
   n.ExpectKeys({"points", "levels", "method", "seed", "offset"});
   PointshellSpec s;
-  s.points = int(n.PositiveInt("points", s.points));
-  s.levels = int(n.PositiveInt("levels", s.levels));
+  s.points = int(n.IntInRange("points", s.points, 1, kMaxPointshellPoints));
+  s.levels = int(n.IntInRange("levels", s.levels, 1, kMaxPointshellLevels));
   s.method = n.OneOf("method", s.method, {"repulsion", "voxel", "vertices", "random"});
   s.seed = std::uint64_t(n.Int("seed", (long long)s.seed));
   if (n.Has("offset")) s.offset = n.NonNegative("offset", 0);
@@ -93,6 +92,7 @@ BodySpec ParseBody(const ConfigNode& n) {
   n.ExpectKeys({"name", "mesh", "scale", "center", "pose", "role", "field", "pointshell", "deformable"});
   BodySpec b;
   b.mesh = n.Get("mesh").AsString();
+  b.mesh_where = n.Get("mesh").Location();
   b.name = n.String("name", b.mesh);
   b.scale = n.Positive("scale", 1.0);
   b.center = n.Bool("center", false);

@@ -47,6 +47,12 @@
 
 namespace contactlab {
 
+// Upper limits on the sizes a scene may ask for, checked when parsing so that a typo such as
+// "points: 10000000000" is a clear error naming the key, not an allocation failure minutes later.
+inline constexpr int kMaxFieldResolution = 1024;       // cells along the longest side
+inline constexpr int kMaxPointshellPoints = 1 << 24;   // 16,777,216 points
+inline constexpr int kMaxPointshellLevels = 12;        // tree levels
+
 struct FieldSpec {
   int resolution = 64;        // cells along the longest side
   std::string mode = "auto";  // auto | closed | soup
@@ -81,6 +87,7 @@ struct DeformableSpec {
 struct BodySpec {
   std::string name;
   std::string mesh;                  // file name (data search path) or "shape:params"
+  std::string mesh_where;            // "FILE:LINE: bodies[i].mesh", for errors about the mesh
   double scale = 1.0;
   bool center = false;
   Pose pose;                         // X_WBody at the scene's start

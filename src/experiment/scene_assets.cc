@@ -1,5 +1,6 @@
 #include "experiment/scene_assets.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstdio>
 #include <iostream>
@@ -85,12 +86,29 @@ TriangleMesh LoadBodyMesh(const BodySpec& body, const fs::path& mesh_dir) {
   TriangleMesh mesh;
   const bool procedural = body.mesh.find(':') != std::string::npos && !FindDataFile(body.mesh, mesh_dir);
   if (procedural) {
-    mesh = MakeShape(body.mesh, where + " mesh '" + body.mesh + "'");
+    // Errors name the scene file, line and key when the body came from a scene.
+    const std::string shape_where =
+        (body.mesh_where.empty() ? where + " mesh" : body.mesh_where) + ": '" + QuoteToken(body.mesh) + "'";
+    try {
+      mesh = MakeShape(body.mesh, shape_where);
+    } catch (const Error& e) {
+      const std::string what = e.what();
+      if (what.rfind(shape_where, 0) == 0) throw;
+      Fail(shape_where, what);  // from geometry/procedural_shapes: "MakeSphere: needs radius > 0 ..."
+    }
     if (body.center) {
       const Eigen::Vector3d c = mesh.Bounds().center();
       mesh.Transform(1.0, Eigen::Matrix3d::Identity(), -c);
     }
     mesh.Transform(body.scale, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero());
+    double largest = 0;
+    for (const Eigen::Vector3d& p : mesh.vertices) largest = std::max(largest, p.cwiseAbs().maxCoeff());
+    if (!(largest <= kMaxCoordinate)) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "coordinates out of range: |coordinate| reaches %.3g m after scaling (the limit is %.0e m)",
+                    largest, kMaxCoordinate);
+      Fail(shape_where, buf);
+    }
   } else {
     MeshLoadOptions options;
     options.scale = body.scale;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "geometry/pose_samples_csv.h"
@@ -56,6 +57,9 @@ double Trajectory::MaxPointSpeed(double radius) const {
 Trajectory MakeProceduralTrajectory(const ProceduralTrajectorySpec& s) {
   const std::string where = "trajectory '" + s.type + "'";
   if (!(s.duration > 0) || !(s.rate > 0)) Fail(where, "duration and rate must be positive");
+  if (!(s.duration * s.rate <= kMaxTrajectorySamples)) {
+    Fail(where, "duration x rate is more than the limit of 1e8 samples");
+  }
   if (s.direction.norm() == 0) Fail(where, "direction must be non-zero");
   const Eigen::Vector3d dir = s.direction.normalized();
   Eigen::Vector3d tangent = s.tangent - s.tangent.dot(dir) * dir;
@@ -145,6 +149,14 @@ Trajectory ParseTrajectory(const ConfigNode& n) {
   s.angle = n.Double("angle", s.angle);
   s.duration = n.Positive("duration", s.duration);
   s.rate = n.Positive("rate", s.rate);
+  // Bounded before the samples are allocated (one per cycle).
+  if (s.duration * s.rate > kMaxTrajectorySamples) {
+    const ConfigNode at = n.Has("duration") ? n.Get("duration") : n.Get("rate");
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "duration x rate is %.3g samples (cycles), more than the limit of %.0e",
+                  s.duration * s.rate, kMaxTrajectorySamples);
+    at.Fail(buf);
+  }
   return MakeProceduralTrajectory(s);
 }
 

@@ -42,6 +42,9 @@ class Trajectory {
 //  twist:          press to DEPTH, then rotate by ANGLE about DIRECTION, and back;
 //  scan:           press to DEPTH, then sweep LENGTH along the tangent at constant speed;
 //  circle:         press to DEPTH, then a circle of RADIUS in the tangent plane.
+// At most 1e8 samples (cycles: a 27-hour run at 1 kHz) in a procedural trajectory.
+inline constexpr double kMaxTrajectorySamples = 1e8;
+
 struct ProceduralTrajectorySpec {
   std::string type = "approach-press";
   Eigen::Vector3d direction = Eigen::Vector3d(0, 0, -1);  // pressing direction (world)

@@ -8,6 +8,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <string>
 
@@ -167,9 +168,7 @@ TriangleMesh LoadMesh(const std::filesystem::path& path, const MeshLoadOptions& 
     Fail(file, "unknown mesh format '" + ext + (gzipped ? ".gz" : "") +
                    "' (expected .obj, .off, .stl or .ply, optionally gzip-compressed as .obj.gz etc.)");
   }
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) Fail(file, "mesh file not found");
-  if (std::filesystem::is_directory(path, ec)) Fail(file, "is a directory, not a mesh file");
+  CheckInputFile(path, "mesh file");
   const std::string bytes = gzipped ? ReadGzipFile(path) : ReadWholeFile(path);
 
   // Parse.
@@ -192,6 +191,16 @@ TriangleMesh LoadMesh(const std::filesystem::path& path, const MeshLoadOptions& 
                         options.translation.isZero(0);
   if (!identity) {
     for (Eigen::Vector3d& p : mesh.vertices) p = options.rotation * (s * p - c) + options.translation;
+  }
+  // Finite but huge coordinates (1e30, or a scale of 1e300) overflow later in squared
+  // distances; say so here rather than "a sample is not finite" from the field builder.
+  double largest = 0;
+  for (const Eigen::Vector3d& p : mesh.vertices) largest = std::max(largest, p.cwiseAbs().maxCoeff());
+  if (!(largest <= kMaxCoordinate)) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "coordinates out of range: |coordinate| reaches %.3g m%s (the limit is %.0e m)",
+                  largest, s != 1.0 ? " after scaling" : "", kMaxCoordinate);
+    Fail(file, buf);
   }
   return mesh;
 }

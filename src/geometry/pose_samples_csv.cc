@@ -5,12 +5,15 @@
 #include <fstream>
 #include <string>
 
+#include "util/atomic_file.h"
 #include "util/error.h"
 
 namespace contactlab {
 
 PoseSamples ReadPoseSamplesCsv(const std::filesystem::path& file) {
   const std::string name = file.string();
+  // A named pipe would block the open; a folder or device is named for what it is.
+  if (const std::string kind = NonRegularFileKind(file); !kind.empty()) Fail(name, "is " + kind + ", not a trajectory file");
   std::ifstream in(file);
   if (!in) Fail(name, "cannot open the trajectory file");
   PoseSamples out;

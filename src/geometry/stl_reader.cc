@@ -90,7 +90,11 @@ TriangleMesh ReadAsciiStl(std::string_view text, std::string_view file) {
   std::vector<int> polygon;
   bool in_loop = false;
   long loop_line = 0;
+  long facet_line = 0;  // line of the open 'facet', 0 when none is open
+  long solid_line = 0;  // line of the open 'solid', 0 when none is open
+  long last_line = 0;
   while (scanner.NextLine()) {
+    last_line = scanner.line_number();
     const std::string_view key = scanner.NextToken();
     if (key.empty()) continue;
     if (key == "vertex") {
@@ -112,13 +116,31 @@ TriangleMesh ReadAsciiStl(std::string_view text, std::string_view file) {
       }
       AppendFan(polygon.data(), static_cast<int>(polygon.size()), &mesh);
       in_loop = false;
-    } else if (key == "facet" || key == "endfacet" || key == "solid" || key == "endsolid") {
+    } else if (key == "facet") {
       // Structure only; facet normals are recomputed from the vertices.
+      if (facet_line != 0) scanner.Fail("'facet' before the 'endfacet' of the facet on line " + std::to_string(facet_line));
+      facet_line = scanner.line_number();
+    } else if (key == "endfacet") {
+      if (in_loop) scanner.Fail("'endfacet' inside an 'outer loop' (missing 'endloop')");
+      facet_line = 0;
+    } else if (key == "solid") {
+      solid_line = scanner.line_number();
+    } else if (key == "endsolid") {
+      if (facet_line != 0) scanner.Fail("'endsolid' inside the facet opened on line " + std::to_string(facet_line));
+      solid_line = 0;
     } else {
       scanner.Fail("unexpected '" + std::string(key.substr(0, 40)) + "' in ASCII STL");
     }
   }
   if (in_loop) FailAtLine(file, loop_line, "truncated: the file ends inside this 'outer loop'");
+  // A file cut between facets still parses line by line: only the closing keywords tell.
+  if (facet_line != 0) {
+    FailAtLine(file, last_line, "truncated: the file ends inside the facet opened on line " + std::to_string(facet_line));
+  }
+  if (solid_line != 0) {
+    FailAtLine(file, last_line,
+               "truncated: the file ends without the 'endsolid' closing the 'solid' on line " + std::to_string(solid_line));
+  }
   return mesh;
 }
 

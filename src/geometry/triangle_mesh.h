@@ -10,6 +10,11 @@
 
 namespace contactlab {
 
+// Largest coordinate magnitude ContactLab accepts anywhere (metres): a mesh after loading and
+// scaling, a field's grid. Squared distances, volumes and winding numbers stay finite well
+// inside this bound; 1e30 or "--scale 1e300" are refused, naming the limit.
+inline constexpr double kMaxCoordinate = 1e9;
+
 struct TriangleMesh {
   std::vector<Eigen::Vector3d> vertices;   // #V positions, metres once loaded with a scale
   std::vector<Eigen::Vector3i> triangles;  // #T vertex indices, counter-clockwise = outward

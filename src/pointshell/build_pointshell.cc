@@ -10,6 +10,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 
 #include "pointshell/level_set_sampling.h"
@@ -123,6 +124,18 @@ std::vector<Eigen::Vector3d> ProjectedVertices(const DistanceField& field, doubl
 
 }  // namespace
 
+namespace {
+
+// N as an integer when it fits, else "%.3g" (100 levels need 4^99 points: no overflowed integer).
+std::string NeededPoints(double n) {
+  if (n < 9e15) return std::to_string(std::int64_t(std::llround(n)));
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", n);
+  return buf;
+}
+
+}  // namespace
+
 std::vector<std::int32_t> NestedLevelEnds(std::int32_t num_points, int num_levels, int branching,
                                           const std::string& where) {
   if (num_points < 1) Fail(where, "the number of points must be at least 1 (got " + std::to_string(num_points) + ")");
@@ -137,7 +150,7 @@ std::vector<std::int32_t> NestedLevelEnds(std::int32_t num_points, int num_level
   if (ends[0] < 1) {
     Fail(where, std::to_string(num_points) + " points cannot fill " + std::to_string(num_levels) +
                     " levels with branching factor " + std::to_string(branching) + ": level 0 would be empty (need at least " +
-                    std::to_string(std::int64_t(std::llround(divisor / branching))) + " points, or fewer levels)");
+                    NeededPoints(divisor / branching) + " points, or fewer levels)");
   }
   return ends;
 }

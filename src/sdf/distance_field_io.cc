@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "geometry/triangle_mesh.h"
 #include "sdf/build_distance_field.h"
 #include "util/binary_io.h"
 #include "util/error.h"
@@ -44,6 +45,14 @@ DistanceField LoadDistanceField(const std::filesystem::path& path) {
   }
   if (!origin.allFinite()) r.Corrupt("origin is not finite");
   if (!(spacing > 0) || !std::isfinite(spacing)) r.Corrupt("spacing must be positive and finite");
+  // A checksum-valid file may still describe a grid too large to evaluate in doubles.
+  const double extent = spacing * (dims.maxCoeff() - 1);
+  if (!(origin.cwiseAbs().maxCoeff() <= kMaxCoordinate) || !(origin.cwiseAbs().maxCoeff() + extent <= kMaxCoordinate)) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "origin or spacing out of range: spacing %.3g m, grid reaching %.3g m (the limit is %.0e m)",
+                  spacing, origin.cwiseAbs().maxCoeff() + extent, kMaxCoordinate);
+    r.Corrupt(buf);
+  }
   const std::uint64_t n = std::uint64_t(dims.x()) * dims.y() * dims.z();
   std::vector<float> values = r.GetArray<float>("samples", n);
   if (values.size() != n) {

@@ -1,8 +1,12 @@
 #include "util/atomic_file.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -64,16 +68,70 @@ void WriteFileAtomically(const fs::path& path, std::string_view bytes) {
       true);
 }
 
+namespace {
+
+std::string KindOf(mode_t mode) {
+  if (S_ISDIR(mode)) return "a folder";
+  if (S_ISFIFO(mode)) return "a named pipe";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISSOCK(mode)) return "a socket";
+  if (S_ISREG(mode)) return "";
+  return "not a regular file";
+}
+
+}  // namespace
+
+std::string NonRegularFileKind(const fs::path& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return "";
+  return KindOf(st.st_mode);
+}
+
+void CheckInputFile(const fs::path& path, std::string_view what) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) {
+    const int err = errno;
+    if (err == ENOENT || err == ENOTDIR) Fail(path.string(), std::string(what) + " not found");
+    Fail(path.string(), "cannot read: " + std::string(std::strerror(err)));
+  }
+  const std::string kind = KindOf(st.st_mode);
+  if (!kind.empty()) Fail(path.string(), "is " + kind + ", not a " + std::string(what));
+}
+
 std::string ReadWholeFile(const fs::path& path) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) Fail(path.string(), "file does not exist");
-  if (fs::is_directory(path, ec)) Fail(path.string(), "is a folder, not a file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) Fail(path.string(), "cannot open for reading");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) Fail(path.string(), "read error");
-  return std::move(buffer).str();
+  // Opened without blocking (a named pipe with no writer would wait forever) and checked on
+  // the open descriptor, so what is read is the regular file that was checked.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    const int err = errno;
+    if (err == ENOENT || err == ENOTDIR) Fail(path.string(), "file does not exist");
+    CheckInputFile(path);  // names a folder or special file when that is why
+    Fail(path.string(), "cannot open for reading: " + std::string(std::strerror(err)));
+  }
+  struct stat st {};
+  const bool stated = ::fstat(fd, &st) == 0;
+  if (!stated || !S_ISREG(st.st_mode)) {
+    const std::string kind = stated ? KindOf(st.st_mode) : "unreadable";
+    ::close(fd);
+    Fail(path.string(), "is " + kind + ", not a file");
+  }
+  std::string bytes;
+  if (st.st_size > 0) bytes.reserve(std::size_t(st.st_size));
+  char buffer[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(fd, buffer, sizeof buffer);
+    if (n < 0 && (errno == EINTR || errno == EAGAIN)) continue;
+    if (n < 0) {
+      const int err = errno;
+      ::close(fd);
+      Fail(path.string(), "read error: " + std::string(std::strerror(err)));
+    }
+    if (n == 0) break;
+    bytes.append(buffer, std::size_t(n));
+  }
+  ::close(fd);
+  return bytes;
 }
 
 }  // namespace contactlab

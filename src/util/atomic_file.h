@@ -41,7 +41,17 @@ void WriteFileAtomically(const std::filesystem::path& path,
 // Convenience: writes BYTES atomically.
 void WriteFileAtomically(const std::filesystem::path& path, std::string_view bytes);
 
-// Reads a whole file; throws Error naming PATH when it cannot be opened or read.
+// Reads a whole regular file; throws Error naming PATH when it does not exist, is not a regular
+// file (a folder, a named pipe, a device, a socket: refused without blocking), or cannot be read.
 std::string ReadWholeFile(const std::filesystem::path& path);
+
+// Throws Error naming PATH unless it exists and is a regular file (after symlinks); the message
+// says what it is instead ("is a named pipe, not a file"). WHAT names the expected input
+// ("mesh file"), used in "WHAT not found".
+void CheckInputFile(const std::filesystem::path& path, std::string_view what = "file");
+
+// What PATH is when it exists but is not a regular file ("a folder", "a named pipe", ...), or
+// an empty string for a regular file or nothing at all.
+std::string NonRegularFileKind(const std::filesystem::path& path);
 
 }  // namespace contactlab

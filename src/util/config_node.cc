@@ -1,6 +1,7 @@
 #include "util/config_node.h"
 
 #include <cmath>
+#include <set>
 
 #include "util/atomic_file.h"
 #include "util/error.h"
@@ -27,12 +28,14 @@ ConfigNode ConfigNode::LoadString(const std::string& text, const std::string& fi
 ConfigNode::ConfigNode(YAML::Node node, std::shared_ptr<const std::string> file, std::string path)
     : node_(std::move(node)), file_(std::move(file)), path_(std::move(path)) {}
 
-void ConfigNode::Fail(const std::string& what) const {
+std::string ConfigNode::Location() const {
   std::string where = *file_;
   const YAML::Mark mark = node_.Mark();
   if (mark.line >= 0) where += ":" + std::to_string(mark.line + 1);
-  contactlab::Fail(where, (path_.empty() ? std::string("(top level)") : path_) + ": " + what);
+  return where + ": " + (path_.empty() ? std::string("(top level)") : path_);
 }
+
+void ConfigNode::Fail(const std::string& what) const { contactlab::Fail(Location(), what); }
 
 std::string ConfigNode::ChildPath(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
 
@@ -40,8 +43,22 @@ void ConfigNode::ExpectMap() const {
   if (!node_.IsMap()) Fail("expected a mapping of keys to values");
 }
 
+void ConfigNode::RejectDuplicateKeys() const {
+  // yaml-cpp keeps both entries of a repeated key and lookups see only the first, so a
+  // second "k_C:" further down would be silently ignored.
+  std::set<std::string> seen;
+  for (const auto& kv : node_) {
+    const std::string key = kv.first.as<std::string>();
+    if (!seen.insert(key).second) {
+      ConfigNode(kv.first, file_, ChildPath(key)).Fail("duplicate key '" + QuoteToken(key) +
+                                                       "' (each key may appear once in a mapping)");
+    }
+  }
+}
+
 void ConfigNode::ExpectKeys(std::initializer_list<const char*> allowed) const {
   ExpectMap();
+  RejectDuplicateKeys();
   for (const auto& kv : node_) {
     const std::string key = kv.first.as<std::string>();
     bool known = false;
@@ -79,6 +96,7 @@ std::vector<ConfigNode> ConfigNode::Elements() const {
 
 std::vector<std::string> ConfigNode::Keys() const {
   ExpectMap();
+  RejectDuplicateKeys();
   std::vector<std::string> keys;
   for (const auto& kv : node_) keys.push_back(kv.first.as<std::string>());
   return keys;
@@ -92,14 +110,24 @@ std::string ConfigNode::AsString() const {
 double ConfigNode::AsDouble() const {
   const std::string s = AsString();
   const std::optional<double> v = ParseDouble(s);
-  if (!v) Fail("expected a finite number, got '" + s + "'");
+  if (!v) {
+    const std::string_view t(s);
+    const bool numeric = !t.empty() && t.find_first_not_of("+-.0123456789eE \t") == std::string_view::npos &&
+                         t.find_first_of("0123456789") != std::string_view::npos;
+    Fail(numeric ? "the number '" + QuoteToken(s) + "' is out of range (finite doubles only, |x| < 1.8e308)"
+                 : "expected a finite number, got '" + QuoteToken(s) + "'");
+  }
   return *v;
 }
 
 long long ConfigNode::AsInt() const {
   const std::string s = AsString();
   const std::optional<long long> v = ParseInteger(s);
-  if (!v) Fail("expected an integer, got '" + s + "'");
+  if (!v) {
+    const bool digits = !s.empty() && s.find_first_not_of("+-0123456789") == std::string::npos &&
+                        s.find_first_of("0123456789") != std::string::npos;
+    Fail(digits ? "the integer '" + QuoteToken(s) + "' is out of range" : "expected an integer, got '" + QuoteToken(s) + "'");
+  }
   return *v;
 }
 
@@ -107,7 +135,7 @@ bool ConfigNode::AsBool() const {
   const std::string s = AsString();
   if (s == "true" || s == "yes" || s == "on") return true;
   if (s == "false" || s == "no" || s == "off") return false;
-  Fail("expected true or false, got '" + s + "'");
+  Fail("expected true or false, got '" + QuoteToken(s) + "'");
 }
 
 std::vector<double> ConfigNode::AsDoubles() const {
@@ -137,7 +165,7 @@ double ConfigNode::NonNegative(const std::string& key, double fallback) const {
   auto c = Find(key);
   if (!c) return fallback;
   const double v = c->AsDouble();
-  if (v < 0) c->Fail("must not be negative, got " + c->AsString());
+  if (v < 0) c->Fail("must not be negative, got " + QuoteToken(c->AsString()));
   return v;
 }
 
@@ -145,7 +173,7 @@ double ConfigNode::Positive(const std::string& key, double fallback) const {
   auto c = Find(key);
   if (!c) return fallback;
   const double v = c->AsDouble();
-  if (!(v > 0)) c->Fail("must be positive, got " + c->AsString());
+  if (!(v > 0)) c->Fail("must be positive, got " + QuoteToken(c->AsString()));
   return v;
 }
 
@@ -153,7 +181,18 @@ long long ConfigNode::PositiveInt(const std::string& key, long long fallback) co
   auto c = Find(key);
   if (!c) return fallback;
   const long long v = c->AsInt();
-  if (v <= 0) c->Fail("must be a positive integer, got " + c->AsString());
+  if (v <= 0) c->Fail("must be a positive integer, got " + QuoteToken(c->AsString()));
+  return v;
+}
+
+long long ConfigNode::IntInRange(const std::string& key, long long fallback, long long lo, long long hi) const {
+  auto c = Find(key);
+  if (!c) return fallback;
+  const long long v = c->AsInt();
+  if (v < lo || v > hi) {
+    c->Fail("must be between " + std::to_string(lo) + " and " + std::to_string(hi) + ", got " +
+            QuoteToken(c->AsString()));
+  }
   return v;
 }
 
@@ -167,7 +206,7 @@ std::string ConfigNode::OneOf(const std::string& key, const std::string& fallbac
     if (v == ch) return v;
     list += std::string(list.empty() ? "" : ", ") + ch;
   }
-  c->Fail("'" + v + "' is not one of: " + list);
+  c->Fail("'" + QuoteToken(v) + "' is not one of: " + list);
 }
 
 }  // namespace contactlab

@@ -58,14 +58,20 @@ class ConfigNode {
   double NonNegative(const std::string& key, double fallback) const;
   double Positive(const std::string& key, double fallback) const;
   long long PositiveInt(const std::string& key, long long fallback) const;
+  // An integer in [LO, HI]; the error names both bounds.
+  long long IntInRange(const std::string& key, long long fallback, long long lo, long long hi) const;
   std::string OneOf(const std::string& key, const std::string& fallback,
                     std::initializer_list<const char*> choices) const;
 
+  // "FILE:LINE: PATH", the place Fail names.
+  std::string Location() const;
   // Throws Error("FILE:LINE: PATH: WHAT").
   [[noreturn]] void Fail(const std::string& what) const;
 
  private:
   std::string ChildPath(const std::string& key) const;
+  // Throws naming the second occurrence of a key repeated in this mapping.
+  void RejectDuplicateKeys() const;
   YAML::Node node_;
   std::shared_ptr<const std::string> file_;
   std::string path_;

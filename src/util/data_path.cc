@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "util/atomic_file.h"
 #include "util/error.h"
 
 #ifndef CONTACTLAB_DATA_FROM_BINDIR
@@ -107,6 +108,11 @@ std::optional<fs::path> FindDataFile(std::string_view name, const fs::path& base
 
 fs::path RequireDataFile(std::string_view name, const fs::path& base_dir) {
   if (auto found = FindDataFile(name, base_dir)) return *found;
+  // Something that exists but is not a file is named for what it is, not "not found".
+  for (const fs::path& p : {base_dir.empty() ? fs::path(name) : base_dir / fs::path(name), fs::path(name)}) {
+    const std::string kind = NonRegularFileKind(p);
+    if (!kind.empty()) Fail(p.string(), "is " + kind + ", not a file");
+  }
   std::string searched = base_dir.empty() ? std::string("the working folder") : base_dir.string() + ", the working folder";
   for (const fs::path& dir : DataSearchPath()) searched += ", " + dir.string();
   if (!InstalledRoot()) searched += " (no installed data folder beside the program; set CONTACTLAB_DATA)";

@@ -19,4 +19,9 @@ class Error : public std::runtime_error {
 // Throws Error("FILE:LINE: WHAT").
 [[noreturn]] void FailAtLine(std::string_view file, long line, std::string_view what);
 
+// TOKEN as it may appear inside an error message: at most about 80 characters (longer ones
+// are cut with "..." and their length), control bytes and non-ASCII bytes escaped as \xNN, so
+// a garbage file or a ten-million-digit number never floods or corrupts the terminal.
+std::string QuoteToken(std::string_view token);
+
 }  // namespace contactlab

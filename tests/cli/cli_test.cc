@@ -142,6 +142,55 @@ TEST(CliOutputs, OutputEqualToTheInputIsRefusedNamingBoth) {
   EXPECT_EQ(ReadWholeFile(dir / "points.csv"), points);
 }
 
+// A named pipe nobody writes to: opening it for reading would block forever.
+TEST(CliInputs, NamedPipeInputIsRefusedWithoutBlocking) {
+  testing::TempDir dir;
+  const auto pipe = dir / "field.sdf";
+  ASSERT_EQ(::mkfifo(pipe.c_str(), 0600), 0);
+  std::ofstream(dir / "p.csv") << "0,0,0\n";
+  Outcome o = RunCliAfter("timeout 60", "sdf-eval " + pipe.string() + " --points " + (dir / "p.csv").string() +
+                                            " --out " + (dir / "d.csv").string());
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  EXPECT_NE(o.output.find("is a named pipe, not a file"), std::string::npos) << o.output;
+  const auto mesh_pipe = dir / "mesh.obj";
+  ASSERT_EQ(::mkfifo(mesh_pipe.c_str(), 0600), 0);
+  o = RunCliAfter("timeout 60", "mesh-info " + mesh_pipe.string());
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  EXPECT_NE(o.output.find("is a named pipe"), std::string::npos) << o.output;
+  EXPECT_EQ(o.output.find("not found"), std::string::npos) << o.output;
+}
+
+TEST(CliInputs, UnparsableFirstPointsRowIsAnErrorNotAHeader) {
+  testing::TempDir dir;
+  const auto mesh = dir / "tet.obj";
+  std::ofstream(mesh) << kTetrahedron;
+  ASSERT_EQ(RunCli("sdf " + mesh.string() + " --resolution 16 --out " + (dir / "tet.sdf").string()).exit_code, 0);
+  std::ofstream(dir / "p.csv") << "1;2;3\n4;5;6\n";
+  const Outcome o = RunCli("sdf-eval " + (dir / "tet.sdf").string() + " --points " + (dir / "p.csv").string() +
+                           " --out " + (dir / "d.csv").string());
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  EXPECT_NE(o.output.find("p.csv:1:"), std::string::npos) << o.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "d.csv"));
+}
+
+TEST(CliInputs, NegativeBudgetOnTheCommandLineIsRejectedLikeInTheScene) {
+  testing::TempDir dir;
+  std::ofstream(dir / "scene.yaml") << kScene;
+  const Outcome o = RunCli("contact " + (dir / "scene.yaml").string() + " --no-cache --budget -1");
+  EXPECT_NE(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("--budget"), std::string::npos) << o.output;
+}
+
+TEST(CliInputs, TooManyLevelsIsRefusedNamingTheLimit) {
+  testing::TempDir dir;
+  std::ofstream(dir / "tet.obj") << kTetrahedron;
+  const Outcome o = RunCli("pointshell " + (dir / "tet.obj").string() + " --points 64 --levels 100 --out " +
+                           (dir / "tet.ps").string());
+  EXPECT_NE(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("--levels"), std::string::npos) << o.output;
+  EXPECT_EQ(o.output.find("-9223372036854775808"), std::string::npos) << o.output;
+}
+
 TEST(CliOutputs, SessionLogOntoAFolderFailsBeforeTheSession) {
   testing::TempDir dir;
   std::ofstream(dir / "scene.yaml") << kScene;

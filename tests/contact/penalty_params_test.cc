@@ -46,8 +46,10 @@ TEST(PenaltyParams, DefaultsAreThePapersAndEveryModelParamsStartsFromThem) {
   EXPECT_EQ(m.penalty.L, p.L);
 }
 
-TEST(PenaltyParams, CheckRejectsNegativeOrNonFiniteStiffnessAndNegativeL) {
-  EXPECT_NO_THROW(CheckPenaltyParams({.k_C = 0, .L = 0}, "here"));
+TEST(PenaltyParams, CheckRejectsZeroNegativeOrNonFiniteStiffnessAndNegativeL) {
+  EXPECT_NO_THROW(CheckPenaltyParams({.k_C = 1e-3, .L = 0}, "here"));
+  EXPECT_NE(ErrorOf([] { CheckPenaltyParams({.k_C = 0, .L = 10}, "contact model x"); }).find("contact model x: k_C"),
+            std::string::npos);
   EXPECT_NE(ErrorOf([] { CheckPenaltyParams({.k_C = -1, .L = 10}, "contact model x"); }).find("contact model x: k_C"),
             std::string::npos);
   EXPECT_NE(ErrorOf([] { CheckPenaltyParams({.k_C = std::nan(""), .L = 10}, "m"); }).find("k_C"), std::string::npos);
@@ -69,6 +71,8 @@ TEST(PenaltyParams, ParseNamesTheFileLineAndKey) {
   e = ErrorOf([] { ParsePenaltyParams(ConfigNode::LoadString("L: -1\n", "model.yaml")); });
   EXPECT_NE(e.find("model.yaml:1"), std::string::npos) << e;
   EXPECT_NE(e.find(": L:"), std::string::npos) << e;
+  e = ErrorOf([] { ParsePenaltyParams(ConfigNode::LoadString("L: 4\nk_C: 0\n", "model.yaml")); });
+  EXPECT_NE(e.find("model.yaml:2: k_C: must be positive"), std::string::npos) << e;
   e = ErrorOf([] { ParsePenaltyParams(ConfigNode::LoadString("k_C: stiff\n", "model.yaml")); });
   EXPECT_NE(e.find("'stiff'"), std::string::npos) << e;
 }

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "experiment/scene.h"
 #include "pointshell/pointshell_io.h"
 #include "test_support.h"
 #include "util/error.h"
@@ -75,6 +76,29 @@ TEST(SceneAssets, ProceduralShapeSpecsAreCheckedAndScaled) {
   EXPECT_THROW(LoadBodyMesh(b), Error);
   b.mesh = "sphere:x";
   EXPECT_THROW(LoadBodyMesh(b), Error);
+}
+
+// What loading the first body of a one-line-per-key scene says (empty when it loads).
+std::string BodyMeshError(const std::string& mesh, double scale) {
+  const std::string text = "name: s\nbodies:\n  - name: ball\n    mesh: \"" + mesh + "\"\n    scale: " +
+                           std::to_string(scale) + "\n    role: pointshell\n  - name: plate\n    mesh: \"box:1,1,1\"\n"
+                           "    role: field\n";
+  try {
+    LoadBodyMesh(ParseScene(ConfigNode::LoadString(text, "scene.yaml")).pointshell_body);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SceneAssets, BadProceduralShapeNamesTheSceneFileAndKey) {
+  std::string e = BodyMeshError("sphere:-1", 1);
+  EXPECT_NE(e.find("scene.yaml:4: bodies[0].mesh: 'sphere:-1'"), std::string::npos) << e;
+  EXPECT_NE(e.find("radius > 0"), std::string::npos) << e;
+  e = BodyMeshError("sphere:1e30", 1);
+  EXPECT_NE(e.find("scene.yaml:4: bodies[0].mesh"), std::string::npos) << e;
+  EXPECT_NE(e.find("coordinates out of range"), std::string::npos) << e;
+  EXPECT_EQ(BodyMeshError("sphere:0.05", 1), "");
 }
 
 }  // namespace

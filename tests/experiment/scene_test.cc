@@ -81,10 +81,43 @@ TEST(Scene, WrongTypeNamesTheKey) {
   EXPECT_NE(e.find("'many'"), std::string::npos) << e;
 }
 
-TEST(Scene, NegativeStiffnessIsRejected) {
-  const std::string e = ErrorOf(Replace(kScene, "k_C: 1500", "k_C: -3"));
-  EXPECT_NE(e.find("model.k_C"), std::string::npos) << e;
-  EXPECT_NE(e.find("negative"), std::string::npos) << e;
+TEST(Scene, NegativeOrZeroStiffnessIsRejected) {
+  for (const char* k : {"k_C: -3", "k_C: 0"}) {
+    const std::string e = ErrorOf(Replace(kScene, "k_C: 1500", k));
+    EXPECT_NE(e.find("scene.yaml:13: model.k_C"), std::string::npos) << e;
+    EXPECT_NE(e.find("must be positive"), std::string::npos) << e;
+  }
+}
+
+TEST(Scene, SizesAreBoundedBeforeAllocatingNamingTheKeyAndTheLimit) {
+  std::string e = ErrorOf(Replace(kScene, "points: 2000", "points: 10000000000"));
+  EXPECT_NE(e.find("scene.yaml:7: bodies[0].pointshell.points: must be between 1 and 16777216"), std::string::npos) << e;
+  e = ErrorOf(Replace(kScene, "levels: 3", "levels: 100"));
+  EXPECT_NE(e.find("bodies[0].pointshell.levels: must be between 1 and 12, got 100"), std::string::npos) << e;
+  EXPECT_EQ(e.find("-9223372036854775808"), std::string::npos) << e;
+  e = ErrorOf(Replace(kScene, "resolution: 48", "resolution: 100000"));
+  EXPECT_NE(e.find("bodies[1].field.resolution: must be between 8 and 1024"), std::string::npos) << e;
+  e = ErrorOf(Replace(kScene, "points: 2000", "points: 99999999999999999999999"));
+  EXPECT_NE(e.find("bodies[0].pointshell.points: the integer '99999999999999999999999' is out of range"),
+            std::string::npos)
+      << e;
+}
+
+TEST(Scene, DuplicateKeyIsRejectedNamingFileLineAndKey) {
+  const std::string e = ErrorOf(Replace(kScene, "  L: 10\n", "  L: 10\n  k_C: 0.5\n"));
+  EXPECT_NE(e.find("scene.yaml:15: model.k_C: duplicate key 'k_C'"), std::string::npos) << e;
+}
+
+TEST(Scene, ErrorsNeverEchoLongTokensOrControlBytes) {
+  const std::string huge(10000000, '7');
+  std::string e = ErrorOf(Replace(kScene, "k_C: 1500", "k_C: " + huge));
+  EXPECT_LT(e.size(), 300u) << e.substr(0, 300);
+  EXPECT_NE(e.find("out of range"), std::string::npos) << e.substr(0, 300);
+  e = ErrorOf(Replace(kScene, "points: 2000", "points: \"ab\\x1b[2Jcd\""));
+  EXPECT_EQ(e.find('\x1b'), std::string::npos) << e;
+  EXPECT_NE(e.find("ab\\x1b[2Jcd"), std::string::npos) << e;
+  e = ErrorOf(Replace(kScene, "k_C: 1500", "k_C: 1e400"));
+  EXPECT_NE(e.find("model.k_C: the number '1e400' is out of range"), std::string::npos) << e;
 }
 
 TEST(Scene, MissingMeshKeyAndBadRolesAreRejected) {

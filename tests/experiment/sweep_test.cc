@@ -123,6 +123,16 @@ TEST(Sweep, ABadValueNamesTheConfigTheAxisTheValueAndTheSceneKey) {
   EXPECT_EQ(e, "");  // model names are checked when the model is made, with the known names
 }
 
+TEST(Sweep, AnOversizedValueIsRefusedWhenTheConfigLoadsNamingTheLimit) {
+  TempDir dir;
+  std::string e = ErrorOf(dir, "  points: [64, 10000000000]\n");
+  EXPECT_NE(e.find("sweep.points value '10000000000'"), std::string::npos) << e;
+  EXPECT_NE(e.find("must be between 1 and 16777216"), std::string::npos) << e;
+  e = ErrorOf(dir, "  levels: [100]\n");
+  EXPECT_NE(e.find("sweep.levels value '100'"), std::string::npos) << e;
+  EXPECT_NE(e.find("must be between 1 and 12"), std::string::npos) << e;
+}
+
 TEST(Sweep, AnUnknownAxisOrABadPathIsNamed) {
   TempDir dir;
   std::string e = ErrorOf(dir, "  pionts: [64]\n");

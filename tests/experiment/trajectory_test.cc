@@ -94,5 +94,19 @@ TEST(Trajectory, SessionLogsWithExtraColumnsReplay) {
   EXPECT_NEAR(t.At(0.001).translation.x(), 0.001, 1e-12);
 }
 
+TEST(Trajectory, HugeDurationIsRefusedBeforeAllocatingNamingTheKeyAndLimit) {
+  const ConfigNode n = ConfigNode::LoadString("type: approach-press\nduration: 1e9\n", "config.yaml");
+  try {
+    ParseTrajectory(n);
+    FAIL() << "a 1e9 s trajectory was accepted";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("config.yaml:2: duration:"), std::string::npos) << m;
+    EXPECT_NE(m.find("limit of 1e+08"), std::string::npos) << m;
+  }
+  // At the limit's scale but under it, the spec still parses (without building it here).
+  EXPECT_NO_THROW(ParseTrajectory(ConfigNode::LoadString("type: approach-press\nduration: 3\n", "c.yaml")));
+}
+
 }  // namespace
 }  // namespace contactlab

@@ -2,6 +2,8 @@
 // formats) or record and byte offset (binary formats), never a crash.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <random>
 
 #include "geometry/mesh_io.h"
@@ -93,6 +95,47 @@ TEST(MeshBadInput, AsciiStlErrorsNameTheLine) {
                   {"open.stl:3:", "truncated"});
   ExpectLoadError(WriteFixture(dir / "two.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\n"),
                   {"two.stl:6:", "2 vertices"});
+}
+
+TEST(MeshBadInput, TruncatedAsciiStlIsRefusedNamingTheLine) {
+  TempDir dir;
+  const std::string facet = "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n";
+  // Cut between facets: no 'endsolid'.
+  ExpectLoadError(WriteFixture(dir / "noend.stl", "solid x\n" + facet + facet),
+                  {"noend.stl:15:", "truncated", "'endsolid'", "line 1"});
+  // Cut after 'endloop', before 'endfacet'.
+  ExpectLoadError(WriteFixture(dir / "midfacet.stl", "solid x\n" + facet + facet.substr(0, facet.size() - 9)),
+                  {"midfacet.stl:14:", "truncated", "facet opened on line 9"});
+  // Cut after the 'facet' line.
+  ExpectLoadError(WriteFixture(dir / "facetonly.stl", "solid x\n" + facet + "facet normal 0 0 1\n"),
+                  {"facetonly.stl:9:", "truncated"});
+  // Complete files still load.
+  EXPECT_EQ(LoadMesh(WriteFixture(dir / "ok.stl", "solid x\n" + facet + facet + "endsolid x\n")).triangles.size(), 2u);
+}
+
+TEST(MeshBadInput, NamedPipeIsRefusedWithoutBlocking) {
+  TempDir dir;
+  const std::filesystem::path fifo = dir / "pipe.obj";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  ExpectLoadError(fifo, {"pipe.obj", "is a named pipe, not a mesh file"});
+  ExpectLoadError(dir / "nothing.obj", {"nothing.obj", "mesh file not found"});
+  std::filesystem::create_directory(dir / "folder.obj");
+  ExpectLoadError(dir / "folder.obj", {"folder.obj", "is a folder, not a mesh file"});
+}
+
+TEST(MeshBadInput, HugeCoordinatesOrScaleSayTheyAreOutOfRange) {
+  TempDir dir;
+  ExpectLoadError(WriteFixture(dir / "far.obj", "v 0 0 0\nv 1e30 0 0\nv 0 1 0\nf 1 2 3\n"),
+                  {"far.obj", "coordinates out of range", "1e+09"});
+  MeshLoadOptions o;
+  o.scale = 1e300;
+  try {
+    LoadMesh(WriteFixture(dir / "tri.obj", std::string(kTriangleObj) + "f 1 2 3\n"), o);
+    ADD_FAILURE() << "scale 1e300 was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("out of range"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("after scaling"), std::string::npos) << e.what();
+  }
 }
 
 TEST(MeshBadInput, TruncatedBinaryPlyNamesTheElementRecordAndOffset) {

@@ -1,5 +1,6 @@
 // Distance-field files and CSV points: round trips and every kind of bad input (sec. 2.3).
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <fstream>
 
@@ -102,6 +103,26 @@ TEST(DistanceFieldFile, InconsistentContentIsRejectedAsCorrupt) {
   ExpectErrorMentioning([&] { LoadDistanceField(dir / "nan.sdf"); }, {"nan.sdf", "not finite"});
 }
 
+TEST(DistanceFieldFile, ChecksumValidFileWithHugeSpacingIsRefused) {
+  testing::TempDir dir;
+  BinaryWriter w;
+  for (int a = 0; a < 4; ++a) w.Put<double>(a == 3 ? 1e300 : 0.0);
+  for (int a = 0; a < 3; ++a) w.Put<std::int32_t>(2);
+  w.PutArray(std::vector<float>(8, 1.f));
+  w.PutString("x");
+  w.PutString("closed");
+  w.Put<double>(0);
+  w.Put<double>(0);
+  w.Save(dir / "huge.sdf", "CLSDF", 1);
+  ExpectErrorMentioning([&] { LoadDistanceField(dir / "huge.sdf"); }, {"huge.sdf", "out of range", "1e+09"});
+}
+
+TEST(DistanceFieldFile, NamedPipeIsRefusedWithoutBlocking) {
+  testing::TempDir dir;
+  ASSERT_EQ(::mkfifo((dir / "pipe.sdf").c_str(), 0600), 0);
+  ExpectErrorMentioning([&] { LoadDistanceField(dir / "pipe.sdf"); }, {"pipe.sdf", "is a named pipe, not a file"});
+}
+
 TEST(DistanceFieldFile, DescriptionNamesModeGridAndSoupOffset) {
   DistanceField f = SmallField();
   std::string text = DescribeDistanceField(f);
@@ -133,6 +154,19 @@ TEST(PointsCsv, BadRowIsRejectedNamingFileAndLine) {
   WriteFileAtomically(dir / "inf.csv", std::string("1,2,inf\n"));
   ExpectErrorMentioning([&] { ReadPointsCsv(dir / "inf.csv"); }, {"inf.csv:1"});
   ExpectErrorMentioning([&] { ReadPointsCsv(dir / "missing.csv"); }, {"missing.csv"});
+}
+
+TEST(PointsCsv, UnparsableFirstRowIsAnErrorNotAHeader) {
+  testing::TempDir dir;
+  for (const char* first : {"1;2;3", "1 2 3", "1e400,0,0", "x,2,3"}) {
+    WriteFileAtomically(dir / "p.csv", std::string(first) + "\n4,5,6\n");
+    ExpectErrorMentioning([&] { ReadPointsCsv(dir / "p.csv"); }, {"p.csv:1:"});
+  }
+  WriteFileAtomically(dir / "p.csv", std::string("1e400,0,0\n"));
+  ExpectErrorMentioning([&] { ReadPointsCsv(dir / "p.csv"); }, {"p.csv:1:", "'1e400'", "out of range"});
+  // Names are still a header.
+  WriteFileAtomically(dir / "p.csv", std::string("x (m), y_m ,Z\n4,5,6\n"));
+  EXPECT_EQ(ReadPointsCsv(dir / "p.csv").size(), 1u);
 }
 
 }  // namespace

@@ -47,6 +47,36 @@ TEST(AtomicFile, ReadingAMissingFileNamesIt) {
   }
 }
 
+// What ReadWholeFile says for TARGET (empty when it reads).
+std::string ReadError(const std::filesystem::path& target) {
+  try {
+    ReadWholeFile(target);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(AtomicFile, ReadingANamedPipeIsRefusedWithoutBlocking) {
+  testing::TempDir dir;
+  const std::filesystem::path fifo = dir / "field.sdf";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  // No writer ever opens the pipe: a blocking open would hang the test.
+  const std::string message = ReadError(fifo);
+  EXPECT_NE(message.find("field.sdf"), std::string::npos) << message;
+  EXPECT_NE(message.find("is a named pipe, not a file"), std::string::npos) << message;
+}
+
+TEST(AtomicFile, FoldersAndDevicesAreNotReportedAsMissing) {
+  testing::TempDir dir;
+  const std::string folder = ReadError(dir.path());
+  EXPECT_NE(folder.find("is a folder, not a file"), std::string::npos) << folder;
+  const std::string device = ReadError("/dev/zero");
+  EXPECT_NE(device.find("/dev/zero: is a character device, not a file"), std::string::npos) << device;
+  EXPECT_EQ(device.find("not found"), std::string::npos) << device;
+  EXPECT_EQ(device.find("does not exist"), std::string::npos) << device;
+}
+
 int CountFiles(const std::filesystem::path& dir) {
   int files = 0;
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++files;

@@ -3,6 +3,7 @@
 #include "util/data_path.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cstdlib>
 #include <fstream>
@@ -71,6 +72,23 @@ TEST(DataPath, MissingFileErrorNamesTheFileAndTheFoldersSearched) {
     EXPECT_NE(m.find("no-such-mesh-4711.obj"), std::string::npos) << m;
     EXPECT_NE(m.find(base.path().string()), std::string::npos) << m;
     EXPECT_NE(m.find(Canonical(InstalledDataDir().value_or("?")).string()), std::string::npos) << m;
+  }
+}
+
+TEST(DataPath, NamedPipeOrFolderIsNamedForWhatItIsNotAsMissing) {
+  testing::TempDir base;
+  ASSERT_EQ(::mkfifo((base / "pipe.sdf").c_str(), 0600), 0);
+  fs::create_directory(base / "folder.yaml");
+  for (const char* name : {"pipe.sdf", "folder.yaml"}) {
+    try {
+      RequireDataFile(name, base.path());
+      ADD_FAILURE() << name << " was accepted";
+    } catch (const Error& e) {
+      const std::string m = e.what();
+      EXPECT_NE(m.find(name), std::string::npos) << m;
+      EXPECT_EQ(m.find("not found"), std::string::npos) << m;
+      EXPECT_NE(m.find(name[0] == 'p' ? "is a named pipe, not a file" : "is a folder, not a file"), std::string::npos) << m;
+    }
   }
 }
 
