@@ -311,7 +311,9 @@ TEST(PointshellContactModel, InvalidParametersAreRejected) {
   auto shell = SphereShell(0.05, 48, 2);
   auto field = SphereField(0.06, 0.01);
   EXPECT_THROW(PointshellContactModel(Variant::kTree, shell, field, {.penalty = {.k_C = -1}}), Error);
-  EXPECT_THROW(PointshellContactModel(Variant::kTree, shell, field, {.level = 2}), Error);
+  PointshellContactParams bad_level;
+  bad_level.level = 2;
+  EXPECT_THROW(PointshellContactModel(Variant::kTree, shell, field, bad_level), Error);
   PointshellContactParams bad_speed;
   bad_speed.max_point_speed = 0;
   EXPECT_THROW(PointshellContactModel(Variant::kTree, shell, field, bad_speed), Error);

@@ -67,7 +67,9 @@ TEST(DeformablePointshell, TreeRadiiBoundEverySubtreePointAtRandomDeformations) 
           slack_sum += (R - reach[node]) / R;
           ++slack_count;
         }
-        if (scale == 0) EXPECT_EQ(R, double(s.node_radius[node]));
+        if (scale == 0) {
+          EXPECT_EQ(R, double(s.node_radius[node]));
+        }
       }
     }
   }

@@ -184,7 +184,9 @@ TEST_F(EmbeddedPointsTest, CorrectedNormalIsTheFirstOrderPushForwardRenormalised
       const Eigen::Vector3d m = embedded.CorrectedNormal(i, q.data());
       EXPECT_NEAR(m.norm(), 1.0, 1e-12);
       const double err = (m - embedded.Normal(i, q.data())).norm();
-      if (previous > 1e-9) EXPECT_LT(err, 0.3 * previous) << "s " << s;  // ~ 1/4 per halving
+      if (previous > 1e-9) {
+        EXPECT_LT(err, 0.3 * previous) << "s " << s;  // ~ 1/4 per halving
+      }
       previous = err;
     }
   }
