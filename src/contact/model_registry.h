@@ -21,6 +21,7 @@ struct TriangleMesh;
 class DistanceField;
 struct Pointshell;
 class DeformablePointshell;
+class DeformedDistanceField;
 
 // One body's data, built on demand (and cached) by the caller: experiment/ implements it for
 // scene bodies. Each accessor throws Error naming the body when the data cannot be built.
@@ -36,6 +37,8 @@ class ContactBody {
   virtual bool deformable() const { return false; }
   // The pointshell embedded in the body's reduced model, body frame.
   virtual std::shared_ptr<const DeformablePointshell> deformable_pointshell() { return nullptr; }
+  // The deformed distance field of a deformable body in the field role (paper sec. 4.2).
+  virtual std::shared_ptr<const DeformedDistanceField> deformed_field() { return nullptr; }
 };
 
 // What a model reads of the two bodies (A: pointshell role, B: field role).

@@ -1,5 +1,9 @@
 #include "experiment/scene.h"
 
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
 #include "util/error.h"
 
 namespace contactlab {
@@ -57,8 +61,53 @@ Anchoring ParseAnchor(const ConfigNode& n) {
   return outside ? Anchoring::OutsideBox(a) : Anchoring::InBox(a);
 }
 
+// One domain of a deformed field: {box: [x0, y0, z0, x1, y1, z1]} or {halfspace: [nx, ny, nz, c]}
+// (the side n . X <= c), body frame after scale and centring.
+DomainRegion ParseDomain(const ConfigNode& n) {
+  n.ExpectKeys({"box", "halfspace"});
+  if (int(n.Has("box")) + int(n.Has("halfspace")) != 1) n.Fail("give exactly one of box and halfspace");
+  if (auto b = n.Find("box")) {
+    const std::vector<double> v = b->AsDoubles();
+    if (v.size() != 6) b->Fail("needs 6 numbers x0, y0, z0, x1, y1, z1");
+    Aabb a;
+    a.min = Eigen::Vector3d(v[0], v[1], v[2]);
+    a.max = Eigen::Vector3d(v[3], v[4], v[5]);
+    if (!(a.min.array() < a.max.array()).all()) b->Fail("the first corner must be below the second on every axis");
+    return DomainRegion::Box(a);
+  }
+  const ConfigNode h = n.Get("halfspace");
+  const std::vector<double> v = h.AsDoubles();
+  if (v.size() != 4) h.Fail("needs 4 numbers nx, ny, nz, c (the side n . X <= c)");
+  const Eigen::Vector3d normal(v[0], v[1], v[2]);
+  if (!(normal.norm() > 0) || !std::isfinite(v[3])) h.Fail("needs a non-zero normal and a finite offset");
+  return DomainRegion::Halfspace(normal, v[3]);
+}
+
+// The deformed distance field of a deformable field body (paper sec. 4.2).
+DeformedFieldOptions ParseDeformedField(const ConfigNode& n) {
+  n.ExpectKeys({"proxies", "neighbours", "domains", "overlap", "seed"});
+  DeformedFieldOptions o;
+  o.proxies = int(n.IntInRange("proxies", o.proxies, 2, 4096));
+  o.neighbours = int(n.IntInRange("neighbours", o.neighbours, 2, kMaxProxyNeighbours));
+  if (o.proxies < o.neighbours) n.Get("proxies").Fail("must be at least neighbours (" + std::to_string(o.neighbours) + ")");
+  if (auto d = n.Find("domains")) {
+    if (d->IsSequence()) {
+      for (const ConfigNode& e : d->Elements()) o.regions.push_back(ParseDomain(e));
+      if (o.regions.empty() || o.regions.size() > 64) d->Fail("needs 1 to 64 domains");
+    } else {
+      o.domains = int(n.IntInRange("domains", 1, 1, 64));
+      if (o.domains > o.proxies / 2 && o.domains > 1) {
+        d->Fail("at most proxies / 2 = " + std::to_string(o.proxies / 2) + " automatic domains");
+      }
+    }
+  }
+  o.overlap = n.NonNegative("overlap", -1.0);
+  o.seed = std::uint64_t(n.IntInRange("seed", 1, 0, std::numeric_limits<std::int32_t>::max()));
+  return o;
+}
+
 DeformableSpec ParseDeformable(const ConfigNode& n) {
-  n.ExpectKeys({"model", "modes", "cells", "E", "nu", "rho", "damping", "anchor", "coupling"});
+  n.ExpectKeys({"model", "modes", "cells", "E", "nu", "rho", "damping", "anchor", "coupling", "field"});
   DeformableSpec d;
   d.kind = n.OneOf("model", "stvk", {"stvk", "linear"}) == "linear" ? ReducedModelKind::kLinear
                                                                     : ReducedModelKind::kStVK;
@@ -85,6 +134,7 @@ DeformableSpec ParseDeformable(const ConfigNode& n) {
   }
   if (auto c = n.Find("anchor")) d.anchor = ParseAnchor(*c);
   d.implicit_contact = n.OneOf("coupling", "implicit", {"implicit", "explicit"}) == "implicit";
+  if (auto f = n.Find("field")) d.field = ParseDeformedField(*f);
   return d;
 }
 

@@ -22,6 +22,9 @@
 //         damping: {alpha: 0, beta: 0}   # Rayleigh: D = alpha M + beta K
 //         anchor: {below: [y, -0.02]}    # or {box: [x0, y0, z0, x1, y1, z1]}, or none
 //                                 # (body frame, metres, after scale and centring)
+//         field: {proxies: 40, neighbours: 5, domains: 3}  # a field body's deformed field
+//                                 # (paper sec. 4.2); domains: a count (automatic) or a list
+//                                 # of {box: [...]} / {halfspace: [nx, ny, nz, c]}
 //     - name: bunny
 //       ...
 //       role: field
@@ -39,6 +42,7 @@
 
 #include "contact/pointshell_contact_params.h"
 #include "deform/anchoring.h"
+#include "deform/deformed_distance_field.h"
 #include "deform/reduced_forces.h"
 #include "deform/reduced_state.h"
 #include "deform/stvk_fem.h"
@@ -82,6 +86,10 @@ struct DeformableSpec {
   // step treats the penalty force linearly implicitly; explicit applies the force alone, the
   // paper's order, which stiff contact on a light body can drive unstable at 1 kHz.
   bool implicit_contact = true;
+  // As a field body (role field): its deformed distance field (paper sec. 4.2). Scene key
+  // deformable.field: {proxies: 40, neighbours: 5, domains: 1 | [{box: [...]}, {halfspace:
+  // [nx, ny, nz, c]}, ...], overlap: metres, seed: 1}.
+  DeformedFieldOptions field;
 };
 
 struct BodySpec {

@@ -271,6 +271,16 @@ std::shared_ptr<const DeformablePointshell> BodyAssets::deformable_pointshell() 
   return deformable_pointshell_;
 }
 
+std::shared_ptr<const DeformedDistanceField> BodyAssets::deformed_field() {
+  if (!deformed_field_) {
+    const auto model = reduced_model();
+    if (options_.verbose) std::cerr << "building the deformed distance field of body '" << spec_.name << "'\n";
+    deformed_field_ = std::make_shared<const DeformedDistanceField>(field(), model->mesh, model->basis,
+                                                                    spec_.deformable->field, "body '" + spec_.name + "'");
+  }
+  return deformed_field_;
+}
+
 std::unique_ptr<ContactModel> MakeSceneContactModel(std::string_view name, const Scene& scene, SceneAssets& assets) {
   return MakeContactModel(name, ContactModelInputs{assets.A, assets.B, scene.model},
                           scene.file.empty() ? std::string_view("scene") : std::string_view(scene.file));

@@ -9,6 +9,7 @@
 
 #include "contact/model_registry.h"
 #include "deform/deformable_pointshell.h"
+#include "deform/deformed_distance_field.h"
 #include "deform/reduced_model.h"
 #include "experiment/scene.h"
 #include "geometry/triangle_mesh.h"
@@ -56,6 +57,9 @@ class BodyAssets final : public ContactBody {
   bool deformable() const override { return spec_.deformable.has_value(); }
   // The body's pointshell embedded in its reduced model (built in memory on first use).
   std::shared_ptr<const DeformablePointshell> deformable_pointshell() override;
+  // The body's deformed distance field (paper sec. 4.2): proxies fitted to its field, embedded
+  // in its reduced model, with the scene's deformable.field options (built in memory).
+  std::shared_ptr<const DeformedDistanceField> deformed_field() override;
   // A key of the mesh content and load parameters (hex), part of every cache key.
   const std::string& mesh_key();
 
@@ -67,6 +71,7 @@ class BodyAssets final : public ContactBody {
   std::shared_ptr<const Pointshell> pointshell_;
   std::shared_ptr<const ReducedModel> reduced_model_;
   std::shared_ptr<const DeformablePointshell> deformable_pointshell_;
+  std::shared_ptr<const DeformedDistanceField> deformed_field_;
   std::string mesh_key_;
 };
 
