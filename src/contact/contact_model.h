@@ -50,6 +50,17 @@ struct ContactQuery {
   // semidefinite) under the sec. 5 halfspace rule, k sum_i (U_i^T N_i)(U_i^T N_i)^T, for an
   // integrator that treats the contact force linearly implicitly. Null: not wanted.
   ReducedMatrix* reduced_stiffness_A = nullptr;
+  // Out, for a deformable B rendered through its deformed distance field (paper sec. 4.2): the
+  // reduced contact force on B, sum of U_p^T F over its contact forces F (B's frame), each
+  // applied at the nearest proxy p (r_B entries), and with reduced_force_B its stiffness
+  // -d(reduced force)/dq_B under the halfspace rule. Null: not wanted.
+  ReducedVector* reduced_force_B = nullptr;
+  ReducedMatrix* reduced_stiffness_B = nullptr;
+  // When both bodies deform and each integrator steps on its own with the other held fixed
+  // (staggered), the gap closes from both sides while each linearly implicit step sees only
+  // its own side: pass each integrator kStaggeredStiffnessFactor times its stiffness, exact for
+  // equal compliances and overdamped otherwise (without it two pressed bodies oscillate).
+  static constexpr double kStaggeredStiffnessFactor = 2.0;
   std::int64_t cycle = 0;               // haptic cycle index, for temporal coherence
   std::int64_t node_budget = 0;         // graceful degradation; <= 0 means unlimited
 };

@@ -4,6 +4,7 @@
 #include <map>
 
 #include "contact/deformable_pointshell_contact_model.h"
+#include "contact/deformed_field_contact_model.h"
 #include "contact/pointshell_contact_model.h"
 #include "util/error.h"
 
@@ -20,7 +21,13 @@ ContactModelEntry PaperModel(PointshellContactModel::Variant variant) {
   e.needs.field_B = true;
   e.needs.depth_in_field_voxels = true;
   e.needs.deformable_A = true;
+  e.needs.deformable_B = true;
   e.make = [variant](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
+    if (in.B.deformable()) {
+      return std::make_unique<DeformedFieldContactModel>(variant, in.A.deformable() ? nullptr : in.A.pointshell(),
+                                                         in.A.deformable() ? in.A.deformable_pointshell() : nullptr,
+                                                         in.B.deformed_field(), in.params);
+    }
     if (in.A.deformable()) {
       return std::make_unique<DeformablePointshellContactModel>(variant, in.A.deformable_pointshell(), in.B.field(),
                                                                 in.params);
@@ -69,10 +76,10 @@ std::unique_ptr<ContactModel> MakeContactModel(std::string_view name, const Cont
                     std::string(inputs.A.body_name()) + "' is deformable (models that deform it: pointshell, "
                     "pointshell-linear)");
   }
-  if (inputs.B.deformable()) {
-    Fail(where, "body '" + std::string(inputs.B.body_name()) +
-                    "' is deformable, but no contact model renders a deformed distance field yet; only the "
-                    "pointshell body may deform");
+  if (inputs.B.deformable() && !entry->needs.deformable_B) {
+    Fail(where, "contact model '" + std::string(name) + "' treats body B as rigid, but '" +
+                    std::string(inputs.B.body_name()) + "' is deformable (models that deform it: pointshell, "
+                    "pointshell-linear)");
   }
   return entry->make(inputs);
 }

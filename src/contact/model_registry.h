@@ -55,6 +55,9 @@ struct ContactModelNeeds {
   // It renders A's deformation (A's deformable pointshell when A is deformable). Models
   // without it refuse a deformable A rather than treat it as rigid.
   bool deformable_A = false;
+  // It renders B's deformation through B's deformed distance field (paper sec. 4.2). Models
+  // without it refuse a deformable B.
+  bool deformable_B = false;
 };
 
 // What a factory is given: the two bodies and the scene's model parameters.
@@ -80,8 +83,8 @@ void RegisterContactModel(ContactModelEntry entry);
 const ContactModelEntry* FindContactModel(std::string_view name);
 
 // Makes model NAME from INPUTS. Throws Error("WHERE: unknown contact model 'x' (known: ...)")
-// when NAME is unknown, Error when A is deformable and the model does not render it or B is
-// deformable (no model renders a deformed field yet), and the factory's errors otherwise.
+// when NAME is unknown, Error when A or B is deformable and the model does not render it, and
+// the factory's errors otherwise.
 std::unique_ptr<ContactModel> MakeContactModel(std::string_view name, const ContactModelInputs& inputs,
                                                std::string_view where);
 

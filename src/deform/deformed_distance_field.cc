@@ -184,7 +184,7 @@ void ValidateDeformedFieldOptions(const DeformedFieldOptions& o, const std::stri
 DeformedDistanceField::DeformedDistanceField(std::shared_ptr<const DistanceField> rest, const TetMesh& mesh,
                                              const Eigen::MatrixXd& U, const DeformedFieldOptions& options,
                                              const std::string& where)
-    : rest_(std::move(rest)), k_(options.neighbours) {
+    : rest_(std::move(rest)), k_(options.neighbours), force_at_(options.force_at) {
   ValidateDeformedFieldOptions(options, where);
   if (!rest_ || rest_->empty()) Fail(where, "the deformed distance field needs the body's rest field");
   overlap_ = options.overlap >= 0 ? options.overlap : 3 * rest_->spacing();

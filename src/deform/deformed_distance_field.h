@@ -65,6 +65,12 @@ struct DeformedFieldOptions {
   int domains = 1;                   // automatic domains (k-means of the proxies), >= 1
   double overlap = -1;               // metres by which domains overlap; < 0: 3 rest-field cells
   std::uint64_t seed = 1;            // proxy fitting and clustering
+  // Where a contact force on the body acts on its deformation: at the nearest proxy (the
+  // paper's choice, U_p^T F), or spread over the k proxies with the weights of the query,
+  // sum_i w_i U_i^T F, which matches how the field moves with q to first order and does not
+  // jump when the nearest proxy changes.
+  enum class ForceAt { kNearestProxy, kWeightedProxies };
+  ForceAt force_at = ForceAt::kNearestProxy;
 };
 
 class DeformedDistanceField;
@@ -108,6 +114,13 @@ class DeformedDistanceField {
   const DistanceField& domain_field(int d) const { return *domains_[d].field; }
   const DomainRegion& domain_region(int d) const { return domains_[d].region; }
   int slot_begin(int d) const { return domains_[d].begin; }
+  // The domain holding proxy slot SLOT.
+  int domain_of_slot(int slot) const {
+    int d = 0;
+    while (d + 1 < num_domains() && slot >= domains_[d].end) ++d;
+    return d;
+  }
+  DeformedFieldOptions::ForceAt force_at() const { return force_at_; }
   int slot_end(int d) const { return domains_[d].end; }
   // Proxy slots embedded in the mesh: rest positions, bases U_i (for forces), gradients.
   const EmbeddedPoints& proxies() const { return proxies_; }
@@ -207,6 +220,7 @@ class DeformedDistanceField {
   std::vector<Domain> domains_;
   EmbeddedPoints proxies_;  // slots, domain by domain
   int k_ = 5;
+  DeformedFieldOptions::ForceAt force_at_ = DeformedFieldOptions::ForceAt::kNearestProxy;
   int num_proxies_ = 0;
   double overlap_ = 0;
   std::vector<float> travel_;  // (r)

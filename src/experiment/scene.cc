@@ -85,7 +85,7 @@ DomainRegion ParseDomain(const ConfigNode& n) {
 
 // The deformed distance field of a deformable field body (paper sec. 4.2).
 DeformedFieldOptions ParseDeformedField(const ConfigNode& n) {
-  n.ExpectKeys({"proxies", "neighbours", "domains", "overlap", "seed"});
+  n.ExpectKeys({"proxies", "neighbours", "domains", "overlap", "seed", "force_at"});
   DeformedFieldOptions o;
   o.proxies = int(n.IntInRange("proxies", o.proxies, 2, 4096));
   o.neighbours = int(n.IntInRange("neighbours", o.neighbours, 2, kMaxProxyNeighbours));
@@ -103,6 +103,9 @@ DeformedFieldOptions ParseDeformedField(const ConfigNode& n) {
   }
   o.overlap = n.NonNegative("overlap", -1.0);
   o.seed = std::uint64_t(n.IntInRange("seed", 1, 0, std::numeric_limits<std::int32_t>::max()));
+  o.force_at = n.OneOf("force_at", "nearest", {"nearest", "weighted"}) == "nearest"
+                   ? DeformedFieldOptions::ForceAt::kNearestProxy
+                   : DeformedFieldOptions::ForceAt::kWeightedProxies;
   return o;
 }
 

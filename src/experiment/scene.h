@@ -88,7 +88,7 @@ struct DeformableSpec {
   bool implicit_contact = true;
   // As a field body (role field): its deformed distance field (paper sec. 4.2). Scene key
   // deformable.field: {proxies: 40, neighbours: 5, domains: 1 | [{box: [...]}, {halfspace:
-  // [nx, ny, nz, c]}, ...], overlap: metres, seed: 1}.
+  // [nx, ny, nz, c]}, ...], overlap: metres, seed: 1, force_at: nearest | weighted}.
   DeformedFieldOptions field;
 };
 

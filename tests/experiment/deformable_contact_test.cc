@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "contact/deformable_pointshell_contact_model.h"
+#include "contact/deformed_field_contact_model.h"
 #include "contact/model_registry.h"
 #include "deform/reduced_integrator.h"
 #include "experiment/experiment_config.h"
@@ -381,13 +382,21 @@ TEST(DeformableContact, ModelsThatTreatTheBodyAsRigidRefuseADeformableBody) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("'beam' is deformable"), std::string::npos) << e.what();
   }
+  // With the roles swapped the beam is a deformable field body: the paper's models render it
+  // through its deformed field, a rigid-only model refuses it.
   const Scene swapped = scene.Swapped();
   SceneAssets swapped_assets(swapped, Assets(dir));
+  EXPECT_NE(dynamic_cast<DeformedFieldContactModel*>(MakeSceneContactModel("pointshell", swapped, swapped_assets).get()),
+            nullptr);
+  ContactModelEntry rigid_B = rigid_only;
+  rigid_B.name = "test-rigid-B";
+  rigid_B.needs.deformable_A = true;
+  RegisterContactModel(rigid_B);
   try {
-    MakeSceneContactModel("pointshell", swapped, swapped_assets);
-    ADD_FAILURE() << "a deformable field body was accepted";
+    MakeSceneContactModel("test-rigid-B", swapped, swapped_assets);
+    ADD_FAILURE() << "a rigid-only model accepted a deformable field body";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("deformed distance field"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("treats body B as rigid"), std::string::npos) << e.what();
   }
 }
 

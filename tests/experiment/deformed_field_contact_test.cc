@@ -1,0 +1,235 @@
+// Deformable-versus-deformable contact (paper sec. 4.2 and 5): a deformable pointshell (a
+// clamped beam) against a deformed distance field (a second clamped beam across it), checked
+// against references that do not share the model's code: the tree-less traversal, a
+// double-precision recomputation of the point forces and of their reduced forces (brute-force
+// nearest proxy), the rigid model at q_B = 0, and the symmetry of two identical cantilevers
+// pressed against each other.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <sstream>
+
+#include "contact/deformed_field_contact_model.h"
+#include "contact/model_registry.h"
+#include "deform/reduced_integrator.h"
+#include "experiment/scene_assets.h"
+#include "test_support.h"
+
+namespace contactlab {
+namespace {
+
+using testing::TempDir;
+
+// Two 20 x 2 x 2 cm beams clamped at body x <= -9 cm: "beam" along world x (A, deformable
+// pointshell) and "bar" along world y (B, deformed field), crossing at body x = 7 cm of both,
+// B's bottom face GAP metres above A's top face (negative: overlapping).
+std::string CrossedBeams(double gap, const std::string& kind_B, int proxies, double alpha, double beta = 0, double L = 0,
+                         const std::string& force_at = "nearest") {
+  std::ostringstream s;
+  s << "name: crossed-beams\n"
+       "bodies:\n"
+       "  - name: beam\n"
+       "    mesh: \"box:0.1,0.01,0.01,4\"\n"
+       "    role: pointshell\n"
+       "    pointshell: {points: 2048, levels: 4, seed: 1}\n"
+       "    field: {resolution: 96}\n"
+       "    deformable: {model: linear, modes: 8, cells: 20, E: 5.0e7, nu: 0.3, rho: 1100,\n"
+       "                 damping: {alpha: " << alpha << ", beta: " << beta << "}, anchor: {below: [x, -0.09]}}\n"
+       "  - name: bar\n"
+       "    mesh: \"box:0.1,0.01,0.01,4\"\n"
+       "    pose: [0.07, -0.07, " << 0.02 + gap << ", 0.70710678, 0, 0, 0.70710678]\n"
+       "    role: field\n"
+       "    pointshell: {points: 2048, levels: 4, seed: 1}\n"
+       "    field: {resolution: 96}\n"
+       "    deformable: {model: " << kind_B << ", modes: 8, cells: 20, E: 5.0e7, nu: 0.3, rho: 1100,\n"
+       "                 damping: {alpha: " << alpha << ", beta: " << beta << "}, anchor: {below: [x, -0.09]},\n"
+       "                 field: {proxies: " << proxies << ", neighbours: 5, force_at: " << force_at << "}}\n"
+       "model: {k_C: 1000, L: " << L << ", max_point_speed: 0.5}\n";
+  return s.str();
+}
+
+Scene Parse(const std::string& text) { return ParseScene(ConfigNode::LoadString(text, "crossed.yaml")); }
+
+AssetOptions Assets(const TempDir& dir) {
+  AssetOptions o;
+  o.cache_dir = dir / "cache";
+  o.verbose = false;
+  return o;
+}
+
+ReducedState RandomState(const ReducedModel& model, double amplitude, std::mt19937* rng) {
+  std::normal_distribution<double> normal;
+  ReducedState s(model.r());
+  for (int j = 0; j < model.r(); ++j) s.q[j] = normal(*rng);
+  const Eigen::VectorXd u = model.basis * Eigen::VectorXd(s.q);
+  double max_u = 0;
+  for (Eigen::Index v = 0; v < u.size(); v += 3) max_u = std::max(max_u, u.segment<3>(v).norm());
+  s.q *= amplitude / max_u;
+  return s;
+}
+
+TEST(DeformedFieldContact, TheTreeFindsExactlyTheLinearTraversalsContacts) {
+  TempDir dir;
+  const Scene scene = Parse(CrossedBeams(-0.0005, "linear", 40, 0));
+  SceneAssets assets(scene, Assets(dir));
+  const auto tree = MakeSceneContactModel("pointshell", scene, assets);
+  const auto linear = MakeSceneContactModel("pointshell-linear", scene, assets);
+  ASSERT_NE(dynamic_cast<DeformedFieldContactModel*>(tree.get()), nullptr);
+  std::mt19937 rng(5);
+  int touching = 0;
+  for (int trial = 0; trial < 12; ++trial) {
+    const ReducedState qA = RandomState(*assets.A.reduced_model(), 0.002, &rng);
+    const ReducedState qB = RandomState(*assets.B.reduced_model(), 0.002, &rng);
+    ReducedVector fA[2], fB[2];
+    ContactResult res[2];
+    for (int m = 0; m < 2; ++m) {
+      ContactQuery q;
+      q.X_WA = scene.pointshell_body.pose;
+      q.X_WB = scene.field_body.pose;
+      q.q_A = &qA;
+      q.q_B = &qB;
+      q.reduced_force_A = &fA[m];
+      q.reduced_force_B = &fB[m];
+      res[m] = (m == 0 ? tree : linear)->Evaluate(q);
+    }
+    EXPECT_EQ(res[0].stats.points_in_contact, res[1].stats.points_in_contact) << "trial " << trial;
+    EXPECT_LT(res[0].stats.nodes_visited, res[1].stats.nodes_visited);
+    const double scale = 1e-5 * (1 + res[1].on_B.force.norm());
+    EXPECT_LT((res[0].on_B.force - res[1].on_B.force).norm(), scale) << "trial " << trial;
+    EXPECT_LT((fA[0] - fA[1]).norm(), 1e-5 * (1 + fA[1].norm())) << "trial " << trial;
+    EXPECT_LT((fB[0] - fB[1]).norm(), 1e-5 * (1 + fB[1].norm())) << "trial " << trial;
+    touching += res[1].stats.points_in_contact > 0;
+  }
+  EXPECT_GE(touching, 6);
+}
+
+TEST(DeformedFieldContact, ReducedForcesAreUTransposeAtThePointsAndTheNearestProxiesAndForcesBalance) {
+  TempDir dir;
+  const Scene scene = Parse(CrossedBeams(-0.0005, "stvk", 40, 0));
+  SceneAssets assets(scene, Assets(dir));
+  const auto model = MakeSceneContactModel("pointshell-linear", scene, assets);
+  const auto dps = assets.A.deformable_pointshell();
+  const auto field = assets.B.deformed_field();
+  const double k = scene.model.penalty.k_C;
+  std::mt19937 rng(9);
+  int checked = 0;
+  for (int trial = 0; trial < 5; ++trial) {
+    const ReducedState qA = RandomState(*assets.A.reduced_model(), 0.0015, &rng);
+    const ReducedState qB = RandomState(*assets.B.reduced_model(), 0.0015, &rng);
+    ReducedVector fA, fB;
+    ContactQuery q;
+    q.X_WA = scene.pointshell_body.pose;
+    q.X_WB = scene.field_body.pose;
+    q.q_A = &qA;
+    q.q_B = &qB;
+    q.reduced_force_A = &fA;
+    q.reduced_force_B = &fB;
+    const ContactResult res = model->Evaluate(q);
+    // The reference in double precision: deformed points and normals of A, B's deformed field
+    // at q_B, forces -k d N on A (at the point) and +k d N on B (at the brute-force nearest
+    // deformed proxy).
+    DeformedFieldState state(*field);
+    state.Update(*field, qB.q.data());
+    const Pose X_BA = q.X_WB.Inverse() * q.X_WA;
+    Eigen::VectorXd fA_ref = Eigen::VectorXd::Zero(dps->r()), fB_ref = Eigen::VectorXd::Zero(field->r());
+    Eigen::Vector3d F_on_A = Eigen::Vector3d::Zero(), F_on_B = Eigen::Vector3d::Zero();
+    int contacts = 0;
+    for (int i = 0; i < dps->shell().level_point_end.back(); ++i) {
+      const Eigen::Vector3d x_B = X_BA * dps->points().Position(i, qA.q.data());
+      const double d = field->Distance(state, x_B);
+      if (d >= 0) continue;
+      ++contacts;
+      const Eigen::Vector3d N_A = dps->points().CorrectedNormal(i, qA.q.data());
+      const Eigen::Vector3d N_B = X_BA.R() * N_A;
+      fA_ref += dps->points().Basis(i).transpose() * (-k * d * N_A);
+      int nearest = 0;
+      for (int p = 1; p < field->num_slots(); ++p) {
+        if ((field->proxies().Position(p, qB.q.data()) - x_B).norm() <
+            (field->proxies().Position(nearest, qB.q.data()) - x_B).norm())
+          nearest = p;
+      }
+      fB_ref += field->proxies().Basis(nearest).transpose() * (k * d * N_B);
+      F_on_A += q.X_WA.R() * (-k * d * N_A);
+      F_on_B += q.X_WB.R() * (k * d * N_B);
+    }
+    ASSERT_EQ(res.stats.points_in_contact, contacts) << "trial " << trial;
+    if (contacts == 0) continue;
+    ++checked;
+    EXPECT_LT((Eigen::VectorXd(fA) - fA_ref).norm(), 1e-3 * fA_ref.norm()) << "trial " << trial;
+    EXPECT_LT((Eigen::VectorXd(fB) - fB_ref).norm(), 1e-3 * fB_ref.norm()) << "trial " << trial;
+    EXPECT_LT((res.on_B.force - F_on_B).norm(), 1e-3 * F_on_B.norm()) << "trial " << trial;
+    EXPECT_LT((F_on_A + F_on_B).norm(), 1e-12 * (1 + F_on_B.norm()));  // Newton's third law
+  }
+  EXPECT_GE(checked, 3);
+}
+
+TEST(DeformedFieldContact, AtRestTheDeformedFieldRendersLikeTheRigidField) {
+  TempDir dir;
+  const Scene scene = Parse(CrossedBeams(-0.0005, "linear", 40, 0));
+  Scene rigid = scene;
+  rigid.field_body.deformable.reset();
+  rigid.pointshell_body.deformable.reset();
+  Scene rigid_A = scene;
+  rigid_A.pointshell_body.deformable.reset();
+  SceneAssets assets(rigid_A, Assets(dir)), rigid_assets(rigid, Assets(dir));
+  const auto defo = MakeSceneContactModel("pointshell-linear", rigid_A, assets);
+  const auto reference = MakeSceneContactModel("pointshell-linear", rigid, rigid_assets);
+  ContactQuery q;
+  q.X_WA = scene.pointshell_body.pose;
+  q.X_WB = scene.field_body.pose;
+  const ContactResult a = defo->Evaluate(q), b = reference->Evaluate(q);
+  ASSERT_GT(b.stats.points_in_contact, 10);
+  EXPECT_NEAR(a.stats.points_in_contact, b.stats.points_in_contact, 0.02 * b.stats.points_in_contact);
+  EXPECT_LT((a.on_B.force - b.on_B.force).norm(), 0.02 * b.on_B.force.norm());
+  EXPECT_LT((a.on_B.torque - b.on_B.torque).norm(), 0.02 * b.on_B.torque.norm() + 1e-9);
+}
+
+// Displacement along z (body frame) of the material point at body x = 7 cm on the beam's axis.
+double DeflectionAt(const ReducedModel& model, const ReducedState& s) {
+  const EmbeddedPoints p(model.mesh, model.basis, {Eigen::Vector3d(0.07, 0, 0)});
+  return p.Displacement(0, s.q.data()).z();
+}
+
+void PressTogether(const std::string& force_at) {
+  TempDir dir;
+  const Scene scene = Parse(CrossedBeams(-0.002, "linear", 80, 50, 2e-4, 10, force_at));
+  SceneAssets assets(scene, Assets(dir));
+  const auto model = MakeSceneContactModel("pointshell-linear", scene, assets);
+  const auto mA = assets.A.reduced_model(), mB = assets.B.reduced_model();
+  const IntegratorOptions io = DeformableIntegratorOptions(*scene.field_body.deformable, 1e-3);
+  ReducedIntegrator A(mA->forces, io), B(mB->forces, io);
+  ReducedVector fA, fB;
+  ReducedMatrix KA, KB;
+  for (int cycle = 0; cycle < 400; ++cycle) {
+    ContactQuery q;
+    q.X_WA = scene.pointshell_body.pose;
+    q.X_WB = scene.field_body.pose;
+    q.cycle = cycle;
+    q.q_A = &A.state();
+    q.q_B = &B.state();
+    q.reduced_force_A = &fA;
+    q.reduced_stiffness_A = &KA;
+    q.reduced_force_B = &fB;
+    q.reduced_stiffness_B = &KB;
+    model->Evaluate(q);
+    KA *= ContactQuery::kStaggeredStiffnessFactor;  // both step, each with the other fixed
+    KB *= ContactQuery::kStaggeredStiffnessFactor;
+    A.Step(fA, &KA);
+    B.Step(fB, &KB);
+  }
+  const double dA = DeflectionAt(*mA, A.state()), dB = DeflectionAt(*mB, B.state());
+  std::printf("deflections at the crossing: beam %.4g mm, bar %.4g mm\n", 1e3 * dA, 1e3 * dB);
+  EXPECT_LT(dA, -1e-4);  // the beam is pushed down, the bar up, by about the same amount
+  EXPECT_GT(dB, 1e-4);
+  EXPECT_NEAR(-dA / dB, 1.0, 0.3);
+  EXPECT_LT(A.KineticEnergy() + B.KineticEnergy(), 1e-9);  // settled
+}
+
+TEST(DeformedFieldContact, TwoIdenticalCantileversPressedTogetherDeflectEquallyAndOppositely) {
+  PressTogether("weighted");
+  PressTogether("nearest");
+}
+
+}  // namespace
+}  // namespace contactlab
