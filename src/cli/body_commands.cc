@@ -2,15 +2,21 @@
 // [--level L])`: one body of a scene in its body frame (after scale and centring), deformed by
 // reduced coordinates Q when the body is deformable (paper sec. 4.1): its surface mesh, or its
 // pointshell with normals and the BD-tree radius at Q, for checking against other tools.
+//
+// `contactlab body-eval SCENE.yaml --body NAME [--q Q] --points IN.csv --out OUT.csv`: the
+// body's signed distance at points of its body frame, x,y,z,d: its rest field for a rigid body
+// (as sdf-eval), its deformed distance field at Q for a deformable one (paper sec. 4.2).
 #include <cstdio>
 #include <memory>
 #include <string>
 
 #include "cli/command_registry.h"
 #include "deform/deformable_pointshell.h"
+#include "deform/deformed_distance_field.h"
 #include "experiment/reduced_coordinates.h"
 #include "experiment/scene_assets.h"
 #include "geometry/mesh_io.h"
+#include "sdf/point_csv.h"
 #include "util/atomic_file.h"
 #include "util/data_path.h"
 #include "util/error.h"
@@ -74,35 +80,73 @@ void ExportPointshell(BodyAssets& body, const ReducedState* q, int level, const 
                q ? ", deformed" : "");
 }
 
-void RunBodyExport(const BodyExportArgs& args) {
-  if (args.mesh_out.empty() == args.pointshell_out.empty()) Fail("body-export", "give exactly one of --mesh and --pointshell");
-  // The output is checked first: never a device or folder, never the scene or a body's mesh file.
-  const std::string& out = args.mesh_out.empty() ? args.pointshell_out : args.mesh_out;
-  const char* out_option = args.mesh_out.empty() ? "--pointshell" : "--mesh";
+// A scene loaded for one of its bodies, with OUT (the command's output, option OUT_OPTION)
+// checked first: never a device or folder, never the scene or a body's mesh file.
+struct SceneBody {
+  Scene scene;
+  std::unique_ptr<SceneAssets> assets;
+  BodyAssets* body = nullptr;
+  std::unique_ptr<ReducedState> q;  // --q, when given
+};
+
+SceneBody LoadSceneBody(const std::string& scene_arg, const std::string& body_name, const std::string& q_text,
+                        const std::string& cache, const std::string& out, const char* out_option,
+                        const std::vector<std::filesystem::path>& other_inputs = {}) {
   CheckOutputTarget(out, out_option);
-  const std::filesystem::path scene_file = RequireDataFile(args.scene);
+  const std::filesystem::path scene_file = RequireDataFile(scene_arg);
   CheckOutputIsNotInput(out, scene_file, out_option);
-  const Scene scene = LoadScene(scene_file);
-  for (const BodySpec* b : {&scene.field_body, &scene.pointshell_body}) {
+  for (const auto& in : other_inputs) CheckOutputIsNotInput(out, in, out_option);
+  SceneBody sb;
+  sb.scene = LoadScene(scene_file);
+  for (const BodySpec* b : {&sb.scene.field_body, &sb.scene.pointshell_body}) {
     if (const auto mesh_file = FindDataFile(b->mesh, FolderOf(scene_file))) CheckOutputIsNotInput(out, *mesh_file, out_option);
   }
   AssetOptions options;
-  options.cache_dir = args.cache;
-  SceneAssets assets(scene, options);
-  BodyAssets* body = nullptr;
-  for (BodyAssets* b : {&assets.A, &assets.B})
-    if (b->spec().name == args.body) body = b;
-  if (body == nullptr) {
-    Fail("--body", "no body '" + args.body + "' in " + args.scene + " (bodies: " + assets.A.spec().name + ", " +
-                       assets.B.spec().name + ")");
+  options.cache_dir = cache;
+  sb.assets = std::make_unique<SceneAssets>(sb.scene, options);
+  for (BodyAssets* b : {&sb.assets->A, &sb.assets->B})
+    if (b->spec().name == body_name) sb.body = b;
+  if (sb.body == nullptr) {
+    Fail("--body", "no body '" + body_name + "' in " + scene_arg + " (bodies: " + sb.assets->A.spec().name + ", " +
+                       sb.assets->B.spec().name + ")");
   }
-  std::unique_ptr<ReducedState> q;
-  if (!args.q.empty()) q = std::make_unique<ReducedState>(ParseReducedCoordinates(args.q, *body, "--q"));
+  if (!q_text.empty()) sb.q = std::make_unique<ReducedState>(ParseReducedCoordinates(q_text, *sb.body, "--q"));
+  return sb;
+}
+
+void RunBodyExport(const BodyExportArgs& args) {
+  if (args.mesh_out.empty() == args.pointshell_out.empty()) Fail("body-export", "give exactly one of --mesh and --pointshell");
+  const std::string& out = args.mesh_out.empty() ? args.pointshell_out : args.mesh_out;
+  SceneBody sb = LoadSceneBody(args.scene, args.body, args.q, args.cache, out,
+                               args.mesh_out.empty() ? "--pointshell" : "--mesh");
   if (!args.mesh_out.empty()) {
-    ExportMesh(*body, q.get(), args.mesh_out);
+    ExportMesh(*sb.body, sb.q.get(), args.mesh_out);
   } else {
-    ExportPointshell(*body, q.get(), args.level, args.pointshell_out);
+    ExportPointshell(*sb.body, sb.q.get(), args.level, args.pointshell_out);
   }
+}
+
+struct BodyEvalArgs {
+  std::string scene, body, q, points, out, cache;
+};
+
+void RunBodyEval(const BodyEvalArgs& args) {
+  const std::filesystem::path points_file = RequireDataFile(args.points);
+  SceneBody sb = LoadSceneBody(args.scene, args.body, args.q, args.cache, args.out, "--out", {points_file});
+  const std::vector<Eigen::Vector3d> points = ReadPointsCsv(points_file);
+  std::vector<double> d(points.size());
+  if (sb.body->deformable()) {
+    const auto field = sb.body->deformed_field();
+    DeformedFieldState state(*field);
+    state.Update(*field, sb.q ? sb.q->q.data() : nullptr);
+    for (std::size_t i = 0; i < points.size(); ++i) d[i] = field->Distance(state, points[i]);
+  } else {
+    const auto field = sb.body->field();
+    for (std::size_t i = 0; i < points.size(); ++i) d[i] = field->Distance(points[i]);
+  }
+  WritePointDistancesCsv(args.out, points, d);
+  std::fprintf(stderr, "%s: %zu points, %s\n", args.out.c_str(), points.size(),
+               sb.body->deformable() ? (sb.q ? "deformed field at --q" : "deformed field at rest") : "rigid field");
 }
 
 const CommandRegistration kBodyExport([](CLI::App& app) {
@@ -118,6 +162,20 @@ const CommandRegistration kBodyExport([](CLI::App& app) {
   cmd->add_option("--level", args->level, "with --pointshell: deepest tree level written (default: all)");
   cmd->add_option("--cache", args->cache, "cache folder for fields, pointshells and reduced models");
   cmd->callback([args] { RunBodyExport(*args); });
+});
+
+const CommandRegistration kBodyEval([](CLI::App& app) {
+  auto args = std::make_shared<BodyEvalArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "body-eval", "Signed distance of one body of a scene at points of its body frame: its field when rigid, its "
+                   "deformed distance field at --q when deformable");
+  cmd->add_option("SCENE", args->scene, "scene YAML file")->required();
+  cmd->add_option("--body", args->body, "body name")->required();
+  cmd->add_option("--q", args->q, "reduced coordinates: q1,q2,...,qr or @FILE (deformable bodies; default: at rest)");
+  cmd->add_option("--points", args->points, "points CSV (x,y,z per row, body frame, metres)")->required();
+  cmd->add_option("--out", args->out, "output CSV x,y,z,d")->required();
+  cmd->add_option("--cache", args->cache, "cache folder for fields, pointshells and reduced models");
+  cmd->callback([args] { RunBodyEval(*args); });
 });
 
 }  // namespace

@@ -55,19 +55,19 @@ struct SessionArgs {
 constexpr const char* kLogHeader =
     "t,x,y,z,qw,qx,qy,qz,body_x,body_y,body_z,body_qw,body_qx,body_qy,body_qz,"
     "force_x,force_y,force_z,torque_x,torque_y,torque_z,contact_fx,contact_fy,contact_fz,"
-    "points_in_contact,level_rendered,nodes_visited,work_us,safety_flags,buttons,step_us,q_norm\n";
+    "points_in_contact,level_rendered,nodes_visited,work_us,safety_flags,buttons,step_us,q_norm,q_norm_body\n";
 
 void WriteRecord(std::ostream& out, const CycleRecord& r, std::int64_t t0_ns) {
   char line[720];
   std::snprintf(line, sizeof line,
                 "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,"
-                "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%d,%lld,%.3f,%u,%u,%.3f,%.9g\n",
+                "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%d,%lld,%.3f,%u,%u,%.3f,%.9g,%.9g\n",
                 double(r.now_ns - t0_ns) * 1e-9, r.p_WD[0], r.p_WD[1], r.p_WD[2], r.q_WD[0], r.q_WD[1], r.q_WD[2],
                 r.q_WD[3], r.p_WH[0], r.p_WH[1], r.p_WH[2], r.q_WH[0], r.q_WH[1], r.q_WH[2], r.q_WH[3],
                 r.device_force[0], r.device_force[1], r.device_force[2], r.device_torque[0], r.device_torque[1],
                 r.device_torque[2], r.contact_force[0], r.contact_force[1], r.contact_force[2], r.points_in_contact,
                 r.level_rendered, static_cast<long long>(r.nodes_visited), double(r.work_ns) * 1e-3,
-                r.safety_flags, r.buttons, double(r.step_ns) * 1e-3, r.q_norm);
+                r.safety_flags, r.buttons, double(r.step_ns) * 1e-3, r.q_norm, r.q_norm_B);
   out << line;
 }
 
@@ -104,17 +104,21 @@ void RunSession(const SessionArgs& args) {
   config.cycle_seconds = scene.model.cycle_seconds;
   config.body_radius_H = BoundingRadius(*assets.B.mesh());
   if (args.k_vc > 0) config.coupling.k_vc = args.k_vc;
-  // A deformable pointshell body: its reduced model steps at the haptic rate.
-  std::unique_ptr<ReducedIntegrator> deformation;
+  // Deformable bodies: their reduced models step at the haptic rate, A's and the haptic body's.
+  std::unique_ptr<ReducedIntegrator> deformation, deformation_H;
   if (assets.A.deformable()) {
     const DeformableSpec& d = *scene.pointshell_body.deformable;
-    IntegratorOptions io;
-    io.time_step = scene.model.cycle_seconds;
-    io.mass_damping = d.mass_damping;
-    io.stiffness_damping = d.stiffness_damping;
-    deformation = std::make_unique<ReducedIntegrator>(assets.A.reduced_model()->forces, io);
+    deformation = std::make_unique<ReducedIntegrator>(assets.A.reduced_model()->forces,
+                                                      DeformableIntegratorOptions(d, scene.model.cycle_seconds));
     config.deformation_A = deformation.get();
     config.implicit_contact_A = d.implicit_contact;
+  }
+  if (assets.B.deformable()) {
+    const DeformableSpec& d = *scene.field_body.deformable;
+    deformation_H = std::make_unique<ReducedIntegrator>(assets.B.reduced_model()->forces,
+                                                        DeformableIntegratorOptions(d, scene.model.cycle_seconds));
+    config.deformation_B = deformation_H.get();
+    config.implicit_contact_B = d.implicit_contact;
   }
   HapticCycle cycle(mapped, model.get(), config);
 

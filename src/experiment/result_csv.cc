@@ -61,11 +61,13 @@ const Column<CycleRow> kCycleColumns[] = {
     {"ref_fx", [](const CycleRow& r, CsvLine& l) { r.has_reference ? l.Num("%.9g", r.reference_force.x()) : l.Empty(); }},
     {"ref_fy", [](const CycleRow& r, CsvLine& l) { r.has_reference ? l.Num("%.9g", r.reference_force.y()) : l.Empty(); }},
     {"ref_fz", [](const CycleRow& r, CsvLine& l) { r.has_reference ? l.Num("%.9g", r.reference_force.z()) : l.Empty(); }},
-    {"step_us", [](const CycleRow& r, CsvLine& l) { r.deformable ? l.Num("%.3f", r.step_us) : l.Empty(); }},
+    {"step_us", [](const CycleRow& r, CsvLine& l) { r.q.empty() ? l.Empty() : l.Num("%.3f", r.step_us); }},
+    {"step_B_us", [](const CycleRow& r, CsvLine& l) { r.q_B.empty() ? l.Empty() : l.Num("%.3f", r.step_B_us); }},
     {"elastic_energy_J", [](const CycleRow& r, CsvLine& l) { r.deformable ? l.Num("%.9g", r.elastic_energy) : l.Empty(); }},
     {"kinetic_energy_J", [](const CycleRow& r, CsvLine& l) { r.deformable ? l.Num("%.9g", r.kinetic_energy) : l.Empty(); }},
     {"max_displacement", [](const CycleRow& r, CsvLine& l) { r.deformable ? l.Num("%.9g", r.max_displacement) : l.Empty(); }},
     {"q", [](const CycleRow& r, CsvLine& l) { l.Text(r.q); }},
+    {"q_B", [](const CycleRow& r, CsvLine& l) { l.Text(r.q_B); }},
 };
 
 // summary.csv: per model and job, continuity, timing, error against the reference and force
@@ -89,7 +91,9 @@ const Column<SummaryRow> kSummaryColumns[] = {
     {"max_depth_voxels", [](const SummaryRow& r, CsvLine& l) { l.Num("%.4g", r.max_depth_voxels); }},
     {"modes", [](const SummaryRow& r, CsvLine& l) { l.Int(r.modes); }},
     {"median_step_us", [](const SummaryRow& r, CsvLine& l) { r.modes > 0 ? l.Num("%.3f", r.median_step_us) : l.Empty(); }},
-    {"max_displacement", [](const SummaryRow& r, CsvLine& l) { r.modes > 0 ? l.Num("%.9g", r.max_displacement) : l.Empty(); }},
+    {"modes_B", [](const SummaryRow& r, CsvLine& l) { l.Int(r.modes_B); }},
+    {"median_step_B_us", [](const SummaryRow& r, CsvLine& l) { r.modes_B > 0 ? l.Num("%.3f", r.median_step_B_us) : l.Empty(); }},
+    {"max_displacement", [](const SummaryRow& r, CsvLine& l) { r.modes + r.modes_B > 0 ? l.Num("%.9g", r.max_displacement) : l.Empty(); }},
 };
 
 // experiment,job,<axis names>,<column names>

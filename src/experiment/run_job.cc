@@ -52,14 +52,16 @@ void OnMovingBody(bool moving_is_B, const ContactQuery& q, const Wrench& on_B, E
   }
 }
 
-// The two-way coupling of a deformable pointshell body A (paper sec. 4 and 5): the contact
-// query reads q, writes the reduced contact force, and the integrator then takes one step.
+// The two-way coupling of a deformable body (paper sec. 4 and 5): the contact query reads its
+// q, writes its reduced contact force, and its integrator then takes one step. Body A is a
+// deformable pointshell (sec. 4.1), body B a deformed distance field (sec. 4.2).
 class DeformableCoupling {
  public:
-  DeformableCoupling(const BodyAssets& body, std::shared_ptr<const ReducedModel> model, double dt)
+  DeformableCoupling(const BodyAssets& body, std::shared_ptr<const ReducedModel> model, double dt, bool is_B)
       : model_(std::move(model)),
-        integrator_(model_->forces, Options(*body.spec().deformable, dt)),
-        implicit_contact_(body.spec().deformable->implicit_contact) {
+        integrator_(model_->forces, DeformableIntegratorOptions(*body.spec().deformable, dt)),
+        implicit_contact_(body.spec().deformable->implicit_contact),
+        is_B_(is_B) {
     f_.setZero(model_->r());
     K_.setZero(model_->r(), model_->r());
   }
@@ -67,45 +69,50 @@ class DeformableCoupling {
   // Points the query at the current state and at the reduced force it fills.
   void Prepare(ContactQuery* q) {
     f_.setZero(model_->r());
-    q->q_A = &integrator_.state();
-    q->reduced_force_A = &f_;
-    q->reduced_stiffness_A = implicit_contact_ ? &K_ : nullptr;
+    (is_B_ ? q->q_B : q->q_A) = &integrator_.state();
+    (is_B_ ? q->reduced_force_B : q->reduced_force_A) = &f_;
+    (is_B_ ? q->reduced_stiffness_B : q->reduced_stiffness_A) = implicit_contact_ ? &K_ : nullptr;
   }
-  // Steps with the force of the query just made, and records the state in ROW.
-  void Step(CycleRow* row) {
+  // Steps with the force of the query just made, and adds the state to ROW: step time and q
+  // in the body's own columns, energies summed and the largest displacement over both bodies.
+  // STAGGERED: the other body deforms too and steps separately (kStaggeredStiffnessFactor).
+  void Step(CycleRow* row, bool staggered) {
+    if (staggered) K_ *= ContactQuery::kStaggeredStiffnessFactor;
     const auto t0 = std::chrono::steady_clock::now();
     integrator_.Step(f_, implicit_contact_ ? &K_ : nullptr);
-    row->step_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+    const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+    (is_B_ ? row->step_B_us : row->step_us) = us;
     row->deformable = true;
-    row->elastic_energy = integrator_.PotentialEnergy();
-    row->kinetic_energy = integrator_.KineticEnergy();
+    row->elastic_energy += integrator_.PotentialEnergy();
+    row->kinetic_energy += integrator_.KineticEnergy();
     const ReducedVector& q = integrator_.state().q;
     const Eigen::VectorXd u = model_->basis * Eigen::VectorXd(q);
     double max2 = 0;
     for (Eigen::Index v = 0; v + 2 < u.size(); v += 3) max2 = std::max(max2, u.segment<3>(v).squaredNorm());
-    row->max_displacement = std::sqrt(max2);
-    row->q.clear();
+    row->max_displacement = std::max(row->max_displacement, std::sqrt(max2));
+    std::string& text = is_B_ ? row->q_B : row->q;
+    text.clear();
     char buf[32];
     for (int j = 0; j < q.size(); ++j) {
       std::snprintf(buf, sizeof buf, j == 0 ? "%.9g" : " %.9g", q[j]);
-      row->q += buf;
+      text += buf;
     }
   }
 
  private:
-  static IntegratorOptions Options(const DeformableSpec& d, double dt) {
-    IntegratorOptions o;
-    o.time_step = dt;
-    o.mass_damping = d.mass_damping;
-    o.stiffness_damping = d.stiffness_damping;
-    return o;
-  }
   std::shared_ptr<const ReducedModel> model_;
   ReducedIntegrator integrator_;
   ReducedVector f_;
   ReducedMatrix K_;  // the contact's reduced stiffness: the step treats contact linearly implicitly
   bool implicit_contact_;
+  bool is_B_;
 };
+
+// The median of V (reordered).
+double Median(std::vector<double>* v) {
+  std::nth_element(v->begin(), v->begin() + std::ptrdiff_t(v->size() / 2), v->end());
+  return (*v)[v->size() / 2];
+}
 
 }  // namespace
 
@@ -158,9 +165,10 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
     std::vector<double> times;
     std::vector<int> levels;
     double nodes_sum = 0, max_depth = 0;
-    std::unique_ptr<DeformableCoupling> coupling;
-    if (assets.A.deformable()) coupling = std::make_unique<DeformableCoupling>(assets.A, assets.A.reduced_model(), dt);
-    std::vector<double> step_times;
+    std::unique_ptr<DeformableCoupling> coupling, coupling_B;
+    if (assets.A.deformable()) coupling = std::make_unique<DeformableCoupling>(assets.A, assets.A.reduced_model(), dt, false);
+    if (assets.B.deformable()) coupling_B = std::make_unique<DeformableCoupling>(assets.B, assets.B.reduced_model(), dt, true);
+    std::vector<double> step_times, step_times_B;
     double max_displacement = 0;
     for (std::int64_t k = 0; k < cycles; ++k) {
       // The moving body follows the trajectory from its start pose; the other stays put.
@@ -172,6 +180,7 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
       q.cycle = k;
       q.node_budget = scene.node_budget;
       if (coupling) coupling->Prepare(&q);
+      if (coupling_B) coupling_B->Prepare(&q);
       const auto t0 = std::chrono::steady_clock::now();
       const ContactResult r = model->Evaluate(q);
       const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
@@ -194,14 +203,21 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
         rq.node_budget = 0;
         rq.reduced_force_A = nullptr;
         rq.reduced_stiffness_A = nullptr;
+        rq.reduced_force_B = nullptr;
+        rq.reduced_stiffness_B = nullptr;
         OnMovingBody(moving_is_B, rq, reference->Evaluate(rq).on_B, &row.reference_force, &T);
         row.has_reference = true;
       }
-      if (coupling) {  // the deformation advances after the query, held fixed during it
-        coupling->Step(&row);
+      // The deformations advance after the query, held fixed during it.
+      if (coupling) {
+        coupling->Step(&row, coupling_B != nullptr);
         step_times.push_back(row.step_us);
-        max_displacement = std::max(max_displacement, row.max_displacement);
       }
+      if (coupling_B) {
+        coupling_B->Step(&row, coupling != nullptr);
+        step_times_B.push_back(row.step_B_us);
+      }
+      max_displacement = std::max(max_displacement, row.max_displacement);
       forces.push_back(row.force);
       refs.push_back(row.reference_force);
       has_ref.push_back(row.has_reference);
@@ -241,10 +257,13 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
     s.max_depth_voxels = max_depth;
     if (coupling) {
       s.modes = coupling->r();
-      std::nth_element(step_times.begin(), step_times.begin() + std::ptrdiff_t(step_times.size() / 2), step_times.end());
-      s.median_step_us = step_times[step_times.size() / 2];
-      s.max_displacement = max_displacement;
+      s.median_step_us = Median(&step_times);
     }
+    if (coupling_B) {
+      s.modes_B = coupling_B->r();
+      s.median_step_B_us = Median(&step_times_B);
+    }
+    if (coupling || coupling_B) s.max_displacement = max_displacement;
     result.summary.push_back(s);
   }
   return result;

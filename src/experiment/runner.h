@@ -37,13 +37,15 @@ struct CycleRow {
   double time_us = 0;
   bool has_reference = false;
   Eigen::Vector3d reference_force = Eigen::Vector3d::Zero();
-  // A deformable pointshell body (paper sec. 4): its state after this cycle's step.
-  bool deformable = false;
-  double step_us = 0;            // the reduced integrator's step, after the contact query
-  double elastic_energy = 0;     // J (mass-normalised coordinates: kg m^2 / s^2)
-  double kinetic_energy = 0;     // J
-  double max_displacement = 0;   // m, largest |U q| over the simulation mesh's vertices
-  std::string q;                 // q_1 .. q_r separated by spaces
+  // Deformable bodies (paper sec. 4): their state after this cycle's steps.
+  bool deformable = false;       // A or B deforms
+  double step_us = 0;            // A's reduced integrator step, after the contact query
+  double step_B_us = 0;          // B's (a deformed distance field body)
+  double elastic_energy = 0;     // J, both bodies (mass-normalised coordinates: kg m^2 / s^2)
+  double kinetic_energy = 0;     // J, both bodies
+  double max_displacement = 0;   // m, largest |U q| over the simulation meshes' vertices
+  std::string q;                 // A's q_1 .. q_r separated by spaces
+  std::string q_B;               // B's
 };
 
 // Metrics of one model over one job's trajectory.
@@ -57,9 +59,11 @@ struct SummaryRow {
   double rms_rel_error = -1, max_dir_error_deg = -1;  // -1: no reference
   double max_force = 0, mean_force = 0;
   double max_depth_voxels = 0;
-  int modes = 0;                // r of a deformable pointshell body, 0 when rigid
-  double median_step_us = 0;    // reduced integrator step (deformable body)
-  double max_displacement = 0;  // m, over the trajectory (deformable body)
+  int modes = 0;                // r of a deformable pointshell body A, 0 when rigid
+  double median_step_us = 0;    // A's reduced integrator step
+  int modes_B = 0;              // r of a deformable field body B, 0 when rigid
+  double median_step_B_us = 0;  // B's reduced integrator step
+  double max_displacement = 0;  // m, over the trajectory (deformable bodies)
 };
 
 struct JobResult {

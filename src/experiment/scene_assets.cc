@@ -281,6 +281,14 @@ std::shared_ptr<const DeformedDistanceField> BodyAssets::deformed_field() {
   return deformed_field_;
 }
 
+IntegratorOptions DeformableIntegratorOptions(const DeformableSpec& deformable, double dt) {
+  IntegratorOptions o;
+  o.time_step = dt;
+  o.mass_damping = deformable.mass_damping;
+  o.stiffness_damping = deformable.stiffness_damping;
+  return o;
+}
+
 std::unique_ptr<ContactModel> MakeSceneContactModel(std::string_view name, const Scene& scene, SceneAssets& assets) {
   return MakeContactModel(name, ContactModelInputs{assets.A, assets.B, scene.model},
                           scene.file.empty() ? std::string_view("scene") : std::string_view(scene.file));

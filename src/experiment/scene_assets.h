@@ -10,6 +10,7 @@
 #include "contact/model_registry.h"
 #include "deform/deformable_pointshell.h"
 #include "deform/deformed_distance_field.h"
+#include "deform/reduced_integrator.h"
 #include "deform/reduced_model.h"
 #include "experiment/scene.h"
 #include "geometry/triangle_mesh.h"
@@ -89,6 +90,9 @@ struct SceneAssets {
     return options;
   }
 };
+
+// The time stepping of a deformable body at the haptic cycle DT (seconds): its Rayleigh damping.
+IntegratorOptions DeformableIntegratorOptions(const DeformableSpec& deformable, double dt);
 
 // Makes the registered contact model NAME between SCENE's bodies, with the scene's model
 // parameters; only what the model needs is built. Throws Error naming the scene file when NAME

@@ -36,6 +36,12 @@ void HapticCycle::Start(std::int64_t now_ns) {
     f_A_.setZero(r);
     K_A_.setZero(r, r);
   }
+  if (config_.deformation_B != nullptr) {
+    config_.deformation_B->Reset();
+    const int r = config_.deformation_B->r();
+    f_B_.setZero(r);
+    K_B_.setZero(r, r);
+  }
   cycle_ = 0;
 }
 
@@ -75,6 +81,11 @@ CycleRecord HapticCycle::Step(std::int64_t now_ns) {
       q.reduced_force_A = &f_A_;
       q.reduced_stiffness_A = config_.implicit_contact_A ? &K_A_ : nullptr;
     }
+    if (config_.deformation_B != nullptr) {  // H deforms: its field at the current q_B
+      q.q_B = &config_.deformation_B->state();
+      q.reduced_force_B = &f_B_;
+      q.reduced_stiffness_B = config_.implicit_contact_B ? &K_B_ : nullptr;
+    }
     contact = model_->Evaluate(q);
   }
 
@@ -112,12 +123,23 @@ CycleRecord HapticCycle::Step(std::int64_t now_ns) {
   const Eigen::Quaterniond& qh = step.X_WH.rotation;
   rec.q_WD[0] = qd.w(), rec.q_WD[1] = qd.x(), rec.q_WD[2] = qd.y(), rec.q_WD[3] = qd.z();
   rec.q_WH[0] = qh.w(), rec.q_WH[1] = qh.x(), rec.q_WH[2] = qh.y(), rec.q_WH[3] = qh.z();
-  // Body A's deformation advances at the end of the cycle (paper sec. 4.1).
-  if (config_.deformation_A != nullptr && model_ != nullptr) {
+  // The deformations advance at the end of the cycle with the contact forces as external
+  // loads (paper sec. 4.1 and 5): A's, and H's own, decoupled from H's rigid motion.
+  if (model_ != nullptr && (config_.deformation_A != nullptr || config_.deformation_B != nullptr)) {
     const auto t0 = std::chrono::steady_clock::now();
-    config_.deformation_A->Step(f_A_, config_.implicit_contact_A ? &K_A_ : nullptr);
+    if (config_.deformation_A != nullptr && config_.deformation_B != nullptr) {  // staggered
+      K_A_ *= ContactQuery::kStaggeredStiffnessFactor;
+      K_B_ *= ContactQuery::kStaggeredStiffnessFactor;
+    }
+    if (config_.deformation_A != nullptr) {
+      config_.deformation_A->Step(f_A_, config_.implicit_contact_A ? &K_A_ : nullptr);
+      rec.q_norm = config_.deformation_A->state().q.norm();
+    }
+    if (config_.deformation_B != nullptr) {
+      config_.deformation_B->Step(f_B_, config_.implicit_contact_B ? &K_B_ : nullptr);
+      rec.q_norm_B = config_.deformation_B->state().q.norm();
+    }
     rec.step_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0).count();
-    rec.q_norm = config_.deformation_A->state().q.norm();
   }
   ++cycle_;
   return rec;

@@ -27,6 +27,14 @@ struct HapticCycleConfig {
   // With deformation_A: the step also takes the contact's reduced stiffness (linearly
   // implicit contact); false applies the contact force alone (the paper's explicit order).
   bool implicit_contact_A = true;
+  // The haptic body H's own deformation when H is a deformable field body (paper sec. 4.2 and
+  // 5, "the deformable haptic object"): three configurations — the manipulandum, H's rigid
+  // simulation pose (the virtual coupling acts on it alone) and that pose plus the
+  // deformation, which the contact query sees. Held fixed during the query, stepped at the end
+  // of the cycle with the reduced contact force on H, decoupled from H's rigid motion. Null:
+  // H is rigid. Must outlive the cycle.
+  ReducedIntegrator* deformation_B = nullptr;
+  bool implicit_contact_B = true;  // as implicit_contact_A, for H
   // Guard of the contact model's temporal coherence (paper sec. 3.4): the coherence assumes
   // no point of A moves faster than max_point_speed relative to B, i.e. no more than
   // max_point_speed * cycle_seconds per cycle. Each cycle measures the motion of H between
@@ -54,8 +62,9 @@ struct CycleRecord {
   std::int32_t level_rendered = -1;   // deepest tree level the contact model rendered
   std::int64_t nodes_visited = 0;
   std::int64_t work_ns = 0;           // time the cycle took (set by the loop), ns
-  std::int64_t step_ns = 0;           // body A's deformation step within it (deformable A), ns
+  std::int64_t step_ns = 0;           // the deformation steps within it (deformable A and/or H), ns
   double q_norm = 0;                  // |q| of body A after the step (deformable A)
+  double q_norm_B = 0;                // |q| of H after the step (deformable H)
   double p_WD[3] = {0, 0, 0};         // device position, m
   double q_WD[4] = {1, 0, 0, 0};      // device orientation (w, x, y, z)
   double p_WH[3] = {0, 0, 0};         // simulated body position, m
@@ -104,6 +113,8 @@ class HapticCycle {
   Pose last_query_X_WH_;  // H's pose at the previous contact query
   ReducedVector f_A_;  // body A's reduced contact force and stiffness, this cycle
   ReducedMatrix K_A_;
+  ReducedVector f_B_;  // H's
+  ReducedMatrix K_B_;
 };
 
 }  // namespace contactlab

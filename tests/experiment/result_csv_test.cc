@@ -44,7 +44,7 @@ TEST(ResultCsv, HeaderAndRowsHaveTheSameColumnsAndEmptyCellsWithoutAReference) {
   EXPECT_EQ(c[0][2], "points");
   EXPECT_EQ(c[0][3], "k_C");
   EXPECT_EQ(c[0][4], "model");
-  EXPECT_EQ(c[0].back(), "q");
+  EXPECT_EQ(c[0].back(), "q_B");
   for (const auto& row : c) EXPECT_EQ(row.size(), c[0].size());
   const auto col = [&](const std::string& name) {
     return std::size_t(std::find(c[0].begin(), c[0].end(), name) - c[0].begin());
