@@ -476,5 +476,69 @@ TEST(CliDeformable, ContactAtQAndBodyExportAreConsistentAndBadQIsRefused) {
   EXPECT_NE(ReadWholeFile(dir / "session.csv").find(",step_us,q_norm,q_norm_body\n"), std::string::npos);
 }
 
+TEST(CliDeformable, BodyEvalGivesTheRigidFieldAndTheDeformedFieldOnTheDeformedSurface) {
+  testing::TempDir dir;
+  std::ofstream(dir / "beam.yaml") << kBeamScene;
+  const std::string scene = (dir / "beam.yaml").string() + " --cache " + (dir / "cache").string();
+  // Rigid probe: the field of a 1 cm sphere, against the analytic distance.
+  std::ofstream(dir / "p.csv") << "x,y,z\n0.012,0,0\n0,0.009,0\n0,0,-0.0105\n0.004,0.004,0.004\n";
+  ASSERT_EQ(RunCli("body-eval " + scene + " --body probe --points " + (dir / "p.csv").string() + " --out " +
+                   (dir / "probe.csv").string()).exit_code, 0);
+  for (const auto& row : ReadNumbers(dir / "probe.csv", ',', true)) {
+    ASSERT_EQ(row.size(), 4u);
+    EXPECT_NEAR(row[3], Eigen::Vector3d(row[0], row[1], row[2]).norm() - 0.01, 5e-4);
+  }
+  // Deformable beam: at rest (no --q, or q = 0) the box's distance near its faces.
+  std::ofstream(dir / "b.csv") << "x,y,z\n0.05,0,0.012\n-0.03,0.011,0\n0.0,0,-0.009\n0.098,0,0\n";
+  ASSERT_EQ(RunCli("body-eval " + scene + " --body beam --points " + (dir / "b.csv").string() + " --out " +
+                   (dir / "rest.csv").string()).exit_code, 0);
+  ASSERT_EQ(RunCli("body-eval " + scene + " --body beam --q 0,0,0,0 --points " + (dir / "b.csv").string() +
+                   " --out " + (dir / "zero.csv").string()).exit_code, 0);
+  const auto rest = ReadNumbers(dir / "rest.csv", ',', true), zero = ReadNumbers(dir / "zero.csv", ',', true);
+  const double expected[4] = {0.002, 0.001, -0.001, -0.002};
+  ASSERT_EQ(rest.size(), 4u);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NEAR(rest[i][3], expected[i], 1e-3) << "point " << i;
+    EXPECT_EQ(rest[i][3], zero[i][3]);
+  }
+  // Deformed: the vertices of the deformed surface (body-export at the same q) lie on the
+  // deformed field's zero level, within a cell of the beam's field (0.24 m / 48).
+  const std::string q = "0.002,-0.0015,0.001,0.0005";  // about 7 mm at the free end
+  ASSERT_EQ(RunCli("body-export " + scene + " --body beam --q " + q + " --mesh " + (dir / "bent.obj").string())
+                .exit_code, 0);
+  std::ofstream pts(dir / "bent.csv");
+  pts << "x,y,z\n";
+  std::istringstream obj(ReadWholeFile(dir / "bent.obj"));
+  int vertices = 0;
+  for (std::string line; std::getline(obj, line);) {
+    if (line.rfind("v ", 0) == 0) {
+      std::istringstream v(line.substr(2));
+      double x, y, z;
+      v >> x >> y >> z;
+      pts << x << "," << y << "," << z << "\n";
+      ++vertices;
+    }
+  }
+  pts.close();
+  ASSERT_GT(vertices, 50);
+  ASSERT_EQ(RunCli("body-eval " + scene + " --body beam --q " + q + " --points " + (dir / "bent.csv").string() +
+                   " --out " + (dir / "bent-d.csv").string()).exit_code, 0);
+  const auto bent = ReadNumbers(dir / "bent-d.csv", ',', true);
+  ASSERT_EQ(int(bent.size()), vertices);
+  double worst = 0;
+  for (const auto& row : bent) worst = std::max(worst, std::abs(row[3]));
+  EXPECT_LT(worst, 0.005) << "largest |d| at the deformed surface";
+  // Bad input: the output may not be the points file; a rigid body takes no --q.
+  const Outcome same = RunCli("body-eval " + scene + " --body beam --points " + (dir / "b.csv").string() + " --out " +
+                              (dir / "b.csv").string());
+  EXPECT_EQ(same.exit_code, 1);
+  EXPECT_EQ(ReadWholeFile(dir / "b.csv").substr(0, 6), "x,y,z\n");
+  const Outcome rigid_q = RunCli("body-eval " + scene + " --body probe --q 1 --points " + (dir / "p.csv").string() +
+                                 " --out " + (dir / "no.csv").string());
+  EXPECT_EQ(rigid_q.exit_code, 1);
+  EXPECT_NE(rigid_q.output.find("the body is rigid"), std::string::npos) << rigid_q.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "no.csv"));
+}
+
 }  // namespace
 }  // namespace contactlab
