@@ -271,6 +271,39 @@ class Figures:
                         "table1_deformable", 11)
         return True
 
+    # Paper Table 1, defo-defo rows (Fig. 13 scenes): both bodies' StVK steps, the traversal
+    # against the deformed distance field, and the force continuity of the circling contact.
+    def table1_defo_defo(self):
+        table, levels = self.table1_cells("table1-defo-defo")
+        if table is None:
+            return False
+        header = ["scene", "points", "r (A / B)", "StVK µs (A / B)", "nodes (tree)", "tree µs (median)",
+                  "tree µs (p99.9)", "tree+TC µs", "level", "tree-less µs", "max jump N"]
+        # p99.9 of the tree's per-cycle time, with the deformation steps (the whole cycle's work).
+        cycle_us = defaultdict(list)
+        for r in self.load("table1-defo-defo", "cycles") or []:
+            if r["model"] == "pointshell" and r["coherence"] == "false":
+                cycle_us[os.path.splitext(os.path.basename(r["scene"]))[0]].append(
+                    num(r, "time_us") + num(r, "step_us") + num(r, "step_B_us"))
+        def p999(values):
+            v = sorted(values)
+            return v[min(len(v) - 1, int(math.ceil(0.999 * len(v))) - 1)] if v else float("nan")
+        lines = []
+        for scene, cells in sorted(table.items()):
+            tree = cells.get(("pointshell", "false"), {})
+            tc = cells.get(("pointshell", "true"), {})
+            lin = cells.get(("pointshell-linear", "false"), {})
+            lines.append([scene, tree.get("points", ""), f"{tree.get('modes', '')} / {tree.get('modes_B', '')}",
+                          f"{num(tree, 'median_step_us'):.1f} / {num(tree, 'median_step_B_us'):.1f}",
+                          f"{num(tree, 'mean_nodes'):.0f}", f"{num(tree, 'median_us'):.1f}",
+                          f"{p999(cycle_us[scene]):.1f}", f"{num(tc, 'median_us'):.1f}",
+                          max(levels[scene], key=levels[scene].get) if levels[scene] else "",
+                          f"{num(lin, 'median_us'):.1f}", f"{num(tree, 'max_jump_N'):.3g}"])
+        self.save_table(header, lines,
+                        "Table 1, defo-defo: deformable pointshell vs deformed distance field (circling contact)",
+                        "table1_defo_defo", 11)
+        return True
+
     # Beyond the paper: continuity across models.
     def continuity(self):
         rows = self.load("continuity-models", "cycles")
@@ -345,7 +378,8 @@ def main():
     parser.add_argument("--results", default=os.path.join(os.path.dirname(__file__), "..", "results"))
     args = parser.parse_args()
     figs = Figures(os.path.abspath(args.results))
-    for name in ["fig05b", "fig11", "fig14b", "fig15", "table1", "table1_deformable", "deformable_cantilever",
+    for name in ["fig05b", "fig11", "fig14b", "fig15", "table1", "table1_deformable", "table1_defo_defo",
+                 "deformable_cantilever",
                  "continuity", "speed_vs_error"]:
         try:
             if not getattr(figs, name)():

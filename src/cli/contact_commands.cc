@@ -52,6 +52,8 @@ void RunContact(const ContactArgs& args) {
   q.q_A = q_A.get();
   q.q_B = q_B.get();
   if (assets.A.deformable()) q.reduced_force_A = &reduced_force;
+  ReducedVector reduced_force_B;
+  if (assets.B.deformable()) q.reduced_force_B = &reduced_force_B;
   const auto t0 = std::chrono::steady_clock::now();
   const ContactResult r = model->Evaluate(q);
   const double micros = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
@@ -78,6 +80,9 @@ void RunContact(const ContactArgs& args) {
     if (q.reduced_force_A != nullptr) {
       j["reduced_force_A"] = std::vector<double>(reduced_force.data(), reduced_force.data() + reduced_force.size());
     }
+    if (q.reduced_force_B != nullptr) {
+      j["reduced_force_B"] = std::vector<double>(reduced_force_B.data(), reduced_force_B.data() + reduced_force_B.size());
+    }
     std::cout << j.dump(2) << "\n";
     return;
   }
@@ -93,6 +98,12 @@ void RunContact(const ContactArgs& args) {
     std::printf("reduced contact force on %s (U^T F, r = %d):", scene.pointshell_body.name.c_str(),
                 int(reduced_force.size()));
     for (int j = 0; j < reduced_force.size(); ++j) std::printf(" %+.6g", reduced_force[j]);
+    std::printf("\n");
+  }
+  if (q.reduced_force_B != nullptr) {
+    std::printf("reduced contact force on %s (U^T F at its proxies, r = %d):", scene.field_body.name.c_str(),
+                int(reduced_force_B.size()));
+    for (int j = 0; j < reduced_force_B.size(); ++j) std::printf(" %+.6g", reduced_force_B[j]);
     std::printf("\n");
   }
 }
