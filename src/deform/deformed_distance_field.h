@@ -27,6 +27,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -87,12 +88,16 @@ class DeformedFieldState {
   // Sets proxy slot I to position P (deformed) and gradient F directly (e.g. a rigid motion
   // applied through F in tests). F must be invertible.
   void Set(const DeformedDistanceField& field, int i, const Eigen::Vector3d& p, const Eigen::Matrix3d& F);
-  const float* position(int i) const { return &p_[3 * std::size_t(i)]; }
+  // Deformed position of proxy slot I, and the coordinates of all slots (structure of arrays).
+  Eigen::Vector3f position(int i) const { return Eigen::Vector3f(x_[i], y_[i], z_[i]); }
+  const float* xs() const { return x_.data(); }
+  const float* ys() const { return y_.data(); }
+  const float* zs() const { return z_.data(); }
   const float* pullback(int i) const { return &a_[12 * std::size_t(i)]; }  // A row-major, then c
 
  private:
-  std::vector<float> p_;  // (#slots x 3)
-  std::vector<float> a_;  // (#slots x 12)
+  std::vector<float> x_, y_, z_;  // (#slots) deformed proxy positions
+  std::vector<float> a_;          // (#slots x 12)
 };
 
 class DeformedDistanceField {
@@ -165,19 +170,30 @@ class DeformedDistanceField {
   int Nearest(const Domain& D, const DeformedFieldState& state, const float* x, int* slots, float* w) const {
     float d2[kMaxProxyNeighbours + 1];
     int n = 0;
-    for (int i = D.begin; i < D.end; ++i) {
-      const float* p = state.position(i);
-      const float dx = x[0] - p[0], dy = x[1] - p[1], dz = x[2] - p[2];
-      const float e = dx * dx + dy * dy + dz * dz;
-      if (n == k_ && !(e < d2[k_ - 1])) continue;
-      int m = n < k_ ? n++ : k_ - 1;  // insert at m, shifting larger ones up
-      while (m > 0 && d2[m - 1] > e) {
-        d2[m] = d2[m - 1];
-        slots[m] = slots[m - 1];
-        --m;
+    const float* px = state.xs();
+    const float* py = state.ys();
+    const float* pz = state.zs();
+    // Squared distances a chunk at a time (a loop the compiler vectorises), then insertion of
+    // the few that beat the current k-th.
+    constexpr int kChunk = 64;
+    float e[kChunk];
+    for (int begin = D.begin; begin < D.end; begin += kChunk) {
+      const int count = std::min(kChunk, D.end - begin);
+      for (int c = 0; c < count; ++c) {
+        const float dx = x[0] - px[begin + c], dy = x[1] - py[begin + c], dz = x[2] - pz[begin + c];
+        e[c] = dx * dx + dy * dy + dz * dz;
       }
-      d2[m] = e;
-      slots[m] = i;
+      for (int c = 0; c < count; ++c) {
+        if (n == k_ && !(e[c] < d2[k_ - 1])) continue;
+        int m = n < k_ ? n++ : k_ - 1;  // insert at m, shifting larger ones up
+        while (m > 0 && d2[m - 1] > e[c]) {
+          d2[m] = d2[m - 1];
+          slots[m] = slots[m - 1];
+          --m;
+        }
+        d2[m] = e[c];
+        slots[m] = begin + c;
+      }
     }
     // w_i ~ 1/d_i - 1/d_max (eq. (3)); the k-th weight is zero.
     const float dmax = std::sqrt(d2[n - 1]);

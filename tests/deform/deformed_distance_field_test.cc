@@ -186,12 +186,10 @@ TEST(DeformedDistanceField, WeightsAreNonNegativeSumToOneAndVanishAtTheKthNeighb
       // The k neighbours are the k nearest deformed proxies (brute force).
       std::vector<double> all;
       for (int i = 0; i < f.num_slots(); ++i) {
-        const float* p = s.position(i);
-        all.push_back((x - Eigen::Vector3d(p[0], p[1], p[2])).norm());
+        all.push_back((x - s.position(i).cast<double>()).norm());
       }
       std::sort(all.begin(), all.end());
-      const float* pk = s.position(slots[k - 1]);
-      EXPECT_NEAR((x - Eigen::Vector3d(pk[0], pk[1], pk[2])).norm(), all[k - 1], 1e-6);
+      EXPECT_NEAR((x - s.position(slots[k - 1]).cast<double>()).norm(), all[k - 1], 1e-6);
     }
   }
 }
