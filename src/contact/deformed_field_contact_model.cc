@@ -45,21 +45,20 @@ struct DeformedFieldPolicy {
     } else {
       n_A[0] = s.nx[i], n_A[1] = s.ny[i], n_A[2] = s.nz[i];
     }
-    X_BA.Rotate(n_A[0], n_A[1], n_A[2], n_B);
-    const Eigen::Vector3d p(p_BQ[0], p_BQ[1], p_BQ[2]);
-    const Eigen::Vector3d N(n_B[0], n_B[1], n_B[2]);
-    if (gradient == ContactGradient::kHalfspace) {
-      acc->Add(p, N, d, N);
-    } else {
-      Eigen::Vector3d g;
-      for (int c = 0; c < 3; ++c) {
-        float a[3] = {p_BQ[0], p_BQ[1], p_BQ[2]}, b[3] = {p_BQ[0], p_BQ[1], p_BQ[2]};
-        a[c] += gradient_step;
-        b[c] -= gradient_step;
-        g[c] = double(field.Distance(state, a, nullptr) - field.Distance(state, b, nullptr)) / (2.0 * gradient_step);
-      }
-      acc->Add(p, N, d, g);
-    }
+    // The kField gradient by central differences of the deformed field.
+    AddContactPointWith(X_BA, n_A, p_BQ, d, gradient, acc,
+                        [this, &p_BQ](const Eigen::Vector3d&) {
+                          Eigen::Vector3d g;
+                          for (int c = 0; c < 3; ++c) {
+                            float a[3] = {p_BQ[0], p_BQ[1], p_BQ[2]}, b[3] = {p_BQ[0], p_BQ[1], p_BQ[2]};
+                            a[c] += gradient_step;
+                            b[c] -= gradient_step;
+                            g[c] = double(field.Distance(state, a, nullptr) - field.Distance(state, b, nullptr)) /
+                                   (2.0 * gradient_step);
+                          }
+                          return g;
+                        },
+                        n_B);
     float w[kMaxReducedModes];
     if (g_A != nullptr) {
       if constexpr (kDeformableA) {

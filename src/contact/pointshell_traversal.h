@@ -26,20 +26,34 @@
 namespace contactlab {
 
 // Adds a point in contact at p_BQ (B's frame) with distance D < 0 and unit normal N_A (A's
-// frame): the sec. 5 halfspace gradient, or the field's own gradient.
-inline void AddContactPoint(const DistanceField& field, const FloatTransform& X_BA, const float* n_A,
-                            const float* p_BQ, float d, ContactGradient gradient, ContactAccumulator* acc) {
-  float n_B[3];
+// frame): the sec. 5 halfspace gradient, or the field's own gradient FIELD_GRADIENT(p_B) (a
+// callable returning B's field gradient at p_B, called only for ContactGradient::kField).
+// Writes the normal in B's frame to N_B.
+template <class FieldGradient>
+inline void AddContactPointWith(const FloatTransform& X_BA, const float* n_A, const float* p_BQ, float d,
+                                ContactGradient gradient, ContactAccumulator* acc, FieldGradient&& field_gradient,
+                                float* n_B) {
   X_BA.Rotate(n_A[0], n_A[1], n_A[2], n_B);
   const Eigen::Vector3d p(p_BQ[0], p_BQ[1], p_BQ[2]);
   const Eigen::Vector3d N(n_B[0], n_B[1], n_B[2]);
   if (gradient == ContactGradient::kHalfspace) {
     acc->Add(p, N, d, N);
   } else {
-    Eigen::Vector3d g_B;
-    field.DistanceAndGradient(p, &g_B);
-    acc->Add(p, N, d, g_B);
+    acc->Add(p, N, d, field_gradient(p));
   }
+}
+
+// AddContactPointWith for a rigid field B: its trilinear gradient.
+inline void AddContactPoint(const DistanceField& field, const FloatTransform& X_BA, const float* n_A,
+                            const float* p_BQ, float d, ContactGradient gradient, ContactAccumulator* acc) {
+  float n_B[3];
+  AddContactPointWith(X_BA, n_A, p_BQ, d, gradient, acc,
+                      [&field](const Eigen::Vector3d& p) {
+                        Eigen::Vector3d g_B;
+                        field.DistanceAndGradient(p, &g_B);
+                        return g_B;
+                      },
+                      n_B);
 }
 
 // Scratch of the tree traversal, sized once for a shell.

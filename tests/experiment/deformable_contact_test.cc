@@ -17,6 +17,7 @@
 #include "experiment/experiment_config.h"
 #include "experiment/runner.h"
 #include "experiment/scene_assets.h"
+#include "deformable_fixture.h"
 #include "test_support.h"
 #include "util/error.h"
 
@@ -55,35 +56,9 @@ std::string BeamScene(int cells, const std::string& kind, double alpha, double b
 
 Scene ParseBeam(const std::string& text) { return ParseScene(ConfigNode::LoadString(text, "beam.yaml")); }
 
-AssetOptions Assets(const TempDir& dir) {
-  AssetOptions o;
-  o.cache_dir = dir / "cache";
-  o.verbose = false;
-  return o;
-}
-
-// Runs every job of the experiment config DIR/run.yaml (its scene beside it), caching in DIR.
-std::vector<JobResult> RunAllJobs(const TempDir& dir) {
-  const ExperimentConfig config = LoadExperimentConfig(dir / "run.yaml");
-  RunOptions options;
-  options.assets = Assets(dir);
-  options.progress = false;
-  std::vector<JobResult> results;
-  for (const Job& job : ExpandJobs(config)) results.push_back(RunJob(config, job, options));
-  return results;
-}
-
-// A random deformation whose largest surface displacement is about AMPLITUDE metres.
-ReducedState RandomState(const ReducedModel& model, double amplitude, std::mt19937* rng) {
-  std::normal_distribution<double> normal;
-  ReducedState s(model.r());
-  for (int j = 0; j < model.r(); ++j) s.q[j] = normal(*rng);
-  const Eigen::VectorXd u = model.basis * Eigen::VectorXd(s.q);
-  double max_u = 0;
-  for (Eigen::Index v = 0; v < u.size(); v += 3) max_u = std::max(max_u, u.segment<3>(v).norm());
-  s.q *= amplitude / max_u;
-  return s;
-}
+using testing::Assets;
+using testing::RandomState;
+using testing::RunAllJobs;
 
 TEST(DeformableContact, TheTreeFindsExactlyTheLinearTraversalsContactsAtDeformedStates) {
   TempDir dir;

@@ -17,6 +17,7 @@
 #include "experiment/experiment_config.h"
 #include "experiment/runner.h"
 #include "experiment/scene_assets.h"
+#include "deformable_fixture.h"
 #include "test_support.h"
 
 namespace contactlab {
@@ -54,23 +55,9 @@ std::string CrossedBeams(double gap, const std::string& kind_B, int proxies, dou
 
 Scene Parse(const std::string& text) { return ParseScene(ConfigNode::LoadString(text, "crossed.yaml")); }
 
-AssetOptions Assets(const TempDir& dir) {
-  AssetOptions o;
-  o.cache_dir = dir / "cache";
-  o.verbose = false;
-  return o;
-}
-
-ReducedState RandomState(const ReducedModel& model, double amplitude, std::mt19937* rng) {
-  std::normal_distribution<double> normal;
-  ReducedState s(model.r());
-  for (int j = 0; j < model.r(); ++j) s.q[j] = normal(*rng);
-  const Eigen::VectorXd u = model.basis * Eigen::VectorXd(s.q);
-  double max_u = 0;
-  for (Eigen::Index v = 0; v < u.size(); v += 3) max_u = std::max(max_u, u.segment<3>(v).norm());
-  s.q *= amplitude / max_u;
-  return s;
-}
+using testing::Assets;
+using testing::RandomState;
+using testing::RunAllJobs;
 
 TEST(DeformedFieldContact, TheTreeFindsExactlyTheLinearTraversalsContacts) {
   TempDir dir;
@@ -244,12 +231,7 @@ TEST(DeformedFieldContact, TheRunnerCouplesBothBodiesAndCoherenceMissesNoContact
                                      "trajectory: {type: slide, direction: [0, 0, -1], depth: 0.005, length: 0.0, "
                                      "duration: 0.6}\n"
                                      "sweep: {coherence: [false, true]}\n";
-  const ExperimentConfig config = LoadExperimentConfig(dir / "run.yaml");
-  RunOptions options;
-  options.assets = Assets(dir);
-  options.progress = false;
-  std::vector<JobResult> runs;
-  for (const Job& job : ExpandJobs(config)) runs.push_back(RunJob(config, job, options));
+  const std::vector<JobResult> runs = RunAllJobs(dir);
   ASSERT_EQ(runs.size(), 2u);
   const JobResult& off = runs[0];
   const JobResult& on = runs[1];

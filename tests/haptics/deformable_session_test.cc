@@ -55,6 +55,25 @@ struct PressResult {
   long allocations = 0;
 };
 
+// Runs CYCLES cycles of 1 ms: the largest contact force, the deformation's |q| (A's or H's,
+// whichever deforms) at its peak and at the end, and the allocations made.
+PressResult RunCycles(HapticDevice& device, ContactModel* model, const HapticCycleConfig& config, int cycles) {
+  HapticCycle cycle(device, model, config);
+  cycle.Start(0);
+  PressResult r;
+  const long before = testing::AllocationCount();
+  for (int i = 1; i <= cycles; ++i) {
+    const CycleRecord rec = cycle.Step(i * kMs);
+    r.max_contact_force = std::max(
+        r.max_contact_force, Eigen::Vector3d(rec.contact_force[0], rec.contact_force[1], rec.contact_force[2]).norm());
+    const double q = config.deformation_B != nullptr ? rec.q_norm_B : rec.q_norm;
+    r.max_q = std::max(r.max_q, q);
+    r.final_q = q;
+  }
+  r.allocations = testing::AllocationCount() - before;
+  return r;
+}
+
 PressResult RunPress(bool deformable) {
   testing::TempDir dir;
   const Scene scene = ParseScene(ConfigNode::LoadString(kBeam, "beam.yaml"));
@@ -75,19 +94,7 @@ PressResult RunPress(bool deformable) {
   HapticCycleConfig config;
   config.X_WA = scene.pointshell_body.pose;
   if (deformable) config.deformation_A = &integrator;
-  HapticCycle cycle(device, model.get(), config);
-  cycle.Start(0);
-  PressResult r;
-  const long before = testing::AllocationCount();
-  for (int i = 1; i <= 3000; ++i) {
-    const CycleRecord rec = cycle.Step(i * kMs);
-    r.max_contact_force = std::max(
-        r.max_contact_force, Eigen::Vector3d(rec.contact_force[0], rec.contact_force[1], rec.contact_force[2]).norm());
-    r.max_q = std::max(r.max_q, rec.q_norm);
-    r.final_q = rec.q_norm;
-  }
-  r.allocations = testing::AllocationCount() - before;
-  return r;
+  return RunCycles(device, model.get(), config, 3000);
 }
 
 TEST(DeformableSession, TheBeamYieldsToTheHandAndTheCycleAllocatesNothing) {
@@ -150,19 +157,7 @@ PressResult RunHeldBar(bool deformable) {
   HapticCycleConfig config;
   config.X_WA = scene.pointshell_body.pose;
   config.deformation_B = integrator.get();
-  HapticCycle cycle(device, model.get(), config);
-  cycle.Start(0);
-  PressResult r;
-  const long before = testing::AllocationCount();
-  for (int i = 1; i <= 3000; ++i) {
-    const CycleRecord rec = cycle.Step(i * kMs);
-    r.max_contact_force = std::max(
-        r.max_contact_force, Eigen::Vector3d(rec.contact_force[0], rec.contact_force[1], rec.contact_force[2]).norm());
-    r.max_q = std::max(r.max_q, rec.q_norm_B);
-    r.final_q = rec.q_norm_B;
-  }
-  r.allocations = testing::AllocationCount() - before;
-  return r;
+  return RunCycles(device, model.get(), config, 3000);
 }
 
 TEST(DeformableSession, AHeldDeformableBodyBendsOnContactAndTheCycleAllocatesNothing) {
