@@ -285,7 +285,10 @@ std::string DeformedDistanceField::Describe() const {
 }
 
 DeformedFieldState::DeformedFieldState(const DeformedDistanceField& field)
-    : p_(3 * std::size_t(field.num_slots())), a_(12 * std::size_t(field.num_slots())) {
+    : slots_(std::size_t(field.num_slots())),
+      p_(3 * std::size_t(field.num_slots())),
+      soa_(3 * std::size_t(field.num_slots())),
+      a_(12 * std::size_t(field.num_slots())) {
   Update(field, nullptr);
 }
 
@@ -293,7 +296,7 @@ void DeformedFieldState::Set(const DeformedDistanceField& field, int i, const Ei
                              const Eigen::Matrix3d& F) {
   const Eigen::Matrix3d A = F.inverse();
   const Eigen::Vector3d c = field.proxies().rest_position(i) - A * p;
-  for (int e = 0; e < 3; ++e) p_[3 * std::size_t(i) + e] = float(p[e]);
+  for (int e = 0; e < 3; ++e) p_[3 * std::size_t(i) + e] = soa_[std::size_t(e) * slots_ + i] = float(p[e]);
   float* a = &a_[12 * std::size_t(i)];
   for (int e = 0; e < 9; ++e) a[e] = float(A(e / 3, e % 3));
   for (int e = 0; e < 3; ++e) a[9 + e] = float(c[e]);
