@@ -139,6 +139,27 @@ TEST(DeformedFieldStudy, SmallSweepWritesSaneErrorAndSliceTables) {
   EXPECT_LT(inside, int(slice.size()) - 10);
 }
 
+TEST(DeformedFieldStudy, SingleJobRunsMergeIntoTheWholeSweep) {
+  TempDir dir;
+  const ExperimentConfig config = Load(dir, Config());
+  RunOptions o;
+  o.assets.cache_dir = dir / "cache";
+  o.assets.verbose = false;
+  o.progress = false;
+  for (int j : {0, 1}) {
+    o.out_dir = dir / ("job-" + std::to_string(j));
+    (void)RunDeformedFieldStudy(config, o, {j});
+  }
+  MergeResults({dir / "job-0", dir / "job-1"}, dir / "merged");
+  const auto error = ReadCsv(dir / "merged" / "field_error.csv");
+  ASSERT_EQ(error.size(), 2u);
+  EXPECT_EQ(error[0].at("job"), "0");
+  EXPECT_EQ(error[1].at("job"), "1");
+  EXPECT_EQ(ReadCsv(dir / "merged" / "field_slice.csv").size(), ReadCsv(dir / "job-1" / "field_slice.csv").size());
+  EXPECT_TRUE(ReadCsv(dir / "job-0" / "field_slice.csv").empty());  // the slice is job 1's only
+  EXPECT_FALSE(std::filesystem::exists(dir / "merged" / "cycles.csv"));
+}
+
 TEST(DeformedFieldStudy, BadConfigsNameTheFileAndTheKey) {
   TempDir dir;
   auto expect_error = [&](const std::string& text, const std::string& key) {
