@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cli/command_registry.h"
+#include "experiment/deformed_field_study.h"
 #include "experiment/experiment_config.h"
 #include "experiment/runner.h"
 #include "experiment/slurm_script.h"
@@ -89,6 +90,25 @@ auto RunRemovingNewEmptyFolders(const std::filesystem::path& out_dir, Work&& wor
   }
 }
 
+// study: deformed-field: runs the jobs and prints the error table.
+void RunFieldStudy(const ExperimentConfig& config, const RunOptions& options, const std::vector<int>& only,
+                   std::size_t total) {
+  std::fprintf(stderr, "experiment %s (deformed-field study): %zu of %zu jobs\n", config.name.c_str(),
+               only.empty() ? total : only.size(), total);
+  const std::vector<FieldErrorRow> rows = RunRemovingNewEmptyFolders(options.out_dir, [&] {
+    return RunDeformedFieldStudy(config, options, only);
+  });
+  std::printf("%-8s %-10s %-8s %10s %10s %11s %10s\n", "proxies", "neighbours", "domains", "rms cells", "max cells",
+              "false cm^3", "query ns");
+  for (const FieldErrorRow& r : rows) {
+    std::printf("%-8d %-10d %-8d %10.3f %10.3f %11.4g %10.1f\n", r.proxies, r.neighbours, r.domains, r.rms / r.cell,
+                r.max / r.cell, r.false_inside_volume * 1e6, r.query_ns);
+  }
+  std::string list;
+  for (const std::string& f : FieldStudyFiles()) list += (list.empty() ? "" : ", ") + f;
+  std::printf("results: %s (%s)\n", options.out_dir.string().c_str(), list.c_str());
+}
+
 void RunRun(const RunArgs& args) {
   const ExperimentConfig config = LoadExperimentConfig(RequireDataFile(args.config), args.overrides, args.profile);
   const std::vector<Job> jobs = ExpandJobs(config);
@@ -105,13 +125,20 @@ void RunRun(const RunArgs& args) {
   options.out_dir = args.out.empty() ? std::filesystem::path("results") / config.name : std::filesystem::path(args.out);
   if (args.jobs.size() == 1 && args.out.empty()) options.out_dir /= "job-" + std::to_string(args.jobs.front());
   // The results folder and its files are checked before any job runs.
+  const bool field_study = config.study == "deformed-field";
   CheckOutputFolder(options.out_dir, "--out");
-  for (const char* file : {"cycles.csv", "summary.csv", "convergence.csv", "meta.json"})
-    CheckOutputTarget(options.out_dir / file, "--out");
+  const std::vector<std::string> files = field_study ? FieldStudyFiles()
+                                                     : std::vector<std::string>{"cycles.csv", "summary.csv",
+                                                                                "convergence.csv", "meta.json"};
+  for (const std::string& file : files) CheckOutputTarget(options.out_dir / file, "--out");
   options.assets.cache_dir = args.cache;
   options.assets.use_cache = !args.no_cache;
   options.assets.verbose = false;
   options.parallel_jobs = args.parallel;
+  if (field_study) {
+    RunFieldStudy(config, options, args.jobs, jobs.size());
+    return;
+  }
   std::fprintf(stderr, "experiment %s: %zu of %zu jobs, models:", config.name.c_str(),
                args.jobs.empty() ? jobs.size() : args.jobs.size(), jobs.size());
   for (const auto& m : config.models) std::fprintf(stderr, " %s", m.c_str());

@@ -4,6 +4,7 @@
 #include <map>
 #include <sstream>
 
+#include "experiment/deformed_field_study.h"
 #include "util/atomic_file.h"
 #include "util/data_path.h"
 #include "util/error.h"
@@ -21,6 +22,10 @@ const std::map<std::string, std::string>& AxisAliases() {
     a["resolution"] = "scene.bodies[role=field].field.resolution";
     a["pointshell_resolution"] = "scene.bodies[role=pointshell].field.resolution";
     for (const char* k : {"modes", "cells"}) a[k] = std::string("scene.bodies[role=pointshell].deformable.") + k;
+    for (const char* k : {"proxies", "neighbours", "domains"}) {
+      a[k] = std::string("scene.bodies[role=field].deformable.field.") + k;
+    }
+    a["max_displacement"] = "deformation.max_displacement";
     for (const char* k : {"k_C", "L", "node_budget", "coherence", "max_point_speed", "level", "gradient",
                           "cold_fraction", "lipschitz", "cycle_seconds"}) {
       a[k] = std::string("scene.model.") + k;
@@ -101,7 +106,7 @@ void ApplyOverride(YAML::Node root, const std::string& assignment, const std::st
 }
 
 std::string ScalarText(const ConfigNode& n) {
-  if (!n.IsScalar()) n.Fail("a sweep value must be a single value");
+  if (!n.IsScalar()) n.Fail("a sweep value must be a single value (or {label: NAME, value: ...})");
   return n.AsString();
 }
 
@@ -134,9 +139,14 @@ void SwapRoles(JobDocuments* docs, const std::string& where) {
   docs->roles_swapped = !docs->roles_swapped;
 }
 
-// Writes one sweep value of AXIS into DOCS.
-void ApplyAxis(const SweepAxis& axis, const std::string& value, const std::string& config_file, JobDocuments* docs,
+// Writes value V of AXIS into DOCS.
+void ApplyAxis(const SweepAxis& axis, std::size_t v, const std::string& config_file, JobDocuments* docs,
                const std::string& where) {
+  const std::string& value = axis.values[v];
+  const bool labelled = v < axis.labelled_yaml.size() && !axis.labelled_yaml[v].empty();
+  if (labelled && (axis.name == "roles" || axis.path == "scene" || axis.path == "models")) {
+    Fail(where, "takes a plain value, not {label, value}");
+  }
   if (axis.name == "roles") {
     if (value == "swapped") {
       SwapRoles(docs, where);
@@ -151,11 +161,28 @@ void ApplyAxis(const SweepAxis& axis, const std::string& value, const std::strin
     return;
   }
   std::optional<YAML::Node> node;
-  if (value != "default") node = YAML::Node(value);
+  if (labelled) {
+    node = YAML::Load(axis.labelled_yaml[v]);
+  } else if (value != "default") {
+    node = YAML::Node(value);
+  }
   if (axis.path == "models" && node) {
     YAML::Node list(YAML::NodeType::Sequence);
     list.push_back(value);
     node = list;
+  }
+  // The deformed-field aliases write into the field body's deformable block; they must not
+  // create one (that would make a rigid body deformable with every default).
+  if (axis.path.rfind("scene.bodies[role=field].deformable.", 0) == 0 && axis.name.find('.') == std::string::npos) {
+    bool deformable = false;
+    const YAML::Node bodies = docs->scene["bodies"];
+    for (std::size_t i = 0; bodies && bodies.IsSequence() && i < bodies.size(); ++i) {
+      const YAML::Node b = bodies[i];
+      if (b["role"] && b["role"].IsScalar() && b["role"].Scalar() == "field") {
+        deformable = b["deformable"] && b["deformable"].IsMap();
+      }
+    }
+    if (!deformable) Fail(where, "the scene's field body has no deformable block (" + axis.name + " sets its deformed field)");
   }
   if (axis.path.rfind("scene.", 0) == 0) {
     SetAtPath(docs->scene, axis.path.substr(6), node, where);
@@ -191,7 +218,7 @@ Job BuildJob(const ExperimentConfig& config, int index, const std::vector<std::s
       const std::string& name = config.sweep[a].name;
       const bool early = name == "scene" || name == "roles";
       if (*first ? name != first : early) continue;
-      ApplyAxis(config.sweep[a], config.sweep[a].values[pick[a]], config.file, &docs, at(a));
+      ApplyAxis(config.sweep[a], pick[a], config.file, &docs, at(a));
     }
     // Unless the config names it, the moving body is the field body of the job's scene
     // (before a role swap, so the same physical body moves in both role orders).
@@ -219,7 +246,8 @@ Job BuildJob(const ExperimentConfig& config, int index, const std::vector<std::s
     Fail(config.file, "moving_body '" + job.moving_body + "' is not a body of the scene of job " +
                           std::to_string(index));
   }
-  job.trajectory_node = root.Get("trajectory");
+  if (auto t = root.Find("trajectory")) job.trajectory_node = *t;
+  job.config = root;
   return job;
 }
 
@@ -320,10 +348,20 @@ ExperimentConfig LoadExperimentConfig(const std::filesystem::path& config_file, 
 }
 
 ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resolved_yaml) {
-  root.ExpectKeys({"name", "description", "scene", "models", "moving_body", "trajectory", "reference",
-                   "reference_every", "metrics", "sweep", "profiles"});
+  root.ExpectKeys({"name", "description", "study", "scene", "models", "moving_body", "trajectory", "reference",
+                   "reference_every", "metrics", "sweep", "profiles", "deformation", "measure"});
   ExperimentConfig c;
-  c.trajectory_node = root.Get("trajectory");
+  c.study = root.OneOf("study", c.study, {"contact", "deformed-field"});
+  const bool field_study = c.study == "deformed-field";
+  // Each study reads its own sections; a section of the other kind is a mistake, not ignored.
+  for (const char* key : {"models", "moving_body", "trajectory", "reference", "reference_every"}) {
+    if (field_study && root.Has(key)) root.Get(key).Fail("is not used by study: deformed-field (remove it)");
+  }
+  for (const char* key : {"deformation", "measure"}) {
+    if (!field_study && root.Has(key)) root.Get(key).Fail("belongs to study: deformed-field (this config is a contact study)");
+  }
+  if (!field_study) c.trajectory_node = root.Get("trajectory");
+  c.timing = field_study;  // a field study measures query times: one job at a time
   c.file = root.file();
   c.resolved_yaml = std::move(resolved_yaml);
   c.document = YAML::Clone(root.yaml());
@@ -358,8 +396,10 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
   if (c.moving_body != c.scene.field_body.name && c.moving_body != c.scene.pointshell_body.name) {
     root.Get("moving_body").Fail("'" + c.moving_body + "' is not a body of the scene");
   }
-  c.trajectory_node.ExpectMap();
-  if (!c.trajectory_node.Has("type")) c.trajectory_node.Fail("missing required key 'type'");
+  if (!field_study) {
+    c.trajectory_node.ExpectMap();
+    if (!c.trajectory_node.Has("type")) c.trajectory_node.Fail("missing required key 'type'");
+  }
   if (auto r = root.Find("reference"); r && r->IsMap()) {
     r->ExpectKeys({"model", "points", "levels", "resolution"});
     c.reference_model = r->Get("model").AsString();
@@ -378,17 +418,34 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
   if (auto s = root.Find("sweep")) {
     for (const std::string& key : s->Keys()) {
       const ConfigNode axis = s->Get(key);
-      SweepAxis a{key, key, {}};
+      SweepAxis a{key, key, {}, {}};
       if (auto alias = AxisAliases().find(key); alias != AxisAliases().end()) {
         a.path = alias->second;
       } else if (key.find_first_of(".[") == std::string::npos) {
         axis.Fail("unknown sweep axis: give a key path (e.g. scene.model.k_C, trajectory.depth) or one of " +
                   AliasList());
       }
+      // A value: a scalar, or {label: NAME, value: ANY}.
+      auto add = [&](const ConfigNode& v) {
+        if (v.IsMap()) {
+          v.ExpectKeys({"label", "value"});
+          const std::string label = ScalarText(v.Get("label"));
+          if (label.empty() || label.find_first_of(",\n\r\"") != std::string::npos) {
+            v.Get("label").Fail("a label must be a non-empty name without commas, quotes or line breaks");
+          }
+          YAML::Emitter e;
+          e << YAML::Flow << v.Get("value").yaml();
+          a.values.push_back(label);
+          a.labelled_yaml.push_back(e.c_str());
+        } else {
+          a.values.push_back(ScalarText(v));
+          a.labelled_yaml.emplace_back();
+        }
+      };
       if (axis.IsSequence()) {
-        for (const ConfigNode& v : axis.Elements()) a.values.push_back(ScalarText(v));
+        for (const ConfigNode& v : axis.Elements()) add(v);
       } else {
-        a.values.push_back(ScalarText(axis));
+        add(axis);
       }
       if (a.values.empty()) axis.Fail("a sweep axis needs at least one value");
       c.sweep.push_back(a);
@@ -401,6 +458,7 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
       ExperimentConfig one = c;
       one.sweep = {c.sweep[a]};
       one.sweep[0].values = {c.sweep[a].values[v]};
+      one.sweep[0].labelled_yaml = {c.sweep[a].labelled_yaml[v]};
       try {
         (void)BuildJob(one, 0, {0});
       } catch (const Error& e) {
@@ -411,7 +469,30 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
       }
     }
   }
-  for (Job& job : ExpandJobs(c)) (void)ParseTrajectory(job.trajectory_node);
+  if (!field_study) {
+    for (Job& job : ExpandJobs(c)) (void)ParseTrajectory(job.trajectory_node);
+    return c;
+  }
+  // A deformed-field study: every job's sections parse, its field body is deformable, and the
+  // slice's job filter names sweep axes.
+  for (Job& job : ExpandJobs(c)) {
+    const FieldStudySpec spec = ParseFieldStudySpec(job.config);
+    if (!job.scene.field_body.deformable) {
+      Fail(c.file, "study: deformed-field needs a deformable field body, but body '" + job.scene.field_body.name +
+                       "' of " + job.scene.file + (c.sweep.empty() ? "" : " (job " + job.Label() + ")") +
+                       " has no deformable block");
+    }
+    for (const auto& [axis, values] : spec.slice_jobs) {
+      const ConfigNode where = root.Get("measure").Get("slice").Get("jobs").Get(axis);
+      const auto a = std::find_if(c.sweep.begin(), c.sweep.end(), [&](const SweepAxis& s) { return s.name == axis; });
+      if (a == c.sweep.end()) where.Fail("is not a sweep axis of this config");
+      for (const std::string& v : values) {
+        if (std::find(a->values.begin(), a->values.end(), v) == a->values.end()) {
+          where.Fail("'" + v + "' is not a value (or label) of sweep." + axis);
+        }
+      }
+    }
+  }
   return c;
 }
 

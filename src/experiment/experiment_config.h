@@ -14,17 +14,26 @@
 //   metrics: {cutoff_hz: 100, timing: false}
 //   sweep: {points: [1024, 4096, 16384]}   # an axis is a key path or a short alias (below)
 //   profiles: {paper: {sweep.points: [...]}} # named sets of overrides: --profile paper
+//   study: contact                         # contact (default): models along a trajectory;
+//                                          # deformed-field: the field body's deformed distance
+//                                          # field against the exact one (deformed_field_study.h),
+//                                          # with 'deformation' and 'measure' sections instead of
+//                                          # models, trajectory and reference
 //
 // Sweeps are overrides: each job's value is written at the axis's key path into the config
 // document (paths under "scene." into the scene's document, also when the scene is a file),
 // then the scene is parsed again, so every check lives in the scene parser and any key is
 // sweepable. A path is dot-separated keys; a list element is picked by index or by a field,
 // e.g. scene.bodies[role=field].field.resolution, scene.bodies[name=dragon].scale,
-// trajectory.depth. The value `default` removes the key (its default applies). Aliases:
+// trajectory.depth. The value `default` removes the key (its default applies). A value that is
+// not a scalar is written {label: NAME, value: ...}: NAME labels the job (lists, result
+// columns), the value (any YAML) is written. Aliases:
 //   points levels method offset  -> scene.bodies[role=pointshell].pointshell.<same>
 //   resolution                   -> scene.bodies[role=field].field.resolution
 //   pointshell_resolution        -> scene.bodies[role=pointshell].field.resolution
 //   modes cells                  -> scene.bodies[role=pointshell].deformable.<same>
+//   proxies neighbours domains   -> scene.bodies[role=field].deformable.field.<same>
+//   max_displacement             -> deformation.max_displacement (deformed-field studies)
 //   k_C L node_budget coherence max_point_speed level gradient cold_fraction lipschitz
 //                                -> scene.model.<same>
 //   model                        -> models (a one-model list)
@@ -48,13 +57,18 @@ namespace contactlab {
 struct SweepAxis {
   std::string name;                 // as written in the config: an alias or a key path
   std::string path;                 // the key path it writes ("" for roles)
-  std::vector<std::string> values;  // scalar texts
+  std::vector<std::string> values;  // scalar texts, or the labels of labelled values
+  // Per value: what a labelled value {label: NAME, value: ANY} writes (a list or mapping, e.g.
+  // explicit domains), as YAML text; empty for a scalar value, which writes its text. (Text, not
+  // YAML::Node: assigning a yaml-cpp node writes through to every copy of it.)
+  std::vector<std::string> labelled_yaml;
 };
 
 struct ExperimentConfig {
   std::string name;
   std::string description;
   std::string file;
+  std::string study = "contact";  // contact | deformed-field
   std::string resolved_yaml;   // the config after --set overrides, as YAML text
   YAML::Node document;         // the config after --set overrides
   YAML::Node scene_document;   // the scene's document (the file's, or the inline mapping)
@@ -80,7 +94,8 @@ struct Job {
   Scene scene;
   std::vector<std::string> models;
   std::string moving_body;
-  ConfigNode trajectory_node;  // the job's trajectory section
+  ConfigNode trajectory_node;  // the job's trajectory section (contact studies)
+  ConfigNode config;           // the job's whole config document, sweep values applied
   std::string Label() const;  // "points=1024 model=vps"
 };
 

@@ -6,31 +6,6 @@
 namespace contactlab {
 namespace {
 
-// One line of a table being written.
-class CsvLine {
- public:
-  explicit CsvLine(std::string* out) : out_(out) {}
-  void Text(const std::string& s) { Cell(s.data(), s.size()); }
-  void Num(const char* format, double v) { Format(format, v); }
-  void Int(long long v) { Format("%lld", v); }
-  void Empty() { Cell("", 0); }
-
- private:
-  template <class T>
-  void Format(const char* format, T v) {
-    char buf[64];
-    const int n = std::snprintf(buf, sizeof buf, format, v);
-    Cell(buf, std::size_t(n));
-  }
-  void Cell(const char* s, std::size_t n) {
-    if (!first_) *out_ += ',';
-    out_->append(s, n);
-    first_ = false;
-  }
-  std::string* out_;
-  bool first_ = true;
-};
-
 template <class Row>
 struct Column {
   const char* name;

@@ -5,6 +5,7 @@
 // columns by name.
 #pragma once
 
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,31 @@ std::string SummaryCsvHeader(const ExperimentConfig& config);
 // Appends the rows of job result R to OUT.
 void AppendCyclesCsv(const ExperimentConfig& config, const JobResult& r, std::string* out);
 void AppendSummaryCsv(const ExperimentConfig& config, const JobResult& r, std::string* out);
+
+// One line of a table being written: cells appended to OUT, separated by commas.
+class CsvLine {
+ public:
+  explicit CsvLine(std::string* out) : out_(out) {}
+  void Text(const std::string& s) { Cell(s.data(), s.size()); }
+  void Num(const char* format, double v) { Format(format, v); }
+  void Int(long long v) { Format("%lld", v); }
+  void Empty() { Cell("", 0); }
+
+ private:
+  template <class T>
+  void Format(const char* format, T v) {
+    char buf[64];
+    const int n = std::snprintf(buf, sizeof buf, format, v);
+    Cell(buf, std::size_t(n));
+  }
+  void Cell(const char* s, std::size_t n) {
+    if (!first_) *out_ += ',';
+    out_->append(s, n);
+    first_ = false;
+  }
+  std::string* out_;
+  bool first_ = true;
+};
 
 // Cells of one CSV line (a trailing comma kept: "a,b," splits into "a", "b", "").
 std::vector<std::string> SplitCsvLine(const std::string& line);

@@ -25,6 +25,9 @@ namespace fs = std::filesystem;
 
 std::vector<SummaryRow> RunExperiment(const ExperimentConfig& config, const RunOptions& options,
                                       const std::vector<int>& job_indices) {
+  if (config.study != "contact") {
+    Fail(config.file, "is a " + config.study + " study, not a contact study (experiment/deformed_field_study.h runs it)");
+  }
   const std::vector<Job> all = ExpandJobs(config);
   std::vector<int> indices = job_indices;
   if (indices.empty()) {

@@ -186,8 +186,13 @@ std::vector<fs::path> SweepTaskFolders(const fs::path& out_dir, int jobs) {
     dirs.push_back(dir);
     std::string why;
     std::error_code ec;
-    for (const char* name : {"cycles.csv", "summary.csv", "meta.json"}) {
-      if (why.empty() && !fs::is_regular_file(dir / name, ec)) why = std::string("no ") + name;
+    // A contact study's tables, or a deformed-field study's.
+    const bool field_study = fs::is_regular_file(dir / "field_error.csv", ec);
+    const std::vector<std::string> names = field_study
+                                               ? std::vector<std::string>{"field_error.csv", "field_slice.csv", "meta.json"}
+                                               : std::vector<std::string>{"cycles.csv", "summary.csv", "meta.json"};
+    for (const std::string& name : names) {
+      if (why.empty() && !fs::is_regular_file(dir / name, ec)) why = "no " + name;
     }
     if (why.empty()) {
       try {

@@ -166,5 +166,26 @@ TEST(SetAtPath, CreatesMappingsPicksElementsAndRemovesKeys) {
   EXPECT_THROW(SetAtPath(doc, "list[name=y.v", YAML::Node(1), "t"), Error);
 }
 
+TEST(Sweep, LabelledValuesWriteTheirValueAndNameTheJobByLabel) {
+  TempDir dir;
+  // A list-valued parameter (the plate's pose) swept under labels.
+  const std::vector<Job> jobs = ExpandJobs(Load(dir,
+      "  scene.bodies[name=plate].pose: [{label: low, value: [0, 0, -0.02, 1, 0, 0, 0]},\n"
+      "                                  {label: high, value: {position: [0, 0, 0.01]}}]\n"));
+  ASSERT_EQ(jobs.size(), 2u);
+  EXPECT_EQ(jobs[0].Label(), "scene.bodies[name=plate].pose=low");
+  EXPECT_EQ(jobs[1].axis_values[0].second, "high");
+  EXPECT_DOUBLE_EQ(jobs[0].scene.field_body.pose.translation.z(), -0.02);
+  EXPECT_DOUBLE_EQ(jobs[1].scene.field_body.pose.translation.z(), 0.01);
+  // A label must be a plain name, and a labelled value needs both keys.
+  EXPECT_NE(ErrorOf(dir, "  scene.bodies[name=plate].pose: [{label: 'a,b', value: [0, 0, 0, 1, 0, 0, 0]}]\n")
+                .find("label"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf(dir, "  scene.bodies[name=plate].pose: [{label: a, valu: 1}]\n").find("valu"), std::string::npos);
+  // Its value gets the scene parser's checks, named by the axis and label.
+  const std::string bad = ErrorOf(dir, "  scene.bodies[name=plate].pose: [{label: short, value: [1, 2]}]\n");
+  EXPECT_NE(bad.find("config.yaml: sweep.scene.bodies[name=plate].pose value 'short'"), std::string::npos) << bad;
+}
+
 }  // namespace
 }  // namespace contactlab

@@ -1,0 +1,394 @@
+// The deformed-field study (experiment/deformed_field_study.h): one job poses the field body,
+// builds the exact reference for that pose and measures the proxy field against it; the study
+// runs the jobs and writes field_error.csv, field_slice.csv and meta.json.
+#include "experiment/deformed_field_study.h"
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <thread>
+
+#include "experiment/result_csv.h"
+#include "experiment/run_metadata.h"
+#include "experiment/scene_assets.h"
+#include "util/atomic_file.h"
+#include "util/error.h"
+#include "util/progress.h"
+
+namespace contactlab {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double Median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+Eigen::Vector3d Vector3(const ConfigNode& n) {
+  const std::vector<double> v = n.AsDoubles();
+  if (v.size() != 3) n.Fail("needs 3 numbers x, y, z");
+  for (double x : v) {
+    if (!std::isfinite(x)) n.Fail("must be finite");
+  }
+  return {v[0], v[1], v[2]};
+}
+
+// Mean nanoseconds of one Distance over the band points POINTS (3 floats each, random order),
+// the median over REPEATS passes of about 2e5 queries.
+double TimeQueries(const DeformedDistanceField& field, const DeformedFieldState& state, const std::vector<float>& points,
+                   int repeats) {
+  const std::size_t n = points.size() / 3;
+  const int rounds = int(std::max<std::size_t>(1, 200000 / n));
+  std::vector<double> ns;
+  volatile float sink = 0;
+  for (int pass = 0; pass < repeats; ++pass) {
+    float sum = 0;
+    const auto t0 = Clock::now();
+    for (int r = 0; r < rounds; ++r) {
+      for (std::size_t i = 0; i < n; ++i) sum += field.Distance(state, &points[3 * i], nullptr);
+    }
+    const auto t1 = Clock::now();
+    sink = sink + sum;
+    ns.push_back(std::chrono::duration<double, std::nano>(t1 - t0).count() / (double(rounds) * double(n)));
+  }
+  return Median(ns);
+}
+
+// Mean nanoseconds of one DeformedFieldState::Update at Q, the median over REPEATS passes.
+double TimeUpdate(const DeformedDistanceField& field, DeformedFieldState* state, const Eigen::VectorXd& q,
+                  int repeats) {
+  constexpr int kRounds = 2000;
+  std::vector<double> ns;
+  for (int pass = 0; pass < repeats; ++pass) {
+    const auto t0 = Clock::now();
+    for (int r = 0; r < kRounds; ++r) state->Update(field, q.data());
+    ns.push_back(std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / kRounds);
+  }
+  state->Update(field, q.data());
+  return Median(ns);
+}
+
+bool SliceWanted(const FieldStudySpec& spec, const Job& job) {
+  if (!spec.slice) return false;
+  for (const auto& [axis, values] : spec.slice_jobs) {
+    bool match = false;
+    for (const auto& [a, v] : job.axis_values) {
+      match = match || (a == axis && std::find(values.begin(), values.end(), v) != values.end());
+    }
+    if (!match) return false;
+  }
+  return true;
+}
+
+// Exact and approximate distance on the slice plane, over the rest field's box and the deformed
+// surface's bounds (grown by the band), RESOLUTION points along the longer side.
+std::vector<FieldSliceRow> Slice(const FieldStudySpec& spec, const DeformedDistanceField& field,
+                                 const DeformedFieldState& state, const MeshSignedDistance& exact, double band) {
+  Aabb box = field.rest_field().box();
+  const Aabb deformed = exact.mesh().Bounds();
+  box.min = box.min.cwiseMin(deformed.min - Eigen::Vector3d::Constant(band));
+  box.max = box.max.cwiseMax(deformed.max + Eigen::Vector3d::Constant(band));
+  const int a = spec.slice_axis, b = a == 0 ? 1 : 0, c = 3 - a - b;  // the plane's axes b < c
+  if (spec.slice_window) {
+    box.min[b] = spec.window[0], box.min[c] = spec.window[1];
+    box.max[b] = spec.window[2], box.max[c] = spec.window[3];
+  }
+  const double eb = box.max[b] - box.min[b], ec = box.max[c] - box.min[c];
+  const double step = std::max(eb, ec) / (spec.slice_resolution - 1);
+  const int nb = int(std::round(eb / step)) + 1, nc = int(std::round(ec / step)) + 1;
+  std::vector<FieldSliceRow> rows(std::size_t(nb) * nc);
+  tbb::parallel_for(0, nc, [&](int j) {
+    for (int i = 0; i < nb; ++i) {
+      FieldSliceRow& r = rows[std::size_t(j) * nb + i];
+      r.i = i;
+      r.j = j;
+      r.x[a] = spec.slice_at;
+      r.x[b] = box.min[b] + i * step;
+      r.x[c] = box.min[c] + j * step;
+      r.exact = exact.Distance(r.x);
+      r.approx = field.Distance(state, r.x);
+    }
+  });
+  return rows;
+}
+
+// field_error.csv's declared columns (after experiment, job and the sweep axes not named here).
+struct ErrorColumn {
+  const char* name;
+  void (*write)(const FieldErrorRow&, CsvLine&);
+};
+const ErrorColumn kErrorColumns[] = {
+    {"proxies", [](const FieldErrorRow& r, CsvLine& l) { l.Int(r.proxies); }},
+    {"neighbours", [](const FieldErrorRow& r, CsvLine& l) { l.Int(r.neighbours); }},
+    {"domains", [](const FieldErrorRow& r, CsvLine& l) { l.Int(r.domains); }},
+    {"domain_kind", [](const FieldErrorRow& r, CsvLine& l) { l.Text(r.explicit_domains ? "regions" : "auto"); }},
+    {"slots", [](const FieldErrorRow& r, CsvLine& l) { l.Int(r.slots); }},
+    {"r", [](const FieldErrorRow& r, CsvLine& l) { l.Int(r.r); }},
+    {"cell_m", [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.6g", r.cell); }},
+    {"body_size_m", [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.6g", r.body_size); }},
+    {"max_displacement_m", [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.6g", r.max_displacement); }},
+    {"points", [](const FieldErrorRow& r, CsvLine& l) { l.Int(r.points); }},
+    {"rms_cells", [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.5g", r.rms / r.cell); }},
+    {"max_cells", [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.5g", r.max / r.cell); }},
+    {"mean_cells", [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.5g", r.mean / r.cell); }},
+    {"rms_m", [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.6g", r.rms); }},
+    {"max_m", [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.6g", r.max); }},
+    {"false_inside_m3", [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.6g", r.false_inside_volume); }},
+    {"query_ns", [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.2f", r.query_ns); }},
+    {"update_ns", [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.1f", r.update_ns); }},
+    {"exact_ns", [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.1f", r.exact_ns); }},
+};
+
+bool IsErrorColumn(const std::string& name) {
+  for (const ErrorColumn& c : kErrorColumns) {
+    if (name == c.name) return true;
+  }
+  return false;
+}
+
+void Prefix(const ExperimentConfig& config, const Job& job, bool skip_declared, CsvLine* line) {
+  line->Text(config.name);
+  line->Int(job.index);
+  for (const auto& [axis, value] : job.axis_values) {
+    if (!(skip_declared && IsErrorColumn(axis))) line->Text(value);
+  }
+}
+
+std::string ErrorCsv(const ExperimentConfig& config, const std::vector<FieldJobResult>& results) {
+  std::string out;
+  {
+    CsvLine h(&out);
+    h.Text("experiment");
+    h.Text("job");
+    for (const SweepAxis& a : config.sweep) {
+      if (!IsErrorColumn(a.name)) h.Text(a.name);
+    }
+    for (const ErrorColumn& c : kErrorColumns) h.Text(c.name);
+  }
+  out += '\n';
+  for (const FieldJobResult& r : results) {
+    CsvLine line(&out);
+    Prefix(config, r.job, true, &line);
+    for (const ErrorColumn& c : kErrorColumns) c.write(r.error, line);
+    out += '\n';
+  }
+  return out;
+}
+
+std::string SliceCsv(const ExperimentConfig& config, const std::vector<FieldJobResult>& results) {
+  std::string out;
+  {
+    CsvLine h(&out);
+    h.Text("experiment");
+    h.Text("job");
+    for (const SweepAxis& a : config.sweep) h.Text(a.name);
+    for (const char* c : {"i", "j", "x", "y", "z", "exact_m", "approx_m"}) h.Text(c);
+  }
+  out += '\n';
+  for (const FieldJobResult& r : results) {
+    for (const FieldSliceRow& s : r.slice) {
+      CsvLine line(&out);
+      Prefix(config, r.job, false, &line);
+      line.Int(s.i);
+      line.Int(s.j);
+      for (int c = 0; c < 3; ++c) line.Num("%.7g", s.x[c]);
+      line.Num("%.7g", s.exact);
+      line.Num("%.7g", s.approx);
+      out += '\n';
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+FieldStudySpec ParseFieldStudySpec(const ConfigNode& root) {
+  FieldStudySpec s;
+  if (!root.Has("deformation")) root.Fail("a deformed-field study needs a 'deformation' section (loads, max_displacement)");
+  const ConfigNode d = root.Get("deformation");
+  d.ExpectKeys({"loads", "max_displacement"});
+  const ConfigNode loads = d.Get("loads");
+  for (const ConfigNode& l : loads.Elements()) {
+    l.ExpectKeys({"at", "force"});
+    PointLoad load;
+    load.at = Vector3(l.Get("at"));
+    load.force = Vector3(l.Get("force"));
+    if (!(load.force.norm() > 0)) l.Get("force").Fail("must not be zero");
+    s.loads.push_back(load);
+    s.load_where.push_back(l.Get("at").Location());
+  }
+  if (s.loads.empty()) loads.Fail("needs at least one load {at: [x, y, z], force: [fx, fy, fz]}");
+  s.max_displacement = d.Positive("max_displacement", s.max_displacement);
+  if (s.max_displacement > 1) d.Get("max_displacement").Fail("is a fraction of the body's size: at most 1");
+  if (auto m = root.Find("measure")) {
+    m->ExpectKeys({"band_cells", "points", "seed", "timing_repeats", "slice"});
+    s.band_cells = m->Positive("band_cells", s.band_cells);
+    s.points = int(m->IntInRange("points", s.points, 10, 10000000));
+    s.seed = std::uint64_t(m->IntInRange("seed", 1, 0, std::numeric_limits<std::int32_t>::max()));
+    s.timing_repeats = int(m->IntInRange("timing_repeats", s.timing_repeats, 1, 1000));
+    if (auto sl = m->Find("slice")) {
+      sl->ExpectKeys({"axis", "at", "resolution", "window", "jobs"});
+      s.slice = true;
+      const std::string axis = sl->OneOf("axis", "z", {"x", "y", "z"});
+      s.slice_axis = axis == "x" ? 0 : axis == "y" ? 1 : 2;
+      s.slice_at = sl->Double("at", 0);
+      if (!std::isfinite(s.slice_at)) sl->Get("at").Fail("must be finite");
+      s.slice_resolution = int(sl->IntInRange("resolution", s.slice_resolution, 8, 4000));
+      if (auto w = sl->Find("window")) {
+        const std::vector<double> v = w->AsDoubles();
+        if (v.size() != 4) w->Fail("needs 4 numbers: the low and high corners on the plane's two axes, metres");
+        if (!(v[0] < v[2] && v[1] < v[3])) w->Fail("the low corner must be below the high corner on both axes");
+        for (double x : v) {
+          if (!std::isfinite(x)) w->Fail("must be finite");
+        }
+        s.slice_window = true;
+        s.window = Eigen::Vector4d(v[0], v[1], v[2], v[3]);
+      }
+      if (auto j = sl->Find("jobs")) {
+        j->ExpectMap();
+        for (const std::string& key : j->Keys()) {
+          const ConfigNode v = j->Get(key);
+          std::vector<std::string> values;
+          for (const ConfigNode& e : v.IsSequence() ? v.Elements() : std::vector<ConfigNode>{v}) {
+            if (!e.IsScalar()) e.Fail("must be a sweep value (or label) or a list of them");
+            values.push_back(e.AsString());
+          }
+          if (values.empty()) v.Fail("lists no value");
+          s.slice_jobs.emplace_back(key, values);
+        }
+      }
+    }
+  }
+  return s;
+}
+
+FieldJobResult RunDeformedFieldJob(const ExperimentConfig& config, const Job& job, const RunOptions& options) {
+  const FieldStudySpec spec = ParseFieldStudySpec(job.config);
+  const std::string where = config.file + ": job " + std::to_string(job.index) + " (" + job.Label() + ")";
+  const BodySpec& body = job.scene.field_body;
+  if (!body.deformable) {
+    Fail(where, "the scene's field body '" + body.name + "' is rigid; a deformed-field study needs a deformable block");
+  }
+  SceneAssets assets(job.scene, options.assets);
+  BodyAssets& B = assets.B;
+  const auto mesh = B.mesh();
+  const auto rest = B.field();
+  const auto model = B.reduced_model();
+  const auto field = B.deformed_field();
+  const double h = rest->spacing();
+  const double size = mesh->Bounds().size().maxCoeff();
+
+  // The pose: the loads act at material points of the body, scaled to the target displacement.
+  for (std::size_t i = 0; i < spec.loads.size(); ++i) {
+    const double d = rest->Distance(spec.loads[i].at);
+    if (d > 2 * h) {
+      Fail(spec.load_where[i], "the point lies " + std::to_string(d) + " m outside body '" + body.name +
+                                   "' (loads act at material points of the body, body frame, metres)");
+    }
+  }
+  const EmbeddedSurface surface(*mesh, model->mesh, model->basis);
+  const Eigen::VectorXd q = SolveScaledPointLoadPose(model->forces, model->mesh, model->basis, spec.loads, surface,
+                                                     spec.max_displacement * size, where);
+  const MeshSignedDistance exact(surface.Deformed(q), where + ": the deformed surface of '" + body.name + "'");
+  DeformedFieldState state(*field);
+  state.Update(*field, q.data());
+
+  // Errors in the contact band, then the cost of a query and of an update.
+  BandErrorOptions bo;
+  bo.band = spec.band_cells * h;
+  bo.points = spec.points;
+  bo.seed = spec.seed;
+  const BandError e = MeasureBandError(*field, state, exact, bo, where);
+  FieldJobResult result;
+  result.job = job;
+  FieldErrorRow& row = result.error;
+  row.proxies = field->num_proxies();
+  row.neighbours = field->neighbours();
+  row.domains = field->num_domains();
+  row.explicit_domains = !body.deformable->field.regions.empty();
+  row.slots = field->num_slots();
+  row.r = field->r();
+  row.cell = h;
+  row.body_size = size;
+  row.max_displacement = surface.MaxDisplacement(q);
+  row.points = e.points;
+  row.rms = e.rms;
+  row.max = e.max;
+  row.mean = e.mean;
+  row.false_inside_volume = e.false_inside_volume;
+  row.query_ns = TimeQueries(*field, state, e.band_points, spec.timing_repeats);
+  row.update_ns = TimeUpdate(*field, &state, q, spec.timing_repeats);
+  {
+    const auto t0 = Clock::now();
+    double sink = 0;
+    for (std::size_t i = 0; i < e.exact.size(); ++i) {
+      sink += exact.Distance(Eigen::Map<const Eigen::Vector3f>(&e.band_points[3 * i]).cast<double>());
+    }
+    row.exact_ns = std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / double(e.exact.size());
+    if (!std::isfinite(sink)) Fail(where, "the exact distance is not finite");
+  }
+  if (SliceWanted(spec, job)) result.slice = Slice(spec, *field, state, exact, bo.band);
+  return result;
+}
+
+const std::vector<std::string>& FieldStudyFiles() {
+  static const std::vector<std::string> files = {"field_error.csv", "field_slice.csv", "meta.json"};
+  return files;
+}
+
+std::vector<FieldErrorRow> RunDeformedFieldStudy(const ExperimentConfig& config, const RunOptions& options,
+                                                 const std::vector<int>& job_indices) {
+  const std::vector<Job> all = ExpandJobs(config);
+  std::vector<int> indices = job_indices;
+  if (indices.empty()) {
+    for (const Job& j : all) indices.push_back(j.index);
+  }
+  for (int i : indices) {
+    if (i < 0 || i >= int(all.size())) {
+      Fail(config.file, "job " + std::to_string(i) + " does not exist (the sweep has " + std::to_string(all.size()) +
+                            " jobs: 0.." + std::to_string(int(all.size()) - 1) + ")");
+    }
+  }
+  int parallel = options.parallel_jobs;
+  if (parallel <= 0) parallel = config.timing ? 1 : int(std::max(1u, std::thread::hardware_concurrency()));
+  parallel = std::min<int>(parallel, int(indices.size()));
+
+  const auto t0 = Clock::now();
+  std::vector<FieldJobResult> results(indices.size());
+  {
+    Progress progress("experiment " + config.name, std::int64_t(indices.size()));
+    if (!options.progress) progress.Finish();
+    // As in RunExperiment: every job finishes, the first error in job order is rethrown.
+    std::vector<std::exception_ptr> errors(indices.size());
+    tbb::task_arena arena(std::max(1, parallel));
+    arena.execute([&] {
+      tbb::parallel_for(std::size_t(0), indices.size(), [&](std::size_t i) {
+        try {
+          results[i] = RunDeformedFieldJob(config, all[std::size_t(indices[i])], options);
+        } catch (...) {
+          errors[i] = std::current_exception();
+        }
+        if (options.progress) progress.Advance();
+      });
+    });
+    for (const std::exception_ptr& e : errors) {
+      if (e) std::rethrow_exception(e);
+    }
+  }
+  const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
+  std::filesystem::create_directories(options.out_dir);
+  WriteFileAtomically(options.out_dir / "field_error.csv", ErrorCsv(config, results));
+  WriteFileAtomically(options.out_dir / "field_slice.csv", SliceCsv(config, results));
+  WriteFileAtomically(options.out_dir / "meta.json", RunMetadata(config, indices, wall, parallel).dump(2) + "\n");
+  std::vector<FieldErrorRow> rows;
+  for (const FieldJobResult& r : results) rows.push_back(r.error);
+  return rows;
+}
+
+}  // namespace contactlab
