@@ -22,7 +22,8 @@ for arg in "$@"; do
 done
 if [ ${#experiments[@]} -eq 0 ]; then
   experiments=(fig05b-convergence fig14b-bumps fig15-asymmetry fig11-degradation table1-statistics
-               table1-deformable table1-defo-defo deformable-cantilever continuity-models speed-vs-error)
+               table1-deformable table1-defo-defo deformable-cantilever continuity-models speed-vs-error
+               hard-cases-medial-axis)
 fi
 
 failed=()
