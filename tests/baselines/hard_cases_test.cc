@@ -87,6 +87,7 @@ struct BodyDef {
   int levels = 3;
   double scale = 1;
   double padding = 0.1;  // field padding, fraction of the largest extent
+  bool center = false;   // move the bounding-box centre to the body origin
 };
 
 // One cycle of a case: poses of body 1 and body 2, and the geometric overlap along the push.
@@ -124,6 +125,7 @@ std::string SceneText(const HardCase& c, int order) {
     // cycles pass the raw one).
     X.rotation = X.rotation.norm() > 1e-12 ? X.rotation.normalized() : Eigen::Quaterniond::Identity();
     s << "  - name: " << name << "\n    mesh: \"" << b.mesh << "\"\n    scale: " << Num(b.scale)
+      << "\n    center: " << (b.center ? "true" : "false")
       << "\n    pose: [" << PoseText(X) << "]\n    role: " << role << "\n    pointshell: {points: " << b.points
       << ", levels: " << b.levels << "}\n    field: {resolution: " << b.field_resolution
       << ", padding: " << Num(b.padding) << "}\n";
@@ -523,6 +525,30 @@ HardCase CornerIntoFace() {
   return c;
 }
 
+// The fandisk (CAD part, sharp creases; 3 x 3.1 x 1.6 cm), tilted, its lowest vertex pressed
+// 0.5 and 1.5 mm into a plate.
+HardCase FandiskOnPlate() {
+  HardCase c;
+  c.name = "fandisk-creases-on-plate";
+  c.body1 = {"fandisk.obj", 48, 2048, 3, 0.006};
+  c.body1.center = true;
+  c.body2 = {"box:0.04,0.04,0.005,3", 48, 2048, 3};
+  c.steps = {{Translation(0, 0, 0.03), Pose::Identity(), 0}};
+  c.place = [](SceneAssets& assets, int order) {
+    const TriangleMesh& mesh = order == 0 ? *assets.A.mesh() : *assets.B.mesh();
+    const Eigen::Quaterniond R = RotationFromVector(Eigen::Vector3d(0.3, 0.2, 0.1));
+    double lowest = 1e9;
+    for (const auto& v : mesh.vertices) lowest = std::min(lowest, (R * v).z());
+    std::vector<Step> steps;
+    for (double d : {-0.0003, 0.0005, 0.0015}) steps.push_back({Pose{R, Eigen::Vector3d(0.001, -0.002, 0.005 - lowest - d)}, Pose::Identity(), d});
+    return steps;
+  };
+  c.push = Eigen::Vector3d(0, 0, -1);
+  c.direction_until[0] = 0.005 - 0.08 * 1.2 / 48;  // the plate's mid-plane, less a voxel
+  c.direction_until[1] = 0.002;  // the part is 1.6 cm thick under its lowest vertex's region
+  return c;
+}
+
 // Identical bodies at identical (skew) poses: no direction; finite and bounded.
 HardCase Identical(const std::string& mesh, const std::string& name) {
   HardCase c;
@@ -684,6 +710,7 @@ TEST(HardCases, ThinAndSharpFeatures) {
   runner.Run(NeedleIntoPlate());
   runner.Run(CrossedEdges());
   runner.Run(CornerIntoFace());
+  runner.Run(FandiskOnPlate());
 }
 
 TEST(HardCases, DegenerateContact) {
