@@ -463,6 +463,41 @@ class Figures:
         return True
 
 
+    # Issue 20: a ball pushed through a thin plate, every model, both role orders: the force on
+    # the ball along the push against the depth of its lowest point below the plate's top.
+    def hard_cases_medial_axis(self):
+        rows = self.load("hard-cases-medial-axis", "cycles")
+        if not rows:
+            return False
+        top = 0.002 + 0.01  # ball centre when its lowest point touches the plate's top face, m
+        by = defaultdict(list)
+        for r in rows:
+            by[(r.get("roles", "normal"), r["model"])].append(r)
+        orders = sorted({k[0] for k in by})
+        fig, axes = plt.subplots(1, len(orders), figsize=(5.5 * len(orders), 4.2), squeeze=False)
+        for ax, order in zip(axes[0], orders):
+            for (o, model), rs in sorted(by.items()):
+                if o != order:
+                    continue
+                # The pressing half: until the deepest pose.
+                deepest = min(range(len(rs)), key=lambda i: num(rs[i], "z"))
+                rs = rs[: deepest + 1]
+                ax.plot([1000 * (top - num(r, "z")) for r in rs], [num(r, "fz") for r in rs], lw=1.0, label=model,
+                        ls="--" if model.endswith("-linear") else "-")
+            for d, what in [(2, "lowest point at mid-plane"), (12, "centre at mid-plane")]:
+                ax.axvline(d, color="0.5", ls=":", lw=0.8)
+                ax.text(d, 0, " " + what, rotation=90, va="bottom", fontsize=7, color="0.4")
+            ax.axhline(0, color="k", lw=0.6)
+            ax.set_xlabel("depth of the ball's lowest point below the plate's top (mm)")
+            ax.set_ylabel("force on the ball along +z, opposing the push (N)")
+            ax.set_title("ball r 1 cm through a 4 mm plate: " +
+                         ("ball = pointshell" if order == "normal" else "ball = field"), fontsize=10)
+            ax.grid(True, alpha=0.3)
+            ax.legend(fontsize=8)
+        self.save(fig, "hard_cases_medial_axis.png")
+        return True
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--results", default=os.path.join(os.path.dirname(__file__), "..", "results"))
@@ -470,7 +505,7 @@ def main():
     figs = Figures(os.path.abspath(args.results))
     for name in ["fig05b", "fig10", "fig11", "fig14b", "fig15", "table1", "table1_deformable", "table1_defo_defo",
                  "deformable_cantilever",
-                 "continuity", "speed_vs_error"]:
+                 "continuity", "speed_vs_error", "hard_cases_medial_axis"]:
         try:
             if not getattr(figs, name)():
                 print(f"make_figures: {name}: no results yet (run its experiment first)", file=sys.stderr)

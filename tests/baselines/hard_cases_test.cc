@@ -1,0 +1,795 @@
+// Hard cases for every registered contact model, each run as (A,B) and (B,A) (Scene::Swapped):
+// deep penetration past the field body's medial axis, thin and sharp features, degenerate
+// contact, motion extremes under temporal coherence and input extremes (issue 20). Each
+// evaluation is checked against physical bounds, never against the code itself:
+//
+//  * force, torque and K_B finite;
+//  * |F| <= k_C L D, where D is the largest depth one contact can report. Each contact pushes
+//    with k |d| and the L/l rule keeps sum k <= k_C L (l < L contacts: k_C l; l >= L: k_C L),
+//    so |F| <= k_C L max|d|. Field models (pointshell, pointshell-linear, vps, vps-repulsion,
+//    reference) read depths from B: no point inside B lies farther than h_B = half the
+//    smallest extent of B's bounding box from B's surface (the segment to the nearest box face
+//    leaves B), trilinear interpolation never exceeds the grid values, and VPS's interior depth
+//    is half a voxel diagonal: D = max(h_B, one voxel diagonal of B's field). Mesh-pair models
+//    (fcl, bullet) report triangle-pair depths: D = the larger body's bounding-box diagonal
+//    plus Bullet's two 0.5 mm margins;
+//  * |torque| <= R k_C L D, R = farthest point of A's or B's world bounding box from B's origin
+//    (every contact point lies in A's or B's extent or between them);
+//  * K_B (halfspace rule, unit N and g per contact, sum k <= k_C L): |K_ff|_F <= k_C L,
+//    |K_fτ|_F <= k_C L R, |K_τf|_F <= |F| + k_C L R, |K_ττ|_F <= k_C L R²;
+//  * where the push defines a direction (before either body's medial axis along the push), the
+//    force on B points along B's push (cos >= 0.5), and there is a force once the bodies overlap
+//    by a voxel of B's field;
+//  * with temporal coherence, the same force as a model reset before every cycle (a full
+//    traversal) — for motions within the scene's max_point_speed, and for a teleport when
+//    the caller resets on a too-fast motion as the haptic cycle does (haptics/haptic_cycle.h);
+//  * no allocation in Evaluate once a case's path has run once, for models that promise it
+//    (pointshell, pointshell-linear, vps, vps-repulsion, fcl); bullet and reference document
+//    that they allocate: recorded, not checked.
+//
+// A failing check prints the model, the case, both poses with %.17g and the scene, so it
+// replays with `contactlab contact SCENE.yaml --model M --pose-a ... --pose-b ...`. Failures
+// that are known properties of a model (a baseline's failure is a finding) are listed in
+// kFindings with the reason; they are printed, not failed. The medial-axis summary line per
+// model and order gives the peak force, the force at the deepest point and whether it inverts.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <set>
+#include <sstream>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "allocation_counter.h"
+#include "baselines/register_baselines.h"
+#include "contact/model_registry.h"
+#include "experiment/scene.h"
+#include "experiment/scene_assets.h"
+#include "geometry/procedural_shapes.h"
+#include "test_support.h"
+#include "util/config_node.h"
+#include "util/error.h"
+
+namespace contactlab {
+namespace {
+
+constexpr double kC = 1000;  // N/m
+constexpr int kL = 10;
+constexpr double kDt = 1e-3;  // s per cycle
+
+std::string Num(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+std::string PoseText(const Pose& X) {
+  const auto& q = X.rotation;
+  return Num(X.translation.x()) + "," + Num(X.translation.y()) + "," + Num(X.translation.z()) + "," + Num(q.w()) +
+         "," + Num(q.x()) + "," + Num(q.y()) + "," + Num(q.z());
+}
+
+Pose Translation(double x, double y, double z) { return Pose::FromTranslation(Eigen::Vector3d(x, y, z)); }
+Pose Rotated(const Eigen::Vector3d& w, const Eigen::Vector3d& t) { return {RotationFromVector(w), t}; }
+
+// One body of a case: procedural mesh and its sampling.
+struct BodyDef {
+  std::string mesh;
+  int field_resolution = 48;
+  int points = 1024;
+  int levels = 3;
+  double scale = 1;
+  double padding = 0.1;  // field padding, fraction of the largest extent
+  bool center = false;   // move the bounding-box centre to the body origin
+};
+
+// One cycle of a case: poses of body 1 and body 2, and the geometric overlap along the push.
+struct Step {
+  Pose X_W1, X_W2;
+  double depth = 0;  // metres of overlap of body 1 into body 2 along the push (< 0: apart)
+};
+
+struct HardCase {
+  std::string name;
+  BodyDef body1, body2;
+  std::vector<Step> steps;
+  Eigen::Vector3d push = Eigen::Vector3d::Zero();  // motion of body 1 against body 2 (world); 0: none
+  // Direction checked while depth < this, per order (0: body 1 is A; 1: body 2 is A). Each
+  // value is the depth at which the first point of A reaches a medial surface of B (or of A),
+  // minus one voxel of B's field; 0 or less: no direction is defined.
+  double direction_until[2] = {0, 0};
+  bool coherence = false;
+  double max_point_speed = 1.0;  // m/s declared in the scene
+  bool compare_fresh = false;    // with coherence: equal to a model reset every cycle
+  bool guard = false;            // reset the model when a step outruns max_point_speed
+  bool bounds = true;            // the size bounds hold (not for non-unit quaternions)
+  // Print the medial-axis summary line (peak force, force at the deepest point, inversion).
+  bool medial_summary = false;
+  // When set, the steps of each order are placed from the order's assets (a pointshell point
+  // on a grid node of B's field, ...); STEPS then holds the scene's start poses only.
+  std::function<std::vector<Step>(SceneAssets& assets, int order)> place;
+};
+
+// The scene text of CASE with body 1 (ORDER 0) or body 2 (ORDER 1) as the pointshell body.
+std::string SceneText(const HardCase& c, int order) {
+  std::ostringstream s;
+  auto body = [&](const char* name, const BodyDef& b, Pose X, const char* role) {
+    // The scene's start pose must parse: a non-unit quaternion is written normalised (the
+    // cycles pass the raw one).
+    X.rotation = X.rotation.norm() > 1e-12 ? X.rotation.normalized() : Eigen::Quaterniond::Identity();
+    s << "  - name: " << name << "\n    mesh: \"" << b.mesh << "\"\n    scale: " << Num(b.scale)
+      << "\n    center: " << (b.center ? "true" : "false")
+      << "\n    pose: [" << PoseText(X) << "]\n    role: " << role << "\n    pointshell: {points: " << b.points
+      << ", levels: " << b.levels << "}\n    field: {resolution: " << b.field_resolution
+      << ", padding: " << Num(b.padding) << "}\n";
+  };
+  s << "name: hard-" << c.name << "\nbodies:\n";
+  body("one", c.body1, c.steps.front().X_W1, order == 0 ? "pointshell" : "field");
+  body("two", c.body2, c.steps.front().X_W2, order == 0 ? "field" : "pointshell");
+  s << "model: {k_C: " << kC << ", L: " << kL << ", coherence: " << (c.coherence ? "true" : "false")
+    << ", max_point_speed: " << Num(c.max_point_speed) << "}\n";
+  return s.str();
+}
+
+bool IsFieldModel(const std::string& m) { return m != "fcl" && m != "bullet"; }
+bool PromisesNoAllocation(const std::string& m) { return m != "bullet" && m != "reference"; }
+
+// Known properties of models that break a check (findings, not regressions). order: "AB",
+// "BA" or "*"; case "*" matches every case.
+struct Finding {
+  const char* model;
+  const char* hard_case;
+  const char* order;
+  const char* check;
+  const char* reason;
+};
+const std::vector<Finding> kFindings = {
+    // FINDINGS-BEGIN
+    // Mesh-pair models see only intersecting triangles: a bar fully inside the block has none,
+    // so the force vanishes and the tool sinks (from 3 voxels deep: the bar is 6 mm thick).
+    {"fcl", "bar-into-block", "AB", "has-force", "no triangle pairs intersect once the bar is fully inside"},
+    {"bullet", "bar-into-block", "AB", "has-force", "no triangle pairs intersect once the bar is fully inside"},
+    // VPS gives an interior voxel a fixed depth along each point's own normal: a fully embedded
+    // bar's opposite faces cancel and what is left (surface voxels) points anywhere.
+    {"vps", "bar-into-block", "AB", "direction", "interior voxels: fixed depth along each point's normal, cancels"},
+    {"vps-repulsion", "bar-into-block", "AB", "direction", "interior voxels: fixed depth along each point's normal, cancels"},
+    // VPS's voxel-centre pointshell of a needle thinner than a voxel: a few centres with
+    // normals from a coarse field; the tip pushes the plate sideways.
+    {"vps", "needle-into-plate", "AB", "direction", "voxel-centre pointshell of a sub-voxel needle: sideways force"},
+    // Temporal coherence trusts the scene's max_point_speed (paper sec. 3.4); a 4 cm jump in one
+    // cycle wakes no sleeping node of the plate's pointshell and the new contact is missed.
+    // The haptic cycle resets the model on such a jump (teleport-guarded passes).
+    {"pointshell", "teleport-unguarded", "BA", "coherence", "coherence by contract; guarded by the haptic cycle"},
+    {"pointshell", "teleport-unguarded", "BA", "has-force", "coherence by contract; guarded by the haptic cycle"},
+    {"vps", "teleport-unguarded", "BA", "coherence", "distance-layer coherence by contract; guarded by the haptic cycle"},
+    {"vps", "teleport-unguarded", "BA", "has-force", "distance-layer coherence by contract; guarded by the haptic cycle"},
+    {"vps-repulsion", "teleport-unguarded", "BA", "coherence", "distance-layer coherence by contract; guarded by the haptic cycle"},
+    {"vps-repulsion", "teleport-unguarded", "BA", "has-force", "distance-layer coherence by contract; guarded by the haptic cycle"},
+    // Bullet's lengths are absolute (0.5 mm GImpact margins, subtracted twice; its contact
+    // thresholds): at 1e-9 scale the margins swamp a 1e-12 m contact, at 1e3 they shift it.
+    {"bullet", "scale-1e-9", "*", "direction", "absolute 0.5 mm margins against a 1e-12 m contact"},
+    {"bullet", "scale-1e-9", "*", "scaling", "absolute 0.5 mm margins against a 1e-12 m contact"},
+    {"bullet", "scale-1e3", "*", "scaling", "absolute lengths in Bullet's contact generation"},
+    // The quadrature reference subdivides A's triangles to an absolute 0.5 mm edge: at 1e-9
+    // scale each triangle is one centroid sample, too coarse for the sphere (B, A order).
+    {"reference", "scale-1e-9", "*", "scaling", "absolute 0.5 mm quadrature edge: one sample per triangle"},
+    // VPS: A's voxel-centre pointshell and its normals come out slightly differently at 1e-9
+    // scale (5.2 % in |F|; 3.2 % at 1e3, within the 5 % allowed); not investigated further.
+    {"vps", "scale-1e-9", "AB", "scaling", "voxel-centre pointshell not exactly scale-invariant (5 %)"},
+    // FINDINGS-END
+};
+
+const Finding* FindFinding(const std::string& model, const std::string& hard_case, int order,
+                           const std::string& check) {
+  for (const Finding& f : kFindings) {
+    if (model != f.model || check != f.check) continue;
+    if (std::string(f.hard_case) != "*" && hard_case != f.hard_case) continue;
+    if (std::string(f.order) != "*" && std::string(f.order) != (order == 0 ? "AB" : "BA")) continue;
+    return &f;
+  }
+  return nullptr;
+}
+
+Aabb WorldBox(const TriangleMesh& mesh, const Pose& X) {
+  Aabb box;
+  for (const auto& v : mesh.vertices) box.Extend(X * v);
+  return box;
+}
+
+double FarthestCorner(const Aabb& box, const Eigen::Vector3d& p) {
+  double r = 0;
+  for (int i = 0; i < 8; ++i) {
+    const Eigen::Vector3d c((i & 1) ? box.max.x() : box.min.x(), (i & 2) ? box.max.y() : box.min.y(),
+                            (i & 4) ? box.max.z() : box.min.z());
+    r = std::max(r, (c - p).norm());
+  }
+  return r;
+}
+
+bool Finite(const ContactResult& r) {
+  return r.on_B.force.allFinite() && r.on_B.torque.allFinite() && r.K_B.allFinite();
+}
+
+// Per-model summary of the whole run, printed at the end (the table of the report).
+struct Tally {
+  std::map<std::string, std::map<std::string, std::string>> cell;  // model -> case -> text
+  // The force on B at a case's first step: (model, case, order) -> force, newtons.
+  std::map<std::tuple<std::string, std::string, int>, Eigen::Vector3d> first_force;
+};
+Tally& Summary() {
+  static Tally t;
+  return t;
+}
+
+// Prints and clears the per-model table of the cases run so far (the test's report).
+void PrintTable() {
+  for (const auto& [model, cases] : Summary().cell) {
+    std::printf("table %s:", model.c_str());
+    for (const auto& [name, text] : cases) std::printf(" | %s %s", name.c_str(), text.c_str());
+    std::printf("\n");
+  }
+  Summary().cell.clear();
+}
+
+class HardCaseRunner {
+ public:
+  explicit HardCaseRunner(const testing::TempDir& cache) {
+    options_.cache_dir = cache.path();
+    options_.verbose = false;
+  }
+  ~HardCaseRunner() { PrintTable(); }
+
+  void Run(const HardCase& c) {
+    for (int order = 0; order < 2; ++order) RunOrder(c, order);
+  }
+
+ private:
+  // Reports one failed check: a known finding is printed, anything else fails the test with
+  // what replays it.
+  void Report(const std::string& model, const HardCase& c, int order, const std::string& check,
+              const ContactQuery& q, const std::string& detail, std::set<std::string>* failed) {
+    const std::string order_name = order == 0 ? "AB" : "BA";
+    if (failed->count(check)) return;  // once per model, case, order and check
+    failed->insert(check);
+    if (const Finding* f = FindFinding(model, c.name, order, check)) {
+      std::printf("FINDING %s %s %s %s: %s (%s)\n", model.c_str(), c.name.c_str(), order_name.c_str(), check.c_str(),
+                  detail.c_str(), f->reason);
+      return;
+    }
+    ADD_FAILURE() << model << " " << c.name << " " << order_name << ": " << check << ": " << detail
+                  << "\nreplay: save the scene below as hard.yaml and run\n  contactlab contact hard.yaml --model "
+                  << model << " --pose-a " << PoseText(q.X_WA) << " --pose-b " << PoseText(q.X_WB) << "\n"
+                  << "  (cycle " << q.cycle << " of the case's path"
+                  << (c.coherence ? "; with coherence the result depends on the cycles before it" : "") << ")\n"
+                  << SceneText(c, order);
+  }
+
+  void RunOrder(const HardCase& c, int order) {
+    const std::string order_name = order == 0 ? "AB" : "BA";
+    const Scene base = ParseScene(ConfigNode::LoadString(SceneText(c, 0), "hard-" + c.name + ".yaml"));
+    const Scene scene = order == 0 ? base : base.Swapped();
+    SceneAssets assets(scene, options_);
+    const std::vector<Step> steps = c.place ? c.place(assets, order) : c.steps;
+    const TriangleMesh& mesh_A = *assets.A.mesh();
+    const TriangleMesh& mesh_B = *assets.B.mesh();
+    // B's field voxel (the field spans the box plus 10 % padding each side, RESOLUTION cells
+    // along its longest side) and h_B, half B's smallest extent.
+    const Aabb box_B0 = mesh_B.Bounds();
+    const Eigen::Vector3d ext_B = box_B0.max - box_B0.min;
+    const Aabb box_A0 = mesh_A.Bounds();
+    const double voxel_B = ext_B.maxCoeff() * (1 + 2 * scene.field_body.field.padding) / scene.field_body.field.resolution;
+    const double h_B = 0.5 * ext_B.minCoeff();
+    const double diag = std::max(ext_B.norm(), (box_A0.max - box_A0.min).norm());
+    // The direction the force on B must take: body 1 moves along c.push into body 2, so
+    // body 2 is pushed along it and body 1 against it.
+    const Eigen::Vector3d push_on_B = order == 0 ? Eigen::Vector3d(c.push) : Eigen::Vector3d(-c.push);
+
+    for (const std::string& name : ContactModelNames()) {
+      if (name == "reference" && steps.size() > 12) {
+        std::printf("skip %s %s %s: offline reference (ms-s per query) on a %zu-cycle path\n", name.c_str(),
+                    c.name.c_str(), order_name.c_str(), steps.size());
+        Summary().cell[name][c.name] += order_name + ":skip ";
+        continue;
+      }
+      std::unique_ptr<ContactModel> model, fresh;
+      try {
+        model = MakeSceneContactModel(name, scene, assets);
+        if (c.compare_fresh) fresh = MakeSceneContactModel(name, scene, assets);
+      } catch (const Error& e) {
+        std::printf("skip %s %s %s: cannot take the scene: %s\n", name.c_str(), c.name.c_str(), order_name.c_str(),
+                    e.what());
+        Summary().cell[name][c.name] += order_name + ":refused ";
+        continue;
+      }
+      const double D = IsFieldModel(name) ? std::max(h_B, std::sqrt(3.0) * voxel_B) : diag + 1e-3;
+      std::set<std::string> failed;
+      double peak = 0, peak_depth = 0, last_along = 0, last_depth = 0, min_along_after_peak = 1e300;
+      long allocations = 0;
+      const int passes = PromisesNoAllocation(name) ? 2 : 1;
+      for (int pass = 0; pass < passes; ++pass) {
+        model->Reset();
+        for (std::size_t i = 0; i < steps.size(); ++i) {
+          const Step& s = steps[i];
+          ContactQuery q;
+          q.X_WA = order == 0 ? s.X_W1 : s.X_W2;
+          q.X_WB = order == 0 ? s.X_W2 : s.X_W1;
+          q.cycle = std::int64_t(i);
+          // The haptic cycle's guard: a step faster than max_point_speed resets the model.
+          if (c.guard && i > 0) {
+            const Step& p = steps[i - 1];
+            const double moved = ((s.X_W1.translation - s.X_W2.translation) - (p.X_W1.translation - p.X_W2.translation)).norm();
+            if (moved > c.max_point_speed * kDt) model->Reset();
+          }
+          const long before = testing::AllocationCount();
+          const ContactResult r = model->Evaluate(q);
+          const long used = testing::AllocationCount() - before;
+          if ((pass == 1 || (passes == 1 && i > 0))) allocations += used;
+          if (pass == 1) continue;  // the second pass only counts allocations
+
+          const double F = r.on_B.force.norm();
+          if (i == 0) Summary().first_force[{name, c.name, order}] = r.on_B.force;
+          if (!Finite(r)) {
+            Report(name, c, order, "finite", q, "non-finite force, torque or K_B", &failed);
+            continue;
+          }
+          if (c.bounds) {
+            const Aabb box_A = WorldBox(mesh_A, q.X_WA), box_B = WorldBox(mesh_B, q.X_WB);
+            const double R = std::max(FarthestCorner(box_A, q.X_WB.translation), FarthestCorner(box_B, q.X_WB.translation));
+            const double kmax = kC * kL * (1 + 1e-6);
+            if (F > kmax * D) {
+              Report(name, c, order, "force-bound", q, "|F| " + Num(F) + " N > k_C L D = " + Num(kC * kL * D), &failed);
+            }
+            if (r.on_B.torque.norm() > kmax * D * R) {
+              Report(name, c, order, "torque-bound", q,
+                     "|tau| " + Num(r.on_B.torque.norm()) + " > R k_C L D = " + Num(kC * kL * D * R), &failed);
+            }
+            const double kff = r.K_B.block<3, 3>(0, 0).norm(), kft = r.K_B.block<3, 3>(0, 3).norm();
+            const double ktf = r.K_B.block<3, 3>(3, 0).norm(), ktt = r.K_B.block<3, 3>(3, 3).norm();
+            if (kff > kmax || kft > kmax * R || ktf > F + kmax * R || ktt > kmax * R * R) {
+              Report(name, c, order, "stiffness-bound", q,
+                     "|K| blocks " + Num(kff) + ", " + Num(kft) + ", " + Num(ktf) + ", " + Num(ktt) +
+                         " over k_C L = " + Num(kC * kL) + " with R = " + Num(R),
+                     &failed);
+            }
+          }
+          // Direction: before the medial axis the force on B points along B's push.
+          const double along = push_on_B.norm() > 0 ? r.on_B.force.dot(push_on_B.normalized()) : 0;
+          if (push_on_B.norm() > 0 && s.depth < c.direction_until[order]) {
+            if (F > 1e-9 && along < 0.5 * F) {
+              Report(name, c, order, "direction", q,
+                     "force on B " + Num(r.on_B.force.x()) + "," + Num(r.on_B.force.y()) + "," + Num(r.on_B.force.z()) +
+                         " at depth " + Num(s.depth) + " is not along the push",
+                     &failed);
+            }
+            if (s.depth >= voxel_B && F == 0) {
+              Report(name, c, order, "has-force", q, "no force at depth " + Num(s.depth) + " m (" + Num(s.depth / voxel_B) + " voxels of B)", &failed);
+            }
+          }
+          if (along > peak) {
+            peak = along;
+            peak_depth = s.depth;
+            min_along_after_peak = along;
+          }
+          min_along_after_peak = std::min(min_along_after_peak, along);
+          last_along = along;
+          last_depth = s.depth;
+          // Coherence: the same force as a full traversal.
+          if (fresh) {
+            fresh->Reset();
+            const ContactResult f = fresh->Evaluate(q);
+            const double err = (r.on_B.force - f.on_B.force).norm();
+            if (err > 1e-4 * f.on_B.force.norm() + 1e-9) {
+              Report(name, c, order, "coherence", q,
+                     "|F - F_full| " + Num(err) + " N, |F_full| " + Num(f.on_B.force.norm()) + " N at cycle " + std::to_string(i),
+                     &failed);
+            }
+          }
+        }
+      }
+      if (PromisesNoAllocation(name) && allocations > 0) {
+        ContactQuery q;
+        q.X_WA = order == 0 ? steps.back().X_W1 : steps.back().X_W2;
+        q.X_WB = order == 0 ? steps.back().X_W2 : steps.back().X_W1;
+        Report(name, c, order, "allocation", q, std::to_string(allocations) + " allocations in the second pass", &failed);
+      } else if (allocations > 0) {
+        std::printf("record %s %s %s: %ld allocations in Evaluate after the first call (documented)\n", name.c_str(),
+                    c.name.c_str(), order_name.c_str(), allocations);
+      }
+      if (c.medial_summary) {
+        std::printf("medial %s %s %s: peak along push %.4g N at depth %.4g m; min after peak %.4g N; at depth %.4g m: %.4g N%s\n",
+                    c.name.c_str(), name.c_str(), order_name.c_str(), peak, peak_depth, min_along_after_peak, last_depth,
+                    last_along, min_along_after_peak < -1e-9 ? " (inverts)" : "");
+      }
+      std::string text = order_name + ":";
+      if (failed.empty()) {
+        text += "pass";
+      } else {
+        for (const std::string& f : failed) text += (FindFinding(name, c.name, order, f) ? "finding-" : "FAIL-") + f + ",";
+      }
+      Summary().cell[name][c.name] += text + " ";
+    }
+  }
+
+  AssetOptions options_;
+};
+
+// --- The cases -----------------------------------------------------------------------------
+
+// Ball (r 1 cm) pushed down through a 4 mm plate and out the other side: 0.5 mm per cycle.
+HardCase BallThroughPlate(int plate_resolution = 96, int ball_resolution = 48, const std::string& name = "ball-through-plate") {
+  HardCase c;
+  c.name = name;
+  c.body1 = {"sphere:0.01,3", ball_resolution, 1024, 3};
+  c.body2 = {"box:0.03,0.03,0.002,4", plate_resolution, 2048, 3};
+  for (double z = 0.013; z >= -0.0130001; z -= 0.0005) c.steps.push_back({Translation(0.0007, -0.0003, z), Pose::Identity(), 0.012 - z});
+  c.push = Eigen::Vector3d(0, 0, -1);
+  // The ball's lowest point reaches the plate's mid-plane at depth 2 mm (the plate is B); the
+  // plate's top face reaches the ball's centre at depth 1 cm (the ball is B); less a voxel.
+  // An 8-cell field with the default 10 % padding has a conservative boundary minimum of 0
+  // (sdf/signed_distance_grid.cc: sqrt(m² - h²/2) with m = 0.1 extent < h/√2), so no offset
+  // level set closes inside it and pointshells refuse it; coarse fields get 50 % padding.
+  const double padding = plate_resolution < 16 ? 0.5 : 0.1;
+  c.body1.padding = c.body2.padding = padding;
+  const double v_plate = 0.06 * (1 + 2 * padding) / plate_resolution, v_ball = 0.02 * (1 + 2 * padding) / ball_resolution;
+  c.direction_until[0] = 0.002 - v_plate;
+  c.direction_until[1] = 0.002 - v_ball;  // and the plate's own mid-plane at 2 mm
+  c.medial_summary = true;
+  return c;
+}
+
+// A 4 x 0.6 x 0.6 cm bar pushed into an 8 x 8 x 6 cm block until fully inside (its top 9 mm
+// below the block's top face).
+HardCase BarIntoBlock() {
+  HardCase c;
+  c.name = "bar-into-block";
+  c.body1 = {"box:0.02,0.003,0.003,3", 48, 1024, 3};
+  c.body2 = {"box:0.04,0.04,0.03,3", 48, 2048, 3};
+  for (double z = 0.034; z >= 0.0179999; z -= 0.0005) c.steps.push_back({Translation(0.0011, 0.0007, z), Pose::Identity(), 0.033 - z});
+  c.push = Eigen::Vector3d(0, 0, -1);
+  // Bar points stay nearer the block's top (<= 1.8 cm) than its sides (>= 2 cm) or its
+  // mid-plane (3 cm): direction defined throughout. Swapped: the block's top face reaches the
+  // bar's mid-plane at 3 mm.
+  c.direction_until[0] = 1;
+  c.direction_until[1] = 0.003 - 0.04 * 1.2 / 48;
+  return c;
+}
+
+// A blade 0.4 mm thick (sub-voxel: its 32-cell field has 1.5 mm voxels) pressed edge-down into
+// a block, and lifted.
+HardCase BladeOnBlock() {
+  HardCase c;
+  c.name = "blade-on-block";
+  c.body1 = {"box:0.02,0.0002,0.01,2", 32, 1024, 3};
+  c.body2 = {"box:0.03,0.03,0.01,3", 48, 2048, 3};
+  for (double d : {-0.0005, 0.001, 0.003, 0.006}) c.steps.push_back({Translation(0.0003, 0.0002, 0.02 - d), Pose::Identity(), d});
+  c.push = Eigen::Vector3d(0, 0, -1);
+  c.direction_until[0] = 0.01 - 0.06 * 1.2 / 48;  // the block's mid-plane at 1 cm
+  c.direction_until[1] = 0;  // the blade's medial surface is 0.2 mm from its faces: undefined
+  return c;
+}
+
+// A needle (capsule r 0.4 mm, sub-voxel in its 48-cell field) tip-first into a 4 mm plate.
+HardCase NeedleIntoPlate() {
+  HardCase c;
+  c.name = "needle-into-plate";
+  c.body1 = {"capsule:0.0004,0.015", 48, 1024, 3};
+  c.body2 = {"box:0.03,0.03,0.002,4", 96, 2048, 3};
+  for (double d : {-0.0005, 0.0003, 0.001, 0.003, 0.006})
+    c.steps.push_back({Translation(0.0002, 0.0001, 0.002 + 0.0154 - d), Pose::Identity(), d});
+  c.push = Eigen::Vector3d(0, 0, -1);
+  c.direction_until[0] = 0.002 - 0.06 * 1.2 / 96;
+  c.direction_until[1] = 0;  // the needle's axis is 0.4 mm inside: undefined
+  return c;
+}
+
+// Two 4 x 0.8 x 0.8 cm bars, edges crossed: body 1 along x with an edge down, body 2 along y
+// with an edge up.
+HardCase CrossedEdges() {
+  HardCase c;
+  c.name = "crossed-edges";
+  c.body1 = {"box:0.02,0.004,0.004,3", 48, 1024, 3};
+  c.body2 = {"box:0.004,0.02,0.004,3", 48, 1024, 3};
+  const double e = 0.004 * std::sqrt(2.0);  // edge height above the centre
+  const Pose X2 = Rotated(Eigen::Vector3d(0, M_PI / 4, 0), Eigen::Vector3d::Zero());
+  for (double d : {-0.0003, 0.0005, 0.002}) {
+    c.steps.push_back({Rotated(Eigen::Vector3d(M_PI / 4, 0, 0), Eigen::Vector3d(0.0004, -0.0003, 2 * e - d)), X2, d});
+  }
+  c.push = Eigen::Vector3d(0, 0, -1);
+  // Each bar's centre line is 5.7 mm behind its edge.
+  c.direction_until[0] = c.direction_until[1] = e - 0.04 * 1.2 / 48;
+  return c;
+}
+
+// A 2 cm cube, corner first, into a block face.
+HardCase CornerIntoFace() {
+  HardCase c;
+  c.name = "corner-into-face";
+  c.body1 = {"box:0.01,0.01,0.01,3", 48, 1024, 3};
+  c.body2 = {"box:0.03,0.03,0.01,3", 48, 2048, 3};
+  // Rotate the diagonal (1,1,1) onto -z... by the rotation taking (-1,-1,-1)/sqrt3 to -z.
+  const Eigen::Quaterniond R = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d(-1, -1, -1).normalized(), Eigen::Vector3d(0, 0, -1));
+  const double corner = 0.01 * std::sqrt(3.0);
+  for (double d : {-0.0003, 0.0005, 0.002, 0.006}) {
+    c.steps.push_back({Pose{R, Eigen::Vector3d(0.0002, 0.0001, 0.01 + corner - d)}, Pose::Identity(), d});
+  }
+  c.push = Eigen::Vector3d(0, 0, -1);
+  c.direction_until[0] = 0.01 - 0.06 * 1.2 / 48;
+  c.direction_until[1] = corner - 0.02 * 1.2 / 48;  // the face reaches the cube's centre
+  return c;
+}
+
+// The fandisk (CAD part, sharp creases; 3 x 3.1 x 1.6 cm), tilted, its lowest vertex pressed
+// 0.5 and 1.5 mm into a plate.
+HardCase FandiskOnPlate() {
+  HardCase c;
+  c.name = "fandisk-creases-on-plate";
+  c.body1 = {"fandisk.obj", 48, 2048, 3, 0.006};
+  c.body1.center = true;
+  c.body2 = {"box:0.04,0.04,0.005,3", 48, 2048, 3};
+  c.steps = {{Translation(0, 0, 0.03), Pose::Identity(), 0}};
+  c.place = [](SceneAssets& assets, int order) {
+    const TriangleMesh& mesh = order == 0 ? *assets.A.mesh() : *assets.B.mesh();
+    const Eigen::Quaterniond R = RotationFromVector(Eigen::Vector3d(0.3, 0.2, 0.1));
+    double lowest = 1e9;
+    for (const auto& v : mesh.vertices) lowest = std::min(lowest, (R * v).z());
+    std::vector<Step> steps;
+    for (double d : {-0.0003, 0.0005, 0.0015}) steps.push_back({Pose{R, Eigen::Vector3d(0.001, -0.002, 0.005 - lowest - d)}, Pose::Identity(), d});
+    return steps;
+  };
+  c.push = Eigen::Vector3d(0, 0, -1);
+  c.direction_until[0] = 0.005 - 0.08 * 1.2 / 48;  // the plate's mid-plane, less a voxel
+  c.direction_until[1] = 0.002;  // the part is 1.6 cm thick under its lowest vertex's region
+  return c;
+}
+
+// Identical bodies at identical (skew) poses: no direction; finite and bounded.
+HardCase Identical(const std::string& mesh, const std::string& name) {
+  HardCase c;
+  c.name = name;
+  c.body1 = c.body2 = {mesh, 32, 1024, 3};
+  const Pose X = Rotated(Eigen::Vector3d(0.3, -0.2, 0.5), Eigen::Vector3d(0.01 / 3, 0, -0.01 / 7));
+  c.steps = {{X, X, 0}};
+  return c;
+}
+
+// Flush face on face at exactly zero depth.
+HardCase Flush() {
+  HardCase c;
+  c.name = "flush-faces";
+  c.body1 = {"box:0.01,0.01,0.005,2", 32, 1024, 3};
+  c.body2 = {"box:0.03,0.03,0.005,3", 48, 2048, 3};
+  c.steps = {{Translation(0.001, -0.002, 0.01), Pose::Identity(), 0}};
+  return c;
+}
+
+// Ball on a wide plate for the motion cases.
+HardCase BallOnWidePlate(const std::string& name) {
+  HardCase c;
+  c.name = name;
+  c.body1 = {"sphere:0.01,3", 32, 1024, 3};
+  c.body2 = {"box:0.05,0.05,0.005,4", 64, 2048, 3};
+  c.coherence = true;
+  c.compare_fresh = true;
+  c.push = Eigen::Vector3d(0, 0, -1);
+  return c;
+}
+
+// Teleport: 10 cycles 1 mm deep at x = -2 cm, then 4 cm away in one cycle, 1.5 mm deep; the
+// scene promises 1 m/s. GUARD: the caller resets the model on the jump as the haptic cycle does.
+HardCase Teleport(bool guard) {
+  HardCase c = BallOnWidePlate(guard ? "teleport-guarded" : "teleport-unguarded");
+  c.guard = guard;
+  const double top = 0.005 + 0.01;
+  for (int i = 0; i < 10; ++i) c.steps.push_back({Translation(-0.02, 0.001, top - 0.001), Pose::Identity(), 0.001});
+  for (int i = 0; i < 10; ++i) c.steps.push_back({Translation(0.02, 0.001, top - 0.0015), Pose::Identity(), 0.0015});
+  c.direction_until[0] = c.direction_until[1] = 0.002;
+  return c;
+}
+
+// 10 m/s (1 cm per cycle) back and forth across the plate 1 mm deep; the scene declares 12 m/s.
+HardCase HighSpeed() {
+  HardCase c = BallOnWidePlate("high-speed");
+  c.max_point_speed = 12;
+  const double top = 0.005 + 0.01;
+  for (int i = 0; i < 40; ++i) {
+    const int k = i % 8;  // -0.04 .. 0.03 and back
+    const double x = -0.035 + 0.01 * (k < 4 ? k : 8 - k);
+    c.steps.push_back({Translation(x, 0.0005, top - 0.001), Pose::Identity(), 0.001});
+  }
+  c.direction_until[0] = c.direction_until[1] = 0.002;
+  return c;
+}
+
+// Creep: 1 µm per cycle from 0.2 mm apart to 0.8 mm deep.
+HardCase Creep() {
+  HardCase c = BallOnWidePlate("creep");
+  const double top = 0.005 + 0.01;
+  for (int i = 0; i <= 1000; ++i) {
+    const double d = -0.0002 + 1e-6 * i;
+    c.steps.push_back({Translation(0.0013, -0.0007, top - d), Pose::Identity(), d});
+  }
+  c.direction_until[0] = c.direction_until[1] = 0.002;
+  return c;
+}
+
+// Ball 1 mm into a plate with body 1's quaternion scaled by SCALE (not unit; the Pose contract
+// says unit, ParsePose normalises and refuses |q| < 1e-12, but a device or a caller may not).
+HardCase Quaternion(double scale, const std::string& name) {
+  HardCase c;
+  c.name = name;
+  c.body1 = {"sphere:0.01,3", 32, 1024, 3};
+  c.body2 = {"box:0.03,0.03,0.005,3", 48, 2048, 3};
+  Pose X1 = Rotated(Eigen::Vector3d(0.2, 0.1, -0.3), Eigen::Vector3d(0.001, 0, 0.015 - 0.001));
+  X1.rotation.coeffs() *= scale;
+  c.steps = {{X1, Pose::Identity(), 0.001}};
+  c.bounds = false;  // a scaled quaternion's matrix stretches the body: only finiteness
+  return c;
+}
+
+// The ball-on-plate contact of Quaternion at unit quaternion, both bodies scaled by SCALE
+// (the pose and depth too): a similar geometry.
+HardCase Scaled(double scale, const std::string& name) {
+  HardCase c;
+  c.name = name;
+  c.body1 = {"sphere:0.01,3", 32, 1024, 3, scale};
+  c.body2 = {"box:0.03,0.03,0.005,3", 48, 2048, 3, scale};
+  c.steps = {{Rotated(Eigen::Vector3d(0.2, 0.1, -0.3), scale * Eigen::Vector3d(0.001, 0, 0.015 - 0.001)), Pose::Identity(),
+              0.001 * scale}};
+  c.push = Eigen::Vector3d(0, 0, -1);
+  c.direction_until[0] = c.direction_until[1] = 0.003 * scale;
+  return c;
+}
+
+// A pointshell point of A placed exactly at a spot of B's field: WHERE(field) gives the spot in
+// B's frame. A small sphere (body 1, r 6 mm) against a sphere (body 2, r 1 cm), both orders;
+// the point used is A's point whose inward normal points most along -z (A's top), so A hangs
+// below the spot and overlaps B.
+HardCase PointAt(const std::string& name, std::function<Eigen::Vector3d(const DistanceField&)> where) {
+  HardCase c;
+  c.name = name;
+  c.body1 = {"sphere:0.006,2", 24, 512, 3};
+  c.body2 = {"sphere:0.01,3", 32, 1024, 3};
+  c.steps = {{Translation(0, 0, 0.012), Pose::Identity(), 0}};
+  c.place = [where](SceneAssets& assets, int order) {
+    const Pointshell& shell = *assets.A.pointshell();
+    int top = 0;
+    for (int i = 0; i < shell.num_points(); ++i) {
+      if (shell.nz[i] < shell.nz[top]) top = i;
+    }
+    const Eigen::Vector3d p_A(shell.x[top], shell.y[top], shell.z[top]);
+    const Eigen::Vector3d p_B = where(*assets.B.field());
+    const Pose X_WB = Rotated(Eigen::Vector3d(0, 0, 0.4), Eigen::Vector3d(0.01 / 3, -0.01 / 7, 0.002));
+    const Eigen::Quaterniond R_WA = RotationFromVector(Eigen::Vector3d(0, 0, -0.2));
+    const Pose X_WA{R_WA, X_WB * p_B - R_WA * p_A};
+    return std::vector<Step>{order == 0 ? Step{X_WA, X_WB, 0} : Step{X_WB, X_WA, 0}};
+  };
+  return c;
+}
+
+// The grid node of FIELD nearest to 70 % of the way from B's centre to its top.
+Eigen::Vector3d GridNodeNearTop(const DistanceField& field) {
+  const Aabb box = field.box();
+  const Eigen::Vector3d target(0.5 * (box.min.x() + box.max.x()), 0.5 * (box.min.y() + box.max.y()),
+                               0.7 * (0.5 * (box.max.z() - box.min.z()) / 1.2));
+  const Eigen::Vector3d ijk = ((target - field.origin()) / field.spacing()).array().round();
+  return field.GridPoint(int(ijk.x()), int(ijk.y()), int(ijk.z()));
+}
+
+// A point exactly on the top face of FIELD's box, off its centre.
+Eigen::Vector3d BoxTop(const DistanceField& field) {
+  const Aabb box = field.box();
+  return Eigen::Vector3d(0.3 * box.min.x() + 0.7 * box.max.x(), 0.5 * (box.min.y() + box.max.y()), box.max.z());
+}
+
+// B's centre, on the medial axis of a sphere (the distance gradient is undefined there).
+Eigen::Vector3d Centre(const DistanceField& field) {
+  const Aabb box = field.box();
+  return 0.5 * (box.min + box.max);
+}
+
+TEST(HardCases, DeepPenetrationPastTheMedialAxis) {
+  RegisterBaselineContactModels();
+  testing::TempDir cache;
+  HardCaseRunner runner(cache);
+  runner.Run(BallThroughPlate());
+  runner.Run(BarIntoBlock());
+}
+
+TEST(HardCases, ThinAndSharpFeatures) {
+  RegisterBaselineContactModels();
+  testing::TempDir cache;
+  HardCaseRunner runner(cache);
+  runner.Run(BladeOnBlock());
+  runner.Run(NeedleIntoPlate());
+  runner.Run(CrossedEdges());
+  runner.Run(CornerIntoFace());
+  runner.Run(FandiskOnPlate());
+}
+
+TEST(HardCases, DegenerateContact) {
+  RegisterBaselineContactModels();
+  testing::TempDir cache;
+  HardCaseRunner runner(cache);
+  runner.Run(Identical("sphere:0.01,3", "identical-spheres"));
+  runner.Run(Identical("box:0.01,0.007,0.005,2", "identical-boxes"));
+  runner.Run(Flush());
+  runner.Run(PointAt("point-on-grid-node", GridNodeNearTop));
+  runner.Run(PointAt("point-on-field-box-boundary", BoxTop));
+  runner.Run(PointAt("point-on-medial-axis", Centre));
+}
+
+TEST(HardCases, MotionExtremesWithCoherence) {
+  RegisterBaselineContactModels();
+  testing::TempDir cache;
+  HardCaseRunner runner(cache);
+  runner.Run(Teleport(true));
+  runner.Run(Teleport(false));
+  runner.Run(HighSpeed());
+  runner.Run(Creep());
+}
+
+TEST(HardCases, InputExtremes) {
+  RegisterBaselineContactModels();
+  testing::TempDir cache;
+  HardCaseRunner runner(cache);
+  runner.Run(Quaternion(1.0, "quaternion-unit"));
+  runner.Run(Quaternion(2.0, "quaternion-norm-2"));
+  runner.Run(Quaternion(1e-3, "quaternion-norm-1e-3"));
+  runner.Run(Quaternion(1e-200, "quaternion-near-zero"));
+  runner.Run(Quaternion(0.0, "quaternion-zero"));
+  // What a non-unit quaternion does (a precondition violation: Pose holds a unit quaternion,
+  // and ParsePose and the UDP and plugin devices normalise): recorded, not checked.
+  for (const std::string& name : ContactModelNames()) {
+    for (int order = 0; order < 2; ++order) {
+      const auto unit = Summary().first_force.find({name, "quaternion-unit", order});
+      if (unit == Summary().first_force.end() || unit->second.norm() == 0) continue;
+      for (const char* label : {"quaternion-norm-2", "quaternion-norm-1e-3", "quaternion-near-zero", "quaternion-zero"}) {
+        const auto it = Summary().first_force.find({name, label, order});
+        if (it == Summary().first_force.end()) continue;
+        std::printf("quaternion %s %s %s: |F - F(unit)| / |F(unit)| = %.3g\n", name.c_str(), label,
+                    order == 0 ? "AB" : "BA", (it->second - unit->second).norm() / unit->second.norm());
+      }
+    }
+  }
+  runner.Run(Scaled(1e-9, "scale-1e-9"));
+  runner.Run(Scaled(1.0, "scale-1"));
+  runner.Run(Scaled(1e3, "scale-1e3"));
+  // The scaled scenes are similar to the unit one (bodies, pose and depth scaled by s) and the
+  // penalty law is linear in depth: F(s) = s F(1). A model with an absolute length in it (a
+  // margin, a tolerance) departs from it.
+  for (const std::string& name : ContactModelNames()) {
+    for (int order = 0; order < 2; ++order) {
+      const auto unit = Summary().first_force.find({name, "scale-1", order});
+      if (unit == Summary().first_force.end() || unit->second.norm() == 0) continue;
+      for (const auto& [scale, label] : {std::pair{1e-9, "scale-1e-9"}, std::pair{1e3, "scale-1e3"}}) {
+        const auto it = Summary().first_force.find({name, label, order});
+        if (it == Summary().first_force.end()) continue;
+        const double err = (it->second / scale - unit->second).norm() / unit->second.norm();
+        const std::string order_name = order == 0 ? "AB" : "BA";
+        std::printf("scaling %s %s %s: |F/s - F(1)| / |F(1)| = %.3g\n", name.c_str(), label, order_name.c_str(), err);
+        if (err > 0.05) {
+          if (const Finding* f = FindFinding(name, label, order, "scaling")) {
+            std::printf("FINDING %s %s %s scaling: %.3g (%s)\n", name.c_str(), label, order_name.c_str(), err, f->reason);
+          } else {
+            ADD_FAILURE() << name << " " << label << " " << order_name << ": F(s)/s differs from F(1) by " << err
+                          << " (|F(1)| " << unit->second.norm() << " N)";
+          }
+        }
+      }
+    }
+  }
+  // Fields of 8 and 128 cells along the longest side (512 would take minutes to build).
+  runner.Run(BallThroughPlate(8, 8, "fields-8"));
+  runner.Run(BallThroughPlate(128, 128, "fields-128"));
+}
+
+
+}  // namespace
+}  // namespace contactlab
