@@ -282,5 +282,49 @@ TEST(MeshBadInput, EveryPrefixAndRandomBytesLoadOrThrowError) {
   }
 }
 
+// A garbage token quoted in an error is cut short and its control bytes escaped: a
+// ten-thousand-character token or an escape sequence from a broken file must neither flood
+// nor drive the terminal. One case per place a reader quotes the file's text.
+TEST(MeshBadInput, ErrorsNeverEchoLongTokensOrControlBytes) {
+  const std::string huge(10000, '9'), garbage = "ab\x1b[2J\x07" + std::string(5000, 'x');
+  const struct {
+    const char* ext;
+    std::string text;
+  } cases[] = {
+      {"obj", "v 0 0 0\nv 1 0 0\nv 0 1 " + huge + "e\nf 1 2 3\n"},    // ReadDouble
+      {"obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 " + garbage + "\n"},  // a face vertex
+      {"off", garbage + "\n"},                                          // the header keyword
+      {"off", "OFF " + garbage + "\n"},                                 // the header line
+      {"off", "OFF\n" + huge + "x 1 0\n"},                              // ReadInt
+      {"stl", "solid s\n" + std::string(5000, 'k') + "\n"},              // an unknown keyword
+      {"ply", "ply\nformat " + garbage + " 1.0\n"},                     // the format
+      {"ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty " + garbage + " x\n"},
+      {"ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty list " + garbage + " int v\n"},
+      {"ply", "ply\nformat ascii 1.0\n" + garbage + "\n"},              // a header line
+      // An element named with garbage, its record cut short: the message names the element.
+      {"ply", "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+              "property float z\nelement face 1\nproperty list uchar int vertex_indices\nelement " + garbage +
+                  " 2\nproperty float w\nend_header\n" + std::string(36, '\0') +
+                  std::string("\x03\0\0\0\0\x01\0\0\0\x02\0\0\0", 13) + "\x01\x02"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(std::string(c.ext) + ": " + c.text.substr(0, 60));
+    std::string message;
+    try {
+      ReadInMemory(c.ext, c.text);
+    } catch (const Error& e) {
+      message = e.what();
+    }
+    ASSERT_FALSE(message.empty()) << "no error";
+    EXPECT_LT(message.size(), 400u) << message.substr(0, 400);
+    for (const char ch : message) {
+      EXPECT_FALSE(static_cast<unsigned char>(ch) < 0x20 || static_cast<unsigned char>(ch) >= 0x7f)
+          << "raw byte " << int(static_cast<unsigned char>(ch)) << " in: " << message;
+    }
+    EXPECT_TRUE(message.find("characters)") != std::string::npos || message.find("\\x1b") != std::string::npos)
+        << message;
+  }
+}
+
 }  // namespace
 }  // namespace contactlab
