@@ -94,8 +94,9 @@ class LineScanner {
 
   long line_number() const { return line_number_; }
   std::string_view line() const { return line_; }
-  // Byte offset of the start of the next line in TEXT.
-  std::size_t offset() const { return pos_; }
+  // Byte offset of the start of the next line in TEXT; TEXT's size after a last line without
+  // a line break (never past the end).
+  std::size_t offset() const { return pos_ < text_.size() ? pos_ : text_.size(); }
 
   // Parses a whole token as a number ('+' sign and out-of-range magnitudes allowed:
   // overflow gives +-inf, underflow 0 or a denormal). False when TOKEN is not a number.

@@ -170,7 +170,7 @@ PlyLayout FindLayout(const PlyHeader& header, std::string_view file) {
 class BinaryCursor {
  public:
   BinaryCursor(std::string_view bytes, std::size_t offset, bool swap) : bytes_(bytes), offset_(offset), swap_(swap) {}
-  bool Has(std::size_t n) const { return bytes_.size() - offset_ >= n; }
+  bool Has(std::size_t n) const { return offset_ <= bytes_.size() && bytes_.size() - offset_ >= n; }
   std::size_t offset() const { return offset_; }
   void Skip(std::size_t n) { offset_ += n; }
   // Precondition: Has(TypeSize(type)).

@@ -282,6 +282,31 @@ TEST(MeshBadInput, EveryPrefixAndRandomBytesLoadOrThrowError) {
   }
 }
 
+// A PLY file whose last header line is "end_header" without a line break has an empty body:
+// the body starts at the end of the file, not one byte past it (binary records were read
+// beyond the buffer, an ASCII body threw std::out_of_range). Found by tests/fuzz/fuzz_ply_reader.
+TEST(MeshBadInput, PlyEndHeaderWithoutLineBreakIsTruncatedNotReadPastTheEnd) {
+  const std::string header =
+      "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header";
+  for (const std::string format : {"binary_little_endian", "binary_big_endian", "ascii"}) {
+    SCOPED_TRACE(format);
+    for (const std::string tail : {"", " \t", "\t\xf6\xa3\xa3\xa3"}) {
+      std::string message;
+      try {
+        ReadInMemory("ply", "ply\nformat " + format + " 1.0\n" + header + tail);
+      } catch (const Error& e) {
+        message = e.what();
+      }
+      EXPECT_NE(message.find("mem.ply"), std::string::npos) << message;
+      if (format != "ascii") {
+        EXPECT_NE(message.find("record 0 of 3"), std::string::npos) << message;
+        EXPECT_NE(message.find("truncated"), std::string::npos) << message;
+      }
+    }
+  }
+}
+
 // A garbage token quoted in an error is cut short and its control bytes escaped: a
 // ten-thousand-character token or an escape sequence from a broken file must neither flood
 // nor drive the terminal. One case per place a reader quotes the file's text.
