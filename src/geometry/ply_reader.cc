@@ -233,6 +233,9 @@ void ReadBinaryBody(std::string_view bytes, std::string_view file, const PlyHead
     const PlyElement& element = header.elements[e];
     const bool is_vertex = e == layout.vertex_element;
     const bool is_face = e == layout.face_element;
+    // A record without properties holds no bytes: nothing to read, however large the count
+    // (up to 2^31 empty iterations otherwise).
+    if (element.properties.empty()) continue;
     for (long long r = 0; r < element.count; ++r) {
       const std::size_t record_offset = cursor.offset();
       const auto truncated = [&]() {

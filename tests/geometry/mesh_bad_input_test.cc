@@ -4,6 +4,7 @@
 
 #include <sys/stat.h>
 
+#include <chrono>
 #include <random>
 
 #include "geometry/mesh_io.h"
@@ -305,6 +306,24 @@ TEST(MeshBadInput, PlyEndHeaderWithoutLineBreakIsTruncatedNotReadPastTheEnd) {
       }
     }
   }
+}
+
+// A binary PLY element without properties has records of no bytes: skipped at once, whatever
+// its count (a count near 2^31 made the reader spin for seconds, minutes under sanitizers).
+// Found by tests/fuzz/fuzz_ply_reader.
+TEST(MeshBadInput, PlyElementWithoutPropertiesCostsNothingWhateverItsCount) {
+  ByteBuilder b;
+  b.Text("ply\nformat binary_little_endian 1.0\nelement nothing 2147483646\nelement vertex 3\n"
+         "property float x\nproperty float y\nproperty float z\nelement face 1\n"
+         "property list uchar int vertex_indices\nend_header\n");
+  for (const float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) b.Put<float>(v);
+  b.Put<std::uint8_t>(3).Put<std::int32_t>(0).Put<std::int32_t>(1).Put<std::int32_t>(2);
+  const auto start = std::chrono::steady_clock::now();
+  const TriangleMesh mesh = ReadInMemory("ply", b.bytes());
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(mesh.num_triangles(), 1);
+  EXPECT_EQ(mesh.vertices.size(), 3u);
+  EXPECT_LT(seconds, 0.5) << "2^31 empty records were iterated";
 }
 
 // A garbage token quoted in an error is cut short and its control bytes escaped: a
