@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs ContactLab's build, test and figure dependencies from Debian 12 packages (with
-# slurm-wlm and munge for the single-node Slurm cluster test, tests/slurm/). Does nothing when
+# slurm-wlm and munge for the single-node Slurm cluster test, tests/slurm/; clang with its
+# runtime libraries, which hold libFuzzer, for the fuzz targets, tests/fuzz/). Does nothing when
 # everything is present; uses sudo when not root.
 set -euo pipefail
 
@@ -12,6 +13,7 @@ packages=(
   libbullet-dev
   libspectra-dev libnanoflann-dev libspnav-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  clang libclang-rt-14-dev
   python3 python3-numpy python3-matplotlib python3-yaml
   slurm-wlm munge
 )

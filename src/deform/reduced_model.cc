@@ -1,6 +1,7 @@
 // Precomputation and files of reduced deformable models (Barbič & James 2008, sec. 4.1).
 #include "deform/reduced_model.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -28,7 +29,13 @@ Eigen::MatrixXd GetMatrix(BinaryReader& r, const std::string& what) {
   const auto rows = r.Get<std::int64_t>(what + " rows");
   const auto cols = r.Get<std::int64_t>(what + " cols");
   const std::vector<double> v = r.GetArray<double>(what);
-  if (rows < 0 || cols < 0 || std::uint64_t(rows) * std::uint64_t(cols) != v.size()) {
+  // rows x cols must equal the values read, without overflow; and since an empty matrix
+  // (0 x n) holds no values, nothing else bounds n: each dimension is also held to
+  // max(values, 1024), or a corrupt 0 x 2^62 matrix made later whole-matrix checks run for hours.
+  const std::uint64_t n = v.size(), limit = std::max<std::uint64_t>(n, 1024);
+  const bool fits = rows >= 0 && cols >= 0 && std::uint64_t(rows) <= limit && std::uint64_t(cols) <= limit &&
+                    (cols == 0 ? n == 0 : std::uint64_t(rows) == n / std::uint64_t(cols) && n % std::uint64_t(cols) == 0);
+  if (!fits) {
     r.Corrupt(what + ": " + std::to_string(rows) + " x " + std::to_string(cols) + " does not match " +
               std::to_string(v.size()) + " values");
   }

@@ -1,5 +1,7 @@
 // A line-by-line tokenizer over a text file held in memory, for the text mesh readers (OBJ,
 // OFF, ASCII STL and PLY): std::from_chars on string views, no streams, errors name FILE:LINE.
+// A token or line of the file quoted in an error goes through QuoteToken (util/error.h): cut
+// to a readable length, control and non-ASCII bytes escaped.
 #pragma once
 
 #include <charconv>
@@ -64,10 +66,10 @@ class LineScanner {
     if (token.empty()) Fail("expected " + std::string(what) + ", found end of line");
     double value = 0;
     if (!ParseDouble(token, &value)) {
-      Fail("expected " + std::string(what) + ", found '" + std::string(token) + "'");
+      Fail("expected " + std::string(what) + ", found '" + QuoteToken(token) + "'");
     }
     if (!std::isfinite(value)) {
-      Fail(std::string(what) + " is not finite: '" + std::string(token) + "'");
+      Fail(std::string(what) + " is not finite: '" + QuoteToken(token) + "'");
     }
     return value;
   }
@@ -78,7 +80,7 @@ class LineScanner {
     if (token.empty()) Fail("expected " + std::string(what) + ", found end of line");
     long long value = 0;
     if (!ParseInt(token, &value)) {
-      Fail("expected " + std::string(what) + " (an integer), found '" + std::string(token) + "'");
+      Fail("expected " + std::string(what) + " (an integer), found '" + QuoteToken(token) + "'");
     }
     return value;
   }
@@ -92,8 +94,9 @@ class LineScanner {
 
   long line_number() const { return line_number_; }
   std::string_view line() const { return line_; }
-  // Byte offset of the start of the next line in TEXT.
-  std::size_t offset() const { return pos_; }
+  // Byte offset of the start of the next line in TEXT; TEXT's size after a last line without
+  // a line break (never past the end).
+  std::size_t offset() const { return pos_ < text_.size() ? pos_ : text_.size(); }
 
   // Parses a whole token as a number ('+' sign and out-of-range magnitudes allowed:
   // overflow gives +-inf, underflow 0 or a denormal). False when TOKEN is not a number.

@@ -30,7 +30,7 @@ TriangleMesh ReadObj(std::string_view text, std::string_view file) {
         const std::string_view index_text = token.substr(0, token.find('/'));
         long long index = 0;
         if (!LineScanner::ParseInt(index_text, &index)) {
-          scanner.Fail("bad face vertex '" + std::string(token) + "' (expected an integer index)");
+          scanner.Fail("bad face vertex '" + QuoteToken(token) + "' (expected an integer index)");
         }
         if (index == 0) scanner.Fail("face vertex index 0 (OBJ indices start at 1)");
         const long long k = index > 0 ? index - 1 : n + index;

@@ -29,7 +29,7 @@ TriangleMesh ReadOff(std::string_view text, std::string_view file) {
   const std::string_view keyword = scanner.NextToken();
   if (!IsOffKeyword(keyword)) {
     scanner.Fail("not an OFF file: expected the header 'OFF', found '" +
-                 std::string(keyword.substr(0, 40)) + "'");
+                 QuoteToken(keyword) + "'");
   }
   if (scanner.AtLineEnd()) {
     if (!scanner.NextContentLine()) scanner.Fail("file ends before the vertex and face counts");
@@ -38,7 +38,7 @@ TriangleMesh ReadOff(std::string_view text, std::string_view file) {
     long long dummy = 0;
     LineScanner peek = scanner;
     if (!LineScanner::ParseInt(peek.NextToken(), &dummy)) {
-      scanner.Fail("unsupported OFF variant (only ASCII OFF is read): '" + std::string(scanner.line()) + "'");
+      scanner.Fail("unsupported OFF variant (only ASCII OFF is read): '" + QuoteToken(scanner.line()) + "'");
     }
   }
 

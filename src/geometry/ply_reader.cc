@@ -90,11 +90,13 @@ PlyHeader ParseHeader(std::string_view bytes, std::string_view file) {
       if (format == "ascii") header.format = PlyFormat::kAscii;
       else if (format == "binary_little_endian") header.format = PlyFormat::kBinaryLittleEndian;
       else if (format == "binary_big_endian") header.format = PlyFormat::kBinaryBigEndian;
-      else scanner.Fail("unknown PLY format '" + std::string(format) + "'");
+      else scanner.Fail("unknown PLY format '" + QuoteToken(format) + "'");
       have_format = true;
     } else if (key == "element") {
       PlyElement element;
-      element.name = std::string(scanner.NextToken());
+      // Names are kept as quoted for messages: the ones the reader looks for (vertex, face,
+      // x, y, z, vertex_indices, vertex_index) are short plain ASCII, which quoting keeps as is.
+      element.name = QuoteToken(scanner.NextToken());
       if (element.name.empty()) scanner.Fail("element without a name");
       element.count = scanner.ReadInt("element count");
       if (element.count < 0 || element.count >= INT_MAX) scanner.Fail("element count out of range");
@@ -107,16 +109,16 @@ PlyHeader ParseHeader(std::string_view bytes, std::string_view file) {
         property.is_list = true;
         const std::string_view count_type = scanner.NextToken();
         if (!ParseType(count_type, &property.count_type) || !IsInteger(property.count_type)) {
-          scanner.Fail("bad list count type '" + std::string(count_type) + "'");
+          scanner.Fail("bad list count type '" + QuoteToken(count_type) + "'");
         }
         type_name = scanner.NextToken();
       }
-      if (!ParseType(type_name, &property.type)) scanner.Fail("unknown property type '" + std::string(type_name) + "'");
-      property.name = std::string(scanner.NextToken());
+      if (!ParseType(type_name, &property.type)) scanner.Fail("unknown property type '" + QuoteToken(type_name) + "'");
+      property.name = QuoteToken(scanner.NextToken());
       if (property.name.empty()) scanner.Fail("property without a name");
       header.elements.back().properties.push_back(std::move(property));
     } else {
-      scanner.Fail("unexpected header line '" + std::string(scanner.line().substr(0, 60)) + "'");
+      scanner.Fail("unexpected header line '" + QuoteToken(scanner.line()) + "'");
     }
   }
   if (!have_format) FailAtLine(file, 2, "no 'format' line in the PLY header");
@@ -168,7 +170,7 @@ PlyLayout FindLayout(const PlyHeader& header, std::string_view file) {
 class BinaryCursor {
  public:
   BinaryCursor(std::string_view bytes, std::size_t offset, bool swap) : bytes_(bytes), offset_(offset), swap_(swap) {}
-  bool Has(std::size_t n) const { return bytes_.size() - offset_ >= n; }
+  bool Has(std::size_t n) const { return offset_ <= bytes_.size() && bytes_.size() - offset_ >= n; }
   std::size_t offset() const { return offset_; }
   void Skip(std::size_t n) { offset_ += n; }
   // Precondition: Has(TypeSize(type)).
@@ -231,6 +233,9 @@ void ReadBinaryBody(std::string_view bytes, std::string_view file, const PlyHead
     const PlyElement& element = header.elements[e];
     const bool is_vertex = e == layout.vertex_element;
     const bool is_face = e == layout.face_element;
+    // A record without properties holds no bytes: nothing to read, however large the count
+    // (up to 2^31 empty iterations otherwise).
+    if (element.properties.empty()) continue;
     for (long long r = 0; r < element.count; ++r) {
       const std::size_t record_offset = cursor.offset();
       const auto truncated = [&]() {

@@ -46,7 +46,7 @@ PoseSamples ReadPoseSamplesCsv(const std::filesystem::path& file) {
       item = a == std::string::npos ? std::string() : item.substr(a, b - a + 1);
       const auto [ptr, ec] = std::from_chars(item.data(), item.data() + item.size(), v[count]);
       if (ec != std::errc() || ptr != item.data() + item.size()) {
-        FailAtLine(name, line_no, "column " + std::to_string(count + 1) + " '" + item + "' is not a number");
+        FailAtLine(name, line_no, "column " + std::to_string(count + 1) + " '" + QuoteToken(item) + "' is not a number");
       }
       if (!std::isfinite(v[count])) FailAtLine(name, line_no, "column " + std::to_string(count + 1) + " is not finite");
       ++count;

@@ -129,7 +129,7 @@ TriangleMesh ReadAsciiStl(std::string_view text, std::string_view file) {
       if (facet_line != 0) scanner.Fail("'endsolid' inside the facet opened on line " + std::to_string(facet_line));
       solid_line = 0;
     } else {
-      scanner.Fail("unexpected '" + std::string(key.substr(0, 40)) + "' in ASCII STL");
+      scanner.Fail("unexpected '" + QuoteToken(key) + "' in ASCII STL");
     }
   }
   if (in_loop) FailAtLine(file, loop_line, "truncated: the file ends inside this 'outer loop'");

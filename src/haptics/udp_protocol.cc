@@ -114,7 +114,9 @@ DecodeStatus DecodePose(const std::uint8_t* d, std::size_t size, PosePacket* out
     qn += v * v;
   }
   p.buttons = Get<std::uint32_t>(d, &at);
-  if (!finite || !(qn > 1e-12)) return DecodeStatus::kNonFinite;
+  // A squared norm that overflows (components beyond ~1e154) would normalise to a zero
+  // quaternion on receipt: rejected like a zero one.
+  if (!finite || !(qn > 1e-12) || !std::isfinite(qn)) return DecodeStatus::kNonFinite;
   *out = p;
   return DecodeStatus::kOk;
 }

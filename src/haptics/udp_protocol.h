@@ -43,7 +43,7 @@ enum class DecodeStatus {
   kBadVersion,
   kBadType,
   kBadChecksum,
-  kNonFinite,     // a non-finite number, or a zero quaternion
+  kNonFinite,     // a non-finite number, or a quaternion whose squared norm is ~0 or overflows
 };
 const char* ToString(DecodeStatus s);
 

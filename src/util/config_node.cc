@@ -48,6 +48,11 @@ void ConfigNode::RejectDuplicateKeys() const {
   // second "k_C:" further down would be silently ignored.
   std::set<std::string> seen;
   for (const auto& kv : node_) {
+    // A complex key ("? [a, b]: 1", "{a: 1}: 2") is no name: refused here, before any lookup
+    // converts it (yaml-cpp would throw its own bad-conversion exception).
+    if (!kv.first.IsScalar()) {
+      ConfigNode(kv.first, file_, path_).Fail("a key must be a plain name, not a sequence or mapping");
+    }
     const std::string key = kv.first.as<std::string>();
     if (!seen.insert(key).second) {
       ConfigNode(kv.first, file_, ChildPath(key)).Fail("duplicate key '" + QuoteToken(key) +

@@ -8,6 +8,7 @@
 #include "beam_fixture.h"
 #include "test_support.h"
 #include "util/atomic_file.h"
+#include "util/binary_io.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -49,6 +50,39 @@ TEST(ReducedModel, CorruptFileIsRejectedNamingTheFile) {
     EXPECT_NE(std::string(e.what()).find("bad.rm"), std::string::npos);
   }
   EXPECT_THROW(LoadReducedModel(dir / "missing.rm"), Error);
+}
+
+// A checksum-valid file whose cubic coefficients claim 0 x 2^62 (no values, so the value
+// count matched) is refused at once: it made the finiteness check loop over 2^62 columns.
+// Found by tests/fuzz/fuzz_reduced_model.
+TEST(ReducedModel, EmptyMatrixWithAnAbsurdDimensionIsRefused) {
+  testing::TempDir dir;
+  const ReducedModel model = BuildReducedModel(MakeBeam(TetSplit::kSix, 4), BeamOptions(3, ReducedModelKind::kLinear), "beam");
+  SaveReducedModel(model, dir / "beam.rm");
+  const std::string bytes = ReadWholeFile(dir / "beam.rm");
+  // Container: magic[8] u32 version u64 size | payload | u32 CRC. The payload ends with the
+  // cubic coefficients (i64 rows, i64 cols, u64 count, count doubles), then two doubles.
+  const std::string payload = bytes.substr(20, bytes.size() - 24);
+  const std::size_t cubic = 24 + 8 * std::size_t(model.forces.cubic().size());
+  BinaryWriter w;
+  for (const char c : payload.substr(0, payload.size() - 16 - cubic)) w.Put<char>(c);
+  w.Put<std::int64_t>(0);
+  w.Put<std::int64_t>(std::int64_t(1) << 62);
+  w.Put<std::uint64_t>(0);
+  for (const char c : payload.substr(payload.size() - 16)) w.Put<char>(c);
+  w.Save(dir / "absurd.rm", "CLRM", 1);
+  try {
+    LoadReducedModel(dir / "absurd.rm");
+    FAIL() << "a 0 x 2^62 matrix was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("absurd.rm"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("cubic coefficients: 0 x 4611686018427387904"), std::string::npos) << e.what();
+  }
+  // The same file with the original header loads: only the dimension was wrong.
+  BinaryWriter same;
+  for (const char c : payload) same.Put<char>(c);
+  same.Save(dir / "same.rm", "CLRM", 1);
+  EXPECT_EQ(LoadReducedModel(dir / "same.rm").r(), 3);
 }
 
 TEST(ReducedModel, BadParametersGiveClearErrors) {

@@ -108,6 +108,18 @@ TEST(Scene, DuplicateKeyIsRejectedNamingFileLineAndKey) {
   EXPECT_NE(e.find("scene.yaml:15: model.k_C: duplicate key 'k_C'"), std::string::npos) << e;
 }
 
+// A sequence or mapping used as a key is refused as a Error naming the file and line; it
+// escaped as yaml-cpp's bad-conversion exception ("internal error"). Found by
+// tests/fuzz/fuzz_scene.
+TEST(Scene, ComplexKeyIsRejectedNamingFileAndLine) {
+  std::string e = ErrorOf(Replace(kScene, "  L: 10\n", "  L: 10\n  ? [x, y]\n  : 1\n"));
+  EXPECT_NE(e.find("scene.yaml:"), std::string::npos) << e;
+  EXPECT_NE(e.find("a key must be a plain name"), std::string::npos) << e;
+  e = ErrorOf("{a: 1}: 2\n");
+  EXPECT_NE(e.find("scene.yaml:1:"), std::string::npos) << e;
+  EXPECT_NE(e.find("a key must be a plain name"), std::string::npos) << e;
+}
+
 TEST(Scene, ErrorsNeverEchoLongTokensOrControlBytes) {
   const std::string huge(10000000, '7');
   std::string e = ErrorOf(Replace(kScene, "k_C: 1500", "k_C: " + huge));

@@ -87,6 +87,19 @@ TEST(Trajectory, BadCsvRowsNameTheFileAndLine) {
   EXPECT_NE(ErrorOfCsv(header + "0,0,0,0,1,0,0,0\n").find("at least two rows"), std::string::npos);
 }
 
+// A recorded trajectory's bad cell is quoted cut short, its control bytes escaped.
+TEST(Trajectory, CsvErrorsNeverEchoLongTokensOrControlBytes) {
+  const std::string header = "t,x,y,z,qw,qx,qy,qz\n";
+  std::string e = ErrorOfCsv(header + "0,0," + std::string(100000, '7') + "x,0,1,0,0,0\n");
+  EXPECT_LT(e.size(), 300u) << e.substr(0, 300);
+  EXPECT_NE(e.find("column 3"), std::string::npos) << e.substr(0, 300);
+  EXPECT_NE(e.find("(100001 characters)"), std::string::npos) << e.substr(0, 300);
+  e = ErrorOfCsv(header + "0,0,\x1b[2Jab\x07,0,1,0,0,0\n");
+  EXPECT_EQ(e.find('\x1b'), std::string::npos) << e;
+  EXPECT_EQ(e.find('\x07'), std::string::npos) << e;
+  EXPECT_NE(e.find("'\\x1b[2Jab\\x07'"), std::string::npos) << e;
+}
+
 TEST(Trajectory, SessionLogsWithExtraColumnsReplay) {
   testing::TempDir dir;
   std::ofstream(dir / "log.csv") << "# session log\nt,x,y,z,qw,qx,qy,qz,fx,fy\n0,1,2,3,1,0,0,0,5,6\n0.001,1.001,2,3,1,0,0,0,5,6\n";

@@ -4,6 +4,7 @@
 
 #include <sys/stat.h>
 
+#include <chrono>
 #include <random>
 
 #include "geometry/mesh_io.h"
@@ -279,6 +280,93 @@ TEST(MeshBadInput, EveryPrefixAndRandomBytesLoadOrThrowError) {
       } catch (const Error&) {
       }
     }
+  }
+}
+
+// A PLY file whose last header line is "end_header" without a line break has an empty body:
+// the body starts at the end of the file, not one byte past it (binary records were read
+// beyond the buffer, an ASCII body threw std::out_of_range). Found by tests/fuzz/fuzz_ply_reader.
+TEST(MeshBadInput, PlyEndHeaderWithoutLineBreakIsTruncatedNotReadPastTheEnd) {
+  const std::string header =
+      "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header";
+  for (const std::string format : {"binary_little_endian", "binary_big_endian", "ascii"}) {
+    SCOPED_TRACE(format);
+    for (const std::string tail : {"", " \t", "\t\xf6\xa3\xa3\xa3"}) {
+      std::string message;
+      try {
+        ReadInMemory("ply", "ply\nformat " + format + " 1.0\n" + header + tail);
+      } catch (const Error& e) {
+        message = e.what();
+      }
+      EXPECT_NE(message.find("mem.ply"), std::string::npos) << message;
+      if (format != "ascii") {
+        EXPECT_NE(message.find("record 0 of 3"), std::string::npos) << message;
+        EXPECT_NE(message.find("truncated"), std::string::npos) << message;
+      }
+    }
+  }
+}
+
+// A binary PLY element without properties has records of no bytes: skipped at once, whatever
+// its count (a count near 2^31 made the reader spin for seconds, minutes under sanitizers).
+// Found by tests/fuzz/fuzz_ply_reader.
+TEST(MeshBadInput, PlyElementWithoutPropertiesCostsNothingWhateverItsCount) {
+  ByteBuilder b;
+  b.Text("ply\nformat binary_little_endian 1.0\nelement nothing 2147483646\nelement vertex 3\n"
+         "property float x\nproperty float y\nproperty float z\nelement face 1\n"
+         "property list uchar int vertex_indices\nend_header\n");
+  for (const float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) b.Put<float>(v);
+  b.Put<std::uint8_t>(3).Put<std::int32_t>(0).Put<std::int32_t>(1).Put<std::int32_t>(2);
+  const auto start = std::chrono::steady_clock::now();
+  const TriangleMesh mesh = ReadInMemory("ply", b.bytes());
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(mesh.num_triangles(), 1);
+  EXPECT_EQ(mesh.vertices.size(), 3u);
+  EXPECT_LT(seconds, 0.5) << "2^31 empty records were iterated";
+}
+
+// A garbage token quoted in an error is cut short and its control bytes escaped: a
+// ten-thousand-character token or an escape sequence from a broken file must neither flood
+// nor drive the terminal. One case per place a reader quotes the file's text.
+TEST(MeshBadInput, ErrorsNeverEchoLongTokensOrControlBytes) {
+  const std::string huge(10000, '9'), garbage = "ab\x1b[2J\x07" + std::string(5000, 'x');
+  const struct {
+    const char* ext;
+    std::string text;
+  } cases[] = {
+      {"obj", "v 0 0 0\nv 1 0 0\nv 0 1 " + huge + "e\nf 1 2 3\n"},    // ReadDouble
+      {"obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 " + garbage + "\n"},  // a face vertex
+      {"off", garbage + "\n"},                                          // the header keyword
+      {"off", "OFF " + garbage + "\n"},                                 // the header line
+      {"off", "OFF\n" + huge + "x 1 0\n"},                              // ReadInt
+      {"stl", "solid s\n" + std::string(5000, 'k') + "\n"},              // an unknown keyword
+      {"ply", "ply\nformat " + garbage + " 1.0\n"},                     // the format
+      {"ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty " + garbage + " x\n"},
+      {"ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty list " + garbage + " int v\n"},
+      {"ply", "ply\nformat ascii 1.0\n" + garbage + "\n"},              // a header line
+      // An element named with garbage, its record cut short: the message names the element.
+      {"ply", "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+              "property float z\nelement face 1\nproperty list uchar int vertex_indices\nelement " + garbage +
+                  " 2\nproperty float w\nend_header\n" + std::string(36, '\0') +
+                  std::string("\x03\0\0\0\0\x01\0\0\0\x02\0\0\0", 13) + "\x01\x02"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(std::string(c.ext) + ": " + c.text.substr(0, 60));
+    std::string message;
+    try {
+      ReadInMemory(c.ext, c.text);
+    } catch (const Error& e) {
+      message = e.what();
+    }
+    ASSERT_FALSE(message.empty()) << "no error";
+    EXPECT_LT(message.size(), 400u) << message.substr(0, 400);
+    for (const char ch : message) {
+      EXPECT_FALSE(static_cast<unsigned char>(ch) < 0x20 || static_cast<unsigned char>(ch) >= 0x7f)
+          << "raw byte " << int(static_cast<unsigned char>(ch)) << " in: " << message;
+    }
+    EXPECT_TRUE(message.find("characters)") != std::string::npos || message.find("\\x1b") != std::string::npos)
+        << message;
   }
 }
 

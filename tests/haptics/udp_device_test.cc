@@ -8,7 +8,9 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <Eigen/Geometry>
 #include <chrono>
+#include <limits>
 #include <thread>
 
 #include "haptics/device_factory.h"
@@ -130,6 +132,33 @@ TEST(UdpProtocol, EverySingleBitFlipIsDetected) {
       ASSERT_NE(udp::DecodePose(c.data(), c.size(), &q), udp::DecodeStatus::kOk) << "byte " << byte << " bit " << bit;
     }
   }
+}
+
+// A quaternion whose squared norm overflows (components near 1e200) is finite component by
+// component but normalises to zero: accepted, it would hand the cycle a pose with no rotation.
+// Found by tests/fuzz/fuzz_udp_packet.
+TEST(UdpProtocol, NonFiniteOrOverflowingQuaternionIsRejected) {
+  udp::PosePacket p;
+  udp::PoseBytes pb;
+  udp::PosePacket q;
+  for (const double big : {1e200, -1e160, 1.3e154}) {
+    SCOPED_TRACE(big);
+    p.quaternion[0] = big;
+    p.quaternion[1] = big;
+    udp::EncodePose(p, &pb);
+    EXPECT_EQ(udp::DecodePose(pb.data(), pb.size(), &q), udp::DecodeStatus::kNonFinite);
+  }
+  // Large but representable quaternions still decode, and normalise to a unit rotation.
+  p.quaternion[0] = 1e150;
+  p.quaternion[1] = 0;
+  udp::EncodePose(p, &pb);
+  ASSERT_EQ(udp::DecodePose(pb.data(), pb.size(), &q), udp::DecodeStatus::kOk);
+  const Eigen::Quaterniond unit =
+      Eigen::Quaterniond(q.quaternion[0], q.quaternion[1], q.quaternion[2], q.quaternion[3]).normalized();
+  EXPECT_NEAR(unit.norm(), 1.0, 1e-12);
+  p.quaternion[0] = std::numeric_limits<double>::infinity();
+  udp::EncodePose(p, &pb);
+  EXPECT_EQ(udp::DecodePose(pb.data(), pb.size(), &q), udp::DecodeStatus::kNonFinite);
 }
 
 TEST(UdpDevice, BadPacketsAreRejectedCountedAndNeverActedOn) {

@@ -1,0 +1,18 @@
+// libFuzzer target: the STL mesh reader (geometry/stl_reader.cc) on arbitrary bytes, then the
+// validation report of whatever mesh it accepts.
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+
+#include "fuzz_support.h"
+#include "geometry/mesh_readers.h"
+#include "geometry/mesh_validation.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string_view bytes(reinterpret_cast<const char*>(data), size);
+  contactlab::fuzz::ExpectOnlyError([&] {
+    const contactlab::TriangleMesh mesh = contactlab::internal::ReadStl(bytes, "fuzz.stl");
+    contactlab::ValidateMesh(mesh);
+  });
+  return 0;
+}
