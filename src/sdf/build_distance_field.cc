@@ -40,6 +40,11 @@ void CheckInputs(const TriangleMesh& mesh, const DistanceFieldOptions& options) 
   for (const auto& v : mesh.vertices) {
     if (!v.allFinite()) Fail(where, "a vertex coordinate is not finite");
   }
+  // All triangles' vertices at one point: no extent to size the grid by (the resolution would
+  // be meaningless).
+  if (!(mesh.Bounds().size().maxCoeff() > 0)) {
+    Fail(where, "has zero extent (every vertex of its triangles is at the same point); cannot build a distance field");
+  }
 }
 
 }  // namespace

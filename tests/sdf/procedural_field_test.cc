@@ -228,6 +228,26 @@ TEST(BuildDistanceField, EmptyMeshIsRejectedNamingIt) {
   }
 }
 
+TEST(BuildDistanceField, MeshWhoseVerticesAllCoincideIsRejectedNotGivenATinyGrid) {
+  TriangleMesh point;
+  point.name = "point.obj";
+  point.vertices = {Eigen::Vector3d(1, 1, 1), Eigen::Vector3d(1, 1, 1), Eigen::Vector3d(1, 1, 1)};
+  point.triangles = {Eigen::Vector3i(0, 1, 2)};
+  try {
+    BuildDistanceField(point, Quiet(32));
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("point.obj"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("zero extent"), std::string::npos) << e.what();
+  }
+  // A flat mesh (zero extent along one axis only) still gets its field.
+  TriangleMesh flat;
+  flat.name = "flat.obj";
+  flat.vertices = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0)};
+  flat.triangles = {Eigen::Vector3i(0, 1, 2)};
+  EXPECT_GT(BuildDistanceField(flat, Quiet(16)).num_samples(), 16 * 16);
+}
+
 TEST(BuildDistanceField, ForcedClosedModeOnASoupIsRejected) {
   TriangleMesh open = MakeSphere(0.3, 2);
   open.name = "open sphere";
