@@ -484,7 +484,8 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
     }
     for (const auto& [axis, values] : spec.slice_jobs) {
       const ConfigNode where = root.Get("measure").Get("slice").Get("jobs").Get(axis);
-      const auto a = std::find_if(c.sweep.begin(), c.sweep.end(), [&](const SweepAxis& s) { return s.name == axis; });
+      const std::string& name = axis;  // a structured binding cannot be captured by clang 14
+      const auto a = std::find_if(c.sweep.begin(), c.sweep.end(), [&name](const SweepAxis& s) { return s.name == name; });
       if (a == c.sweep.end()) where.Fail("is not a sweep axis of this config");
       for (const std::string& v : values) {
         if (std::find(a->values.begin(), a->values.end(), v) == a->values.end()) {
