@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
   app.add_option("--out", out, "CSV, one row per run");
   app.add_option("--md", md, "markdown summary (default: the CSV's name with .md)");
   app.add_option("--cache", cache, "asset cache folder (default: $CONTACTLAB_CACHE or ~/.cache/contactlab)");
-  app.add_option("--jobs", jobs, "worker threads, one (scene, model) at a time each")->check(CLI::Range(1, 64));
+  app.add_option("--jobs", jobs, "worker threads, one (scene, model, k_VC) at a time each")->check(CLI::Range(1, 64));
   app.add_option("--points", points, "override the pointshell body's deepest-level points (0: the scene's)")
       ->check(CLI::Range(0, 1 << 24));
   app.add_option("--field-resolution", field_res, "override both bodies' field resolution (0: the scene's)")
@@ -105,17 +105,20 @@ int main(int argc, char** argv) {
     CheckOutputTarget(out, "--out");
     CheckOutputTarget(md, "--md");
     const auto wall0 = std::chrono::steady_clock::now();
-    // Assets, poses and model instances are built here, one at a time (the assets build lazily
-    // and are not thread-safe); the runs then go to the workers.
-    struct Task {
+    // Assets and poses are built here, one scene at a time, with one instance of each model (the
+    // assets build lazily and are not thread-safe). The runs go to the workers as one task per
+    // (scene, model, k_VC), the slowest models first; a worker makes its own model instance
+    // (under a lock) from the built assets.
+    struct Job {
       std::string scene, model;
-      std::unique_ptr<ContactModel> instance;
+      Scene* spec = nullptr;
+      SceneAssets* assets = nullptr;
       const ClosedLoopScene* where = nullptr;
     };
     std::vector<std::unique_ptr<Scene>> scene_store;
     std::vector<std::unique_ptr<SceneAssets>> asset_store;
     std::vector<std::unique_ptr<ClosedLoopScene>> where_store;
-    std::vector<Task> tasks;
+    std::vector<Job> jobs_list;
     AssetOptions options;
     options.cache_dir = cache;
     options.verbose = false;
@@ -130,7 +133,8 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "closed_loop_stability: preparing %s\n", name.c_str());
       auto where = std::make_unique<ClosedLoopScene>(MakeClosedLoopScene(*scene, *assets));
       for (const std::string& model : models) {
-        tasks.push_back({name, model, MakeSceneContactModel(model, *scene, *assets), where.get()});
+        MakeSceneContactModel(model, *scene, *assets);  // builds what the model needs
+        jobs_list.push_back({name, model, scene.get(), assets.get(), where.get()});
       }
       scene_store.push_back(std::move(scene));
       asset_store.push_back(std::move(assets));
@@ -138,33 +142,55 @@ int main(int argc, char** argv) {
     }
     const double prep_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
 
-    std::vector<std::vector<Row>> results(tasks.size());
+    // Tasks: (job, k index); Bullet, FCL and the tree-less pointshell are far slower per cycle, so
+    // they go first.
+    auto cost = [](const std::string& model) {
+      return model == "bullet" ? 0 : (model == "fcl" || model == "pointshell-linear") ? 1 : model.rfind("vps", 0) == 0 ? 2 : 3;
+    };
+    std::vector<std::pair<std::size_t, std::size_t>> tasks;
+    for (std::size_t j = 0; j < jobs_list.size(); ++j)
+      for (std::size_t k = 0; k < k_values.size(); ++k) tasks.push_back({j, k});
+    std::stable_sort(tasks.begin(), tasks.end(), [&](const auto& a, const auto& b) {
+      return cost(jobs_list[a.first].model) < cost(jobs_list[b.first].model);
+    });
+    std::vector<std::vector<Row>> per_task(tasks.size());
     std::atomic<std::size_t> next{0};
-    std::mutex print;
+    std::mutex print, make;
     auto worker = [&] {
       for (std::size_t i; (i = next.fetch_add(1)) < tasks.size();) {
-        Task& task = tasks[i];
-        for (double k : k_values) {
-          for (LoopMotion motion : {LoopMotion::kPush, LoopMotion::kSlide, LoopMotion::kCorner}) {
-            ClosedLoopCase c;
-            c.k_vc = k;
-            c.motion = motion;
-            Row row{task.scene, task.model, k, motion, RunClosedLoop(*task.instance, *task.where, c)};
-            {
-              std::lock_guard<std::mutex> lock(print);
-              std::fprintf(stderr, "%-18s %-17s k_VC %6.0f %-6s energy %+.2e J (peak %.2e) late rms %.1e m %.1e N -> %s (%.1f s)\n",
-                           task.scene.c_str(), task.model.c_str(), k, LoopMotionName(motion), row.m.energy_into_hand,
-                           row.m.peak_stored_energy, row.m.late_position_rms, row.m.late_force_rms,
-                           Reason(row.m).c_str(), row.m.wall_seconds);
-            }
-            results[i].push_back(std::move(row));
+        const Job& job = jobs_list[tasks[i].first];
+        const double k = k_values[tasks[i].second];
+        std::unique_ptr<ContactModel> instance;
+        {
+          std::lock_guard<std::mutex> lock(make);
+          instance = MakeSceneContactModel(job.model, *job.spec, *job.assets);
+        }
+        for (LoopMotion motion : {LoopMotion::kPush, LoopMotion::kSlide, LoopMotion::kCorner}) {
+          ClosedLoopCase c;
+          c.k_vc = k;
+          c.motion = motion;
+          Row row{job.scene, job.model, k, motion, RunClosedLoop(*instance, *job.where, c)};
+          {
+            std::lock_guard<std::mutex> lock(print);
+            std::fprintf(stderr, "%-18s %-17s k_VC %6.0f %-6s energy %+.2e J (peak %.2e) late rms %.1e m %.1e N -> %s (%.1f s)\n",
+                         job.scene.c_str(), job.model.c_str(), k, LoopMotionName(motion), row.m.energy_into_hand,
+                         row.m.peak_stored_energy, row.m.late_position_rms, row.m.late_force_rms,
+                         Reason(row.m).c_str(), row.m.wall_seconds);
           }
+          per_task[i].push_back(std::move(row));
         }
       }
     };
     std::vector<std::thread> threads;
     for (int j = 0; j < jobs; ++j) threads.emplace_back(worker);
     for (auto& t : threads) t.join();
+    // Back to (scene, model) order, k_VC ascending within each.
+    std::vector<std::vector<Row>> results(jobs_list.size());
+    for (std::size_t j = 0; j < jobs_list.size(); ++j)
+      for (std::size_t k = 0; k < k_values.size(); ++k)
+        for (std::size_t i = 0; i < tasks.size(); ++i)
+          if (tasks[i] == std::make_pair(j, k))
+            for (Row& r : per_task[i]) results[j].push_back(std::move(r));
     const double total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
 
     WriteFileAtomically(out, [&](std::ostream& os) {
@@ -248,7 +274,7 @@ int main(int argc, char** argv) {
     WriteFileAtomically(md, s.str());
     std::printf("%s", s.str().c_str());
     std::printf("closed_loop_stability: %zu runs, preparation %.1f s, total %.1f s wall; wrote %s and %s\n",
-                tasks.size() * k_values.size() * 3, prep_seconds, total_seconds, out.c_str(), md.c_str());
+                tasks.size() * 3, prep_seconds, total_seconds, out.c_str(), md.c_str());
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: closed_loop_stability: %s\n", e.what());
