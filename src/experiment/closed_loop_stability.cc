@@ -38,15 +38,27 @@ double MaxVertexRadius(const TriangleMesh& mesh) {
   return r;
 }
 
-// RMS deviation from the mean of 3-vectors.
-double RmsDeviation(const std::vector<Eigen::Vector3d>& xs) {
-  if (xs.empty()) return 0;
+// RMS deviation of equally spaced 3-vector samples from their least-squares line: the
+// oscillation about a slow drift (H creeping along a surface while the handle settles is not
+// an oscillation).
+double RmsAboutTrend(const std::vector<Eigen::Vector3d>& xs) {
+  const std::size_t n = xs.size();
+  if (n < 3) return 0;
+  const double t_mean = 0.5 * double(n - 1);
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (const auto& x : xs) mean += x;
-  mean /= double(xs.size());
+  mean /= double(n);
+  Eigen::Vector3d cov = Eigen::Vector3d::Zero();
+  double var_t = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double dt = double(i) - t_mean;
+    cov += dt * (xs[i] - mean);
+    var_t += dt * dt;
+  }
+  const Eigen::Vector3d slope = cov / var_t;
   double s = 0;
-  for (const auto& x : xs) s += (x - mean).squaredNorm();
-  return std::sqrt(s / double(xs.size()));
+  for (std::size_t i = 0; i < n; ++i) s += (xs[i] - mean - (double(i) - t_mean) * slope).squaredNorm();
+  return std::sqrt(s / double(n));
 }
 
 }  // namespace
@@ -154,10 +166,10 @@ ClosedLoopMetrics RunClosedLoop(ContactModel& model, const ClosedLoopScene& w, c
   m.coherence_resets = cycle.coherence_resets();
   m.energy_into_hand = device.energy_into_hand();
   if (!std::isfinite(m.energy_into_hand)) m.finite = false;
-  m.early_position_rms = RmsDeviation(early_p);
-  m.late_position_rms = RmsDeviation(late_p);
-  m.early_force_rms = RmsDeviation(early_f);
-  m.late_force_rms = RmsDeviation(late_f);
+  m.early_position_rms = RmsAboutTrend(early_p);
+  m.late_position_rms = RmsAboutTrend(late_p);
+  m.early_force_rms = RmsAboutTrend(early_f);
+  m.late_force_rms = RmsAboutTrend(late_f);
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (const auto& f : late_f) mean += f;
   m.hold_force_mean = late_f.empty() ? 0 : (mean / double(late_f.size())).norm();

@@ -60,8 +60,9 @@ struct ClosedLoopMetrics {
   // (the hand starts and ends at rest in free space). Positive: the loop put energy into the hand.
   double energy_into_hand = 0;   // J
   double peak_stored_energy = 0; // J, largest coupling-spring energy 0.5|F|²/k_vc + 0.5|T|²/k_rot seen
-  // Oscillation while the hand's target holds still in contact: RMS deviation from the window's
-  // mean of H's position and of the device force, over the first and the last 200 ms of the hold.
+  // Oscillation while the hand's target holds still in contact: RMS deviation of H's position and
+  // of the device force from their least-squares line (a slow drift is not an oscillation), over
+  // the first and the last 200 ms of the hold.
   double early_position_rms = 0, late_position_rms = 0;  // m
   double early_force_rms = 0, late_force_rms = 0;        // N
   double hold_force_mean = 0;      // N, |mean device force| over the last 200 ms (pressed = nonzero)
