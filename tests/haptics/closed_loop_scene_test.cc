@@ -1,0 +1,128 @@
+// The haptic closed loop (Barbič & James 2008, sec. 5) with the paper's contact model on a real
+// scene, knight-screwdriver: the simulated hand pushes the knight (the haptic body) into the
+// screwdriver, slides it along, and pushes a tilted knight hard against it, through static
+// virtual coupling at k_VC = 1000 N/m (between a Touch and an omega). The loop must be passive
+// (the device puts no more energy into the hand than 1 % of the largest energy the coupling
+// spring stored) and the still hold in contact must settle (H still to 20 µm RMS, force ripple
+// below 0.05 N RMS, and no larger at the end of the hold than at its start). A control shows
+// the observer catches a model that pumps energy. The sweep over models and k_VC is
+// experiments/closed_loop_stability.
+//
+// The scene's pointshell is cut to 4096 points and its fields to 64^3 so the assets build in
+// a few seconds in a fresh cache; the closed loop is the same.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "experiment/closed_loop_stability.h"
+#include "experiment/scene.h"
+#include "experiment/scene_assets.h"
+#include "util/data_path.h"
+#include "test_support.h"
+
+namespace contactlab {
+namespace {
+
+struct KnightScrewdriver {
+  explicit KnightScrewdriver(const testing::TempDir& cache)
+      : scene(Load()), assets(scene, Options(cache)), where(MakeClosedLoopScene(scene, assets)) {}
+  static Scene Load() {
+    Scene s = LoadScene(RequireDataFile("scenes/knight-screwdriver.yaml"));
+    s.pointshell_body.pointshell.points = 4096;
+    s.pointshell_body.pointshell.levels = 3;
+    s.pointshell_body.field.resolution = 64;
+    s.field_body.field.resolution = 64;
+    return s;
+  }
+  static AssetOptions Options(const testing::TempDir& cache) {
+    AssetOptions o;
+    o.cache_dir = cache.path();
+    o.verbose = false;
+    return o;
+  }
+  Scene scene;
+  SceneAssets assets;
+  ClosedLoopScene where;
+};
+
+void Print(const char* what, const ClosedLoopMetrics& m) {
+  std::printf("%-7s energy into hand %+.3e J (peak stored %.3e J); hold H rms %.2e -> %.2e m, force rms %.2e -> %.2e N, "
+              "mean %.2f N; max contact %.2f N, points %d, clamps %lld\n",
+              what, m.energy_into_hand, m.peak_stored_energy, m.early_position_rms, m.late_position_rms,
+              m.early_force_rms, m.late_force_rms, m.hold_force_mean, m.max_contact_force, m.max_points_in_contact,
+              static_cast<long long>(m.clamped_cycles));
+}
+
+TEST(ClosedLoopScene, PaperModelIsPassiveAndSettlesOnKnightScrewdriverAtModerateStiffness) {
+  testing::TempDir cache;
+  KnightScrewdriver s(cache);
+  auto model = MakeSceneContactModel("pointshell", s.scene, s.assets);
+  for (LoopMotion motion : {LoopMotion::kPush, LoopMotion::kSlide, LoopMotion::kCorner}) {
+    SCOPED_TRACE(LoopMotionName(motion));
+    ClosedLoopCase c;
+    c.motion = motion;
+    c.k_vc = 1000;
+    const ClosedLoopMetrics m = RunClosedLoop(*model, s.where, c);
+    Print(LoopMotionName(motion), m);
+    // It really was contact: pressed during the hold, not free space.
+    EXPECT_GT(m.max_contact_force, 0.5);
+    EXPECT_GT(m.hold_force_mean, 0.3);
+    // No faults.
+    EXPECT_TRUE(m.finite);
+    EXPECT_EQ(m.non_finite_cycles, 0);
+    EXPECT_EQ(m.solve_failures, 0);
+    // Passive: at most 1 % of the peak stored coupling energy (or 1 µJ) generated over the run.
+    EXPECT_LE(m.energy_into_hand, std::max(1e-6, 0.01 * m.peak_stored_energy));
+    // The oscillation decays: small at the end of the hold, and no larger than at its start.
+    EXPECT_LT(m.late_position_rms, 20e-6);
+    EXPECT_LT(m.late_force_rms, 0.05);
+    EXPECT_LE(m.late_force_rms, m.early_force_rms + 1e-3);
+    EXPECT_TRUE(m.stable());
+  }
+}
+
+// A contact model that pumps energy: the paper's force plus a negative damping force on H along
+// its own velocity (what a delayed or mis-signed contact force does). The observer must see it.
+class EnergyPump final : public ContactModel {
+ public:
+  EnergyPump(ContactModel& inner, double gain) : inner_(inner), gain_(gain) {}
+  std::string_view name() const override { return "energy-pump"; }
+  ContactResult Evaluate(const ContactQuery& q) override {
+    ContactResult r = inner_.Evaluate(q);
+    if (have_last_ && r.stats.points_in_contact > 0) {
+      r.on_B.force += gain_ * (q.X_WB.translation - last_) / 1e-3;
+    }
+    last_ = q.X_WB.translation;
+    have_last_ = true;
+    return r;
+  }
+  void Reset() override {
+    inner_.Reset();
+    have_last_ = false;
+  }
+
+ private:
+  ContactModel& inner_;
+  double gain_;
+  Eigen::Vector3d last_ = Eigen::Vector3d::Zero();
+  bool have_last_ = false;
+};
+
+TEST(ClosedLoopScene, TheObserverFlagsAModelThatPumpsEnergy) {
+  testing::TempDir cache;
+  KnightScrewdriver s(cache);
+  auto inner = MakeSceneContactModel("pointshell", s.scene, s.assets);
+  EnergyPump pump(*inner, 20.0);  // N s/m of negative damping while in contact
+  ClosedLoopCase c;
+  c.motion = LoopMotion::kSlide;
+  c.k_vc = 1000;
+  const ClosedLoopMetrics m = RunClosedLoop(pump, s.where, c);
+  Print("pump", m);
+  EXPECT_FALSE(m.passive());
+  EXPECT_FALSE(m.settled());
+  EXPECT_FALSE(m.stable());
+}
+
+}  // namespace
+}  // namespace contactlab
