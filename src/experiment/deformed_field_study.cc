@@ -4,21 +4,17 @@
 #include "experiment/deformed_field_study.h"
 
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <limits>
-#include <thread>
 
 #include "experiment/result_csv.h"
 #include "experiment/run_metadata.h"
 #include "experiment/scene_assets.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
-#include "util/progress.h"
 
 namespace contactlab {
 namespace {
@@ -345,47 +341,14 @@ const std::vector<std::string>& FieldStudyFiles() {
 std::vector<FieldErrorRow> RunDeformedFieldStudy(const ExperimentConfig& config, const RunOptions& options,
                                                  const std::vector<int>& job_indices) {
   const std::vector<Job> all = ExpandJobs(config);
-  std::vector<int> indices = job_indices;
-  if (indices.empty()) {
-    for (const Job& j : all) indices.push_back(j.index);
-  }
-  for (int i : indices) {
-    if (i < 0 || i >= int(all.size())) {
-      Fail(config.file, "job " + std::to_string(i) + " does not exist (the sweep has " + std::to_string(all.size()) +
-                            " jobs: 0.." + std::to_string(int(all.size()) - 1) + ")");
-    }
-  }
-  int parallel = options.parallel_jobs;
-  if (parallel <= 0) parallel = config.timing ? 1 : int(std::max(1u, std::thread::hardware_concurrency()));
-  parallel = std::min<int>(parallel, int(indices.size()));
-
-  const auto t0 = Clock::now();
-  std::vector<FieldJobResult> results(indices.size());
-  {
-    Progress progress("experiment " + config.name, std::int64_t(indices.size()));
-    if (!options.progress) progress.Finish();
-    // As in RunExperiment: every job finishes, the first error in job order is rethrown.
-    std::vector<std::exception_ptr> errors(indices.size());
-    tbb::task_arena arena(std::max(1, parallel));
-    arena.execute([&] {
-      tbb::parallel_for(std::size_t(0), indices.size(), [&](std::size_t i) {
-        try {
-          results[i] = RunDeformedFieldJob(config, all[std::size_t(indices[i])], options);
-        } catch (...) {
-          errors[i] = std::current_exception();
-        }
-        if (options.progress) progress.Advance();
-      });
-    });
-    for (const std::exception_ptr& e : errors) {
-      if (e) std::rethrow_exception(e);
-    }
-  }
-  const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
+  std::vector<FieldJobResult> results(job_indices.empty() ? all.size() : job_indices.size());
+  const JobsRun jobs = RunJobs(config, all, job_indices, options, [&](std::size_t i, const Job& job) {
+    results[i] = RunDeformedFieldJob(config, job, options);
+  });
   std::filesystem::create_directories(options.out_dir);
   WriteFileAtomically(options.out_dir / "field_error.csv", ErrorCsv(config, results));
   WriteFileAtomically(options.out_dir / "field_slice.csv", SliceCsv(config, results));
-  WriteFileAtomically(options.out_dir / "meta.json", RunMetadata(config, indices, wall, parallel).dump(2) + "\n");
+  WriteFileAtomically(options.out_dir / "meta.json", RunMetadata(config, jobs.indices, jobs.wall_seconds, jobs.parallel).dump(2) + "\n");
   std::vector<FieldErrorRow> rows;
   for (const FieldJobResult& r : results) rows.push_back(r.error);
   return rows;

@@ -23,17 +23,14 @@
 namespace contactlab {
 namespace fs = std::filesystem;
 
-std::vector<SummaryRow> RunExperiment(const ExperimentConfig& config, const RunOptions& options,
-                                      const std::vector<int>& job_indices) {
-  if (config.study != "contact") {
-    Fail(config.file, "is a " + config.study + " study, not a contact study (experiment/deformed_field_study.h runs it)");
+JobsRun RunJobs(const ExperimentConfig& config, const std::vector<Job>& all, const std::vector<int>& job_indices,
+                const RunOptions& options, const std::function<void(std::size_t, const Job&)>& run) {
+  JobsRun out;
+  out.indices = job_indices;
+  if (out.indices.empty()) {
+    for (const Job& j : all) out.indices.push_back(j.index);
   }
-  const std::vector<Job> all = ExpandJobs(config);
-  std::vector<int> indices = job_indices;
-  if (indices.empty()) {
-    for (const Job& j : all) indices.push_back(j.index);
-  }
-  for (int i : indices) {
+  for (int i : out.indices) {
     if (i < 0 || i >= int(all.size())) {
       Fail(config.file, "job " + std::to_string(i) + " does not exist (the sweep has " + std::to_string(all.size()) +
                             " jobs: 0.." + std::to_string(int(all.size()) - 1) + ")");
@@ -41,33 +38,46 @@ std::vector<SummaryRow> RunExperiment(const ExperimentConfig& config, const RunO
   }
   int parallel = options.parallel_jobs;
   if (parallel <= 0) parallel = config.timing ? 1 : int(std::max(1u, std::thread::hardware_concurrency()));
-  parallel = std::min<int>(parallel, int(indices.size()));
+  out.parallel = std::max(1, std::min<int>(parallel, int(out.indices.size())));
 
   const auto t0 = std::chrono::steady_clock::now();
-  std::vector<JobResult> results(indices.size());
-  {
-    Progress progress("experiment " + config.name, std::int64_t(indices.size()));
-    if (!options.progress) progress.Finish();
-    // A failing job does not cancel the others (whose builds are isolated from cancellation
-    // anyway): each job's exception is kept, every job finishes, and the first error in job
-    // order is rethrown, so the reported error does not depend on thread timing.
-    std::vector<std::exception_ptr> errors(indices.size());
-    tbb::task_arena arena(std::max(1, parallel));
-    arena.execute([&] {
-      tbb::parallel_for(std::size_t(0), indices.size(), [&](std::size_t i) {
-        try {
-          results[i] = RunJob(config, all[std::size_t(indices[i])], options);
-        } catch (...) {
-          errors[i] = std::current_exception();
-        }
-        if (options.progress) progress.Advance();
-      });
+  Progress progress("experiment " + config.name, std::int64_t(out.indices.size()));
+  if (!options.progress) progress.Finish();
+  // A failing job does not cancel the others (whose builds are isolated from cancellation
+  // anyway): each job's exception is kept, every job finishes, and the first error in job
+  // order is rethrown, so the reported error does not depend on thread timing.
+  std::vector<std::exception_ptr> errors(out.indices.size());
+  tbb::task_arena arena(out.parallel);
+  arena.execute([&] {
+    tbb::parallel_for(std::size_t(0), out.indices.size(), [&](std::size_t i) {
+      try {
+        run(i, all[std::size_t(out.indices[i])]);
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+      if (options.progress) progress.Advance();
     });
-    for (const std::exception_ptr& e : errors) {
-      if (e) std::rethrow_exception(e);
-    }
+  });
+  for (const std::exception_ptr& e : errors) {
+    if (e) std::rethrow_exception(e);
   }
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+std::vector<SummaryRow> RunExperiment(const ExperimentConfig& config, const RunOptions& options,
+                                      const std::vector<int>& job_indices) {
+  if (config.study != "contact") {
+    Fail(config.file, "is a " + config.study + " study, not a contact study (experiment/deformed_field_study.h runs it)");
+  }
+  const std::vector<Job> all = ExpandJobs(config);
+  std::vector<JobResult> results(job_indices.empty() ? all.size() : job_indices.size());
+  const JobsRun jobs = RunJobs(config, all, job_indices, options, [&](std::size_t i, const Job& job) {
+    results[i] = RunJob(config, job, options);
+  });
+  const std::vector<int>& indices = jobs.indices;
+  const double wall = jobs.wall_seconds;
+  const int parallel = jobs.parallel;
 
   // Everything is formatted in memory and written at the end, each file atomically.
   std::string cycles = CyclesCsvHeader(config), summary = SummaryCsvHeader(config);

@@ -4,7 +4,9 @@
 // failed or interrupted run never leaves a file that looks complete.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -74,6 +76,20 @@ struct JobResult {
 
 // Runs JOB of CONFIG (assets built or reused through OPTIONS.assets).
 JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOptions& options);
+
+// How a set of jobs ran: the sweep indices run, the jobs run at once and the wall time.
+struct JobsRun {
+  std::vector<int> indices;
+  int parallel = 1;
+  double wall_seconds = 0;
+};
+
+// Runs RUN(slot, job) for the jobs JOB_INDICES of ALL, CONFIG's expanded sweep (every job when
+// empty; SLOT counts the jobs run from 0), OPTIONS.parallel_jobs at once (0: all cores, or 1 when
+// the config measures timing), showing progress. Throws Error naming the config for an index
+// outside the sweep. A failing job cancels no other; the first error in job order is rethrown.
+JobsRun RunJobs(const ExperimentConfig& config, const std::vector<Job>& all, const std::vector<int>& job_indices,
+                const RunOptions& options, const std::function<void(std::size_t, const Job&)>& run);
 
 // Runs JOBS (all of them when empty) and writes cycles.csv, summary.csv, convergence.csv and
 // meta.json into OPTIONS.out_dir. Returns the summary rows.

@@ -19,7 +19,7 @@ std::vector<std::vector<std::string>> Rows(const std::string& text) {
 TEST(ResultCsv, HeaderAndRowsHaveTheSameColumnsAndEmptyCellsWithoutAReference) {
   ExperimentConfig config;
   config.name = "exp";
-  config.sweep = {{"points", "", {"64", "128"}}, {"k_C", "", {"500"}}};
+  config.sweep = {{"points", "", {"64", "128"}, {}}, {"k_C", "", {"500"}, {}}};
   JobResult r;
   r.job.index = 1;
   r.job.axis_values = {{"points", "128"}, {"k_C", "500"}};
