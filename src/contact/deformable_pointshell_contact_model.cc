@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "contact/reduced_force_sum.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -20,8 +21,7 @@ struct DeformableShellPolicy {
   ContactAccumulator* acc;
   const float* q;      // (r)
   const float* abs_q;  // (r)
-  double* g;           // (r) sum d U^T N
-  double* G;           // (r x r, column-major) sum (U^T N)(U^T N)^T, or null
+  ReducedForceSum* sum;  // A's reduced force, or null
   double* wake;        // (#N)
   double clock;
 
@@ -35,13 +35,10 @@ struct DeformableShellPolicy {
       float n_A[3];
       points.CorrectedNormalF(i, q, n_A);
       AddContactPoint(field, X_BA, n_A, p_BQ, d, gradient, acc);
-      float w[kMaxReducedModes];
-      points.ProjectF(i, n_A, w);
-      const int r = points.r();
-      for (int j = 0; j < r; ++j) g[j] += double(d * w[j]);
-      if (G != nullptr) {
-        for (int b = 0; b < r; ++b)
-          for (int a = 0; a <= b; ++a) G[b * r + a] += double(w[a] * w[b]);
+      if (sum != nullptr) {
+        float w[kMaxReducedModes];
+        points.ProjectF(i, n_A, w);
+        sum->Add(d, w);
       }
     }
     return d;
@@ -74,15 +71,13 @@ void DeformablePointshellContactModel::Reset() {
 ContactResult DeformablePointshellContactModel::Evaluate(const ContactQuery& query) {
   const int r = shell_->r();
   float q[kMaxReducedModes], abs_q[kMaxReducedModes];
-  double g[kMaxReducedModes];
-  double G[kMaxReducedModes * kMaxReducedModes];
-  const bool want_stiffness = query.reduced_force_A != nullptr && query.reduced_stiffness_A != nullptr;
-  if (want_stiffness) std::fill(G, G + r * r, 0.0);
+  ReducedForceSum sum;
+  const bool want_force = query.reduced_force_A != nullptr;
+  if (want_force) sum.Start(r, query.reduced_stiffness_A != nullptr);
   const bool deformed = query.q_A != nullptr && query.q_A->size() == r;
   for (int j = 0; j < r; ++j) {
     q[j] = deformed ? float(query.q_A->q[j]) : 0.f;
     abs_q[j] = std::fabs(q[j]);
-    g[j] = 0;
   }
   // The coherence clock: distance closable by rigid motion (cycles) plus by deformation.
   if (has_previous_q_) {
@@ -95,7 +90,7 @@ ContactResult DeformablePointshellContactModel::Evaluate(const ContactQuery& que
 
   ContactAccumulator acc;
   DeformableShellPolicy policy{shell_->shell(), *shell_, *field_, FloatTransform(query.X_WB.Inverse() * query.X_WA),
-                               params_.gradient, &acc, q, abs_q, g, want_stiffness ? G : nullptr, wake_.data(), clock};
+                               params_.gradient, &acc, q, abs_q, want_force ? &sum : nullptr, wake_.data(), clock};
   ContactResult result;
   if (variant_ == Variant::kLinear) {
     RunLinearTraversal(shell_->shell(), max_level_, policy, &result.stats);
@@ -103,18 +98,11 @@ ContactResult DeformablePointshellContactModel::Evaluate(const ContactQuery& que
     traversal_.Run(shell_->shell(), max_level_, params_, query.node_budget, policy, &result.stats);
   }
   acc.Finish(params_.penalty, query.X_WB, &result);
-  if (query.reduced_force_A != nullptr) {
+  if (want_force) {
     // Force on A at point i: -k d_i N_i, so the reduced force is -k g.
     double scale = 1;
-    const double k = params_.penalty.StiffnessFor(acc.count(), &scale);
-    query.reduced_force_A->resize(r);
-    for (int j = 0; j < r; ++j) (*query.reduced_force_A)[j] = -k * g[j];
-    if (want_stiffness) {
-      ReducedMatrix& K = *query.reduced_stiffness_A;
-      K.resize(r, r);
-      for (int b = 0; b < r; ++b)
-        for (int a = 0; a <= b; ++a) K(a, b) = K(b, a) = k * G[b * r + a];
-    }
+    sum.Write(params_.penalty.StiffnessFor(acc.count(), &scale), -1.0, query.reduced_force_A,
+              query.reduced_stiffness_A);
   }
   return result;
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "contact/reduced_force_sum.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -21,10 +22,8 @@ struct DeformedFieldPolicy {
   ContactAccumulator* acc;
   const float* q_A;      // (r_A)
   const float* abs_q_A;  // (r_A)
-  double* g_A;           // (r_A) sum d U_i^T N_A, or null
-  double* G_A;           // (r_A x r_A) sum w w^T, or null
-  double* g_B;           // (r_B) sum d U_p^T N_B, or null
-  double* G_B;           // (r_B x r_B), or null
+  ReducedForceSum* sum_A;  // A's reduced force (at the points), or null
+  ReducedForceSum* sum_B;  // B's (at the proxies), or null
   double* wake;
   double clock;
 
@@ -60,18 +59,13 @@ struct DeformedFieldPolicy {
                         },
                         n_B);
     float w[kMaxReducedModes];
-    if (g_A != nullptr) {
-      if constexpr (kDeformableA) {
-        const int r = shell_A->r();
+    if constexpr (kDeformableA) {
+      if (sum_A != nullptr) {
         shell_A->points().ProjectF(i, n_A, w);
-        for (int j = 0; j < r; ++j) g_A[j] += double(d * w[j]);
-        if (G_A != nullptr) {
-          for (int b = 0; b < r; ++b)
-            for (int a = 0; a <= b; ++a) G_A[b * r + a] += double(w[a] * w[b]);
-        }
+        sum_A->Add(d, w);
       }
     }
-    if (g_B != nullptr && nearest >= 0) {
+    if (sum_B != nullptr && nearest >= 0) {
       const int r = field.r();
       if (field.force_at() == DeformedFieldOptions::ForceAt::kNearestProxy) {
         field.proxies().ProjectF(nearest, n_B, w);
@@ -86,11 +80,7 @@ struct DeformedFieldPolicy {
           for (int j = 0; j < r; ++j) w[j] += weights[a] * wi[j];
         }
       }
-      for (int j = 0; j < r; ++j) g_B[j] += double(d * w[j]);
-      if (G_B != nullptr) {
-        for (int b = 0; b < r; ++b)
-          for (int a = 0; a <= b; ++a) G_B[b * r + a] += double(w[a] * w[b]);
-      }
+      sum_B->Add(d, w);
     }
     return d;
   }
@@ -104,17 +94,6 @@ struct DeformedFieldPolicy {
   bool Asleep(int node) const { return clock < wake[node]; }
   void Sleep(int node, double margin) { wake[node] = clock + margin; }
 };
-
-// Writes -k g (the reduced force) and k G (its stiffness, when wanted) for R coordinates.
-void WriteReduced(int r, double k, double sign, const double* g, const double* G, ReducedVector* f, ReducedMatrix* K) {
-  f->resize(r);
-  for (int j = 0; j < r; ++j) (*f)[j] = sign * k * g[j];
-  if (K != nullptr) {
-    K->resize(r, r);
-    for (int b = 0; b < r; ++b)
-      for (int a = 0; a <= b; ++a) (*K)(a, b) = (*K)(b, a) = k * G[b * r + a];
-  }
-}
 
 }  // namespace
 
@@ -148,25 +127,20 @@ ContactResult DeformedFieldContactModel::EvaluateImpl(const ContactQuery& query)
   const int rA = deformable_ ? deformable_->r() : 0;
   const int rB = field_->r();
   float qA[kMaxReducedModes], abs_qA[kMaxReducedModes], qB[kMaxReducedModes];
-  double gA[kMaxReducedModes], gB[kMaxReducedModes];
-  double GA[kMaxReducedModes * kMaxReducedModes], GB[kMaxReducedModes * kMaxReducedModes];
   const bool deformedA = query.q_A != nullptr && query.q_A->size() == rA;
   const bool deformedB = query.q_B != nullptr && query.q_B->size() == rB;
   for (int j = 0; j < rA; ++j) {
     qA[j] = deformedA ? float(query.q_A->q[j]) : 0.f;
     abs_qA[j] = std::fabs(qA[j]);
-    gA[j] = 0;
   }
   for (int j = 0; j < rB; ++j) {
     qB[j] = deformedB ? float(query.q_B->q[j]) : 0.f;
-    gB[j] = 0;
   }
   const bool wantA = kDeformableA && query.reduced_force_A != nullptr;
   const bool wantB = query.reduced_force_B != nullptr;
-  const bool stiffA = wantA && query.reduced_stiffness_A != nullptr;
-  const bool stiffB = wantB && query.reduced_stiffness_B != nullptr;
-  if (stiffA) std::fill(GA, GA + rA * rA, 0.0);
-  if (stiffB) std::fill(GB, GB + rB * rB, 0.0);
+  ReducedForceSum sumA, sumB;
+  if (wantA) sumA.Start(rA, query.reduced_stiffness_A != nullptr);
+  if (wantB) sumB.Start(rB, query.reduced_stiffness_B != nullptr);
 
   // B's field at q_B, held fixed during the traversal.
   state_.Update(*field_, deformedB ? query.q_B->q.data() : nullptr);
@@ -193,10 +167,8 @@ ContactResult DeformedFieldContactModel::EvaluateImpl(const ContactQuery& query)
                                            &acc,
                                            qA,
                                            abs_qA,
-                                           wantA ? gA : nullptr,
-                                           stiffA ? GA : nullptr,
-                                           wantB ? gB : nullptr,
-                                           stiffB ? GB : nullptr,
+                                           wantA ? &sumA : nullptr,
+                                           wantB ? &sumB : nullptr,
                                            wake_.data(),
                                            clock};
   ContactResult result;
@@ -209,8 +181,8 @@ ContactResult DeformedFieldContactModel::EvaluateImpl(const ContactQuery& query)
   double scale = 1;
   const double k = params_.penalty.StiffnessFor(acc.count(), &scale);
   // Force on A at a point: -k d N_A; on B: +k d N_B.
-  if (wantA) WriteReduced(rA, k, -1.0, gA, GA, query.reduced_force_A, stiffA ? query.reduced_stiffness_A : nullptr);
-  if (wantB) WriteReduced(rB, k, 1.0, gB, GB, query.reduced_force_B, stiffB ? query.reduced_stiffness_B : nullptr);
+  if (wantA) sumA.Write(k, -1.0, query.reduced_force_A, query.reduced_stiffness_A);
+  if (wantB) sumB.Write(k, 1.0, query.reduced_force_B, query.reduced_stiffness_B);
   return result;
 }
 

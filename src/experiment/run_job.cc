@@ -9,6 +9,7 @@
 #include "experiment/contact_placement.h"
 #include "experiment/metrics.h"
 #include "experiment/runner.h"
+#include "contact/reduced_contact_coupling.h"
 #include "deform/reduced_integrator.h"
 #include "util/error.h"
 
@@ -60,26 +61,18 @@ class DeformableCoupling {
   DeformableCoupling(const BodyAssets& body, std::shared_ptr<const ReducedModel> model, double dt, bool is_B)
       : model_(std::move(model)),
         integrator_(model_->forces, DeformableIntegratorOptions(*body.spec().deformable, dt)),
-        implicit_contact_(body.spec().deformable->implicit_contact),
-        is_B_(is_B) {
-    f_.setZero(model_->r());
-    K_.setZero(model_->r(), model_->r());
-  }
+        coupling_(&integrator_, body.spec().deformable->implicit_contact,
+                  is_B ? ReducedContactCoupling::Body::kB : ReducedContactCoupling::Body::kA),
+        is_B_(is_B) {}
   int r() const { return model_->r(); }
   // Points the query at the current state and at the reduced force it fills.
-  void Prepare(ContactQuery* q) {
-    f_.setZero(model_->r());
-    (is_B_ ? q->q_B : q->q_A) = &integrator_.state();
-    (is_B_ ? q->reduced_force_B : q->reduced_force_A) = &f_;
-    (is_B_ ? q->reduced_stiffness_B : q->reduced_stiffness_A) = implicit_contact_ ? &K_ : nullptr;
-  }
-  // Steps with the force of the query just made, and adds the state to ROW: step time and q
-  // in the body's own columns, energies summed and the largest displacement over both bodies.
-  // STAGGERED: the other body deforms too and steps separately (kStaggeredStiffnessFactor).
+  void Prepare(ContactQuery* q) { coupling_.Prepare(q); }
+  // Steps with the force of the query just made (STAGGERED: the other body deforms too), and
+  // adds the state to ROW: step time and q in the body's own columns, energies summed and the
+  // largest displacement over both bodies.
   void Step(CycleRow* row, bool staggered) {
-    if (staggered) K_ *= ContactQuery::kStaggeredStiffnessFactor;
     const auto t0 = std::chrono::steady_clock::now();
-    integrator_.Step(f_, implicit_contact_ ? &K_ : nullptr);
+    coupling_.Step(staggered);
     const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
     (is_B_ ? row->step_B_us : row->step_us) = us;
     row->deformable = true;
@@ -102,9 +95,7 @@ class DeformableCoupling {
  private:
   std::shared_ptr<const ReducedModel> model_;
   ReducedIntegrator integrator_;
-  ReducedVector f_;
-  ReducedMatrix K_;  // the contact's reduced stiffness: the step treats contact linearly implicitly
-  bool implicit_contact_;
+  ReducedContactCoupling coupling_;
   bool is_B_;
 };
 

@@ -15,6 +15,12 @@ HapticCycle::HapticCycle(HapticDevice& device, ContactModel* model, const Haptic
       config_(config),
       coupling_(config.coupling),
       safety_(ResolveSafetyLimits(config.safety, device.capabilities())) {
+  if (config.deformation_A != nullptr) {
+    deformation_A_ = ReducedContactCoupling(config.deformation_A, config.implicit_contact_A, ReducedContactCoupling::Body::kA);
+  }
+  if (config.deformation_B != nullptr) {
+    deformation_B_ = ReducedContactCoupling(config.deformation_B, config.implicit_contact_B, ReducedContactCoupling::Body::kB);
+  }
   if (!(config.max_point_speed <= 0 || (std::isfinite(config.max_point_speed) && config.cycle_seconds > 0 &&
                                          std::isfinite(config.cycle_seconds) && config.body_radius_H >= 0 &&
                                          std::isfinite(config.body_radius_H))))
@@ -30,18 +36,8 @@ void HapticCycle::Start(std::int64_t now_ns) {
   if (model_ != nullptr) model_->Reset();
   last_query_X_WH_ = coupling_.X_WH();
   coherence_resets_ = 0;
-  if (config_.deformation_A != nullptr) {
-    config_.deformation_A->Reset();
-    const int r = config_.deformation_A->r();
-    f_A_.setZero(r);
-    K_A_.setZero(r, r);
-  }
-  if (config_.deformation_B != nullptr) {
-    config_.deformation_B->Reset();
-    const int r = config_.deformation_B->r();
-    f_B_.setZero(r);
-    K_B_.setZero(r, r);
-  }
+  if (deformation_A_.active()) deformation_A_.Reset();
+  if (deformation_B_.active()) deformation_B_.Reset();
   cycle_ = 0;
 }
 
@@ -76,16 +72,8 @@ CycleRecord HapticCycle::Step(std::int64_t now_ns) {
     q.X_WB = X_WH;
     q.cycle = cycle_;
     q.node_budget = config_.node_budget;
-    if (config_.deformation_A != nullptr) {
-      q.q_A = &config_.deformation_A->state();
-      q.reduced_force_A = &f_A_;
-      q.reduced_stiffness_A = config_.implicit_contact_A ? &K_A_ : nullptr;
-    }
-    if (config_.deformation_B != nullptr) {  // H deforms: its field at the current q_B
-      q.q_B = &config_.deformation_B->state();
-      q.reduced_force_B = &f_B_;
-      q.reduced_stiffness_B = config_.implicit_contact_B ? &K_B_ : nullptr;
-    }
+    if (deformation_A_.active()) deformation_A_.Prepare(&q);
+    if (deformation_B_.active()) deformation_B_.Prepare(&q);  // H deforms: its field at the current q_B
     contact = model_->Evaluate(q);
   }
 
@@ -125,19 +113,16 @@ CycleRecord HapticCycle::Step(std::int64_t now_ns) {
   rec.q_WH[0] = qh.w(), rec.q_WH[1] = qh.x(), rec.q_WH[2] = qh.y(), rec.q_WH[3] = qh.z();
   // The deformations advance at the end of the cycle with the contact forces as external
   // loads (paper sec. 4.1 and 5): A's, and H's own, decoupled from H's rigid motion.
-  if (model_ != nullptr && (config_.deformation_A != nullptr || config_.deformation_B != nullptr)) {
+  if (model_ != nullptr && (deformation_A_.active() || deformation_B_.active())) {
+    const bool staggered = deformation_A_.active() && deformation_B_.active();
     const auto t0 = std::chrono::steady_clock::now();
-    if (config_.deformation_A != nullptr && config_.deformation_B != nullptr) {  // staggered
-      K_A_ *= ContactQuery::kStaggeredStiffnessFactor;
-      K_B_ *= ContactQuery::kStaggeredStiffnessFactor;
+    if (deformation_A_.active()) {
+      deformation_A_.Step(staggered);
+      rec.q_norm = deformation_A_.integrator().state().q.norm();
     }
-    if (config_.deformation_A != nullptr) {
-      config_.deformation_A->Step(f_A_, config_.implicit_contact_A ? &K_A_ : nullptr);
-      rec.q_norm = config_.deformation_A->state().q.norm();
-    }
-    if (config_.deformation_B != nullptr) {
-      config_.deformation_B->Step(f_B_, config_.implicit_contact_B ? &K_B_ : nullptr);
-      rec.q_norm_B = config_.deformation_B->state().q.norm();
+    if (deformation_B_.active()) {
+      deformation_B_.Step(staggered);
+      rec.q_norm_B = deformation_B_.integrator().state().q.norm();
     }
     rec.step_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0).count();
   }

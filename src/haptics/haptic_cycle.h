@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "contact/contact_model.h"
+#include "contact/reduced_contact_coupling.h"
 #include "deform/reduced_integrator.h"
 #include "haptics/haptic_device.h"
 #include "haptics/safety_filter.h"
@@ -111,10 +112,8 @@ class HapticCycle {
   std::int64_t cycle_ = 0;
   std::int64_t coherence_resets_ = 0;
   Pose last_query_X_WH_;  // H's pose at the previous contact query
-  ReducedVector f_A_;  // body A's reduced contact force and stiffness, this cycle
-  ReducedMatrix K_A_;
-  ReducedVector f_B_;  // H's
-  ReducedMatrix K_B_;
+  ReducedContactCoupling deformation_A_;  // body A's two-way coupling (inactive when rigid)
+  ReducedContactCoupling deformation_B_;  // H's
 };
 
 }  // namespace contactlab

@@ -13,6 +13,7 @@
 
 #include "contact/deformed_field_contact_model.h"
 #include "contact/model_registry.h"
+#include "contact/reduced_contact_coupling.h"
 #include "deform/reduced_integrator.h"
 #include "experiment/experiment_config.h"
 #include "experiment/runner.h"
@@ -189,24 +190,18 @@ void PressTogether(const std::string& force_at) {
   const auto mA = assets.A.reduced_model(), mB = assets.B.reduced_model();
   const IntegratorOptions io = DeformableIntegratorOptions(*scene.field_body.deformable, 1e-3);
   ReducedIntegrator A(mA->forces, io), B(mB->forces, io);
-  ReducedVector fA, fB;
-  ReducedMatrix KA, KB;
+  ReducedContactCoupling coupling_A(&A, true, ReducedContactCoupling::Body::kA);
+  ReducedContactCoupling coupling_B(&B, true, ReducedContactCoupling::Body::kB);
   for (int cycle = 0; cycle < 400; ++cycle) {
     ContactQuery q;
     q.X_WA = scene.pointshell_body.pose;
     q.X_WB = scene.field_body.pose;
     q.cycle = cycle;
-    q.q_A = &A.state();
-    q.q_B = &B.state();
-    q.reduced_force_A = &fA;
-    q.reduced_stiffness_A = &KA;
-    q.reduced_force_B = &fB;
-    q.reduced_stiffness_B = &KB;
+    coupling_A.Prepare(&q);
+    coupling_B.Prepare(&q);
     model->Evaluate(q);
-    KA *= ContactQuery::kStaggeredStiffnessFactor;  // both step, each with the other fixed
-    KB *= ContactQuery::kStaggeredStiffnessFactor;
-    A.Step(fA, &KA);
-    B.Step(fB, &KB);
+    coupling_A.Step(true);  // both step, each with the other held fixed
+    coupling_B.Step(true);
   }
   const double dA = DeflectionAt(*mA, A.state()), dB = DeflectionAt(*mB, B.state());
   std::printf("deflections at the crossing: beam %.4g mm, bar %.4g mm\n", 1e3 * dA, 1e3 * dB);
