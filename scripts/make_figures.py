@@ -497,6 +497,39 @@ class Figures:
         self.save(fig, "hard_cases_medial_axis.png")
         return True
 
+    # Issue 20, a thin feature: a thin-walled tube over a peg pushed sideways into it and on
+    # through its 0.5 mm wall: the force on the tube opposing the push against the depth.
+    def hard_cases_tube_peg(self):
+        rows = self.load("hard-cases-tube-peg", "cycles")
+        if not rows:
+            return False
+        touch = 0.0015  # tube offset along x where its inner wall touches the peg, m
+        by = defaultdict(list)
+        for r in rows:
+            by[(r.get("roles", "normal"), r["model"])].append(r)
+        orders = sorted({k[0] for k in by})
+        fig, axes = plt.subplots(1, len(orders), figsize=(5.5 * len(orders), 4.2), squeeze=False)
+        for ax, order in zip(axes[0], orders):
+            for (o, model), rs in sorted(by.items()):
+                if o != order:
+                    continue
+                deepest = max(range(len(rs)), key=lambda i: num(rs[i], "x"))
+                rs = rs[: deepest + 1]
+                ax.plot([1000 * (num(r, "x") - touch) for r in rs], [-num(r, "fx") for r in rs], lw=1.0, label=model,
+                        ls="--" if model.endswith("-linear") else "-")
+            for d, what in [(0.25, "wall mid-surface in the peg"), (0.5, "wall through the peg's side")]:
+                ax.axvline(d, color="0.5", ls=":", lw=0.8)
+                ax.text(d, 0, " " + what, rotation=90, va="bottom", fontsize=7, color="0.4")
+            ax.axhline(0, color="k", lw=0.6)
+            ax.set_xlabel("depth of the tube's inner wall in the peg (mm)")
+            ax.set_ylabel("force on the tube along -x, opposing the push (N)")
+            ax.set_title("tube (wall 0.5 mm) pushed into a peg: " +
+                         ("tube = pointshell" if order == "normal" else "tube = field"), fontsize=10)
+            ax.grid(True, alpha=0.3)
+            ax.legend(fontsize=8)
+        self.save(fig, "hard_cases_tube_peg.png")
+        return True
+
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -505,7 +538,7 @@ def main():
     figs = Figures(os.path.abspath(args.results))
     for name in ["fig05b", "fig10", "fig11", "fig14b", "fig15", "table1", "table1_deformable", "table1_defo_defo",
                  "deformable_cantilever",
-                 "continuity", "speed_vs_error", "hard_cases_medial_axis"]:
+                 "continuity", "speed_vs_error", "hard_cases_medial_axis", "hard_cases_tube_peg"]:
         try:
             if not getattr(figs, name)():
                 print(f"make_figures: {name}: no results yet (run its experiment first)", file=sys.stderr)

@@ -62,11 +62,14 @@ TriangleMesh MakeShape(const std::string& spec, const std::string& where) {
   } else if (kind == "capsule") {
     need(2, 2);
     m = MakeCapsule(a[0], a[1], 64, 16);
+  } else if (kind == "tube") {
+    need(3, 4);
+    m = MakeTube(a[0], a[1], a[2], a.size() > 3 ? int(a[3]) : 96);
   } else if (kind == "bumpy-plate") {
     need(4, 5);
     m = MakeBumpyPlate(a[0], a[1], int(a[2]), a[3], a.size() > 4 ? int(a[4]) : 128);
   } else {
-    Fail(where, "unknown procedural shape '" + kind + "' (sphere, box, torus, capsule, bumpy-plate)");
+    Fail(where, "unknown procedural shape '" + kind + "' (sphere, box, torus, capsule, tube, bumpy-plate)");
   }
   m.name = spec;
   return m;

@@ -161,6 +161,30 @@ TriangleMesh MakeCapsule(double radius, double half_length, int segments, int ri
   return m;
 }
 
+TriangleMesh MakeTube(double outer, double inner, double half_length, int segments) {
+  if (!(outer > inner && inner > 0) || !(half_length > 0) || segments < 3) {
+    Fail("MakeTube", "needs outer > inner > 0, half_length > 0 and at least 3 segments");
+  }
+  TriangleMesh m;
+  m.name = "tube";
+  // Four rings: outer top, outer bottom, inner bottom, inner top; quads between consecutive
+  // rings (and from the last back to the first) wind outward: the outer wall, the bottom
+  // annulus, the inner wall (facing the axis) and the top annulus.
+  const double radius[4] = {outer, outer, inner, inner};
+  const double z[4] = {half_length, -half_length, -half_length, half_length};
+  for (int k = 0; k < 4; ++k) {
+    for (int s = 0; s < segments; ++s) {
+      const double u = 2 * kPi * s / segments;
+      m.vertices.emplace_back(radius[k] * std::cos(u), radius[k] * std::sin(u), z[k]);
+    }
+  }
+  auto id = [&](int ring, int s) { return (ring % 4) * segments + (s % segments); };
+  for (int k = 0; k < 4; ++k) {
+    for (int s = 0; s < segments; ++s) AddQuad(m, id(k, s), id(k + 1, s), id(k + 1, s + 1), id(k, s + 1));
+  }
+  return m;
+}
+
 TriangleMesh MakeBumpyPlate(double size, double thickness, int bumps, double height, int resolution) {
   if (!(size > 0) || !(thickness > 0) || bumps < 0 || resolution < 2) {
     Fail("MakeBumpyPlate", "needs size > 0, thickness > 0, bumps >= 0, resolution >= 2");

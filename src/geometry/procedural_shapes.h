@@ -18,6 +18,10 @@ TriangleMesh MakeTorus(double major, double minor, int major_segments = 64, int 
 // Capsule along z: a cylinder of RADIUS and length 2*HALF_LENGTH capped by hemispheres.
 TriangleMesh MakeCapsule(double radius, double half_length, int segments = 32, int rings = 8);
 
+// Open-ended tube along z (a thick-walled cylinder, genus 1): OUTER and INNER radii, length
+// 2*HALF_LENGTH, flat annular ends. Vertices lie exactly on both circles; SEGMENTS around.
+TriangleMesh MakeTube(double outer, double inner, double half_length, int segments = 64);
+
 // A closed slab of size SIZE x SIZE (x, y) and THICKNESS (z from -THICKNESS to 0) whose top
 // face z = 0 carries BUMPS x BUMPS smooth cosine bumps of HEIGHT, sampled by RESOLUTION
 // quads per side. For "scan across bumps" experiments.

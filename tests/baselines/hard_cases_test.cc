@@ -17,6 +17,8 @@
 //    (every contact point lies in A's or B's extent or between them);
 //  * K_B (halfspace rule, unit N and g per contact, sum k <= k_C L): |K_ff|_F <= k_C L,
 //    |K_fτ|_F <= k_C L R, |K_τf|_F <= |F| + k_C L R, |K_ττ|_F <= k_C L R²;
+//  * no force when the bodies are farther apart than the models' resolution (a voxel diagonal
+//    of each field; Bullet's margins);
 //  * where the push defines a direction (before either body's medial axis along the push), the
 //    force on B points along B's push (cos >= 0.5), and there is a force once the bodies overlap
 //    by a voxel of B's field;
@@ -286,6 +288,8 @@ class HardCaseRunner {
     const Aabb box_A0 = mesh_A.Bounds();
     const double voxel_B = ext_B.maxCoeff() * (1 + 2 * scene.field_body.field.padding) / scene.field_body.field.resolution;
     const double h_B = 0.5 * ext_B.minCoeff();
+    const Eigen::Vector3d ext_A = box_A0.max - box_A0.min;
+    const double voxel_A = ext_A.maxCoeff() * (1 + 2 * scene.pointshell_body.field.padding) / scene.pointshell_body.field.resolution;
     const double diag = std::max(ext_B.norm(), (box_A0.max - box_A0.min).norm());
     // The direction the force on B must take: body 1 moves along c.push into body 2, so
     // body 2 is pushed along it and body 1 against it.
@@ -309,6 +313,10 @@ class HardCaseRunner {
         continue;
       }
       const double D = IsFieldModel(name) ? std::max(h_B, std::sqrt(3.0) * voxel_B) : diag + 1e-3;
+      // Bodies farther apart than this touch in no model: a voxel diagonal of each field (a
+      // pointshell point, a voxel centre and a trilinear lookup each stay within one), or
+      // Bullet's two 0.5 mm margins for the mesh-pair models.
+      const double apart = IsFieldModel(name) ? std::sqrt(3.0) * (voxel_A + voxel_B) : 1e-3;
       std::set<std::string> failed;
       double peak = 0, peak_depth = 0, last_along = 0, last_depth = 0, min_along_after_peak = 1e300;
       long allocations = 0;
@@ -358,6 +366,9 @@ class HardCaseRunner {
                          " over k_C L = " + Num(kC * kL) + " with R = " + Num(R),
                      &failed);
             }
+          }
+          if (s.depth < -apart && F > 0) {
+            Report(name, c, order, "apart", q, "|F| " + Num(F) + " N with the bodies " + Num(-s.depth) + " m apart", &failed);
           }
           // Direction: before the medial axis the force on B points along B's push.
           const double along = push_on_B.norm() > 0 ? r.on_B.force.dot(push_on_B.normalized()) : 0;
@@ -504,6 +515,31 @@ HardCase CrossedEdges() {
   c.push = Eigen::Vector3d(0, 0, -1);
   // Each bar's centre line is 5.7 mm behind its edge.
   c.direction_until[0] = c.direction_until[1] = e - 0.04 * 1.2 / 48;
+  return c;
+}
+
+// A thin-walled tube (outer r 6 mm, wall 0.5 mm, 3 cm long; the wall is about one voxel of
+// its 96-cell field) lowered over a peg (capsule r 4 mm) with 1.5 mm clearance all round —
+// the bodies stay apart — then pushed sideways until its wall presses into the peg and, at
+// the last step, through it (0.8 mm > the wall).
+HardCase TubeOverPeg() {
+  HardCase c;
+  c.name = "tube-over-peg";
+  c.body1 = {"tube:0.006,0.0055,0.015", 96, 2048, 3};
+  c.body2 = {"capsule:0.004,0.015", 96, 1024, 3};
+  const double clearance = 0.0015;
+  for (double z = 0.036; z >= 0.0099; z -= 0.0065) c.steps.push_back({Translation(0, 0, z), Pose::Identity(), -clearance});
+  for (double d : {-0.0003, 0.0001, 0.0002, 0.0004, 0.0008}) {
+    c.steps.push_back({Translation(clearance + d, 0.0002, 0.01), Pose::Identity(), d});
+  }
+  c.push = Eigen::Vector3d(1, 0, 0);
+  // Tube as the pointshell: the peg's axis is 4 mm in, less a voxel of its field (3.8 cm at
+  // 96 cells with 10 % padding). Peg as the pointshell: the wall's mid-surface is 0.25 mm
+  // inside, less than a voxel of the tube's field (0.375 mm): checked anyway up to it, a
+  // failure there is the sub-voxel wall's finding.
+  c.direction_until[0] = 0.004 - 0.038 * 1.2 / 96;
+  c.direction_until[1] = 0.00025;
+  c.medial_summary = true;
   return c;
 }
 
@@ -708,6 +744,7 @@ TEST(HardCases, ThinAndSharpFeatures) {
   HardCaseRunner runner(cache);
   runner.Run(BladeOnBlock());
   runner.Run(NeedleIntoPlate());
+  runner.Run(TubeOverPeg());
   runner.Run(CrossedEdges());
   runner.Run(CornerIntoFace());
   runner.Run(FandiskOnPlate());
@@ -785,9 +822,17 @@ TEST(HardCases, InputExtremes) {
       }
     }
   }
-  // Fields of 8 and 128 cells along the longest side (512 would take minutes to build).
+}
+
+// Fields of 8, 128 and 512 cells along the longest side: the ball's 512³ field has 134 M
+// nodes (537 MB of floats), the plate's 512 x 512 x 35. About 35 s and 1.8 GB here.
+TEST(HardCases, FieldsOf8To512Cells) {
+  RegisterBaselineContactModels();
+  testing::TempDir cache;
+  HardCaseRunner runner(cache);
   runner.Run(BallThroughPlate(8, 8, "fields-8"));
   runner.Run(BallThroughPlate(128, 128, "fields-128"));
+  runner.Run(BallThroughPlate(512, 512, "fields-512"));
 }
 
 

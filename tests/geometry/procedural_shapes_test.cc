@@ -6,6 +6,8 @@
 #include <map>
 #include <numbers>
 
+#include "util/error.h"
+
 namespace contactlab {
 namespace {
 
@@ -55,6 +57,25 @@ TEST(ProceduralShapes, CapsuleVolumeConverges) {
   ExpectClosedOriented(m);
   const double exact = kPi * r * r * 2 * h + 4.0 / 3.0 * kPi * r * r * r;
   EXPECT_NEAR(m.SignedVolume(), exact, 0.01 * exact);
+}
+
+TEST(ProceduralShapes, TubeIsClosedWithBothWallsOnTheirCircles) {
+  const double ro = 0.006, ri = 0.0055, h = 0.015;
+  const TriangleMesh m = MakeTube(ro, ri, h, 256);
+  ExpectClosedOriented(m);
+  // Inscribed polygons of 256 sides: area factor sin(2 pi/n) n / (2 pi).
+  const double polygon = std::sin(2 * kPi / 256) * 256 / (2 * kPi);
+  EXPECT_NEAR(m.SignedVolume(), polygon * kPi * (ro * ro - ri * ri) * 2 * h, 1e-12);
+  int outer = 0, inner = 0;
+  for (const auto& v : m.vertices) {
+    const double r = std::hypot(v.x(), v.y());
+    if (std::abs(r - ro) < 1e-15) ++outer;
+    if (std::abs(r - ri) < 1e-15) ++inner;
+    EXPECT_NEAR(std::abs(v.z()), h, 1e-15);
+  }
+  EXPECT_EQ(outer, 512);
+  EXPECT_EQ(inner, 512);
+  EXPECT_THROW(MakeTube(0.005, 0.006, h), Error);  // inner wider than outer
 }
 
 TEST(ProceduralShapes, BumpyPlateIsClosedWithPositiveVolume) {
