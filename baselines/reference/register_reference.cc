@@ -1,9 +1,11 @@
 // Registers "reference" (QuadratureReference: the eq. (2) limit by dense quadrature with exact
-// distances to B's closed mesh) with the contact-model registry. The limit needs L > 0: a
+// distances to B's closed mesh) with the contact-model registry, and the reference-only
+// "volume" (VolumeReference: the volume law on the exact overlap volume). The limit needs L > 0: a
 // scene that turns the L / l scaling off (L = 0) gets the default L for its reference.
 #include <memory>
 
 #include "baselines/reference/surface_quadrature_reference.h"
+#include "baselines/reference/volume_reference.h"
 #include "contact/model_registry.h"
 
 namespace contactlab {
@@ -22,6 +24,18 @@ void RegisterReferenceContactModels() {
     return std::make_unique<QuadratureReference>(in.A.mesh(), in.B.mesh(), p);
   };
   RegisterContactModel(std::move(e));
+
+  ContactModelEntry v;
+  v.name = "volume";
+  v.description = "volume law -k_V grad V on the exact overlap volume of the two meshes (CGAL, offline reference)";
+  v.needs.mesh_A = true;
+  v.needs.mesh_B = true;
+  v.needs.closed_mesh_B = true;
+  v.reference_only = true;
+  v.make = [](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
+    return std::make_unique<VolumeReference>(in.A.mesh(), in.B.mesh(), in.params.penalty);
+  };
+  RegisterContactModel(std::move(v));
 }
 
 }  // namespace contactlab

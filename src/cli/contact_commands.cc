@@ -9,6 +9,7 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "cli/command_registry.h"
 #include "contact/model_registry.h"
@@ -128,7 +129,9 @@ const CommandRegistration kContactCommands([](CLI::App& app) {
 
 // One line per registered model: name, what it needs of the bodies, description.
 void ListModels() {
-  for (const std::string& name : ContactModelNames()) {
+  std::vector<std::string> names = ContactModelNames();
+  for (const std::string& name : ReferenceModelNames()) names.push_back(name);
+  for (const std::string& name : names) {
     const ContactModelEntry& e = *FindContactModel(name);
     std::string needs;
     auto add = [&](bool need, const char* what) {
@@ -139,7 +142,8 @@ void ListModels() {
     add(e.needs.mesh_A, "A mesh");
     add(e.needs.field_B, "B field");
     add(e.needs.mesh_B, e.needs.closed_mesh_B ? "B closed mesh" : "B mesh");
-    std::printf("%-18s needs %-28s %s\n", name.c_str(), needs.c_str(), e.description.c_str());
+    std::printf("%-18s needs %-28s %s%s\n", name.c_str(), needs.c_str(), e.description.c_str(),
+                e.reference_only ? " [reference only]" : "");
   }
 }
 

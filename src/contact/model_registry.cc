@@ -69,6 +69,7 @@ std::unique_ptr<ContactModel> MakeContactModel(std::string_view name, const Cont
   if (entry == nullptr) {
     std::string known;
     for (const std::string& n : ContactModelNames()) known += (known.empty() ? "" : ", ") + n;
+    for (const std::string& n : ReferenceModelNames()) known += (known.empty() ? "" : ", ") + n + " (reference)";
     Fail(where, "unknown contact model '" + std::string(name) + "' (known: " + known + ")");
   }
   if (inputs.A.deformable() && !entry->needs.deformable_A) {
@@ -86,7 +87,17 @@ std::unique_ptr<ContactModel> MakeContactModel(std::string_view name, const Cont
 
 std::vector<std::string> ContactModelNames() {
   std::vector<std::string> names;
-  for (const auto& [n, e] : Registry()) names.push_back(n);
+  for (const auto& [n, e] : Registry()) {
+    if (!e.reference_only) names.push_back(n);
+  }
+  return names;
+}
+
+std::vector<std::string> ReferenceModelNames() {
+  std::vector<std::string> names;
+  for (const auto& [n, e] : Registry()) {
+    if (e.reference_only) names.push_back(n);
+  }
   return names;
 }
 

@@ -74,6 +74,9 @@ struct ContactModelEntry {
   std::string description;  // one line for listings
   ContactModelNeeds needs;
   ContactModelFactory make;
+  // A reference for comparisons (an experiment's `reference:`), not a model to compare: made by
+  // name like any other, but left out of ContactModelNames().
+  bool reference_only = false;
 };
 
 // Adds (or replaces) the entry of ENTRY.name.
@@ -88,7 +91,9 @@ const ContactModelEntry* FindContactModel(std::string_view name);
 std::unique_ptr<ContactModel> MakeContactModel(std::string_view name, const ContactModelInputs& inputs,
                                                std::string_view where);
 
-// Every registered name, sorted.
+// Every registered name but the references-only ones, sorted.
 std::vector<std::string> ContactModelNames();
+// The references-only names (ContactModelEntry::reference_only), sorted.
+std::vector<std::string> ReferenceModelNames();
 
 }  // namespace contactlab
