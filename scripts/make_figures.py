@@ -497,6 +497,43 @@ class Figures:
         self.save(fig, "hard_cases_medial_axis.png")
         return True
 
+    # Issue 15: every model against the overlap volume: direction error to -grad V (median, bar;
+    # p95, whisker), magnitude error after the fitted stiffness scale, and the largest
+    # per-cycle force jump relative to the model's own median force.
+    def compare_volume(self):
+        rows = self.load("compare-volume", "summary")
+        if not rows:
+            return False
+        scenes = sorted({r["scene"] for r in rows})
+        models = []
+        for r in rows:
+            if r["model"] not in models:
+                models.append(r["model"])
+        panels = [("median_dir_error_deg", "p95_dir_error_deg", "angle to -∇V (°): median, whisker p95"),
+                  ("rms_rel_error_calibrated", None, "relative RMS error after the fitted scale"),
+                  ("max_jump_rel", None, "largest jump / median |F| in contact")]
+        fig, axes = plt.subplots(1, len(panels), figsize=(5.0 * len(panels), 4.2), squeeze=False)
+        width = 0.8 / max(1, len(models))
+        for ax, (key, whisker, label) in zip(axes[0], panels):
+            for j, model in enumerate(models):
+                xs, ys, hi = [], [], []
+                for i, sc in enumerate(scenes):
+                    for r in rows:
+                        if r["scene"] == sc and r["model"] == model and num(r, key) >= 0:
+                            xs.append(i + (j - (len(models) - 1) / 2) * width)
+                            ys.append(num(r, key))
+                            hi.append(num(r, whisker) - num(r, key) if whisker else 0)
+                ax.bar(xs, ys, width, color=f"C{j}", label=model,
+                       yerr=[[0] * len(hi), hi] if whisker else None, capsize=2)
+            ax.set_xticks(range(len(scenes)))
+            ax.set_xticklabels([os.path.splitext(os.path.basename(sc))[0] for sc in scenes], fontsize=8)
+            ax.set_ylabel(label, fontsize=9)
+            ax.grid(True, axis="y", alpha=0.3)
+        axes[0][0].legend(fontsize=7)
+        fig.suptitle("Against the exact overlap volume (reference 'volume'), per model and scene", fontsize=10)
+        self.save(fig, "compare_volume.png")
+        return True
+
     # Issue 20, a thin feature: a thin-walled tube over a peg pushed sideways into it and on
     # through its 0.5 mm wall: the force on the tube opposing the push against the depth.
     def hard_cases_tube_peg(self):
@@ -538,7 +575,7 @@ def main():
     figs = Figures(os.path.abspath(args.results))
     for name in ["fig05b", "fig10", "fig11", "fig14b", "fig15", "table1", "table1_deformable", "table1_defo_defo",
                  "deformable_cantilever",
-                 "continuity", "speed_vs_error", "hard_cases_medial_axis", "hard_cases_tube_peg"]:
+                 "continuity", "speed_vs_error", "compare_volume", "hard_cases_medial_axis", "hard_cases_tube_peg"]:
         try:
             if not getattr(figs, name)():
                 print(f"make_figures: {name}: no results yet (run its experiment first)", file=sys.stderr)

@@ -8,7 +8,9 @@
 //   models: [pointshell-linear]            # default: the scene's models
 //   moving_body: plate                     # body that follows the trajectory (default: field body)
 //   trajectory: {type: approach-press, direction: [0, 0, 1], depth: 0.002, duration: 1}
-//   reference: reference                   # model evaluated as ground truth ('' = none), or
+//   reference: volume                      # model evaluated as ground truth ('' = none): volume
+//                                          # (the exact overlap volume's law, model-independent),
+//                                          # reference (the eq. (2) limit), any model, or
 //   reference: {model: pointshell-linear, points: 65536, levels: 1}  # a denser version of the scene
 //   reference_every: 10                    # evaluate the reference every N cycles
 //   metrics: {cutoff_hz: 100, timing: false}

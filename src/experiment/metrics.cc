@@ -122,7 +122,8 @@ TimingMetrics Timing(const std::vector<double>& cycle_us, const std::vector<int>
 ErrorMetrics ErrorAgainstReference(const std::vector<Eigen::Vector3d>& force,
                                    const std::vector<Eigen::Vector3d>& reference, const std::vector<bool>& has_reference) {
   ErrorMetrics e;
-  double num = 0, den = 0, max_ref = 0;
+  double num = 0, den = 0, max_ref = 0, ff = 0, fr = 0;
+  std::vector<double> angles;
   for (std::size_t k = 0; k < force.size(); ++k)
     if (has_reference[k]) max_ref = std::max(max_ref, reference[k].norm());
   for (std::size_t k = 0; k < force.size(); ++k) {
@@ -130,15 +131,42 @@ ErrorMetrics ErrorAgainstReference(const std::vector<Eigen::Vector3d>& force,
     ++e.samples;
     num += (force[k] - reference[k]).squaredNorm();
     den += reference[k].squaredNorm();
+    ff += force[k].squaredNorm();
+    fr += force[k].norm() * reference[k].norm();
     if (reference[k].norm() > 0.05 * max_ref && max_ref > 0) {
       const double f = force[k].norm();
       const double angle =
           f > 0 ? std::acos(std::clamp(force[k].dot(reference[k]) / (f * reference[k].norm()), -1.0, 1.0)) : M_PI;
-      e.max_direction_deg = std::max(e.max_direction_deg, angle * 180 / M_PI);
+      angles.push_back(angle * 180 / M_PI);
+      e.max_direction_deg = std::max(e.max_direction_deg, angles.back());
     }
   }
-  e.rms_relative = den > 0 ? std::sqrt(num / den) : (num > 0 ? std::numeric_limits<double>::infinity() : 0.0);
+  auto relative = [&](double squared_error) {
+    return den > 0 ? std::sqrt(squared_error / den)
+                   : (squared_error > 0 ? std::numeric_limits<double>::infinity() : 0.0);
+  };
+  e.rms_relative = relative(num);
+  if (ff > 0) {
+    e.scale = fr / ff;
+    double calibrated = 0;
+    for (std::size_t k = 0; k < force.size(); ++k) {
+      if (has_reference[k]) calibrated += (e.scale * force[k] - reference[k]).squaredNorm();
+    }
+    e.rms_relative_calibrated = relative(calibrated);
+  }
+  if (!angles.empty()) {
+    e.median_direction_deg = Quantile(angles, 0.5);
+    e.p95_direction_deg = Quantile(angles, 0.95);
+  }
   return e;
+}
+
+double MedianForceInContact(const std::vector<Eigen::Vector3d>& force) {
+  std::vector<double> magnitudes;
+  for (const Eigen::Vector3d& f : force) {
+    if (f.norm() > 0) magnitudes.push_back(f.norm());
+  }
+  return magnitudes.empty() ? 0.0 : Quantile(magnitudes, 0.5);
 }
 
 double FittedOrder(const std::vector<double>& size, const std::vector<double>& error) {

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "geometry/pose.h"
@@ -48,9 +49,23 @@ struct ErrorMetrics {
   double rms_relative = 0;      // RMS |F - F_ref| / RMS |F_ref| over cycles with a reference
   double max_direction_deg = 0; // largest angle between F and F_ref where |F_ref| > 5 % of max
   int samples = 0;
+  // Calibrated magnitude: each model's force law scales differently (area-normalised, per
+  // triangle pair, per manifold point), so one stiffness scale s is fitted per run, least
+  // squares over the cycles with a reference, mapping |F| onto |F_ref|:
+  //     s = sum |F| |F_ref| / sum |F|^2   (NaN when every |F| is 0),
+  // and the relative RMS error of s F is reported beside the raw one.
+  double scale = std::numeric_limits<double>::quiet_NaN();
+  double rms_relative_calibrated = std::numeric_limits<double>::quiet_NaN();
+  // Angles between F and F_ref (no calibration needed) where |F_ref| > 5 % of its max: median
+  // and 95th percentile (nearest rank) beside the max; 180° where F = 0.
+  double median_direction_deg = 0, p95_direction_deg = 0;
 };
 ErrorMetrics ErrorAgainstReference(const std::vector<Eigen::Vector3d>& force,
                                    const std::vector<Eigen::Vector3d>& reference, const std::vector<bool>& has_reference);
+
+// The force scale of a run: the median |F| over the cycles with a force (0 when none). Jumps
+// and Lipschitz estimates divided by it compare models whose force laws differ in magnitude.
+double MedianForceInContact(const std::vector<Eigen::Vector3d>& force);
 
 // Least-squares slope of log(error) against log(size): the fitted convergence order is
 // -slope (error ~ size^-order). Needs at least two positive pairs; returns NaN otherwise.

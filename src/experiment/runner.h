@@ -59,6 +59,13 @@ struct SummaryRow {
   double max_jump = 0, lipschitz = 0, hf_share = 0;
   double median_us = 0, p99_us = 0, max_us = 0, mean_nodes = 0, level_switches_per_s = 0;
   double rms_rel_error = -1, max_dir_error_deg = -1;  // -1: no reference
+  // Against the reference (metrics.h, ErrorAgainstReference; -1: no reference or no force):
+  // the fitted stiffness scale, the relative RMS error after it, direction error quantiles.
+  double ref_scale = -1, rms_rel_error_calibrated = -1;
+  double median_dir_error_deg = -1, p95_dir_error_deg = -1;
+  // Continuity relative to the force scale: max_jump and lipschitz over the median |F| in
+  // contact (0 when the run had no force).
+  double max_jump_rel = 0, lipschitz_rel = 0;
   double max_force = 0, mean_force = 0;
   double max_depth_voxels = 0;
   int modes = 0;                // r of a deformable pointshell body A, 0 when rigid

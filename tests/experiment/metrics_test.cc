@@ -72,5 +72,63 @@ TEST(Metrics, DirectionAndMagnitudeErrorsAgainstAReference) {
   EXPECT_EQ(e.samples, 10);
 }
 
+// A model whose law is 2.5x too soft and 10° off: the fit recovers 2.5 whatever the
+// magnitudes, the calibrated error is what the angle alone leaves, 2 sin(5°).
+TEST(Metrics, CalibrationRecoversAKnownStiffnessScale) {
+  std::vector<Eigen::Vector3d> f, ref;
+  std::vector<bool> has(12, true);
+  for (int k = 0; k < 12; ++k) {
+    ref.emplace_back(0.3 * k, 0, 1.0 + 0.7 * k * k);  // in the plane the rotation keeps
+    f.push_back(Eigen::AngleAxisd(10 * M_PI / 180, Eigen::Vector3d::UnitY()) * ref.back() / 2.5);
+  }
+  has[3] = false;
+  f[3] = Eigen::Vector3d(1e6, 0, 0);  // no reference at cycle 3: ignored
+  const ErrorMetrics e = ErrorAgainstReference(f, ref, has);
+  EXPECT_NEAR(e.scale, 2.5, 1e-12);
+  EXPECT_NEAR(e.rms_relative_calibrated, 2 * std::sin(5 * M_PI / 180), 1e-12);
+  EXPECT_GT(e.rms_relative, 0.6);  // raw: mostly the 2.5x
+  EXPECT_NEAR(e.median_direction_deg, 10, 1e-9);
+  EXPECT_NEAR(e.p95_direction_deg, 10, 1e-9);
+  EXPECT_EQ(e.samples, 11);
+}
+
+// Direction quantiles: angles 0..19° over 20 cycles: median (nearest rank) 9°, p95 18°, max 19°;
+// a model with no force at all has no scale.
+TEST(Metrics, DirectionQuantilesAndAModelWithoutForce) {
+  std::vector<Eigen::Vector3d> f, ref, zero;
+  for (int k = 0; k < 20; ++k) {
+    ref.emplace_back(0, 0, 1);
+    f.push_back(Eigen::AngleAxisd(k * M_PI / 180, Eigen::Vector3d::UnitX()) * ref.back());
+    zero.emplace_back(0, 0, 0);
+  }
+  const ErrorMetrics e = ErrorAgainstReference(f, ref, std::vector<bool>(20, true));
+  EXPECT_NEAR(e.median_direction_deg, 9, 1e-9);
+  EXPECT_NEAR(e.p95_direction_deg, 18, 1e-9);
+  EXPECT_NEAR(e.max_direction_deg, 19, 1e-9);
+  const ErrorMetrics none = ErrorAgainstReference(zero, ref, std::vector<bool>(20, true));
+  EXPECT_TRUE(std::isnan(none.scale));
+  EXPECT_NEAR(none.rms_relative, 1, 1e-12);
+  EXPECT_NEAR(none.median_direction_deg, 180, 1e-9);
+}
+
+// Continuity relative to the force scale: 5 cycles apart, 10 at 2 N, 5 at 5 N; the median
+// force in contact is 2 N and the largest jump 3 N, so the relative jump is 1.5, and a model
+// with ten times the stiffness has the same.
+TEST(Metrics, RelativeJumpOfAKnownStep) {
+  std::vector<Eigen::Vector3d> f;
+  std::vector<Pose> poses;
+  for (int k = 0; k < 20; ++k) {
+    f.emplace_back(0, 0, k < 5 ? 0.0 : k < 15 ? 2.0 : 5.0);
+    poses.push_back(Pose::FromTranslation(Eigen::Vector3d(1e-4 * k, 0, 0)));
+  }
+  const double scale = MedianForceInContact(f);
+  EXPECT_DOUBLE_EQ(scale, 2.0);
+  const ContinuityMetrics m = ForceContinuity(f, poses, 1e-3, 0.05, 100);
+  EXPECT_NEAR(m.max_jump / scale, 1.5, 1e-12);
+  for (auto& v : f) v *= 10;
+  EXPECT_NEAR(ForceContinuity(f, poses, 1e-3, 0.05, 100).max_jump / MedianForceInContact(f), 1.5, 1e-12);
+  EXPECT_EQ(MedianForceInContact(std::vector<Eigen::Vector3d>(4, Eigen::Vector3d::Zero())), 0.0);
+}
+
 }  // namespace
 }  // namespace contactlab
