@@ -1,12 +1,15 @@
 // End-to-end checks of the `contactlab` program: exit codes, error messages that name the
 // file, no output left behind on failure, and the session and run commands on small scenes.
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 
 #include <algorithm>
 #include <array>
+#include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -69,13 +72,55 @@ bodies:
 model: {k_C: 1000}
 )";
 
+// The first COUNT numbers after "KEY": in JSON text (nested arrays read row by row).
+std::vector<double> JsonNumbers(const std::string& json, const std::string& key, int count) {
+  std::vector<double> v;
+  std::size_t at = json.find("\"" + key + "\"");
+  if (at == std::string::npos) return v;
+  at = json.find(':', at) + 1;
+  const char* p = json.c_str() + at;
+  while (int(v.size()) < count && *p) {
+    while (*p && !(std::isdigit(static_cast<unsigned char>(*p)) || *p == '-')) ++p;
+    char* end = nullptr;
+    v.push_back(std::strtod(p, &end));
+    p = end;
+  }
+  return v;
+}
+
+// The ball 3 mm into the plate (its pointshell on a 1 mm offset surface: R = 21 mm, centre
+// H = 18 mm above the plate's top): the force on the plate (B) matches the eq. (2) limit of a
+// sphere on a halfspace, |F| = k_C L R (R/3 - H/2 + H^3/(6 R^2)) / (R - H), straight down, and
+// the torque about the plate's origin is that force's moment from the contact's centre.
 TEST(Cli, ContactPrintsTheForceOnTheFieldBodyAsJson) {
   testing::TempDir dir;
-  std::ofstream(dir / "scene.yaml") << kScene;
+  std::string scene = kScene;
+  scene.replace(scene.find("[0, 0, 0.0205, 1, 0, 0, 0]"), 26, "[0.001, -0.002, 0.018, 1, 0, 0, 0]");
+  scene.replace(scene.find("{points: 512, levels: 2}"), 24, "{points: 512, levels: 2, offset: 0.001}");
+  std::ofstream(dir / "scene.yaml") << scene;
   const Outcome o = RunCli("contact " + (dir / "scene.yaml").string() + " --json --cache " + (dir / "cache").string());
   ASSERT_EQ(o.exit_code, 0) << o.output;
-  EXPECT_NE(o.output.find("\"points_in_contact\""), std::string::npos) << o.output;
-  EXPECT_NE(o.output.find("\"K_B\""), std::string::npos) << o.output;
+  const std::vector<double> F = JsonNumbers(o.output, "force", 3), T = JsonNumbers(o.output, "torque", 3);
+  const std::vector<double> l = JsonNumbers(o.output, "points_in_contact", 1), K = JsonNumbers(o.output, "K_B", 36);
+  ASSERT_EQ(F.size(), 3u) << o.output;
+  ASSERT_EQ(T.size(), 3u) << o.output;
+  ASSERT_EQ(l.size(), 1u) << o.output;
+  ASSERT_EQ(K.size(), 36u) << o.output;
+  const double R = 0.021, H = 0.018, kC = 1000, L = 10;
+  const double limit = kC * L * R * (R / 3 - H / 2 + H * H * H / (6 * R * R)) / (R - H);
+  EXPECT_GE(l[0], L);  // the L/l rule holds: the force is k_C L times the mean depth
+  EXPECT_NEAR(F[2], -limit, 0.05 * limit) << o.output;
+  EXPECT_LT(std::hypot(F[0], F[1]), 0.05 * limit) << o.output;
+  // r x F from the plate's origin (0, 0, -0.01) to the contact (0.001, -0.002, 0).
+  const Eigen::Vector3d r(0.001, -0.002, 0.01);
+  const Eigen::Vector3d expected = r.cross(Eigen::Vector3d(0, 0, -limit));
+  EXPECT_LT((Eigen::Vector3d(T[0], T[1], T[2]) - expected).norm(), 0.15 * r.norm() * limit) << o.output;
+  // K_B (row-major), the halfspace rule: -sum k_i N_i N_i^T with A's unit normals N_i and
+  // stiffnesses summing to k_C L, so its force block has trace -k_C L; on the cap N_z^2 lies
+  // between (H/R)^2 and 1, so dF_z/dz lies between -k_C L and -(H/R)^2 k_C L.
+  EXPECT_NEAR(K[0] + K[7] + K[14], -kC * L, 1e-6 * kC * L) << o.output;
+  EXPECT_LT(K[14], -(H / R) * (H / R) * kC * L) << o.output;
+  EXPECT_GT(K[14], -kC * L) << o.output;
 }
 
 TEST(Cli, BadSceneKeyFailsNamingFileAndKey) {

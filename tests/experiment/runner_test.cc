@@ -169,17 +169,38 @@ TEST(Runner, ConfigErrorsNameTheFileAndKey) {
 
 TEST(Runner, RoleReversalKeepsTheForceOnTheSameBody) {
   TempDir dir;
+  std::string text = Replace(kConfig, "pointshell: {points: 256, levels: 2, seed: 3}",
+                             "pointshell: {points: 4096, levels: 2, seed: 3, offset: 0}");
+  text = Replace(text, "      role: field\n", "      role: field\n      pointshell: {points: 4096, levels: 2, seed: 3, offset: 0}\n");
   const ExperimentConfig config =
-      Load(dir, kConfig, {"sweep.points=[256]", "sweep.roles=[normal, swapped]", "models=[pointshell-linear]",
-                          "reference="});
+      Load(dir, text, {"sweep.points=[4096]", "sweep.roles=[normal, swapped]", "models=[pointshell-linear]", "reference="});
   const std::vector<Job> jobs = ExpandJobs(config);
   ASSERT_EQ(jobs.size(), 2u);
   EXPECT_EQ(jobs[1].scene.pointshell_body.name, "plate");
   const JobResult a = RunJob(config, jobs[0], Options(dir, "a"));
   const JobResult b = RunJob(config, jobs[1], Options(dir, "b"));
-  // Both report the force on the moving ball: up, of similar size at the deepest cycle.
-  EXPECT_GT(a.cycles[20].force.z(), 0);
-  EXPECT_GT(b.cycles[20].force.z(), 0);
+  // Both report the force on the moving ball, each matching the eq. (2) limit of its own
+  // roles at the deepest cycle (pointshells on the surface, offset 0; enough points in contact
+  // that the L/l rule holds). Ball R as pointshell, centre H above the plate:
+  //   |F| = k_C L R (R/3 - H/2 + H^3/(6 R^2)) / (R - H)   (mean depth over the submerged cap).
+  // Plate as pointshell: the mean of d = sqrt(rho^2 + H^2) - R over the disk rho < a,
+  // a^2 = R^2 - H^2, inside the ball: |F| = k_C L (R - 2 (R^3 - H^3) / (3 a^2)).
+  const double R = 0.02, kC = 1000, L = 10;
+  for (const JobResult* r : {&a, &b}) {
+    const CycleRow* deepest = &r->cycles.front();
+    for (const CycleRow& c : r->cycles) {
+      if (c.position.z() < deepest->position.z()) deepest = &c;
+    }
+    const double H = deepest->position.z();  // the plate's top is z = 0
+    ASSERT_NEAR(H, 0.0185, 1e-9);
+    const double a2 = R * R - H * H;
+    const double limit = r == &a ? kC * L * R * (R / 3 - H / 2 + H * H * H / (6 * R * R)) / (R - H)
+                                 : kC * L * (R - 2 * (R * R * R - H * H * H) / (3 * a2));
+    // Measured: 4 % (ball, 150 points in contact) and 1 % (plate, 15 points) from the limit.
+    EXPECT_NEAR(deepest->force.z(), limit, 0.06 * limit) << (r == &a ? "ball" : "plate") << " as the pointshell";
+    EXPECT_LT(deepest->force.head<2>().norm(), 0.05 * limit);
+    EXPECT_GE(deepest->contacts, 10);
+  }
 }
 
 }  // namespace
