@@ -234,6 +234,7 @@ Job BuildJob(const ExperimentConfig& config, int index, const std::vector<std::s
   const std::string scene_path = docs.scene_file == config.file ? "scene" : "";
   job.scene = ParseScene(ConfigNode(docs.scene, std::make_shared<const std::string>(docs.scene_file), scene_path));
   if (docs.roles_swapped) job.scene.name += " (roles swapped)";
+  job.roles_swapped = docs.roles_swapped;
   const ConfigNode root(docs.config, file, "");
   job.models = config.models;
   if (auto m = root.Find("models")) {

@@ -96,6 +96,7 @@ struct Job {
   Scene scene;
   std::vector<std::string> models;
   std::string moving_body;
+  bool roles_swapped = false;  // the roles axis exchanged the bodies' roles
   ConfigNode trajectory_node;  // the job's trajectory section (contact studies)
   ConfigNode config;           // the job's whole config document, sweep values applied
   std::string Label() const;  // "points=1024 model=vps"

@@ -127,8 +127,33 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
       dir = Eigen::Vector3d(v[0], v[1], v[2]).normalized();
     }
     const double depth = tn.Positive("touch_depth", 1e-4);
-    const Pose moved = TouchAlong(scene, assets, moving_is_B, X_WA0, X_WB0, dir, depth,
-                                  config.file + ": job " + std::to_string(job.index));
+    const std::string where = config.file + ": job " + std::to_string(job.index);
+    // Both role orders follow one motion: a job whose roles were swapped takes the placement of
+    // the job with the same sweep values in the config's role order (the same poses, the same
+    // field resolutions on the same bodies), so role reversal compares like with like.
+    const Job* placement = &job;
+    std::vector<Job> jobs;
+    if (job.roles_swapped) {
+      jobs = ExpandJobs(config);
+      for (const Job& j : jobs) {
+        if (j.roles_swapped || j.axis_values.size() != job.axis_values.size()) continue;
+        bool same = true;
+        for (std::size_t a = 0; a < j.axis_values.size(); ++a) {
+          same = same && (j.axis_values[a].first == "roles" || j.axis_values[a] == job.axis_values[a]);
+        }
+        if (same) placement = &j;
+      }
+    }
+    Pose moved;
+    if (placement == &job) {
+      moved = TouchAlong(scene, assets, moving_is_B, X_WA0, X_WB0, dir, depth, where);
+    } else {
+      const Scene& normal = placement->scene;
+      SceneAssets normal_assets(normal, options.assets);
+      const bool normal_moving_is_B = normal.field_body.name == job.moving_body;
+      moved = TouchAlong(normal, normal_assets, normal_moving_is_B, normal.pointshell_body.pose, normal.field_body.pose,
+                         dir, depth, where + " (placed as job " + std::to_string(placement->index) + ")");
+    }
     (moving_is_B ? X_WB0 : X_WA0) = moved;
   }
   const Pose start = moving_is_B ? X_WB0 : X_WA0;

@@ -235,6 +235,33 @@ TEST(Runner, TouchPlacesTheMovingBodyAtFirstContactTowardTheOtherBody) {
   EXPECT_GT(deepest.force.z(), 0);
 }
 
+// Role reversal compares one motion: the swapped job takes the touch placement of the job in
+// the config's role order. Each order alone would place the ball differently: the plate as the
+// pointshell sits on its own offset surface (half of its 5 mm voxels) instead of the ball's
+// (half of 2 mm), so the ball would stop about 1.5 mm higher.
+TEST(Runner, SwappedRolesFollowThePlacementOfTheConfigsRoleOrder) {
+  TempDir dir;
+  std::string text = Replace(kConfig, "[0, 0, 0.0215, 1, 0, 0, 0]", "[0.001, 0.002, 0.07, 1, 0, 0, 0]");
+  text = Replace(text, "direction: [0, 0, -1]", "direction: toward, touch: true, touch_depth: 0.0001");
+  text = Replace(text, "      role: field\n", "      role: field\n      pointshell: {points: 256, levels: 2, seed: 3}\n");
+  const ExperimentConfig config =
+      Load(dir, text, {"sweep.points=[256]", "sweep.roles=[normal, swapped]", "models=[pointshell-linear]", "reference="});
+  const std::vector<Job> jobs = ExpandJobs(config);
+  ASSERT_EQ(jobs.size(), 2u);
+  ASSERT_TRUE(jobs[1].roles_swapped);
+  const JobResult a = RunJob(config, jobs[0], Options(dir, "a"));
+  const JobResult b = RunJob(config, jobs[1], Options(dir, "b"));
+  ASSERT_EQ(a.cycles.size(), b.cycles.size());
+  for (std::size_t k = 0; k < a.cycles.size(); ++k) {
+    ASSERT_EQ(a.cycles[k].position, b.cycles[k].position) << "cycle " << k;
+  }
+  // The swapped job placed on its own would differ: its touch pose is another one.
+  Job alone = jobs[1];
+  alone.roles_swapped = false;
+  const JobResult c = RunJob(config, alone, Options(dir, "c"));
+  EXPECT_GT((c.cycles.front().position - b.cycles.front().position).norm(), 5e-4);
+}
+
 TEST(Runner, SceneAxisRunsEachJobOnItsOwnScene) {
   TempDir dir;
   std::ofstream(dir / "other.yaml") << R"(name: other
