@@ -546,6 +546,61 @@ class Figures:
         self.save(fig, "compare_volume.png")
         return True
 
+    # Issue 15, tessellation invariance: per model, how much the force changes between two
+    # meshes of one shape at the same poses: RMS |F_coarse - F_fine| / RMS |F_fine| over the
+    # cycles (printed, and a bar per shape), and the force on both meshes over time.
+    def tessellation(self):
+        rows = self.load("tessellation", "cycles")
+        if not rows:
+            return False
+        axis = next(k for k in rows[0] if k.startswith("scene.bodies"))
+        by = defaultdict(list)
+        for r in rows:
+            by[(r[axis], r["model"])].append(r)
+        meshes = sorted({k[0] for k in by})
+        models = []
+        for r in rows:
+            if r["model"] not in models:
+                models.append(r["model"])
+        # Pairs of labels "SHAPE-COUNT": coarse (fewer triangles) then fine.
+        shapes = defaultdict(list)
+        for m in meshes:
+            shape, count = m.rsplit("-", 1)
+            shapes[shape].append((int(count), m))
+        fig, axes = plt.subplots(1, 1 + len(shapes), figsize=(5.0 * (1 + len(shapes)), 4.0), squeeze=False)
+        width = 0.8 / max(1, len(models))
+        for i, (shape, pair) in enumerate(sorted(shapes.items())):
+            (_, coarse), (_, fine) = sorted(pair)[0], sorted(pair)[-1]
+            for j, model in enumerate(models):
+                a, b = by.get((coarse, model), []), by.get((fine, model), [])
+                if not a or len(a) != len(b):
+                    continue
+                diff = sum(sum((num(x, c) - num(y, c)) ** 2 for c in ("fx", "fy", "fz")) for x, y in zip(a, b))
+                ref = sum(sum(num(y, c) ** 2 for c in ("fx", "fy", "fz")) for y in b)
+                change = math.sqrt(diff / ref) if ref > 0 else float("nan")
+                print(f"tessellation {shape} {coarse} vs {fine} {model}: RMS |dF| / RMS |F| = {change:.4f}")
+                axes[0][0].bar(i + (j - (len(models) - 1) / 2) * width, change, width, color=f"C{j}",
+                               label=model if i == 0 else None)
+                ax = axes[0][1 + i]
+                t = [num(r, "t") for r in b]
+                ax.plot(t, [math.hypot(num(r, "fx"), num(r, "fy"), num(r, "fz")) for r in b], color=f"C{j}", lw=0.9,
+                        label=f"{model}, {fine}")
+                ax.plot(t, [math.hypot(num(r, "fx"), num(r, "fy"), num(r, "fz")) for r in a], color=f"C{j}", lw=0.9,
+                        ls="--")
+            axes[0][1 + i].set_title(f"{shape}: solid {fine}, dashed {coarse}", fontsize=9)
+            axes[0][1 + i].set_xlabel("time (s)")
+            axes[0][1 + i].set_ylabel("|F| on the tool (N)")
+            axes[0][1 + i].grid(True, alpha=0.3)
+            axes[0][1 + i].legend(fontsize=6)
+        axes[0][0].set_xticks(range(len(shapes)))
+        axes[0][0].set_xticklabels(sorted(shapes), fontsize=8)
+        axes[0][0].set_ylabel("RMS |F_coarse - F_fine| / RMS |F_fine|")
+        axes[0][0].set_title("Tessellation invariance (same poses)", fontsize=10)
+        axes[0][0].grid(True, axis="y", alpha=0.3)
+        axes[0][0].legend(fontsize=7)
+        self.save(fig, "tessellation.png")
+        return True
+
     # Issue 20, a thin feature: a thin-walled tube over a peg pushed sideways into it and on
     # through its 0.5 mm wall: the force on the tube opposing the push against the depth.
     def hard_cases_tube_peg(self):
@@ -587,7 +642,7 @@ def main():
     figs = Figures(os.path.abspath(args.results))
     for name in ["fig05b", "fig10", "fig11", "fig14b", "fig15", "table1", "table1_deformable", "table1_defo_defo",
                  "deformable_cantilever",
-                 "continuity", "speed_vs_error", "compare_volume", "hard_cases_medial_axis", "hard_cases_tube_peg"]:
+                 "continuity", "speed_vs_error", "compare_volume", "tessellation", "hard_cases_medial_axis", "hard_cases_tube_peg"]:
         try:
             if not getattr(figs, name)():
                 print(f"make_figures: {name}: no results yet (run its experiment first)", file=sys.stderr)
