@@ -25,7 +25,11 @@ void CheckL(int L) {
 double SphereHalfspaceForceMagnitude(double R, double H, double k_C, int L) {
   CheckL(L);
   if (!(R > 0) || !(H > -R) || !(H < R)) Fail(kWhere, "sphere-halfspace needs R > 0 and -R < H < R");
-  return k_C * L * R * (R / 3 - H / 2 + H * H * H / (6 * R * R)) / (R - H);
+  // R (R/3 - H/2 + H^3/(6 R^2)) / (R - H) with u = R - H, the depth: the numerator is
+  // u^2/(2R) - u^3/(6R^2), so |F| = k_C L u (3R - u) / (6R). Evaluated in u: the textbook form
+  // cancels catastrophically as the sphere just touches (250 N instead of 0 at u ~ 1e-17).
+  const double u = R - H;
+  return k_C * L * u * (3 * R - u) / (6 * R);
 }
 
 ForceLimit SphereHalfspaceLimit(const Eigen::Vector3d& c_WA, double R, const Eigen::Vector3d& q_W,

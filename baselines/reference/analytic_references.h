@@ -24,7 +24,8 @@ struct ForceLimit {
 };
 
 // |F_limit| for a sphere of radius R (m) whose centre is at height H (m, |H| < R) above a
-// halfspace: k_C L R (R/3 - H/2 + H^3/(6 R^2)) / (R - H). Throws Error unless R > 0 and
+// halfspace: k_C L R (R/3 - H/2 + H^3/(6 R^2)) / (R - H) = k_C L d (3R - d) / (6R) with the
+// depth d = R - H (computed in that form, stable as d -> 0). Throws Error unless R > 0 and
 // -R < H < R.
 double SphereHalfspaceForceMagnitude(double R, double H, double k_C, int L);
 
