@@ -1,9 +1,12 @@
 // Registers "reference" (QuadratureReference: the eq. (2) limit by dense quadrature with exact
 // distances to B's closed mesh) with the contact-model registry, and the reference-only
-// "volume" (VolumeReference: the volume law on the exact overlap volume). The limit needs L > 0: a
+// "volume" (VolumeReference: the volume law on the exact overlap volume) and
+// "eq2-halfspace" (HalfspaceLimitReference: the eq. (2) limit in closed form against a box's
+// top face). The limit needs L > 0: a
 // scene that turns the L / l scaling off (L = 0) gets the default L for its reference.
 #include <memory>
 
+#include "baselines/reference/halfspace_limit_reference.h"
 #include "baselines/reference/surface_quadrature_reference.h"
 #include "baselines/reference/volume_reference.h"
 #include "contact/model_registry.h"
@@ -36,6 +39,17 @@ void RegisterReferenceContactModels() {
     return std::make_unique<VolumeReference>(in.A.mesh(), in.B.mesh(), in.params.penalty);
   };
   RegisterContactModel(std::move(v));
+
+  ContactModelEntry h;
+  h.name = "eq2-halfspace";
+  h.description = "eq. (2) limit in closed form: a sphere or polyhedron A against B's top face as a halfspace (B a box)";
+  h.needs.mesh_A = true;
+  h.needs.mesh_B = true;
+  h.reference_only = true;
+  h.make = [](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
+    return std::make_unique<HalfspaceLimitReference>(in.A.mesh(), in.B.mesh(), in.params.penalty);
+  };
+  RegisterContactModel(std::move(h));
 }
 
 }  // namespace contactlab

@@ -9,6 +9,7 @@
 
 #include "baselines/reference/analytic_references.h"
 #include "baselines/reference/penetration_volume.h"
+#include "baselines/reference/halfspace_limit_reference.h"
 #include "baselines/reference/surface_quadrature_reference.h"
 #include "baselines/reference/volume_reference.h"
 #include "baselines/register_baselines.h"
@@ -168,6 +169,36 @@ TEST(VolumeReference, SphereIntoAFacePushesAlongTheNormalWithTheCapArea) {
     EXPECT_GT(F.norm(), previous);
     previous = F.norm();
   }
+}
+
+// The closed-form reference as a model: a sphere mesh stands for the exact sphere through its
+// vertices; B's top face, wherever B is turned, is the halfspace.
+TEST(HalfspaceLimitReference, SphereOnATurnedBoxMatchesTheClosedForm) {
+  const double R = 0.05;
+  auto sphere = std::make_shared<TriangleMesh>(MakeSphere(R, 2));
+  sphere->name = "sphere:0.05,2";
+  WideBox B;
+  PenaltyParams penalty;
+  penalty.k_C = kC;
+  penalty.L = kL;
+  HalfspaceLimitReference reference(sphere, B.mesh, penalty);
+  const Eigen::Vector3d n = B.X_WB.rotation * Eigen::Vector3d::UnitZ();
+  for (double depth : {0.0, 0.001, 0.004}) {
+    ContactQuery q;
+    q.X_WB = B.X_WB;
+    q.X_WA = Pose::FromTranslation(B.top_W() + n * (R - depth) + Eigen::Vector3d(0.01, 0.005, 0));
+    const ContactResult r = reference.Evaluate(q);
+    if (depth == 0) {
+      EXPECT_LT(r.on_B.force.norm(), 1e-9);  // touching: the closed form tends to 0
+      continue;
+    }
+    const double expected = SphereHalfspaceForceMagnitude(R, R - depth, kC, kL);
+    EXPECT_NEAR(r.on_B.force.dot(-n), expected, 1e-9 * expected) << depth;
+    EXPECT_NEAR((r.on_B.force + expected * n).norm(), 0, 1e-9 * expected);
+    EXPECT_NEAR(r.stats.max_penetration, depth, 1e-12);
+  }
+  // A sphere is not a box: refused as B.
+  EXPECT_THROW(HalfspaceLimitReference(B.mesh, sphere, penalty), Error);
 }
 
 TEST(VolumeReference, IsAReferenceOnlyModel) {
