@@ -93,6 +93,61 @@ class Figures:
         self.save(fig, "fig05b_convergence.png")
         return True
 
+    # Issue 15: error against the closed-form eq. (2) limit as the pointshell grows, per shape
+    # and sampling method (fitted order with its 95 % interval), and the force's continuity per
+    # method along the slide (largest jump relative to the median force, high-frequency share).
+    def convergence_eq2(self):
+        rows = self.load("convergence-eq2", "summary")
+        if not rows:
+            return False
+        conv = {c["group"]: c for c in (self.load("convergence-eq2", "convergence") or [])}
+        axis = next(k for k in rows[0] if k.startswith("scene.bodies"))
+        shapes = sorted({r[axis] for r in rows})
+        methods = []
+        for r in rows:
+            if r["method"] not in methods:
+                methods.append(r["method"])
+        fig, axes = plt.subplots(1, len(shapes) + 1, figsize=(5.0 * (len(shapes) + 1), 4.2), squeeze=False)
+        for i, shape in enumerate(shapes):
+            ax = axes[0][i]
+            for j, method in enumerate(methods):
+                # Each sampling (seed) a dot; the line is convergence.csv's pooled RMS per size.
+                pts = sorted((num(r, "points"), num(r, "rms_rel_error")) for r in rows
+                             if r[axis] == shape and r["method"] == method and 0 <= num(r, "rms_rel_error") < float("inf"))
+                if not pts:
+                    continue
+                ax.loglog([p for p, _ in pts], [e for _, e in pts], ".", color=f"C{j}", alpha=0.5)
+                group = next((c for g, c in conv.items() if f"={shape};" in g + ";" and f"method={method}" in g), None)
+                label = method
+                if group:
+                    if group["fitted_order"] not in ("nan", ""):
+                        label += f": order {float(group['fitted_order']):.2f} ± {float(group['order_ci95']):.2f}"
+                    xs = [float(v) for v in group["points"].split()]
+                    ys = [float(v) for v in group["errors"].split()]
+                    ax.loglog(xs, ys, "o-", color=f"C{j}", label=label)
+            ax.set_xlabel("pointshell points")
+            ax.set_ylabel("RMS relative force error vs. closed-form eq. (2) limit")
+            ax.set_title(f"{shape} on a halfspace (offset 0)", fontsize=10)
+            ax.grid(True, which="both", alpha=0.3)
+            ax.legend(fontsize=7)
+        ax = axes[0][-1]
+        for j, method in enumerate(methods):
+            for k, shape in enumerate(shapes):
+                by_n = defaultdict(list)
+                for r in rows:
+                    if r[axis] == shape and r["method"] == method:
+                        by_n[num(r, "points")].append(num(r, "max_jump_rel"))
+                xs = sorted(by_n)
+                ax.loglog(xs, [max(sum(by_n[x]) / len(by_n[x]), 1e-6) for x in xs], "o-" if k == 0 else "s--",
+                          color=f"C{j}", label=f"{method}, {shape}", ms=4)
+        ax.set_xlabel("pointshell points")
+        ax.set_ylabel("largest per-cycle jump / median |F| (mean over seeds)")
+        ax.set_title("continuity (press and slide), per sampling method", fontsize=10)
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7)
+        self.save(fig, "convergence_eq2.png")
+        return True
+
     # Paper Fig. 11: cycle time, nodes and level on a recorded trajectory, with and without budget.
     def fig11(self):
         rows = self.load("fig11-degradation", "cycles")
@@ -640,7 +695,7 @@ def main():
     parser.add_argument("--results", default=os.path.join(os.path.dirname(__file__), "..", "results"))
     args = parser.parse_args()
     figs = Figures(os.path.abspath(args.results))
-    for name in ["fig05b", "fig10", "fig11", "fig14b", "fig15", "table1", "table1_deformable", "table1_defo_defo",
+    for name in ["fig05b", "convergence_eq2", "fig10", "fig11", "fig14b", "fig15", "table1", "table1_deformable", "table1_defo_defo",
                  "deformable_cantilever",
                  "continuity", "speed_vs_error", "compare_volume", "tessellation", "hard_cases_medial_axis", "hard_cases_tube_peg"]:
         try:

@@ -1,6 +1,7 @@
 // convergence.csv: for each model and each combination of the sweep axes other than
 // "points", the error against the reference as the pointshell grows and the fitted order
-// (error ~ points^-order, metrics.h FittedOrder). Computed from summary.csv text, so a merged
+// (error ~ points^-order, metrics.h FittedOrder) with its 95 % confidence half-width. Axes
+// whose name ends in "seed" are pooled: their errors at equal points combine as one RMS. Computed from summary.csv text, so a merged
 // run gets the same table as a local one.
 #pragma once
 

@@ -181,4 +181,28 @@ double FittedOrder(const std::vector<double>& size, const std::vector<double>& e
   return -(n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
+double FittedOrderHalfWidth95(const std::vector<double>& size, const std::vector<double>& error) {
+  std::vector<double> x, y;
+  for (std::size_t i = 0; i < size.size() && i < error.size(); ++i) {
+    if (size[i] > 0 && error[i] > 0) x.push_back(std::log(size[i])), y.push_back(std::log(error[i]));
+  }
+  const std::size_t n = x.size();
+  if (n < 3) return std::numeric_limits<double>::quiet_NaN();
+  double mx = 0, my = 0;
+  for (std::size_t i = 0; i < n; ++i) mx += x[i] / double(n), my += y[i] / double(n);
+  double sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < n; ++i) sxx += (x[i] - mx) * (x[i] - mx), sxy += (x[i] - mx) * (y[i] - my);
+  if (sxx == 0) return std::numeric_limits<double>::quiet_NaN();
+  const double slope = sxy / sxx, intercept = my - slope * mx;
+  double rss = 0;
+  for (std::size_t i = 0; i < n; ++i) rss += std::pow(y[i] - intercept - slope * x[i], 2);
+  const double se = std::sqrt(rss / double(n - 2) / sxx);
+  // Student's t, two-sided 95 %, for 1..30 degrees of freedom; 1.96 beyond.
+  static constexpr double kT[] = {12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228,
+                                  2.201,  2.179, 2.160, 2.145, 2.131, 2.120, 2.110, 2.101, 2.093, 2.086,
+                                  2.080,  2.074, 2.069, 2.064, 2.060, 2.056, 2.052, 2.048, 2.045, 2.042};
+  const std::size_t dof = n - 2;
+  return (dof <= 30 ? kT[dof - 1] : 1.96) * se;
+}
+
 }  // namespace contactlab

@@ -71,4 +71,8 @@ double MedianForceInContact(const std::vector<Eigen::Vector3d>& force);
 // -slope (error ~ size^-order). Needs at least two positive pairs; returns NaN otherwise.
 double FittedOrder(const std::vector<double>& size, const std::vector<double>& error);
 
+// The half-width of the 95 % confidence interval of FittedOrder's slope: t(0.975, n - 2) times
+// the slope's standard error from the residuals. NaN with fewer than three positive pairs.
+double FittedOrderHalfWidth95(const std::vector<double>& size, const std::vector<double>& error);
+
 }  // namespace contactlab

@@ -1,8 +1,12 @@
+#include "experiment/convergence_table.h"
 #include "experiment/metrics.h"
+#include "experiment/result_csv.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <sstream>
+#include <string>
 
 namespace contactlab {
 namespace {
@@ -128,6 +132,64 @@ TEST(Metrics, RelativeJumpOfAKnownStep) {
   for (auto& v : f) v *= 10;
   EXPECT_NEAR(ForceContinuity(f, poses, 1e-3, 0.05, 100).max_jump / MedianForceInContact(f), 1.5, 1e-12);
   EXPECT_EQ(MedianForceInContact(std::vector<Eigen::Vector3d>(4, Eigen::Vector3d::Zero())), 0.0);
+}
+
+// The order's 95 % interval: zero for an exact power law; for log-errors with residuals
+// +e, -e, +e, -e around a slope the standard error is e sqrt(4 / 2 / sxx) (here
+// sxx = 5 ln(4)^2 over x = 0, ln 4, 2 ln 4, 3 ln 4 ... as computed), times t(0.975, 2) = 4.303.
+TEST(Metrics, FittedOrderIntervalFromTheResiduals) {
+  const std::vector<double> n = {256, 1024, 4096, 16384};
+  std::vector<double> exact, noisy;
+  const double e = 0.1;
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    exact.push_back(3.0 * std::pow(n[i], -0.75));
+    noisy.push_back(exact.back() * std::exp(i % 2 == 0 ? e : -e));
+  }
+  EXPECT_NEAR(FittedOrderHalfWidth95(n, exact), 0, 1e-12);
+  EXPECT_NEAR(FittedOrder(n, exact), 0.75, 1e-12);
+  // x_i = ln 256 + i ln 4: sxx = ln(4)^2 (2.25 + 0.25 + 0.25 + 2.25) = 5 ln(4)^2. The residuals
+  // of +-e about the fitted line: the alternating pattern's projection on x - mean is
+  // -e (3 ln 4 ... ) / sxx; computed from the definition below rather than by hand.
+  const double l4 = std::log(4.0), sxx = 5 * l4 * l4;
+  const double xc[] = {-1.5 * l4, -0.5 * l4, 0.5 * l4, 1.5 * l4};
+  const double r0[] = {e, -e, e, -e};
+  double b = 0;
+  for (int i = 0; i < 4; ++i) b += xc[i] * r0[i] / sxx;
+  double rss = 0;
+  for (int i = 0; i < 4; ++i) {
+    const double mean = 0;  // the alternating residuals have mean zero
+    rss += std::pow(r0[i] - mean - b * xc[i], 2);
+  }
+  EXPECT_NEAR(FittedOrderHalfWidth95(n, noisy), 4.303 * std::sqrt(rss / 2 / sxx), 1e-9);
+  EXPECT_TRUE(std::isnan(FittedOrderHalfWidth95({256, 1024}, {0.1, 0.05})));
+}
+
+// convergence.csv: two seeds of each size pool into one RMS per size; the seed axis is not a
+// group; the errors 0.4 / 0.3 at 256 and 0.1 / 0.0 (RMS 0.5 / sqrt(2) and 0.1 / sqrt(2))
+// at 4096 fall as 4096^-0.5 / 256^-0.5 = 1/4 to 1/5 — fitted order log(5)/log(16).
+TEST(ConvergenceTable, PoolsSeedsAsRmsAndFitsTheOrder) {
+  const std::string summary =
+      "experiment,job,method,scene.bodies[role=pointshell].pointshell.seed,points,model,rms_rel_error\n"
+      "e,0,random,1,256,m,0.4\n"
+      "e,1,random,2,256,m,0.3\n"
+      "e,2,random,1,4096,m,0.1\n"
+      "e,3,random,2,4096,m,0\n"
+      "e,4,voxel,1,256,m,-1\n";
+  const std::string table = ConvergenceCsv(summary);
+  std::istringstream in(table);
+  std::string header, row, extra;
+  std::getline(in, header);
+  std::getline(in, row);
+  EXPECT_FALSE(std::getline(in, extra)) << table;  // voxel had no reference: no group
+  EXPECT_EQ(header, "group,samples,fitted_order,order_ci95,points,errors");
+  const std::vector<std::string> cells = SplitCsvLine(row);
+  ASSERT_EQ(cells.size(), 6u) << table;
+  EXPECT_EQ(cells[0], "m;method=random");
+  EXPECT_EQ(cells[1], "2");
+  EXPECT_NEAR(std::stod(cells[2]), std::log(5.0) / std::log(16.0), 1e-3);
+  EXPECT_EQ(cells[3], "nan");  // two sizes: no interval
+  EXPECT_EQ(cells[4], "256 4096");
+  EXPECT_EQ(cells[5], "0.3536 0.07071");
 }
 
 }  // namespace
