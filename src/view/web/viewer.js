@@ -393,6 +393,61 @@
     if (options.play !== undefined) { playing = true; playTime = tracks[current].t[frameIndex]; updatePlayButton(); }
   }
 
+  // --- Live session: snapshots from the server's event stream move the haptic body; the
+  // device (manipulandum) pose is a grey wireframe ghost; the plot shows the last 10 s.
+  var live = data.live || null;
+  if (live) {
+    document.getElementById('replay').hidden = false;
+    ['play', 'slider', 'model-choice'].forEach(function (id) { document.getElementById(id).hidden = true; });
+    document.getElementById('speed').parentNode.hidden = true;
+    document.getElementById('subtitle').textContent = 'live: model ' + live.model + ', device ' + live.device;
+    var haptic = bodies[live.haptic];
+    var ghost = new THREE.Mesh(haptic.mesh.geometry, new THREE.MeshBasicMaterial(
+        {color: 0xbbbbbb, wireframe: true, transparent: true, opacity: 0.3, depthWrite: false}));
+    ghost.renderOrder = 4;
+    setPose(ghost, haptic.spec.pose);
+    scene.add(ghost);
+    var history = [];  // [t, |F|] of the last 10 s
+    var liveMax = 0;
+    var received = 0;
+    var stream = new EventSource(live.stream);
+    stream.onmessage = function (e) {
+      var s = JSON.parse(e.data);
+      ++received;
+      setPose(haptic.group, s.body);
+      setPose(ghost, s.device);
+      var f = new THREE.Vector3(s.force[0], s.force[1], s.force[2]);
+      var fm = f.length();
+      liveMax = Math.max(liveMax, fm);
+      arrow.visible = fm > 0;
+      if (arrow.visible) {
+        var len = 0.6 * bounds.radius * fm / liveMax;
+        arrow.position.set(s.body[0], s.body[1], s.body[2]);
+        arrow.setDirection(f.multiplyScalar(1 / fm));
+        arrow.setLength(Math.max(len, 1e-6), 0.25 * len, 0.12 * len);
+      }
+      document.getElementById('readout').textContent =
+          't = ' + s.t.toFixed(3) + ' s   |F| = ' + fmt(fm) + ' N   |T| = ' +
+          fmt(Math.hypot(s.torque[0], s.torque[1], s.torque[2])) + ' N m' +
+          (s.level >= 0 ? '   level ' + s.level : '') + '   contacts ' + s.contacts + '   cycle ' +
+          s.work_us.toFixed(0) + ' us';
+      document.documentElement.setAttribute('data-snapshots', String(received));
+      history.push([s.t, fm]);
+      while (history.length > 1 && history[0][0] < s.t - 10) history.shift();
+      var t = new Float32Array(history.length), fmag = new Float32Array(history.length), fmax = 0;
+      for (var i = 0; i < history.length; ++i) { t[i] = history[i][0]; fmag[i] = history[i][1]; fmax = Math.max(fmax, fmag[i]); }
+      tracks = [{name: live.model, t: t, fmag: fmag, fmax: fmax}];
+      current = 0;
+      frameIndex = history.length - 1;
+      drawPlot();
+    };
+    stream.onerror = function () {
+      // The session ended (or the server went away): keep the last pose.
+      stream.close();
+      document.getElementById('readout').textContent += '   (stream ended)';
+    };
+  }
+
   // --- Animation loop.
   window.addEventListener('resize', function () {
     camera.aspect = window.innerWidth / window.innerHeight;
