@@ -87,6 +87,16 @@ double BoundingRadius(const TriangleMesh& mesh) {
 
 void RunSession(const SessionArgs& args) {
   if (!args.log.empty()) CheckOutputTarget(args.log, "--log");  // before the session, not after it
+  // --view: its port and three.js, before anything is built.
+  int view_port = 0;
+  if (args.view) {
+    if (!args.view_port.empty()) {
+      const std::optional<long long> p = ParseInteger(args.view_port);
+      if (!p || *p < 0 || *p > 65535) Fail("--view", QuoteToken(args.view_port) + " is not a port (0..65535; 0 or none: a free one)");
+      view_port = int(*p);
+    }
+    RequireThreeJs();
+  }
   const Scene scene = LoadScene(RequireDataFile(args.scene));
   AssetOptions options;
   options.cache_dir = args.cache;
@@ -152,17 +162,11 @@ void RunSession(const SessionArgs& args) {
   std::unique_ptr<LatestValue<LiveSnapshot>> live;
   std::unique_ptr<LiveViewServer> server;
   if (args.view) {
-    int port = 0;
-    if (!args.view_port.empty()) {
-      const std::optional<long long> p = ParseInteger(args.view_port);
-      if (!p || *p < 0 || *p > 65535) Fail("--view", QuoteToken(args.view_port) + " is not a port (0..65535; 0 or none: a free one)");
-      port = int(*p);
-    }
     nlohmann::json data = SceneViewData(scene, assets, SceneViewOptions{}, BodyPoses{scene.pointshell_body.pose, X_WB_start});
     data["title"] = scene.name + " (live)";
     data["live"] = {{"stream", "stream"}, {"haptic", 1}, {"model", model_name}, {"device", args.device}};
     live = std::make_unique<LatestValue<LiveSnapshot>>();
-    server = std::make_unique<LiveViewServer>(ViewerPage(data), *live, port);
+    server = std::make_unique<LiveViewServer>(ViewerPage(data), *live, view_port);
   }
 
   std::printf("session: scene %s, model %s, device %s, %.1f s (Ctrl-C stops)%s\n", scene.name.c_str(),

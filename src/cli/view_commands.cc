@@ -41,6 +41,7 @@ struct ViewArgs {
 
 void RunView(const ViewArgs& args) {
   CheckOutputTarget(args.out, "--out");
+  RequireThreeJs();
   if (args.max_points < 16) Fail("--max-points", "must be at least 16, got " + std::to_string(args.max_points));
   SceneViewOptions options;
   options.max_points = args.max_points;

@@ -43,6 +43,13 @@ const std::string& CheckScriptSafe(const std::string& source, const std::string&
 
 }  // namespace
 
+void RequireThreeJs() {
+  const fs::path dir = ThreeJsDir();
+  for (const fs::path& file : {dir / "three.min.js", dir / "examples/js/controls/OrbitControls.js"}) {
+    if (!fs::is_regular_file(file)) ReadThreeJsFile(file);  // throws naming FILE
+  }
+}
+
 fs::path ThreeJsDir() {
   if (const char* dir = std::getenv("CONTACTLAB_THREEJS_DIR"); dir != nullptr && *dir != '\0') return dir;
   return CONTACTLAB_THREEJS_DIR;

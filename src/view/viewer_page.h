@@ -16,6 +16,11 @@ namespace contactlab {
 // libjs-three).
 std::filesystem::path ThreeJsDir();
 
+// Throws Error naming the first of three.js's files (three.min.js, OrbitControls.js) in
+// ThreeJsDir() that is missing, and the package that provides it; a command calls it before
+// any work so that a missing package is reported at once.
+void RequireThreeJs();
+
 // The page showing DATA. Throws Error naming the three.js file that is missing or unreadable
 // and the package that provides it.
 std::string ViewerPage(const nlohmann::json& data);
