@@ -156,12 +156,13 @@
 
   // --- Camera framing: the bounding sphere of both bodies at their start poses.
   function frame() {
+    scene.updateMatrixWorld(true);  // the bodies' poses, before the first render computes them
     var box = new THREE.Box3();
     bodies.forEach(function (b) { box.expandByObject(b.mesh); });
     var sphere = box.getBoundingSphere(new THREE.Sphere());
     var r = Math.max(sphere.radius, 1e-3);
     var dir = new THREE.Vector3(1.0, -1.6, 0.9).normalize();
-    camera.position.copy(sphere.center).addScaledVector(dir, 2.6 * r);
+    camera.position.copy(sphere.center).addScaledVector(dir, 2.7 * r);
     camera.near = r * 0.01;
     camera.far = r * 50;
     camera.updateProjectionMatrix();
@@ -449,12 +450,18 @@
   }
 
   // --- Animation loop.
-  window.addEventListener('resize', function () {
-    camera.aspect = window.innerWidth / window.innerHeight;
+  // The 3D view fills the window above the replay / live bar.
+  function layout() {
+    var bar = document.getElementById('replay');
+    container.style.bottom = bar.hidden ? '0px' : bar.offsetHeight + 'px';
+    var w = Math.max(1, container.clientWidth), h = Math.max(1, container.clientHeight);
+    camera.aspect = w / h;
     camera.updateProjectionMatrix();
-    renderer.setSize(window.innerWidth, window.innerHeight);
-    if (replay) drawPlot();
-  });
+    renderer.setSize(w, h);
+    if (tracks.length > 0) drawPlot();
+  }
+  layout();
+  window.addEventListener('resize', layout);
   var frames = 0;
   function animate(now) {
     requestAnimationFrame(animate);
