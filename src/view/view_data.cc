@@ -164,10 +164,11 @@ Replay ReadReplay(const fs::path& dir, std::optional<int> job, int max_frames) {
   const int c_torque[3] = {col("tx"), col("ty"), col("tz")};
   const int c_experiment = column.count("experiment") ? column["experiment"] : -1;
 
-  // Rows of the chosen job, per model; the first pass only learns which jobs there are.
+  // Rows of the chosen job (of every job when none is chosen: then the file must hold one), and
+  // the jobs the file holds.
   struct Row {
     std::string model;
-    double v[16];
+    double v[16];  // t, pose x,y,z,qw,qx,qy,qz, force (3), torque (3), level, contacts
   };
   std::set<int> jobs;
   std::vector<Row> rows;

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -16,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "experiment/result_csv.h"
+#include "allocation_counter.h"
 #include "test_support.h"
 #include "util/atomic_file.h"
 #include "view/latest_value.h"
@@ -63,21 +65,49 @@ TEST(LatestValue, ReadersSeeWholeValuesOnly) {
       x += 1;
     } while (!stop.load());
   });
-  // Reads while the writer writes as fast as it can.
-  int torn = 0, seen = 0;
-  double first = 0, last = 0;
-  while (seen < 200000) {
+  // Reads while the writer writes as fast as it can, until 1000 different values were seen
+  // (or 10 s passed, on a very loaded machine).
+  int torn = 0, changes = 0, backwards = 0;
+  double previous = 0;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (changes < 1000 && std::chrono::steady_clock::now() < deadline) {
     if (v.Load(&p)) {
-      if (seen++ == 0) first = p.a;
-      last = p.a;
       if (p.a != p.b) ++torn;
+      if (p.a != previous) ++changes;
+      if (p.a < previous) ++backwards;  // an older value after a newer one
+      previous = p.a;
     }
   }
   stop.store(true);
   writer.join();
   EXPECT_EQ(torn, 0);
-  EXPECT_GT(last, first);  // the writer went on while the reader read
+  EXPECT_EQ(backwards, 0);
+  EXPECT_EQ(changes, 1000);
   EXPECT_GT(v.version(), 0u);
+}
+
+// The hand-off could run on the haptic thread itself: making and storing a snapshot allocates
+// nothing (and takes no lock: LatestValue has none).
+TEST(LatestValue, StoringSnapshotsAllocatesNothing) {
+  LatestValue<LiveSnapshot> v;
+  CycleRecord r;
+  r.now_ns = 7'000'000;
+  r.p_WH[0] = 0.25;
+  r.contact_force[2] = 4.5;
+  const long before = testing::AllocationCount();
+  for (int i = 0; i < 1000; ++i) {
+    r.cycle = i;
+    v.Store(SnapshotOf(r, 2'000'000));
+  }
+  LiveSnapshot s;
+  const bool loaded = v.Load(&s);
+  EXPECT_EQ(testing::AllocationCount(), before);
+  ASSERT_TRUE(loaded);
+  EXPECT_EQ(s.cycle, 999);
+  EXPECT_DOUBLE_EQ(s.t, 0.005);
+  EXPECT_DOUBLE_EQ(s.p_WH[0], 0.25);
+  EXPECT_DOUBLE_EQ(s.contact_force[2], 4.5);
+  EXPECT_EQ(v.version(), 1000u);
 }
 
 TEST(LiveView, ServerStreamsTheNewestSnapshotOnLoopback) {
