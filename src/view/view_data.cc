@@ -62,17 +62,31 @@ nlohmann::json SceneViewData(const Scene& scene, SceneAssets& assets, const Scen
   // A's pointshell, thinned per level.
   const auto shell = assets.A.pointshell();
   const DisplayPoints points = DecimatePointshell(*shell, options.max_points);
+
+  // Points in contact at these poses (sec. 2.1: d < 0 in B's field): of all, and which drawn.
+  const auto field = assets.B.field();
+  const Pose X_BA = X_WB.Inverse() * X_WA;
+  int in_contact = 0;
+  for (int i = 0; i < shell->num_points(); ++i) {
+    if (field->Distance(X_BA * Eigen::Vector3d(shell->x[i], shell->y[i], shell->z[i])) < 0) ++in_contact;
+  }
+  std::vector<std::uint8_t> contact(points.num_kept());
+  for (int i = 0; i < points.num_kept(); ++i) {
+    const Eigen::Vector3d p_A(points.xyz[3 * i], points.xyz[3 * i + 1], points.xyz[3 * i + 2]);
+    contact[i] = field->Distance(X_BA * p_A) < 0 ? 1 : 0;
+  }
   j["pointshell"] = {{"body", 0},
                      {"points", shell->num_points()},
                      {"levels", shell->num_levels()},
                      {"kept", points.kept},
                      {"total", points.total},
+                     {"in_contact", in_contact},
                      {"positions", EncodeArray(points.xyz)},
-                     {"level", EncodeArray(points.level)}};
+                     {"level", EncodeArray(points.level)},
+                     {"contact", EncodeArray(contact)}};
 
   // B's field, on a plane through A's origin that contains (nearly) the line between the
   // bodies: its normal is the axis of B's frame along which A's origin is closest.
-  const auto field = assets.B.field();
   const Eigen::Vector3d p_BA = X_WB.Inverse() * X_WA.translation;
   int axis = options.slice_axis;
   if (axis < 0) {

@@ -32,7 +32,9 @@ struct BodyPoses {
 
 // {"title", "scene", "bodies": [A, B] each {"name", "role", "pose": [x,y,z,qw,qx,qy,qz],
 // "positions": f32 (#V x 3), "indices": u32 (#T x 3), "vertices", "triangles"},
-// "pointshell": {"body": 0, "positions", "levels": u8, "kept": [...], "total": [...]},
+// "pointshell": {"body": 0, "positions", "level": u8, "kept": [...], "total": [...],
+// "in_contact": points of the whole shell with d < 0 in B's field at these poses, "contact": u8
+// per drawn point (1: d < 0)},
 // "slice": {"body": 1, "axis", "at", "width", "height", "corner", "u", "v", "values": f32,
 // "min", "max", "spacing"}}. Builds (or reads from the cache) A's pointshell and B's field.
 nlohmann::json SceneViewData(const Scene& scene, SceneAssets& assets, const SceneViewOptions& options,

@@ -146,6 +146,37 @@ TEST(Replay, PageDataHoldsBothBodiesThePointshellAndEveryTrack) {
   }
 }
 
+// The points flagged in contact are those below the plate's top face (z = 0) at the start poses.
+TEST(SceneView, PointsInContactAreThoseInsideTheFieldBody) {
+  TempDir dir;
+  std::ofstream(dir / "config.yaml") << kConfig;
+  ExperimentConfig config = LoadExperimentConfig(dir / "config.yaml");
+  Scene scene = config.scene;
+  scene.pointshell_body.pose.translation.z() = 0.018;  // 2 mm into the plate
+  scene.pointshell_body.pose.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()));
+  AssetOptions o;
+  o.cache_dir = dir / "cache";
+  o.verbose = false;
+  SceneAssets assets(scene, o);
+  const nlohmann::json j = SceneViewData(scene, assets, SceneViewOptions{});
+  const auto xyz = DecodeArray<float>(j["pointshell"]["positions"].get<std::string>(), "positions");
+  const auto contact = DecodeArray<std::uint8_t>(j["pointshell"]["contact"].get<std::string>(), "contact");
+  ASSERT_EQ(contact.size() * 3, xyz.size());
+  const double h = assets.B.field()->spacing();
+  int flagged = 0;
+  for (std::size_t i = 0; i < contact.size(); ++i) {
+    const Eigen::Vector3d p_W = scene.pointshell_body.pose * Eigen::Vector3d(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+    if (contact[i]) {
+      ++flagged;
+      EXPECT_LT(p_W.z(), h) << i;
+    } else {
+      EXPECT_GT(p_W.z(), -h) << i;
+    }
+  }
+  EXPECT_GT(flagged, 0);
+  EXPECT_EQ(j["pointshell"]["in_contact"].get<int>(), flagged);  // every point is drawn here
+}
+
 TEST(Replay, SeveralJobsNeedAJobNumber) {
   TempDir dir;
   RunTiny(dir, {"sweep={k_C: [500, 1500]}"});

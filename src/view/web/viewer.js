@@ -9,8 +9,10 @@
   // --- Colours. Each family keeps clear of the others' hues so a screenshot can tell them
   // apart (tests/view/check_page.py): body A orange, body B blue, levels neither.
   var BODY_COLOURS = [0xe8862a, 0x2f6fd0];
-  var LEVEL_COLOURS = ['#ffe14d', '#3cc83c', '#d040d0', '#40e0e0', '#ff4060', '#9060ff',
-                       '#a0ff60', '#f0f0f0', '#ff80c0', '#00a080', '#c0c000', '#b0b0ff'];
+  // Red is kept for points in contact.
+  var LEVEL_COLOURS = ['#ffe14d', '#3cc83c', '#d040d0', '#40e0e0', '#a0ff60', '#9060ff',
+                       '#f0f0f0', '#ff80c0', '#00a080', '#c0c000', '#b0b0ff', '#808080'];
+  var CONTACT_COLOUR = '#ff1010';
   var FORCE_COLOUR = 0xff3030;
 
   var data = JSON.parse(document.getElementById('contactlab-data').textContent);
@@ -70,7 +72,7 @@
   });
 
   // --- The pointshell of body A, coloured by the level that adds each point.
-  var points = null;
+  var points = null, contactPoints = null;
   if (data.pointshell) {
     var ps = data.pointshell;
     var positions = decode(ps.positions, Float32Array);
@@ -88,6 +90,23 @@
                                                             vertexColors: THREE.VertexColors}));
     points.renderOrder = 1;
     bodies[ps.body].group.add(points);
+    // The points in contact at the start poses, larger and red (a scene page only: in a replay
+    // or live view the bodies move on).
+    if (ps.contact && !data.replay && !data.live) {
+      var flags = decode(ps.contact, Uint8Array), touching = [];
+      for (var m = 0; m < flags.length; ++m) {
+        if (flags[m]) touching.push(positions[3 * m], positions[3 * m + 1], positions[3 * m + 2]);
+      }
+      if (touching.length > 0) {
+        var cg = new THREE.BufferGeometry();
+        cg.setAttribute('position', new THREE.BufferAttribute(new Float32Array(touching), 3));
+        // Drawn through everything: the contact region is usually hidden inside the other body.
+        contactPoints = new THREE.Points(cg, new THREE.PointsMaterial({size: 4, sizeAttenuation: false,
+                                                                       color: CONTACT_COLOUR, depthTest: false}));
+        contactPoints.renderOrder = 5;
+        bodies[ps.body].group.add(contactPoints);
+      }
+    }
   }
 
   // --- A slice of body B's distance field: green inside (d < 0), purple outside, paler near
@@ -196,6 +215,12 @@
       row.appendChild(el('span', {}, 'level ' + l + ': ' + kept + (kept < ps2.total[l] ? ' of ' + ps2.total[l] : '') + ' points'));
       legend.appendChild(row);
     });
+    if (contactPoints) {
+      var crow = el('div', {'class': 'row small'});
+      crow.appendChild(el('span', {'class': 'swatch', style: 'background:' + CONTACT_COLOUR}));
+      crow.appendChild(el('span', {}, 'in contact at the start (d < 0): ' + ps2.in_contact + ' of ' + ps2.points + ' points'));
+      legend.appendChild(crow);
+    }
   }
   if (data.slice) {
     var s2 = data.slice;
@@ -221,6 +246,7 @@
   }
   bodies.forEach(function (b) { toggle(b.spec.name, [b.mesh], true); });
   if (points) toggle('points', [points], true);
+  if (contactPoints) toggle('contact', [contactPoints], true);
   if (slice) toggle('slice', [slice], true);
   var solid = el('input', {type: 'checkbox'});
   solid.addEventListener('change', function () {
