@@ -4,8 +4,11 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <sstream>
 #include <string_view>
+#include <tuple>
 
+#include "deform/embedded_points.h"
 #include "experiment/experiment_config.h"
 #include "experiment/result_csv.h"
 #include "util/atomic_file.h"
@@ -183,6 +186,20 @@ Replay ReadReplay(const fs::path& dir, std::optional<int> job, int max_frames) {
   struct Row {
     std::string model;
     double v[16];  // t, pose x,y,z,qw,qx,qy,qz, force (3), torque (3), level, contacts
+    std::vector<float> q, q_B;  // deformable bodies' reduced coordinates (empty when rigid)
+  };
+  const int c_q = column.count("q") ? column["q"] : -1, c_q_B = column.count("q_B") ? column["q_B"] : -1;
+  // Space-separated reduced coordinates of cell C (empty: none).
+  auto coordinates = [&](const std::vector<std::string>& cells, int c, const char* what) {
+    std::vector<float> q;
+    if (c < 0) return q;
+    std::istringstream in(cells[c]);
+    for (std::string item; in >> item;) {
+      const std::optional<double> v = ParseDouble(item);
+      if (!v) FailAtLine(cycles_file.string(), line_no, std::string("column ") + what + ": " + QuoteToken(item) + " is not a number");
+      q.push_back(float(*v));
+    }
+    return q;
   };
   std::set<int> jobs;
   std::vector<Row> rows;
@@ -214,6 +231,8 @@ Replay ReadReplay(const fs::path& dir, std::optional<int> job, int max_frames) {
     for (int k = 0; k < 3; ++k) r.v[11 + k] = number(cells, c_torque[k], header[c_torque[k]].c_str());
     r.v[14] = number(cells, c_level, "level");
     r.v[15] = number(cells, c_contacts, "contacts");
+    r.q = coordinates(cells, c_q, "q");
+    r.q_B = coordinates(cells, c_q_B, "q_B");
     rows.push_back(std::move(r));
   }
   auto job_list = [&] {
@@ -255,6 +274,15 @@ Replay ReadReplay(const fs::path& dir, std::optional<int> job, int max_frames) {
       for (int k = 0; k < 3; ++k) track.torque.push_back(float(x[11 + k]));
       track.level.push_back(std::int32_t(x[14]));
       track.contacts.push_back(std::int32_t(x[15]));
+      // Reduced coordinates: as many in every row of the model as in its first.
+      for (auto [from, to, r] : {std::tuple{&v[i]->q, &track.q, &track.r}, std::tuple{&v[i]->q_B, &track.q_B, &track.r_B}}) {
+        if (i == 0) *r = int(from->size());
+        if (int(from->size()) != *r) {
+          Fail(cycles_file.string(), "model " + name + ": a row holds " + std::to_string(from->size()) +
+                                         " reduced coordinates, the first " + std::to_string(*r));
+        }
+        to->insert(to->end(), from->begin(), from->end());
+      }
     }
     replay.tracks.push_back(std::move(track));
   }
@@ -286,6 +314,35 @@ nlohmann::json ReplayViewData(const Replay& replay, SceneAssets& assets, const S
     (moving_is_B ? poses.X_WB : poses.X_WA) = X;
   }
   nlohmann::json j = SceneViewData(replay.scene, assets, options, poses);
+
+  // Deformable bodies with recorded coordinates: the reduced basis at their mesh vertices.
+  for (int b = 0; b < 2; ++b) {
+    BodyAssets& body = b == 0 ? assets.A : assets.B;
+    int r = 0;
+    for (const ReplayTrack& t : replay.tracks) r = std::max(r, b == 0 ? t.r : t.r_B);
+    if (r == 0 || !body.deformable()) continue;
+    const auto model = body.reduced_model();
+    if (model->r() != r) {
+      Fail((replay.dir / "cycles.csv").string(), "holds " + std::to_string(r) + " reduced coordinates of " +
+                                                     body.spec().name + ", whose model has " + std::to_string(model->r()));
+    }
+    const TriangleMesh& mesh = *body.mesh();
+    if (double(mesh.num_vertices()) * 3 * r > 16e6) {
+      j["bodies"][b]["basis_omitted"] = true;
+      continue;
+    }
+    const EmbeddedPoints points(model->mesh, model->basis, mesh.vertices, {}, GradientScheme::kSmooth);
+    std::vector<float> basis;
+    basis.reserve(std::size_t(mesh.num_vertices()) * 3 * r);
+    for (int v = 0; v < mesh.num_vertices(); ++v) {
+      const Eigen::MatrixXd U = points.Basis(v);  // 3 x r
+      for (int k = 0; k < 3; ++k)
+        for (int m = 0; m < r; ++m) basis.push_back(float(U(k, m)));
+    }
+    j["bodies"][b]["modes"] = r;
+    j["bodies"][b]["basis"] = EncodeArray(basis);
+  }
+
   j["title"] = replay.experiment + (replay.job_label.empty() ? "" : " — " + replay.job_label);
   nlohmann::json models = nlohmann::json::array();
   for (const ReplayTrack& t : replay.tracks) {
@@ -297,7 +354,11 @@ nlohmann::json ReplayViewData(const Replay& replay, SceneAssets& assets, const S
                       {"force", EncodeArray(t.force)},
                       {"torque", EncodeArray(t.torque)},
                       {"level", EncodeArray(t.level)},
-                      {"contacts", EncodeArray(t.contacts)}});
+                      {"contacts", EncodeArray(t.contacts)},
+                      {"r", t.r},
+                      {"q", EncodeArray(t.q)},
+                      {"r_B", t.r_B},
+                      {"q_B", EncodeArray(t.q_B)}});
   }
   j["replay"] = {{"experiment", replay.experiment},
                  {"folder", replay.dir.string()},

@@ -50,6 +50,11 @@ struct ReplayTrack {
   std::vector<std::int32_t> level;  // (#F) level rendered (-1: not a pointshell model)
   std::vector<std::int32_t> contacts;  // (#F) points or contacts
   std::int64_t cycles = 0;          // rows in cycles.csv before thinning
+  // Deformable bodies (paper sec. 4): reduced coordinates after each kept cycle, from the
+  // columns q (body A) and q_B (body B); empty for a rigid body.
+  int r = 0, r_B = 0;
+  std::vector<float> q;             // (#F x r)
+  std::vector<float> q_B;           // (#F x r_B)
 };
 
 struct Replay {
@@ -72,7 +77,11 @@ Replay ReadReplay(const std::filesystem::path& dir, std::optional<int> job, int 
 
 // SceneViewData of the replay's scene at its first frame, plus
 // "replay": {"experiment", "job", "label", "moving": 0|1, "stride", "models": [{"name",
-// "cycles", "t": f32, "pose": f32, "force": f32, "torque": f32, "level": i32, "contacts": i32}]}.
+// "cycles", "t": f32, "pose": f32, "force": f32, "torque": f32, "level": i32, "contacts": i32,
+// and for deformable bodies "r", "q": f32, "r_B", "q_B": f32}]}. A deformable body whose
+// coordinates were recorded also gets "modes": r and "basis": f32 (#V x 3 x r), the reduced
+// basis at its mesh vertices (u = U q, sec. 4.1), so the page deforms its mesh per frame;
+// bodies with more than 16 million basis entries are shown at rest ("basis_omitted": true).
 nlohmann::json ReplayViewData(const Replay& replay, SceneAssets& assets, const SceneViewOptions& options);
 
 }  // namespace contactlab

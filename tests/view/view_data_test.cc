@@ -177,6 +177,72 @@ TEST(SceneView, PointsInContactAreThoseInsideTheFieldBody) {
   EXPECT_EQ(j["pointshell"]["in_contact"].get<int>(), flagged);  // every point is drawn here
 }
 
+// A deformable ball pressed onto a plate: the replay carries its reduced coordinates per frame
+// and the basis at its mesh vertices, and U q reproduces the run's largest displacement.
+TEST(Replay, DeformableBodyCarriesItsCoordinatesAndBasis) {
+  TempDir dir;
+  std::ofstream(dir / "ball.yaml") << R"(name: soft-ball-plate
+bodies:
+  - name: ball
+    mesh: "sphere:0.02,2"
+    pose: [0, 0, 0.0205, 1, 0, 0, 0]
+    role: pointshell
+    pointshell: {points: 256, levels: 2, seed: 2}
+    field: {resolution: 24}
+    deformable: {model: stvk, modes: 6, cells: 8, E: 2.0e5, nu: 0.4, rho: 1000,
+                 damping: {alpha: 10.0, beta: 0.001}, anchor: none}
+  - name: plate
+    mesh: "box:0.05,0.05,0.01,2"
+    pose: [0, 0, -0.01, 1, 0, 0, 0]
+    role: field
+    field: {resolution: 24}
+model: {k_C: 1000, L: 10}
+)";
+  std::ofstream(dir / "config.yaml") << "name: soft\nscene: ball.yaml\nmodels: [pointshell]\nmoving_body: ball\n"
+                                        "trajectory: {type: approach-press, direction: [0, 0, -1], approach: 0.0, "
+                                        "depth: 0.003, duration: 0.4}\n";
+  RunExperiment(LoadExperimentConfig(dir / "config.yaml"), Options(dir));
+  const Replay r = ReadReplay(dir / "out", std::nullopt);
+  ASSERT_EQ(r.tracks.size(), 1u);
+  const ReplayTrack& t = r.tracks[0];
+  EXPECT_EQ(t.r, 6);
+  EXPECT_EQ(t.r_B, 0);
+  ASSERT_EQ(t.q.size(), 6 * t.t.size());
+  AssetOptions o;
+  o.cache_dir = dir / "cache";
+  o.verbose = false;
+  SceneAssets assets(r.scene, o);
+  const nlohmann::json j = ReplayViewData(r, assets, SceneViewOptions{});
+  ASSERT_EQ(j["bodies"][0]["modes"], 6);
+  EXPECT_FALSE(j["bodies"][1].contains("basis"));  // the plate is rigid
+  const auto basis = DecodeArray<float>(j["bodies"][0]["basis"].get<std::string>(), "basis");
+  const int V = j["bodies"][0]["vertices"].get<int>();
+  ASSERT_EQ(basis.size(), std::size_t(V) * 3 * 6);
+  // The largest surface displacement over the run, against cycles.csv's max_displacement (over
+  // the simulation mesh's vertices, which enclose the surface).
+  double largest_u = 0;
+  for (std::size_t f = 0; f < t.t.size(); ++f) {
+    for (int v = 0; v < V; ++v) {
+      Eigen::Vector3d u = Eigen::Vector3d::Zero();
+      for (int k = 0; k < 3; ++k)
+        for (int m = 0; m < 6; ++m) u[k] += double(basis[(3 * v + k) * 6 + m]) * t.q[6 * f + m];
+      largest_u = std::max(largest_u, u.norm());
+    }
+  }
+  double largest_recorded = 0;
+  {
+    std::istringstream in(ReadWholeFile(dir / "out" / "cycles.csv"));
+    std::string line;
+    std::getline(in, line);
+    const std::vector<std::string> header = SplitCsvLine(line);
+    const std::size_t c = std::find(header.begin(), header.end(), "max_displacement") - header.begin();
+    while (std::getline(in, line)) largest_recorded = std::max(largest_recorded, std::stod(SplitCsvLine(line)[c]));
+  }
+  EXPECT_GT(largest_recorded, 1e-5);  // it did deform
+  EXPECT_GT(largest_u, 0.5 * largest_recorded);
+  EXPECT_LT(largest_u, 1.05 * largest_recorded);
+}
+
 TEST(Replay, SeveralJobsNeedAJobNumber) {
   TempDir dir;
   RunTiny(dir, {"sweep={k_C: [500, 1500]}"});

@@ -68,8 +68,28 @@
     mesh.renderOrder = 2;
     group.add(mesh);
     scene.add(group);
-    return {spec: b, group: group, mesh: mesh};
+    var body = {spec: b, group: group, mesh: mesh};
+    // A deformable body of a replay: rest positions and the reduced basis (#V x 3 x r) at its
+    // vertices, so that a frame's coordinates q deform it (u = U q).
+    if (b.basis) {
+      body.rest = geometry.attributes.position.array.slice();
+      body.basis = decode(b.basis, Float32Array);
+      body.modes = b.modes;
+    }
+    return body;
   });
+  // Deforms BODY's mesh by reduced coordinates Q (from OFFSET, body.modes entries).
+  function deform(body, q, offset) {
+    var pos = body.mesh.geometry.attributes.position, a = pos.array, U = body.basis, r = body.modes;
+    for (var n = 0; n < a.length; ++n) {
+      var u = 0;
+      for (var m = 0; m < r; ++m) u += U[n * r + m] * q[offset + m];
+      a[n] = body.rest[n] + u;
+    }
+    pos.needsUpdate = true;
+    body.mesh.geometry.computeVertexNormals();
+    body.mesh.geometry.computeBoundingSphere();
+  }
 
   // --- The pointshell of body A, coloured by the level that adds each point.
   var points = null, contactPoints = null;
@@ -200,7 +220,9 @@
   bodies.forEach(function (b, i) {
     var row = el('div', {'class': 'row'});
     row.appendChild(el('span', {'class': 'swatch', style: 'background:' + hex(BODY_COLOURS[i])}));
-    row.appendChild(el('span', {}, b.spec.name + ' (' + b.spec.role + (b.spec.deformable ? ', deformable, shown at rest' : '') +
+    var how = !b.spec.deformable ? '' : b.basis ? ', deformable: mesh deformed per frame, points at rest'
+                                               : ', deformable, shown at rest';
+    row.appendChild(el('span', {}, b.spec.name + ' (' + b.spec.role + how +
                                    ', ' + b.spec.triangles + ' triangles)'));
     legend.appendChild(row);
   });
@@ -276,7 +298,9 @@
       for (var i = 0; i < t.length; ++i) { fmag[i] = magnitude(force, i); fmax = Math.max(fmax, fmag[i]); }
       return {name: m.name, cycles: m.cycles, t: t, pose: decode(m.pose, Float32Array), force: force,
               torque: decode(m.torque, Float32Array), level: decode(m.level, Int32Array),
-              contacts: decode(m.contacts, Int32Array), fmag: fmag, fmax: fmax};
+              contacts: decode(m.contacts, Int32Array), fmag: fmag, fmax: fmax,
+              r: m.r || 0, q: m.r ? decode(m.q, Float32Array) : null,
+              r_B: m.r_B || 0, q_B: m.r_B ? decode(m.q_B, Float32Array) : null};
     });
     var select = document.getElementById('model');
     tracks.forEach(function (tr, i) { select.appendChild(el('option', {value: String(i)}, tr.name)); });
@@ -320,6 +344,8 @@
     var p = tr.pose.subarray(7 * frameIndex, 7 * frameIndex + 7);
     var moving = bodies[replay.moving];
     setPose(moving.group, p);
+    if (bodies[0].basis && tr.q && tr.r === bodies[0].modes) deform(bodies[0], tr.q, tr.r * frameIndex);
+    if (bodies[1].basis && tr.q_B && tr.r_B === bodies[1].modes) deform(bodies[1], tr.q_B, tr.r_B * frameIndex);
     // The force on the moving body at its origin, scaled so the largest force of the run is
     // 60% of the scene's radius.
     var f = new THREE.Vector3(tr.force[3 * frameIndex], tr.force[3 * frameIndex + 1], tr.force[3 * frameIndex + 2]);
