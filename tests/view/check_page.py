@@ -31,6 +31,7 @@ def main():
     ap.add_argument("--png", required=True)
     ap.add_argument("--logs", nargs="*", default=[])
     ap.add_argument("--replay", action="store_true")
+    ap.add_argument("--expect-text", default=None, help="text the page's DOM must contain")
     a = ap.parse_args()
     failures = []
 
@@ -45,6 +46,8 @@ def main():
     elif errors.group(1) != "0":
         shown = re.search(r'<pre id="errors"[^>]*>(.*?)</pre>', dom, re.S)
         failures.append("JavaScript errors: " + (shown.group(1) if shown else errors.group(1)))
+    if a.expect_text and a.expect_text not in dom:
+        failures.append("the page does not show '%s'" % a.expect_text)
     if a.replay and 'id="readout"></span>' in dom:
         failures.append("the replay readout is empty (no frame shown)")
 
