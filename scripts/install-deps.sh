@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs ContactLab's build, test and figure dependencies from Debian 12 packages (with
 # slurm-wlm and munge for the single-node Slurm cluster test, tests/slurm/; clang with its
-# runtime libraries, which hold libFuzzer, for the fuzz targets, tests/fuzz/). Does nothing when
+# runtime libraries, which hold libFuzzer, for the fuzz targets, tests/fuzz/; cpp-httplib, three.js
+# and Chromium for the 3D viewer and its browser tests, src/view/). Does nothing when
 # everything is present; uses sudo when not root.
 set -euo pipefail
 
@@ -15,6 +16,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-14-dev
   python3 python3-numpy python3-matplotlib python3-yaml
+  libcpp-httplib-dev libjs-three chromium
   slurm-wlm munge
 )
 

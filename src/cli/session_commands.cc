@@ -6,7 +6,8 @@
 // rejection counters; the start names the device (a udp device's bound port); the log (CSV)
 // replays as a recorded trajectory. A deformable pointshell body (a bridge or a hose the user
 // pushes with the rigid haptic body) is two-way coupled: its reduced deformation takes one
-// step at the end of every cycle (paper sec. 4.1).
+// step at the end of every cycle (paper sec. 4.1). --view [PORT] serves a live 3D view of the
+// session on the loopback address (view/live_view_server.h, docs/viewer.md).
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -33,6 +34,10 @@
 #include "util/data_path.h"
 #include "util/error.h"
 #include "util/output_target.h"
+#include "util/parse_number.h"
+#include "view/live_view_server.h"
+#include "view/view_data.h"
+#include "view/viewer_page.h"
 
 namespace contactlab::cli {
 namespace {
@@ -48,6 +53,8 @@ struct SessionArgs {
   double touch = -1;
   bool no_realtime = false;
   bool quiet = false;
+  bool view = false;      // --view given
+  std::string view_port;  // its value: a port, or empty (a free one)
 };
 
 // Columns of the session log; the first eight are the recorded-trajectory format of the
@@ -80,6 +87,16 @@ double BoundingRadius(const TriangleMesh& mesh) {
 
 void RunSession(const SessionArgs& args) {
   if (!args.log.empty()) CheckOutputTarget(args.log, "--log");  // before the session, not after it
+  // --view: its port and three.js, before anything is built.
+  int view_port = 0;
+  if (args.view) {
+    if (!args.view_port.empty()) {
+      const std::optional<long long> p = ParseInteger(args.view_port);
+      if (!p || *p < 0 || *p > 65535) Fail("--view", QuoteToken(args.view_port) + " is not a port (0..65535; 0 or none: a free one)");
+      view_port = int(*p);
+    }
+    RequireThreeJs();
+  }
   const Scene scene = LoadScene(RequireDataFile(args.scene));
   AssetOptions options;
   options.cache_dir = args.cache;
@@ -141,6 +158,17 @@ void RunSession(const SessionArgs& args) {
         << kLogHeader;
   }
 
+  // --view: the live view's page and server (loopback only), before the loop starts.
+  std::unique_ptr<LatestValue<LiveSnapshot>> live;
+  std::unique_ptr<LiveViewServer> server;
+  if (args.view) {
+    nlohmann::json data = SceneViewData(scene, assets, SceneViewOptions{}, BodyPoses{scene.pointshell_body.pose, X_WB_start});
+    data["title"] = scene.name + " (live)";
+    data["live"] = {{"stream", "stream"}, {"haptic", 1}, {"model", model_name}, {"device", args.device}};
+    live = std::make_unique<LatestValue<LiveSnapshot>>();
+    server = std::make_unique<LiveViewServer>(ViewerPage(data), *live, view_port);
+  }
+
   std::printf("session: scene %s, model %s, device %s, %.1f s (Ctrl-C stops)%s\n", scene.name.c_str(),
               model_name.c_str(), args.device.c_str(), args.duration,
               deformation ? (", " + scene.pointshell_body.name + " deformable, r = " +
@@ -148,6 +176,7 @@ void RunSession(const SessionArgs& args) {
                           : "");
   // Where the device is (a udp device's bound port, also when udp:0 picked it).
   std::printf("device: %s\n", device->description().c_str());
+  if (server) std::printf("view: %s\n", server->url().c_str());
   std::fflush(stdout);
   std::atomic<bool> done{false};
   std::thread consumer([&] {
@@ -179,7 +208,9 @@ void RunSession(const SessionArgs& args) {
     };
     for (;;) {
       const bool finished = done.load();
+      bool popped = false;
       while (loop.records().TryPop(&rec)) {
+        popped = true;
         if (t0 < 0) t0 = window_start = rec.now_ns;
         if (log.is_open()) WriteRecord(log, rec, t0);
         work_us.push_back(double(rec.work_ns) * 1e-3);
@@ -196,14 +227,17 @@ void RunSession(const SessionArgs& args) {
           window_start = rec.now_ns;
         }
       }
+      // The live view reads the newest record, not each one.
+      if (live && popped) live->Store(SnapshotOf(rec, t0));
       if (finished) break;
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      std::this_thread::sleep_for(std::chrono::milliseconds(live ? 2 : 5));
     }
     if (!args.quiet) std::fprintf(stderr, "\n");
   });
   const HapticLoopReport report = loop.Run();
   done.store(true);
   consumer.join();
+  if (server) server->Stop();
   std::printf("%s", FormatLoopReport(report).c_str());
   std::printf("  records dropped by the log consumer: %llu\n",
               static_cast<unsigned long long>(loop.records().dropped()));
@@ -231,7 +265,13 @@ const CommandRegistration kSessionCommands([](CLI::App& app) {
   cmd->add_option("--cache", args->cache, "cache folder for fields and pointshells");
   cmd->add_flag("--no-realtime", args->no_realtime, "do not try SCHED_FIFO / mlockall");
   cmd->add_flag("--quiet", args->quiet, "no live status line");
-  cmd->callback([args] { RunSession(*args); });
+  CLI::Option* view = cmd->add_option("--view", args->view_port,
+                                      "serve a live 3D view on http://127.0.0.1:PORT/ (no PORT or 0: a free port, printed)")
+                          ->expected(0, 1);
+  cmd->callback([args, view] {
+    args->view = view->count() > 0;
+    RunSession(*args);
+  });
 });
 
 }  // namespace

@@ -12,7 +12,8 @@ struct Column {
   void (*write)(const Row&, CsvLine&);
 };
 
-// cycles.csv: the model's wrench on the moving body, its contact statistics and time per cycle,
+// cycles.csv: the moving body's pose (origin x,y,z and orientation quaternion qw,qx,qy,qz,
+// world), the model's wrench on the moving body, its contact statistics and time per cycle,
 // and the reference force where one was evaluated (empty cells elsewhere).
 const Column<CycleRow> kCycleColumns[] = {
     {"model", [](const CycleRow& r, CsvLine& l) { l.Text(r.model); }},
@@ -21,6 +22,10 @@ const Column<CycleRow> kCycleColumns[] = {
     {"x", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.position.x()); }},
     {"y", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.position.y()); }},
     {"z", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.position.z()); }},
+    {"qw", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.rotation.w()); }},
+    {"qx", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.rotation.x()); }},
+    {"qy", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.rotation.y()); }},
+    {"qz", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.rotation.z()); }},
     {"fx", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.force.x()); }},
     {"fy", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.force.y()); }},
     {"fz", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.force.z()); }},

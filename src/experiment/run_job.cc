@@ -212,6 +212,7 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
       row.cycle = k;
       row.t = double(k) * dt;
       row.position = X_moving.translation;
+      row.rotation = X_moving.rotation;
       OnMovingBody(moving_is_B, q, r.on_B, &row.force, &row.torque);
       row.contacts = r.stats.points_in_contact;
       row.nodes = r.stats.nodes_visited;

@@ -29,6 +29,7 @@ struct CycleRow {
   std::int64_t cycle = 0;
   double t = 0;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  // moving body origin, world
+  Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();  // moving body orientation, world
   Eigen::Vector3d force = Eigen::Vector3d::Zero();     // on the moving body, world, N
   Eigen::Vector3d torque = Eigen::Vector3d::Zero();    // on the moving body about its origin, N m
   int contacts = 0;

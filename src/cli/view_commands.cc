@@ -1,0 +1,105 @@
+// `contactlab view SCENE.yaml --out F.html` and `contactlab view RESULTS_DIR [--job I] --out
+// F.html`: one self-contained HTML page (three.js inlined, data embedded; docs/viewer.md) that
+// shows a scene's two bodies at their start poses with the pointshell body's points coloured by
+// level and a slice of the field body's distance field (Barbič & James 2008, sec. 2.2-2.4), or
+// replays an experiment's run: per-cycle poses and forces of each model, a time slider and a
+// force plot.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "cli/command_registry.h"
+#include "experiment/scene.h"
+#include "experiment/scene_assets.h"
+#include "util/atomic_file.h"
+#include "util/data_path.h"
+#include "util/error.h"
+#include "util/output_target.h"
+#include "view/view_data.h"
+#include "view/viewer_page.h"
+
+namespace contactlab::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ViewArgs {
+  std::string input;
+  std::string out;
+  int job = -1;
+  int max_points = 50000;
+  int max_frames = 10000;
+  std::string slice_axis = "auto";
+  double slice_at = std::numeric_limits<double>::quiet_NaN();  // NaN: automatic
+  std::string cache;
+  bool no_cache = false;
+};
+
+void RunView(const ViewArgs& args) {
+  CheckOutputTarget(args.out, "--out");
+  RequireThreeJs();
+  if (args.max_points < 16) Fail("--max-points", "must be at least 16, got " + std::to_string(args.max_points));
+  SceneViewOptions options;
+  options.max_points = args.max_points;
+  options.slice_axis = args.slice_axis == "auto" ? -1 : args.slice_axis == "x" ? 0 : args.slice_axis == "y" ? 1 : 2;
+  if (!std::isnan(args.slice_at)) options.slice_at = args.slice_at;
+  AssetOptions assets_options;
+  assets_options.cache_dir = args.cache;
+  assets_options.use_cache = !args.no_cache;
+
+  nlohmann::json data;
+  std::string what;
+  if (fs::is_directory(args.input)) {
+    // A results folder: replay one job.
+    CheckOutputIsNotInput(args.out, fs::path(args.input) / "cycles.csv", "--out");
+    CheckOutputIsNotInput(args.out, fs::path(args.input) / "meta.json", "--out");
+    const Replay replay = ReadReplay(args.input, args.job >= 0 ? std::optional<int>(args.job) : std::nullopt,
+                                     args.max_frames);
+    SceneAssets assets(replay.scene, assets_options);
+    data = ReplayViewData(replay, assets, options);
+    what = "replay of " + args.input + ", job " + std::to_string(replay.job) + ", " +
+           std::to_string(replay.tracks.size()) + " model(s)";
+  } else {
+    // A scene file.
+    if (args.job >= 0) Fail("--job", "applies to a results folder, not to the scene " + args.input);
+    const fs::path scene_file = RequireDataFile(args.input);
+    CheckOutputIsNotInput(args.out, scene_file, "--out");
+    const Scene scene = LoadScene(scene_file);
+    for (const BodySpec* b : {&scene.field_body, &scene.pointshell_body}) {
+      if (const auto mesh_file = FindDataFile(b->mesh, FolderOf(scene_file))) CheckOutputIsNotInput(args.out, *mesh_file, "--out");
+    }
+    SceneAssets assets(scene, assets_options);
+    data = SceneViewData(scene, assets, options);
+    what = "scene " + scene.name;
+  }
+  const std::string page = ViewerPage(data);
+  WriteFileAtomically(args.out, page);
+  std::fprintf(stderr, "%s: %s, %.1f MB\n", args.out.c_str(), what.c_str(), double(page.size()) / 1e6);
+}
+
+const CommandRegistration kView([](CLI::App& app) {
+  auto args = std::make_shared<ViewArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "view", "Write a self-contained HTML page with a 3D view: of a scene (bodies at their start poses, the "
+              "pointshell by level, a slice of the distance field) or of a results folder (a replay of one job: "
+              "poses, forces, time slider, force plot)");
+  cmd->add_option("INPUT", args->input, "scene YAML file, or a results folder of `contactlab run`")->required();
+  cmd->add_option("--out", args->out, "the HTML file to write")->required();
+  cmd->add_option("--job", args->job, "results folder: the job to replay (needed when it holds several)");
+  cmd->add_option("--max-points", args->max_points, "pointshell points drawn at most, split over the levels (default 50000)");
+  cmd->add_option("--max-frames", args->max_frames, "replay: frames per model at most, every k-th cycle kept (default 10000)");
+  cmd->add_option("--slice-axis", args->slice_axis, "normal of the field slice in the field body's frame (default: auto)")
+      ->check(CLI::IsMember({"auto", "x", "y", "z"}));
+  cmd->add_option("--slice-at", args->slice_at, "the slice's coordinate along its axis, field body frame, metres "
+                                                "(default: through the pointshell body's origin)");
+  cmd->add_option("--cache", args->cache, "cache folder for fields and pointshells");
+  cmd->add_flag("--no-cache", args->no_cache, "neither read nor write cached fields and pointshells");
+  cmd->callback([args] { RunView(*args); });
+});
+
+}  // namespace
+}  // namespace contactlab::cli

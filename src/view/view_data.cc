@@ -1,0 +1,374 @@
+#include "view/view_data.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string_view>
+#include <tuple>
+
+#include "deform/embedded_points.h"
+#include "experiment/experiment_config.h"
+#include "experiment/result_csv.h"
+#include "util/atomic_file.h"
+#include "util/config_node.h"
+#include "util/error.h"
+#include "util/parse_number.h"
+#include "view/display_points.h"
+#include "view/field_slice.h"
+#include "view/page_encoding.h"
+
+namespace contactlab {
+namespace {
+
+namespace fs = std::filesystem;
+
+nlohmann::json PoseJson(const Pose& X) {
+  return {X.translation.x(), X.translation.y(), X.translation.z(),
+          X.rotation.w(),    X.rotation.x(),    X.rotation.y(),    X.rotation.z()};
+}
+
+nlohmann::json BodyJson(BodyAssets& body, const Pose& X_WBody) {
+  const TriangleMesh& mesh = *body.mesh();
+  std::vector<float> positions;
+  positions.reserve(mesh.vertices.size() * 3);
+  for (const Eigen::Vector3d& p : mesh.vertices) positions.insert(positions.end(), {float(p.x()), float(p.y()), float(p.z())});
+  std::vector<std::uint32_t> indices;
+  indices.reserve(mesh.triangles.size() * 3);
+  for (const Eigen::Vector3i& t : mesh.triangles) {
+    indices.insert(indices.end(), {std::uint32_t(t.x()), std::uint32_t(t.y()), std::uint32_t(t.z())});
+  }
+  return {{"name", body.spec().name},
+          {"role", body.spec().role},
+          {"deformable", body.deformable()},
+          {"pose", PoseJson(X_WBody)},
+          {"vertices", mesh.num_vertices()},
+          {"triangles", mesh.num_triangles()},
+          {"positions", EncodeArray(positions)},
+          {"indices", EncodeArray(indices)}};
+}
+
+nlohmann::json Vector3Json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+}  // namespace
+
+nlohmann::json SceneViewData(const Scene& scene, SceneAssets& assets, const SceneViewOptions& options,
+                             const std::optional<BodyPoses>& poses) {
+  const Pose X_WA = poses ? poses->X_WA : scene.pointshell_body.pose;
+  const Pose X_WB = poses ? poses->X_WB : scene.field_body.pose;
+  nlohmann::json j;
+  j["title"] = scene.name;
+  j["scene"] = scene.file;
+  j["bodies"] = {BodyJson(assets.A, X_WA), BodyJson(assets.B, X_WB)};
+
+  // A's pointshell, thinned per level.
+  const auto shell = assets.A.pointshell();
+  const DisplayPoints points = DecimatePointshell(*shell, options.max_points);
+
+  // Points in contact at these poses (sec. 2.1: d < 0 in B's field): of all, and which drawn.
+  const auto field = assets.B.field();
+  const Pose X_BA = X_WB.Inverse() * X_WA;
+  int in_contact = 0;
+  for (int i = 0; i < shell->num_points(); ++i) {
+    if (field->Distance(X_BA * Eigen::Vector3d(shell->x[i], shell->y[i], shell->z[i])) < 0) ++in_contact;
+  }
+  std::vector<std::uint8_t> contact(points.num_kept());
+  for (int i = 0; i < points.num_kept(); ++i) {
+    const Eigen::Vector3d p_A(points.xyz[3 * i], points.xyz[3 * i + 1], points.xyz[3 * i + 2]);
+    contact[i] = field->Distance(X_BA * p_A) < 0 ? 1 : 0;
+  }
+  j["pointshell"] = {{"body", 0},
+                     {"points", shell->num_points()},
+                     {"levels", shell->num_levels()},
+                     {"kept", points.kept},
+                     {"total", points.total},
+                     {"in_contact", in_contact},
+                     {"positions", EncodeArray(points.xyz)},
+                     {"level", EncodeArray(points.level)},
+                     {"contact", EncodeArray(contact)}};
+
+  // B's field, on a plane through A's origin that contains (nearly) the line between the
+  // bodies: its normal is the axis of B's frame along which A's origin is closest.
+  const Eigen::Vector3d p_BA = X_WB.Inverse() * X_WA.translation;
+  int axis = options.slice_axis;
+  if (axis < 0) {
+    axis = 0;
+    for (int a = 1; a < 3; ++a)
+      if (std::abs(p_BA[a]) < std::abs(p_BA[axis])) axis = a;
+  }
+  const FieldSlice s = SliceField(*field, axis, options.slice_at.value_or(p_BA[axis]), options.max_slice_side);
+  const auto [lo, hi] = std::minmax_element(s.values.begin(), s.values.end());
+  j["slice"] = {{"body", 1},
+                {"axis", s.axis},
+                {"at", s.at},
+                {"width", s.width},
+                {"height", s.height},
+                {"corner", Vector3Json(s.corner)},
+                {"u", Vector3Json(s.u)},
+                {"v", Vector3Json(s.v)},
+                {"spacing", field->spacing()},
+                {"min", *lo},
+                {"max", *hi},
+                {"values", EncodeArray(s.values)}};
+  return j;
+}
+
+Replay ReadReplay(const fs::path& dir, std::optional<int> job, int max_frames) {
+  Replay replay;
+  replay.dir = dir;
+  if (!fs::is_directory(dir)) {
+    Fail(dir.string(), fs::exists(dir) ? "is not a results folder (expected a folder holding cycles.csv and meta.json)"
+                                       : "results folder not found");
+  }
+  const fs::path cycles_file = dir / "cycles.csv", meta_file = dir / "meta.json";
+  if (fs::exists(dir / "field_error.csv") && !fs::exists(cycles_file)) {
+    Fail(dir.string(), "holds a deformed-field study (field_error.csv), which has no trajectory to replay");
+  }
+  for (const fs::path& f : {cycles_file, meta_file}) {
+    if (!fs::exists(f)) Fail(f.string(), "not found (a results folder holds cycles.csv and meta.json)");
+  }
+  if (max_frames < 2) Fail("--max-frames", "must be at least 2, got " + std::to_string(max_frames));
+
+  // meta.json: the resolved config, from which the job's scene is expanded again.
+  nlohmann::json meta;
+  try {
+    meta = nlohmann::json::parse(ReadWholeFile(meta_file));
+  } catch (const nlohmann::json::exception& e) {
+    Fail(meta_file.string(), std::string("not valid JSON: ") + e.what());
+  }
+  if (!meta.is_object() || !meta.contains("resolved_config") || !meta["resolved_config"].is_string()) {
+    Fail(meta_file.string(), "has no resolved_config (not written by contactlab run)");
+  }
+  const std::string config_file = meta.value("config_file", meta_file.string());
+
+  // cycles.csv: the columns by name.
+  const std::string text = ReadWholeFile(cycles_file);
+  std::size_t pos = 0;
+  long line_no = 0;
+  auto next_line = [&](std::string* line) {
+    if (pos >= text.size()) return false;
+    std::size_t eol = text.find('\n', pos);
+    if (eol == std::string::npos) eol = text.size();
+    *line = text.substr(pos, eol - pos);
+    if (!line->empty() && line->back() == '\r') line->pop_back();
+    pos = eol + 1;
+    ++line_no;
+    return true;
+  };
+  std::string line;
+  if (!next_line(&line) || line.empty()) Fail(cycles_file.string(), "is empty");
+  const std::vector<std::string> header = SplitCsvLine(line);
+  std::map<std::string, int> column;
+  for (int c = 0; c < int(header.size()); ++c) column.emplace(header[c], c);
+  auto col = [&](const char* name) {
+    const auto it = column.find(name);
+    if (it == column.end()) {
+      const std::string n(name);
+      if (n.size() == 2 && n[0] == 'q') {
+        Fail(cycles_file.string(), "has no orientation column " + n +
+                                       " (written by an older contactlab before cycles.csv held qw,qx,qy,qz; run the "
+                                       "experiment again)");
+      }
+      Fail(cycles_file.string(), "has no column '" + n + "'");
+    }
+    return it->second;
+  };
+  const int c_job = col("job"), c_model = col("model"), c_t = col("t"), c_level = col("level"),
+            c_contacts = col("contacts");
+  const int c_pose[7] = {col("x"), col("y"), col("z"), col("qw"), col("qx"), col("qy"), col("qz")};
+  const int c_force[3] = {col("fx"), col("fy"), col("fz")};
+  const int c_torque[3] = {col("tx"), col("ty"), col("tz")};
+  const int c_experiment = column.count("experiment") ? column["experiment"] : -1;
+
+  // Rows of the chosen job (of every job when none is chosen: then the file must hold one), and
+  // the jobs the file holds.
+  struct Row {
+    std::string model;
+    double v[16];  // t, pose x,y,z,qw,qx,qy,qz, force (3), torque (3), level, contacts
+    std::vector<float> q, q_B;  // deformable bodies' reduced coordinates (empty when rigid)
+  };
+  const int c_q = column.count("q") ? column["q"] : -1, c_q_B = column.count("q_B") ? column["q_B"] : -1;
+  // Space-separated reduced coordinates of cell C (empty: none).
+  auto coordinates = [&](const std::vector<std::string>& cells, int c, const char* what) {
+    std::vector<float> q;
+    if (c < 0) return q;
+    std::istringstream in(cells[c]);
+    for (std::string item; in >> item;) {
+      const std::optional<double> v = ParseDouble(item);
+      if (!v) FailAtLine(cycles_file.string(), line_no, std::string("column ") + what + ": " + QuoteToken(item) + " is not a number");
+      q.push_back(float(*v));
+    }
+    return q;
+  };
+  std::set<int> jobs;
+  std::vector<Row> rows;
+  auto number = [&](const std::vector<std::string>& cells, int c, const char* what) {
+    const std::optional<double> v = c < int(cells.size()) ? ParseDouble(cells[c]) : std::nullopt;
+    if (!v) {
+      FailAtLine(cycles_file.string(), line_no,
+                 std::string("column ") + what + ": " + (c < int(cells.size()) ? QuoteToken(cells[c]) : "(missing)") +
+                     " is not a number");
+    }
+    return *v;
+  };
+  while (next_line(&line)) {
+    if (line.empty()) continue;
+    const std::vector<std::string> cells = SplitCsvLine(line);
+    if (cells.size() != header.size()) {
+      FailAtLine(cycles_file.string(), line_no,
+                 std::to_string(cells.size()) + " cells, the header has " + std::to_string(header.size()));
+    }
+    const int row_job = int(number(cells, c_job, "job"));
+    jobs.insert(row_job);
+    if (job && row_job != *job) continue;
+    if (replay.experiment.empty() && c_experiment >= 0) replay.experiment = cells[c_experiment];
+    Row r;
+    r.model = cells[c_model];
+    r.v[0] = number(cells, c_t, "t");
+    for (int k = 0; k < 7; ++k) r.v[1 + k] = number(cells, c_pose[k], header[c_pose[k]].c_str());
+    for (int k = 0; k < 3; ++k) r.v[8 + k] = number(cells, c_force[k], header[c_force[k]].c_str());
+    for (int k = 0; k < 3; ++k) r.v[11 + k] = number(cells, c_torque[k], header[c_torque[k]].c_str());
+    r.v[14] = number(cells, c_level, "level");
+    r.v[15] = number(cells, c_contacts, "contacts");
+    r.q = coordinates(cells, c_q, "q");
+    r.q_B = coordinates(cells, c_q_B, "q_B");
+    rows.push_back(std::move(r));
+  }
+  auto job_list = [&] {
+    std::string s;
+    for (int j : jobs) s += (s.empty() ? "" : ", ") + std::to_string(j);
+    return s;
+  };
+  if (jobs.empty()) Fail(cycles_file.string(), "has no rows");
+  if (!job) {
+    if (jobs.size() > 1) Fail(cycles_file.string(), "holds jobs " + job_list() + ": choose one with --job");
+    replay.job = *jobs.begin();
+  } else {
+    if (!jobs.count(*job)) Fail(cycles_file.string(), "has no job " + std::to_string(*job) + " (it holds " + job_list() + ")");
+    replay.job = *job;
+  }
+
+  // Tracks per model in order of appearance, thinned to MAX_FRAMES.
+  std::map<std::string, std::vector<const Row*>> by_model;
+  std::vector<std::string> model_order;
+  for (const Row& r : rows) {
+    auto& v = by_model[r.model];
+    if (v.empty()) model_order.push_back(r.model);
+    v.push_back(&r);
+  }
+  std::size_t longest = 0;
+  for (const auto& [name, v] : by_model) longest = std::max(longest, v.size());
+  replay.stride = int((longest + std::size_t(max_frames) - 1) / std::size_t(max_frames));
+  replay.stride = std::max(1, replay.stride);
+  for (const std::string& name : model_order) {
+    const auto& v = by_model[name];
+    ReplayTrack track;
+    track.model = name;
+    track.cycles = std::int64_t(v.size());
+    for (std::size_t i = 0; i < v.size(); i += std::size_t(replay.stride)) {
+      const double* x = v[i]->v;
+      track.t.push_back(float(x[0]));
+      for (int k = 0; k < 7; ++k) track.pose.push_back(float(x[1 + k]));
+      for (int k = 0; k < 3; ++k) track.force.push_back(float(x[8 + k]));
+      for (int k = 0; k < 3; ++k) track.torque.push_back(float(x[11 + k]));
+      track.level.push_back(std::int32_t(x[14]));
+      track.contacts.push_back(std::int32_t(x[15]));
+      // Reduced coordinates: as many in every row of the model as in its first.
+      for (auto [from, to, r] : {std::tuple{&v[i]->q, &track.q, &track.r}, std::tuple{&v[i]->q_B, &track.q_B, &track.r_B}}) {
+        if (i == 0) *r = int(from->size());
+        if (int(from->size()) != *r) {
+          Fail(cycles_file.string(), "model " + name + ": a row holds " + std::to_string(from->size()) +
+                                         " reduced coordinates, the first " + std::to_string(*r));
+        }
+        to->insert(to->end(), from->begin(), from->end());
+      }
+    }
+    replay.tracks.push_back(std::move(track));
+  }
+
+  // The job's scene and moving body, from the resolved config expanded again.
+  const ConfigNode root = ConfigNode::LoadString(meta["resolved_config"].get<std::string>(), config_file);
+  const ExperimentConfig config = ParseExperimentConfig(root, meta["resolved_config"].get<std::string>());
+  if (config.study != "contact") Fail(meta_file.string(), "is a " + config.study + " study, which has no trajectory to replay");
+  const std::vector<Job> all = ExpandJobs(config);
+  const auto it = std::find_if(all.begin(), all.end(), [&](const Job& j) { return j.index == replay.job; });
+  if (it == all.end()) {
+    Fail(meta_file.string(), "its config has " + std::to_string(all.size()) + " jobs, cycles.csv names job " +
+                                 std::to_string(replay.job));
+  }
+  replay.scene = it->scene;
+  replay.moving_body = it->moving_body;
+  replay.job_label = it->axis_values.empty() ? "" : it->Label();
+  if (replay.experiment.empty()) replay.experiment = config.name;
+  return replay;
+}
+
+nlohmann::json ReplayViewData(const Replay& replay, SceneAssets& assets, const SceneViewOptions& options) {
+  const bool moving_is_B = replay.moving_body == replay.scene.field_body.name;
+  // Bodies at the first frame of the first model: the moving body where the trajectory starts.
+  BodyPoses poses{replay.scene.pointshell_body.pose, replay.scene.field_body.pose};
+  if (!replay.tracks.empty() && !replay.tracks.front().t.empty()) {
+    const float* p = replay.tracks.front().pose.data();
+    const Pose X{Eigen::Quaterniond(p[3], p[4], p[5], p[6]).normalized(), Eigen::Vector3d(p[0], p[1], p[2])};
+    (moving_is_B ? poses.X_WB : poses.X_WA) = X;
+  }
+  nlohmann::json j = SceneViewData(replay.scene, assets, options, poses);
+
+  // Deformable bodies with recorded coordinates: the reduced basis at their mesh vertices.
+  for (int b = 0; b < 2; ++b) {
+    BodyAssets& body = b == 0 ? assets.A : assets.B;
+    int r = 0;
+    for (const ReplayTrack& t : replay.tracks) r = std::max(r, b == 0 ? t.r : t.r_B);
+    if (r == 0 || !body.deformable()) continue;
+    const auto model = body.reduced_model();
+    if (model->r() != r) {
+      Fail((replay.dir / "cycles.csv").string(), "holds " + std::to_string(r) + " reduced coordinates of " +
+                                                     body.spec().name + ", whose model has " + std::to_string(model->r()));
+    }
+    const TriangleMesh& mesh = *body.mesh();
+    if (double(mesh.num_vertices()) * 3 * r > 16e6) {
+      j["bodies"][b]["basis_omitted"] = true;
+      continue;
+    }
+    const EmbeddedPoints points(model->mesh, model->basis, mesh.vertices, {}, GradientScheme::kSmooth);
+    std::vector<float> basis;
+    basis.reserve(std::size_t(mesh.num_vertices()) * 3 * r);
+    for (int v = 0; v < mesh.num_vertices(); ++v) {
+      const Eigen::MatrixXd U = points.Basis(v);  // 3 x r
+      for (int k = 0; k < 3; ++k)
+        for (int m = 0; m < r; ++m) basis.push_back(float(U(k, m)));
+    }
+    j["bodies"][b]["modes"] = r;
+    j["bodies"][b]["basis"] = EncodeArray(basis);
+  }
+
+  j["title"] = replay.experiment + (replay.job_label.empty() ? "" : " — " + replay.job_label);
+  nlohmann::json models = nlohmann::json::array();
+  for (const ReplayTrack& t : replay.tracks) {
+    models.push_back({{"name", t.model},
+                      {"cycles", t.cycles},
+                      {"frames", t.t.size()},
+                      {"t", EncodeArray(t.t)},
+                      {"pose", EncodeArray(t.pose)},
+                      {"force", EncodeArray(t.force)},
+                      {"torque", EncodeArray(t.torque)},
+                      {"level", EncodeArray(t.level)},
+                      {"contacts", EncodeArray(t.contacts)},
+                      {"r", t.r},
+                      {"q", EncodeArray(t.q)},
+                      {"r_B", t.r_B},
+                      {"q_B", EncodeArray(t.q_B)}});
+  }
+  j["replay"] = {{"experiment", replay.experiment},
+                 {"folder", replay.dir.string()},
+                 {"job", replay.job},
+                 {"label", replay.job_label},
+                 {"moving", moving_is_B ? 1 : 0},
+                 {"moving_body", replay.moving_body},
+                 {"stride", replay.stride},
+                 {"models", models}};
+  return j;
+}
+
+}  // namespace contactlab

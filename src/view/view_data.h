@@ -1,0 +1,87 @@
+// The data the viewer page shows, as JSON (base64 arrays, page_encoding.h): the two bodies of a
+// scene (meshes in their body frames and start poses), the pointshell of the pointshell body
+// coloured by level (Barbič & James 2008, sec. 2.2, 2.4), a slice of the field body's signed
+// distance field (sec. 2.3), and for a replay the per-cycle poses and wrenches of each model.
+// src/view/web/viewer.js reads it; docs/viewer.md describes the page.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "experiment/scene.h"
+#include "experiment/scene_assets.h"
+
+namespace contactlab {
+
+struct SceneViewOptions {
+  int max_points = 50000;          // pointshell points drawn at most (display_points.h)
+  int slice_axis = -1;             // field slice normal in the field body's frame: 0..2, -1 automatic
+  std::optional<double> slice_at;  // the slice's coordinate along slice_axis (body frame, metres);
+                                   // none: through the pointshell body's origin
+  int max_slice_side = 512;        // slice samples per side at most
+};
+
+// Start poses of the bodies when they differ from the scene's (a replay's first cycle).
+struct BodyPoses {
+  Pose X_WA, X_WB;  // pointshell body A, field body B
+};
+
+// {"title", "scene", "bodies": [A, B] each {"name", "role", "pose": [x,y,z,qw,qx,qy,qz],
+// "positions": f32 (#V x 3), "indices": u32 (#T x 3), "vertices", "triangles"},
+// "pointshell": {"body": 0, "positions", "level": u8, "kept": [...], "total": [...],
+// "in_contact": points of the whole shell with d < 0 in B's field at these poses, "contact": u8
+// per drawn point (1: d < 0)},
+// "slice": {"body": 1, "axis", "at", "width", "height", "corner", "u", "v", "values": f32,
+// "min", "max", "spacing"}}. Builds (or reads from the cache) A's pointshell and B's field.
+nlohmann::json SceneViewData(const Scene& scene, SceneAssets& assets, const SceneViewOptions& options,
+                             const std::optional<BodyPoses>& poses = std::nullopt);
+
+// One model's run in a results folder, thinned to at most the requested number of frames.
+struct ReplayTrack {
+  std::string model;
+  std::vector<float> t;             // (#F) seconds
+  std::vector<float> pose;          // (#F x 7) moving body x,y,z,qw,qx,qy,qz, world
+  std::vector<float> force;         // (#F x 3) on the moving body, world, N
+  std::vector<float> torque;        // (#F x 3) on the moving body about its origin, N m
+  std::vector<std::int32_t> level;  // (#F) level rendered (-1: not a pointshell model)
+  std::vector<std::int32_t> contacts;  // (#F) points or contacts
+  std::int64_t cycles = 0;          // rows in cycles.csv before thinning
+  // Deformable bodies (paper sec. 4): reduced coordinates after each kept cycle, from the
+  // columns q (body A) and q_B (body B); empty for a rigid body.
+  int r = 0, r_B = 0;
+  std::vector<float> q;             // (#F x r)
+  std::vector<float> q_B;           // (#F x r_B)
+};
+
+struct Replay {
+  std::filesystem::path dir;
+  std::string experiment;
+  int job = 0;
+  std::string job_label;            // "points=1024 model=vps", empty without a sweep
+  Scene scene;                      // the job's scene (sweep values applied)
+  std::string moving_body;          // name of the body that followed the trajectory
+  std::vector<ReplayTrack> tracks;  // one per model, in the order of cycles.csv
+  int stride = 1;                   // every STRIDE-th cycle kept
+};
+
+// Reads results folder DIR (cycles.csv, meta.json) for job JOB (none: the only job it holds),
+// keeping every k-th cycle so no model has more than MAX_FRAMES frames. The job's scene comes
+// from meta.json's resolved config. Throws Error naming the file and what is wrong: a missing
+// folder or file, a deformed-field study, cycles.csv without the orientation columns (written
+// before they were added), several jobs and no JOB, an unknown JOB.
+Replay ReadReplay(const std::filesystem::path& dir, std::optional<int> job, int max_frames = 10000);
+
+// SceneViewData of the replay's scene at its first frame, plus
+// "replay": {"experiment", "job", "label", "moving": 0|1, "stride", "models": [{"name",
+// "cycles", "t": f32, "pose": f32, "force": f32, "torque": f32, "level": i32, "contacts": i32,
+// and for deformable bodies "r", "q": f32, "r_B", "q_B": f32}]}. A deformable body whose
+// coordinates were recorded also gets "modes": r and "basis": f32 (#V x 3 x r), the reduced
+// basis at its mesh vertices (u = U q, sec. 4.1), so the page deforms its mesh per frame;
+// bodies with more than 16 million basis entries are shown at rest ("basis_omitted": true).
+nlohmann::json ReplayViewData(const Replay& replay, SceneAssets& assets, const SceneViewOptions& options);
+
+}  // namespace contactlab

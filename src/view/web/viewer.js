@@ -1,0 +1,535 @@
+// ContactLab viewer (src/view/web/viewer.js): draws the data `contactlab view` embeds in the
+// page (src/view/view_data.h) with three.js r111: the two bodies at their poses, the pointshell
+// of the pointshell body coloured by level, a slice of the field body's signed distance field,
+// and for an experiment's run the per-cycle poses and forces with a time slider and a force plot.
+// Plain JS, no modules. When the first frame is drawn, <html data-ready="1"> is set.
+(function () {
+  'use strict';
+
+  // --- Colours. Each family keeps clear of the others' hues so a screenshot can tell them
+  // apart (tests/view/check_page.py): body A orange, body B blue, levels neither.
+  var BODY_COLOURS = [0xe8862a, 0x2f6fd0];
+  // Red is kept for points in contact.
+  var LEVEL_COLOURS = ['#ffe14d', '#3cc83c', '#d040d0', '#40e0e0', '#a0ff60', '#9060ff',
+                       '#f0f0f0', '#ff80c0', '#00a080', '#c0c000', '#b0b0ff', '#808080'];
+  var CONTACT_COLOUR = '#ff1010';
+  var FORCE_COLOUR = 0xff3030;
+
+  var data = JSON.parse(document.getElementById('contactlab-data').textContent);
+
+  // Base64 text of little-endian bytes -> typed array of TYPE.
+  function decode(text, Type) {
+    var bin = atob(text);
+    var bytes = new Uint8Array(bin.length);
+    for (var i = 0; i < bin.length; ++i) bytes[i] = bin.charCodeAt(i);
+    return new Type(bytes.buffer);
+  }
+  function setPose(object, p) {  // p: [x, y, z, qw, qx, qy, qz]
+    object.position.set(p[0], p[1], p[2]);
+    object.quaternion.set(p[4], p[5], p[6], p[3]).normalize();
+  }
+  function el(tag, attrs, text) {
+    var e = document.createElement(tag);
+    for (var k in attrs) e.setAttribute(k, attrs[k]);
+    if (text !== undefined) e.textContent = text;
+    return e;
+  }
+  function hex(c) { return '#' + ('000000' + c.toString(16)).slice(-6); }
+  function fmt(v, digits) { return Number(v).toPrecision(digits || 3); }
+
+  // --- Renderer, camera, lights. World frame is z-up, as in the scenes.
+  var container = document.getElementById('view');
+  var renderer = new THREE.WebGLRenderer({antialias: true, preserveDrawingBuffer: true});
+  renderer.setPixelRatio(window.devicePixelRatio || 1);
+  renderer.setSize(window.innerWidth, window.innerHeight);
+  renderer.setClearColor(0x1d2024);
+  container.appendChild(renderer.domElement);
+  var scene = new THREE.Scene();
+  var camera = new THREE.PerspectiveCamera(40, window.innerWidth / window.innerHeight, 1e-4, 100);
+  camera.up.set(0, 0, 1);
+  scene.add(camera);
+  scene.add(new THREE.AmbientLight(0xffffff, 0.5));
+  var light = new THREE.DirectionalLight(0xffffff, 0.7);
+  light.position.set(0.3, 0.5, 1);
+  camera.add(light);
+
+  // --- The bodies: a group per body at its pose holding its mesh (and A's points, B's slice).
+  var bodies = data.bodies.map(function (b, i) {
+    var group = new THREE.Group();
+    group.name = b.name;
+    setPose(group, b.pose);
+    var geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.BufferAttribute(decode(b.positions, Float32Array), 3));
+    geometry.setIndex(new THREE.BufferAttribute(decode(b.indices, Uint32Array), 1));
+    geometry.computeVertexNormals();
+    var material = new THREE.MeshLambertMaterial({color: BODY_COLOURS[i], side: THREE.DoubleSide,
+                                                  transparent: true, opacity: 0.55, depthWrite: false});
+    var mesh = new THREE.Mesh(geometry, material);
+    mesh.renderOrder = 2;
+    group.add(mesh);
+    scene.add(group);
+    var body = {spec: b, group: group, mesh: mesh};
+    // A deformable body of a replay: rest positions and the reduced basis (#V x 3 x r) at its
+    // vertices, so that a frame's coordinates q deform it (u = U q).
+    if (b.basis) {
+      body.rest = geometry.attributes.position.array.slice();
+      body.basis = decode(b.basis, Float32Array);
+      body.modes = b.modes;
+    }
+    return body;
+  });
+  // Deforms BODY's mesh by reduced coordinates Q (from OFFSET, body.modes entries).
+  function deform(body, q, offset) {
+    var pos = body.mesh.geometry.attributes.position, a = pos.array, U = body.basis, r = body.modes;
+    for (var n = 0; n < a.length; ++n) {
+      var u = 0;
+      for (var m = 0; m < r; ++m) u += U[n * r + m] * q[offset + m];
+      a[n] = body.rest[n] + u;
+    }
+    pos.needsUpdate = true;
+    body.mesh.geometry.computeVertexNormals();
+    body.mesh.geometry.computeBoundingSphere();
+  }
+
+  // --- The pointshell of body A, coloured by the level that adds each point.
+  var points = null, contactPoints = null;
+  if (data.pointshell) {
+    var ps = data.pointshell;
+    var positions = decode(ps.positions, Float32Array);
+    var levels = decode(ps.level, Uint8Array);
+    var colours = new Float32Array(levels.length * 3);
+    var c = new THREE.Color();
+    for (var i = 0; i < levels.length; ++i) {
+      c.set(LEVEL_COLOURS[levels[i] % LEVEL_COLOURS.length]);
+      colours[3 * i] = c.r; colours[3 * i + 1] = c.g; colours[3 * i + 2] = c.b;
+    }
+    var pg = new THREE.BufferGeometry();
+    pg.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+    pg.setAttribute('color', new THREE.BufferAttribute(colours, 3));
+    points = new THREE.Points(pg, new THREE.PointsMaterial({size: 2.5, sizeAttenuation: false,
+                                                            vertexColors: THREE.VertexColors}));
+    points.renderOrder = 1;
+    bodies[ps.body].group.add(points);
+    // The points in contact at the start poses, larger and red (a scene page only: in a replay
+    // or live view the bodies move on).
+    if (ps.contact && !data.replay && !data.live) {
+      var flags = decode(ps.contact, Uint8Array), touching = [];
+      for (var m = 0; m < flags.length; ++m) {
+        if (flags[m]) touching.push(positions[3 * m], positions[3 * m + 1], positions[3 * m + 2]);
+      }
+      if (touching.length > 0) {
+        var cg = new THREE.BufferGeometry();
+        cg.setAttribute('position', new THREE.BufferAttribute(new Float32Array(touching), 3));
+        // Drawn through everything: the contact region is usually hidden inside the other body.
+        contactPoints = new THREE.Points(cg, new THREE.PointsMaterial({size: 4, sizeAttenuation: false,
+                                                                       color: CONTACT_COLOUR, depthTest: false}));
+        contactPoints.renderOrder = 5;
+        bodies[ps.body].group.add(contactPoints);
+      }
+    }
+  }
+
+  // --- A slice of body B's distance field: green inside (d < 0), purple outside, paler near
+  // the surface, black on the zero contour, darker isolines every 4 grid cells.
+  var slice = null;
+  function sliceColour(d, scale, out, o) {
+    var t = Math.min(1, Math.abs(d) / scale);
+    if (d < 0) { out[o] = 40 + 60 * (1 - t); out[o + 1] = 110 + 120 * (1 - t); out[o + 2] = 70 + 90 * (1 - t); }
+    else { out[o] = 110 + 110 * (1 - t); out[o + 1] = 50 + 60 * (1 - t); out[o + 2] = 130 + 110 * (1 - t); }
+    out[o + 3] = 255;
+  }
+  if (data.slice) {
+    var s = data.slice;
+    var values = decode(s.values, Float32Array);
+    var w = s.width, h = s.height;
+    var rgba = new Uint8Array(w * h * 4);
+    var scale = Math.max(Math.abs(s.min), Math.abs(s.max), 1e-12);
+    var iso = 4 * s.spacing;
+    for (var j = 0; j < h; ++j) {
+      for (var k = 0; k < w; ++k) {
+        var n = j * w + k, v0 = values[n];
+        sliceColour(v0, scale, rgba, 4 * n);
+        // A contour passes between this sample and its right or upper neighbour: the zero
+        // contour (sign change) in black, an isoline (another multiple of ISO) darkened.
+        var band = Math.floor(v0 / iso), zero = false, line = false;
+        var neighbours = [k + 1 < w ? values[n + 1] : v0, j + 1 < h ? values[n + w] : v0];
+        for (var m = 0; m < 2; ++m) {
+          if ((v0 < 0) !== (neighbours[m] < 0)) zero = true;
+          else if (Math.floor(neighbours[m] / iso) !== band) line = true;
+        }
+        if (zero) { rgba[4 * n] = rgba[4 * n + 1] = rgba[4 * n + 2] = 0; }
+        else if (line) { rgba[4 * n] *= 0.7; rgba[4 * n + 1] *= 0.7; rgba[4 * n + 2] *= 0.7; }
+      }
+    }
+    var texture = new THREE.DataTexture(rgba, w, h, THREE.RGBAFormat);
+    texture.magFilter = THREE.NearestFilter;
+    texture.minFilter = THREE.LinearFilter;
+    texture.generateMipmaps = false;
+    texture.needsUpdate = true;
+    // A quad from the centre of sample (0, 0) to the centre of sample (w-1, h-1).
+    var P = function (a, b) {
+      return [s.corner[0] + a * s.u[0] + b * s.v[0], s.corner[1] + a * s.u[1] + b * s.v[1],
+              s.corner[2] + a * s.u[2] + b * s.v[2]];
+    };
+    var quad = [].concat(P(0, 0), P(w - 1, 0), P(w - 1, h - 1), P(0, h - 1));
+    var du = 0.5 / w, dv = 0.5 / h;
+    var sg = new THREE.BufferGeometry();
+    sg.setAttribute('position', new THREE.BufferAttribute(new Float32Array(quad), 3));
+    sg.setAttribute('uv', new THREE.BufferAttribute(new Float32Array([du, dv, 1 - du, dv, 1 - du, 1 - dv, du, 1 - dv]), 2));
+    sg.setIndex([0, 1, 2, 0, 2, 3]);
+    slice = new THREE.Mesh(sg, new THREE.MeshBasicMaterial({map: texture, side: THREE.DoubleSide}));
+    slice.renderOrder = 0;
+    bodies[s.body].group.add(slice);
+  }
+
+  // --- Replay: per-cycle poses and wrenches of each model.
+  var replay = data.replay || null;
+  var tracks = [];
+  var arrow = new THREE.ArrowHelper(new THREE.Vector3(0, 0, 1), new THREE.Vector3(), 0.01, FORCE_COLOUR);
+  arrow.visible = false;
+  // Drawn over everything: it starts at the moving body's origin, often inside a body.
+  arrow.renderOrder = 3;
+  arrow.line.material.depthTest = false;
+  arrow.cone.material.depthTest = false;
+  scene.add(arrow);
+
+  // --- Camera framing: the bounding sphere of both bodies at their start poses.
+  function frame() {
+    scene.updateMatrixWorld(true);  // the bodies' poses, before the first render computes them
+    var box = new THREE.Box3();
+    bodies.forEach(function (b) { box.expandByObject(b.mesh); });
+    var sphere = box.getBoundingSphere(new THREE.Sphere());
+    var r = Math.max(sphere.radius, 1e-3);
+    var dir = new THREE.Vector3(1.0, -1.6, 0.9).normalize();
+    camera.position.copy(sphere.center).addScaledVector(dir, 2.7 * r);
+    camera.near = r * 0.01;
+    camera.far = r * 50;
+    camera.updateProjectionMatrix();
+    return sphere;
+  }
+  var bounds = frame();
+  var controls = new THREE.OrbitControls(camera, renderer.domElement);
+  controls.target.copy(bounds.center);
+  controls.update();
+
+  // --- Panel: title, legend, toggles.
+  document.getElementById('title').textContent = data.title || 'ContactLab';
+  document.getElementById('subtitle').textContent =
+      replay ? (replay.folder + ', job ' + replay.job + (replay.label ? ' (' + replay.label + ')' : '')) : (data.scene || '');
+  var legend = document.getElementById('legend');
+  bodies.forEach(function (b, i) {
+    var row = el('div', {'class': 'row'});
+    row.appendChild(el('span', {'class': 'swatch', style: 'background:' + hex(BODY_COLOURS[i])}));
+    var how = !b.spec.deformable ? '' : b.basis ? ', deformable: mesh deformed per frame, points at rest'
+                                               : ', deformable, shown at rest';
+    row.appendChild(el('span', {}, b.spec.name + ' (' + b.spec.role + how +
+                                   ', ' + b.spec.triangles + ' triangles)'));
+    legend.appendChild(row);
+  });
+  if (data.pointshell) {
+    var ps2 = data.pointshell;
+    var shown = ps2.kept.reduce(function (a, b) { return a + b; }, 0);
+    legend.appendChild(el('div', {'class': 'small'}, 'pointshell: ' + ps2.points + ' points, ' + ps2.levels +
+                                                    ' levels; ' + shown + ' drawn'));
+    ps2.kept.forEach(function (kept, l) {
+      var row = el('div', {'class': 'row small'});
+      row.appendChild(el('span', {'class': 'swatch', style: 'background:' + LEVEL_COLOURS[l % LEVEL_COLOURS.length]}));
+      row.appendChild(el('span', {}, 'level ' + l + ': ' + kept + (kept < ps2.total[l] ? ' of ' + ps2.total[l] : '') + ' points'));
+      legend.appendChild(row);
+    });
+    if (contactPoints) {
+      var crow = el('div', {'class': 'row small'});
+      crow.appendChild(el('span', {'class': 'swatch', style: 'background:' + CONTACT_COLOUR}));
+      crow.appendChild(el('span', {}, 'in contact at the start (d < 0): ' + ps2.in_contact + ' of ' + ps2.points + ' points'));
+      legend.appendChild(crow);
+    }
+  }
+  if (data.slice) {
+    var s2 = data.slice;
+    legend.appendChild(el('div', {'class': 'small'}, 'field of ' + bodies[s2.body].spec.name + ', slice ' +
+                                                    'xyz'[s2.axis] + ' = ' + fmt(s2.at) + ' m (body frame)'));
+    legend.appendChild(el('div', {'class': 'colorbar', style:
+        'background: linear-gradient(to right, rgb(40,110,70), rgb(100,230,160) 49%, #000 49.5%, #000 50.5%, ' +
+        'rgb(220,110,240) 51%, rgb(110,50,130))'}));
+    legend.appendChild(el('div', {'class': 'small'}, 'd from ' + fmt(s2.min) + ' m (inside, green) to ' + fmt(s2.max) +
+                                                    ' m (outside, purple); black: d = 0; isolines every ' +
+                                                    fmt(4 * s2.spacing) + ' m'));
+  }
+  var toggles = document.getElementById('toggles');
+  function toggle(label, objects, on) {
+    var box = el('input', {type: 'checkbox'});
+    box.checked = on;
+    objects.forEach(function (o) { o.visible = on; });
+    box.addEventListener('change', function () { objects.forEach(function (o) { o.visible = box.checked; }); });
+    var lab = el('label');
+    lab.appendChild(box);
+    lab.appendChild(document.createTextNode(' ' + label));
+    toggles.appendChild(lab);
+  }
+  bodies.forEach(function (b) { toggle(b.spec.name, [b.mesh], true); });
+  if (points) toggle('points', [points], true);
+  if (contactPoints) toggle('contact', [contactPoints], true);
+  if (slice) toggle('slice', [slice], true);
+  var solid = el('input', {type: 'checkbox'});
+  solid.addEventListener('change', function () {
+    bodies.forEach(function (b) {
+      b.mesh.material.transparent = !solid.checked;
+      b.mesh.material.depthWrite = solid.checked;
+      b.mesh.material.opacity = solid.checked ? 1 : 0.55;
+      b.mesh.material.needsUpdate = true;
+    });
+  });
+  var solidLabel = el('label');
+  solidLabel.appendChild(solid);
+  solidLabel.appendChild(document.createTextNode(' solid'));
+  toggles.appendChild(solidLabel);
+
+  // --- Replay controls and the force plot.
+  var current = 0;       // track index
+  var frameIndex = 0;    // frame of the current track
+  var playing = false, playTime = 0, lastWall = null;
+  var plot = document.getElementById('plot');
+  function magnitude(f, i) { return Math.hypot(f[3 * i], f[3 * i + 1], f[3 * i + 2]); }
+  if (replay) {
+    document.getElementById('replay').hidden = false;
+    tracks = replay.models.map(function (m) {
+      var t = decode(m.t, Float32Array), force = decode(m.force, Float32Array);
+      var fmag = new Float32Array(t.length), fmax = 0;
+      for (var i = 0; i < t.length; ++i) { fmag[i] = magnitude(force, i); fmax = Math.max(fmax, fmag[i]); }
+      return {name: m.name, cycles: m.cycles, t: t, pose: decode(m.pose, Float32Array), force: force,
+              torque: decode(m.torque, Float32Array), level: decode(m.level, Int32Array),
+              contacts: decode(m.contacts, Int32Array), fmag: fmag, fmax: fmax,
+              r: m.r || 0, q: m.r ? decode(m.q, Float32Array) : null,
+              r_B: m.r_B || 0, q_B: m.r_B ? decode(m.q_B, Float32Array) : null};
+    });
+    var select = document.getElementById('model');
+    tracks.forEach(function (tr, i) { select.appendChild(el('option', {value: String(i)}, tr.name)); });
+    if (tracks.length < 2) document.getElementById('model-choice').hidden = true;
+    select.addEventListener('change', function () {
+      var t = tracks[current].t[frameIndex];
+      current = Number(select.value);
+      showTime(t);
+    });
+    var slider = document.getElementById('slider');
+    slider.addEventListener('input', function () { playing = false; updatePlayButton(); showFrame(Number(slider.value)); });
+    var play = document.getElementById('play');
+    play.addEventListener('click', function () {
+      var tr = tracks[current];
+      if (!playing && frameIndex >= tr.t.length - 1) showFrame(0);
+      playing = !playing;
+      playTime = tr.t[frameIndex];
+      lastWall = null;
+      updatePlayButton();
+    });
+    plot.addEventListener('click', function (e) {
+      var r = plot.getBoundingClientRect(), tr = tracks[current];
+      var x = (e.clientX - r.left - plotArea.left) / plotArea.width;
+      showTime(tr.t[0] + Math.max(0, Math.min(1, x)) * (tr.t[tr.t.length - 1] - tr.t[0]));
+    });
+  }
+  function updatePlayButton() { document.getElementById('play').textContent = playing ? 'Pause' : 'Play'; }
+
+  // The frame of the current track at or just before time T.
+  function showTime(t) {
+    var tt = tracks[current].t, lo = 0, hi = tt.length - 1;
+    while (lo < hi) { var mid = (lo + hi + 1) >> 1; if (tt[mid] <= t) lo = mid; else hi = mid - 1; }
+    showFrame(lo);
+  }
+  function showFrame(i) {
+    var tr = tracks[current];
+    frameIndex = Math.max(0, Math.min(tr.t.length - 1, i));
+    var slider = document.getElementById('slider');
+    slider.max = String(tr.t.length - 1);
+    slider.value = String(frameIndex);
+    var p = tr.pose.subarray(7 * frameIndex, 7 * frameIndex + 7);
+    var moving = bodies[replay.moving];
+    setPose(moving.group, p);
+    if (bodies[0].basis && tr.q && tr.r === bodies[0].modes) deform(bodies[0], tr.q, tr.r * frameIndex);
+    if (bodies[1].basis && tr.q_B && tr.r_B === bodies[1].modes) deform(bodies[1], tr.q_B, tr.r_B * frameIndex);
+    // The force on the moving body at its origin, scaled so the largest force of the run is
+    // 60% of the scene's radius.
+    var f = new THREE.Vector3(tr.force[3 * frameIndex], tr.force[3 * frameIndex + 1], tr.force[3 * frameIndex + 2]);
+    var fm = f.length();
+    arrow.visible = fm > 1e-9 * Math.max(tr.fmax, 1e-12) && fm > 0;
+    if (arrow.visible) {
+      var len = 0.6 * bounds.radius * fm / Math.max(tr.fmax, 1e-12);
+      arrow.position.set(p[0], p[1], p[2]);
+      arrow.setDirection(f.multiplyScalar(1 / fm));
+      arrow.setLength(Math.max(len, 1e-6), 0.25 * len, 0.12 * len);
+    }
+    var torque = Math.hypot(tr.torque[3 * frameIndex], tr.torque[3 * frameIndex + 1], tr.torque[3 * frameIndex + 2]);
+    document.getElementById('readout').textContent =
+        't = ' + tr.t[frameIndex].toFixed(3) + ' s   |F| = ' + fmt(fm) + ' N   |T| = ' + fmt(torque) + ' N m' +
+        (tr.level[frameIndex] >= 0 ? '   level ' + tr.level[frameIndex] : '') + '   contacts ' + tr.contacts[frameIndex];
+    drawPlot();
+  }
+
+  // |F| against t of every model (the current one bright), with a cursor at the current frame.
+  var plotArea = {left: 56, top: 8, width: 1, height: 1};
+  function drawPlot() {
+    var dpr = window.devicePixelRatio || 1;
+    var cw = plot.clientWidth, ch = plot.clientHeight;
+    if (plot.width !== Math.round(cw * dpr)) { plot.width = Math.round(cw * dpr); plot.height = Math.round(ch * dpr); }
+    var g = plot.getContext('2d');
+    g.setTransform(dpr, 0, 0, dpr, 0, 0);
+    g.clearRect(0, 0, cw, ch);
+    plotArea.width = Math.max(10, cw - plotArea.left - 10);
+    plotArea.height = Math.max(10, ch - plotArea.top - 24);
+    var tr = tracks[current];
+    var t0 = tr.t[0], t1 = tr.t[tr.t.length - 1];
+    if (!(t1 > t0)) t1 = t0 + 1;
+    var fmax = 0;
+    tracks.forEach(function (x) { fmax = Math.max(fmax, x.fmax); });
+    if (!(fmax > 0)) fmax = 1;
+    var X = function (t) { return plotArea.left + (t - t0) / (t1 - t0) * plotArea.width; };
+    var Y = function (f) { return plotArea.top + plotArea.height * (1 - f / fmax); };
+    // Axes and labels.
+    g.strokeStyle = '#70757c';
+    g.lineWidth = 1;
+    g.strokeRect(plotArea.left, plotArea.top, plotArea.width, plotArea.height);
+    g.fillStyle = '#c8ccd2';
+    g.font = '11px sans-serif';
+    g.textAlign = 'right';
+    g.fillText(fmt(fmax) + ' N', plotArea.left - 4, plotArea.top + 9);
+    g.fillText('0', plotArea.left - 4, plotArea.top + plotArea.height);
+    g.save();
+    g.translate(12, plotArea.top + plotArea.height / 2);
+    g.rotate(-Math.PI / 2);
+    g.textAlign = 'center';
+    g.fillText('|F| (N)', 0, 0);
+    g.restore();
+    g.textAlign = 'center';
+    g.textAlign = 'left';
+    g.fillText(t0.toFixed(2), plotArea.left, ch - 6);
+    g.textAlign = 'right';
+    g.fillText(t1.toFixed(2), plotArea.left + plotArea.width, ch - 6);
+    g.textAlign = 'center';
+    g.fillText('t (s)', plotArea.left + plotArea.width / 2, ch - 6);
+    // Curves: the others grey, the current one yellow.
+    tracks.forEach(function (x, k) {
+      if (k === current) return;
+      curve(g, x, X, Y, '#6c7178');
+    });
+    curve(g, tr, X, Y, '#ffd000');
+    // Cursor.
+    g.strokeStyle = '#ffffff';
+    g.beginPath();
+    g.moveTo(X(tr.t[frameIndex]) + 0.5, plotArea.top);
+    g.lineTo(X(tr.t[frameIndex]) + 0.5, plotArea.top + plotArea.height);
+    g.stroke();
+  }
+  function curve(g, x, X, Y, colour) {
+    g.strokeStyle = colour;
+    g.lineWidth = 1.25;
+    g.beginPath();
+    // At most ~2 samples per pixel.
+    var step = Math.max(1, Math.floor(x.t.length / (2 * plotArea.width)));
+    for (var i = 0; i < x.t.length; i += step) {
+      if (i === 0) g.moveTo(X(x.t[i]), Y(x.fmag[i])); else g.lineTo(X(x.t[i]), Y(x.fmag[i]));
+    }
+    g.stroke();
+  }
+
+  // --- Options in the address's fragment: #t=SECONDS, #model=NAME, #play (joined with &).
+  var options = {};
+  location.hash.replace(/^#/, '').split('&').forEach(function (kv) {
+    if (!kv) return;
+    var parts = kv.split('=');
+    options[decodeURIComponent(parts[0])] = parts.length > 1 ? decodeURIComponent(parts[1]) : '';
+  });
+  if (replay && tracks.length > 0) {
+    if (options.model !== undefined) {
+      tracks.forEach(function (tr, i) { if (tr.name === options.model) current = i; });
+      document.getElementById('model').value = String(current);
+    }
+    if (options.t !== undefined) showTime(Number(options.t)); else showFrame(0);
+    if (options.play !== undefined) { playing = true; playTime = tracks[current].t[frameIndex]; updatePlayButton(); }
+  }
+
+  // --- Live session: snapshots from the server's event stream move the haptic body; the
+  // device (manipulandum) pose is a grey wireframe ghost; the plot shows the last 10 s.
+  var live = data.live || null;
+  if (live) {
+    document.getElementById('replay').hidden = false;
+    ['play', 'slider', 'model-choice'].forEach(function (id) { document.getElementById(id).hidden = true; });
+    document.getElementById('speed').parentNode.hidden = true;
+    document.getElementById('subtitle').textContent = 'live: model ' + live.model + ', device ' + live.device;
+    var haptic = bodies[live.haptic];
+    var ghost = new THREE.Mesh(haptic.mesh.geometry, new THREE.MeshBasicMaterial(
+        {color: 0xbbbbbb, wireframe: true, transparent: true, opacity: 0.3, depthWrite: false}));
+    ghost.renderOrder = 4;
+    setPose(ghost, haptic.spec.pose);
+    scene.add(ghost);
+    var history = [];  // [t, |F|] of the last 10 s
+    var liveMax = 0;
+    var received = 0;
+    var stream = new EventSource(live.stream);
+    stream.onmessage = function (e) {
+      var s = JSON.parse(e.data);
+      ++received;
+      setPose(haptic.group, s.body);
+      setPose(ghost, s.device);
+      var f = new THREE.Vector3(s.force[0], s.force[1], s.force[2]);
+      var fm = f.length();
+      liveMax = Math.max(liveMax, fm);
+      arrow.visible = fm > 0;
+      if (arrow.visible) {
+        var len = 0.6 * bounds.radius * fm / liveMax;
+        arrow.position.set(s.body[0], s.body[1], s.body[2]);
+        arrow.setDirection(f.multiplyScalar(1 / fm));
+        arrow.setLength(Math.max(len, 1e-6), 0.25 * len, 0.12 * len);
+      }
+      document.getElementById('readout').textContent =
+          't = ' + s.t.toFixed(3) + ' s   |F| = ' + fmt(fm) + ' N   |T| = ' +
+          fmt(Math.hypot(s.torque[0], s.torque[1], s.torque[2])) + ' N m' +
+          (s.level >= 0 ? '   level ' + s.level : '') + '   contacts ' + s.contacts + '   cycle ' +
+          s.work_us.toFixed(0) + ' us';
+      document.documentElement.setAttribute('data-snapshots', String(received));
+      history.push([s.t, fm]);
+      while (history.length > 1 && history[0][0] < s.t - 10) history.shift();
+      var t = new Float32Array(history.length), fmag = new Float32Array(history.length), fmax = 0;
+      for (var i = 0; i < history.length; ++i) { t[i] = history[i][0]; fmag[i] = history[i][1]; fmax = Math.max(fmax, fmag[i]); }
+      tracks = [{name: live.model, t: t, fmag: fmag, fmax: fmax}];
+      current = 0;
+      frameIndex = history.length - 1;
+      drawPlot();
+    };
+    stream.onerror = function () {
+      // The session ended (or the server went away): keep the last pose.
+      stream.close();
+      document.getElementById('readout').textContent += '   (stream ended)';
+    };
+  }
+
+  // --- Animation loop.
+  // The 3D view fills the window above the replay / live bar.
+  function layout() {
+    var bar = document.getElementById('replay');
+    container.style.bottom = bar.hidden ? '0px' : bar.offsetHeight + 'px';
+    var w = Math.max(1, container.clientWidth), h = Math.max(1, container.clientHeight);
+    camera.aspect = w / h;
+    camera.updateProjectionMatrix();
+    renderer.setSize(w, h);
+    if (tracks.length > 0) drawPlot();
+  }
+  layout();
+  window.addEventListener('resize', layout);
+  var frames = 0;
+  function animate(now) {
+    requestAnimationFrame(animate);
+    if (playing && tracks.length > 0) {
+      var tr = tracks[current];
+      if (lastWall !== null) playTime += (now - lastWall) / 1000 * Number(document.getElementById('speed').value);
+      lastWall = now;
+      if (playTime >= tr.t[tr.t.length - 1]) { playTime = tr.t[tr.t.length - 1]; playing = false; updatePlayButton(); }
+      showTime(playTime);
+    }
+    controls.update();
+    renderer.render(scene, camera);
+    if (++frames === 1) {
+      document.documentElement.setAttribute('data-ready', '1');
+      window.contactlabReady = true;
+    }
+  }
+  requestAnimationFrame(animate);
+})();

@@ -1,0 +1,122 @@
+// `contactlab view` end to end: the pages it writes and the errors that name the bad input,
+// with no output left behind.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "test_support.h"
+#include "util/atomic_file.h"
+
+namespace contactlab {
+namespace {
+
+using testing::TempDir;
+
+struct Outcome {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr
+};
+
+// Runs `contactlab ARGS` through the shell after the shell commands PREFIX.
+Outcome RunCli(const std::string& args, const std::string& prefix = "") {
+  const std::string command = prefix + " " + std::string(CONTACTLAB_CLI) + " " + args + " 2>&1";
+  Outcome o;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (!pipe) return o;
+  std::array<char, 4096> buf;
+  while (std::fgets(buf.data(), int(buf.size()), pipe)) o.output += buf.data();
+  const int status = ::pclose(pipe);
+  o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return o;
+}
+
+const char* kScene = R"(name: view-cli
+bodies:
+  - name: ball
+    mesh: "sphere:0.02,2"
+    pose: [0, 0, 0.0205, 1, 0, 0, 0]
+    role: pointshell
+    pointshell: {points: 256, levels: 2}
+    field: {resolution: 16}
+  - name: plate
+    mesh: "box:0.05,0.05,0.01,1"
+    pose: [0, 0, -0.01, 1, 0, 0, 0]
+    role: field
+    field: {resolution: 16}
+)";
+
+TEST(ViewCli, ScenePageIsOneSelfContainedFile) {
+  TempDir dir;
+  std::ofstream(dir / "scene.yaml") << kScene;
+  const Outcome o = RunCli("view " + (dir / "scene.yaml").string() + " --out " + (dir / "page.html").string() +
+                           " --max-points 100 --cache " + (dir / "cache").string());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const std::string page = ReadWholeFile(dir / "page.html");
+  EXPECT_NE(page.find("REVISION=\"111\""), std::string::npos);   // three.js inlined
+  EXPECT_NE(page.find("OrbitControls"), std::string::npos);
+  EXPECT_NE(page.find("\"pointshell\":{"), std::string::npos);   // the data embedded
+  EXPECT_NE(page.find("\"kept\":[50,50]"), std::string::npos) << "not thinned per level";
+  EXPECT_NE(page.find("\"total\":[64,192]"), std::string::npos);
+  EXPECT_EQ(page.find("<script src"), std::string::npos);         // nothing fetched
+  EXPECT_EQ(page.find("@DATA@"), std::string::npos);
+}
+
+TEST(ViewCli, BadInputsFailNamingTheFileAndLeaveNoOutput) {
+  TempDir dir;
+  std::ofstream(dir / "scene.yaml") << kScene;
+  const std::string out = " --out " + (dir / "page.html").string() + " --cache " + (dir / "cache").string();
+  // A scene that does not exist.
+  Outcome o = RunCli("view " + (dir / "absent.yaml").string() + out);
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find("absent.yaml"), std::string::npos) << o.output;
+  // A scene with a bad key.
+  std::ofstream(dir / "bad.yaml") << "name: x\nbodies: []\nmodle: {}\n";
+  o = RunCli("view " + (dir / "bad.yaml").string() + out);
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find("bad.yaml"), std::string::npos) << o.output;
+  // A folder that is not a results folder.
+  std::filesystem::create_directories(dir / "empty");
+  o = RunCli("view " + (dir / "empty").string() + out);
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find((dir / "empty" / "cycles.csv").string() + ": not found"), std::string::npos) << o.output;
+  // --job with a scene.
+  o = RunCli("view " + (dir / "scene.yaml").string() + " --job 1" + out);
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find("--job"), std::string::npos) << o.output;
+  // The output onto the input, or onto a folder.
+  o = RunCli("view " + (dir / "scene.yaml").string() + " --out " + (dir / "scene.yaml").string());
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find("scene.yaml"), std::string::npos) << o.output;
+  EXPECT_EQ(ReadWholeFile(dir / "scene.yaml"), kScene);
+  o = RunCli("view " + (dir / "scene.yaml").string() + " --out " + (dir / "empty").string());
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find("folder"), std::string::npos) << o.output;
+  // Too few points for the levels.
+  o = RunCli("view " + (dir / "scene.yaml").string() + " --max-points 3" + out);
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find("--max-points"), std::string::npos) << o.output;
+  // three.js missing: the file is named, with the package that provides it.
+  o = RunCli("view " + (dir / "scene.yaml").string() + out, "CONTACTLAB_THREEJS_DIR=" + (dir / "nothree").string());
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find((dir / "nothree" / "three.min.js").string() + ": not found"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("libjs-three"), std::string::npos) << o.output;
+  EXPECT_EQ(o.output.find("building"), std::string::npos) << "three.js is checked before any work: " << o.output;
+  // A live view on a port that is not one fails before the session builds anything.
+  o = RunCli("session " + (dir / "scene.yaml").string() + " --device sim --duration 0.1 --view 70000 --cache " +
+             (dir / "cache2").string());
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find("--view: 70000 is not a port"), std::string::npos) << o.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "cache2"));
+  // No page, and no temporary, was left by any of them.
+  EXPECT_FALSE(std::filesystem::exists(dir / "page.html"));
+  for (const auto& e : std::filesystem::directory_iterator(dir.path())) {
+    EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
+  }
+}
+
+}  // namespace
+}  // namespace contactlab

@@ -1,0 +1,309 @@
+#include "view/view_data.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <functional>
+#include <set>
+#include <sstream>
+
+#include "experiment/result_csv.h"
+#include "experiment/runner.h"
+#include "test_support.h"
+#include "util/atomic_file.h"
+#include "util/error.h"
+#include "view/page_encoding.h"
+#include "view/viewer_page.h"
+
+namespace contactlab {
+namespace {
+
+using testing::TempDir;
+
+// A 4 cm ball pressed into a plate and twisted, compared by two models: procedural and fast.
+const char* kConfig = R"(name: view-tiny
+description: a ball pressed into a plate and twisted
+scene:
+  name: ball-plate
+  bodies:
+    - name: ball
+      mesh: "sphere:0.02,3"
+      pose: [0, 0, 0.0215, 1, 0, 0, 0]
+      role: pointshell
+      pointshell: {points: 256, levels: 3, seed: 3}
+      field: {resolution: 24}
+    - name: plate
+      mesh: "box:0.05,0.05,0.01,2"
+      pose: [0, 0, -0.01, 1, 0, 0, 0]
+      role: field
+      field: {resolution: 24}
+  model: {k_C: 1000}
+models: [pointshell, pointshell-linear]
+moving_body: ball
+trajectory: {type: twist, direction: [0, 0, -1], depth: 0.002, angle: 0.4, duration: 0.06}
+reference: ''
+)";
+
+RunOptions Options(const TempDir& dir) {
+  RunOptions o;
+  o.out_dir = dir / "out";
+  o.assets.cache_dir = dir / "cache";
+  o.assets.verbose = false;
+  o.progress = false;
+  o.parallel_jobs = 1;
+  return o;
+}
+
+// Runs kConfig (with OVERRIDES) into DIR/out.
+void RunTiny(const TempDir& dir, const std::vector<std::string>& overrides = {}) {
+  std::ofstream(dir / "config.yaml") << kConfig;
+  RunExperiment(LoadExperimentConfig(dir / "config.yaml", overrides), Options(dir));
+}
+
+std::string ErrorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(Replay, ReadsEveryModelsPosesAndWrenchesFromTheResultsFolder) {
+  TempDir dir;
+  RunTiny(dir);
+  const Replay r = ReadReplay(dir / "out", std::nullopt);
+  EXPECT_EQ(r.experiment, "view-tiny");
+  EXPECT_EQ(r.job, 0);
+  EXPECT_EQ(r.moving_body, "ball");
+  EXPECT_EQ(r.scene.pointshell_body.name, "ball");
+  ASSERT_EQ(r.tracks.size(), 2u);
+  EXPECT_EQ(r.tracks[0].model, "pointshell");
+  EXPECT_EQ(r.tracks[1].model, "pointshell-linear");
+  // The rows of cycles.csv, read back: cycle k at t = k ms, orientation a unit quaternion that
+  // turns during the twist.
+  const std::string csv = ReadWholeFile(dir / "out" / "cycles.csv");
+  const std::int64_t rows = std::count(csv.begin(), csv.end(), '\n') - 1;
+  EXPECT_EQ(r.tracks[0].cycles + r.tracks[1].cycles, rows);
+  const ReplayTrack& t = r.tracks[0];
+  ASSERT_EQ(t.t.size(), std::size_t(t.cycles));
+  ASSERT_EQ(t.pose.size(), 7 * t.t.size());
+  ASSERT_EQ(t.force.size(), 3 * t.t.size());
+  double max_angle = 0, max_force = 0;
+  for (std::size_t i = 0; i < t.t.size(); ++i) {
+    EXPECT_NEAR(t.t[i], 0.001 * double(i), 1e-6);
+    const Eigen::Quaternionf q(t.pose[7 * i + 3], t.pose[7 * i + 4], t.pose[7 * i + 5], t.pose[7 * i + 6]);
+    EXPECT_NEAR(q.norm(), 1.0, 1e-5);
+    max_angle = std::max(max_angle, 2.0 * std::acos(std::min(1.0f, std::abs(q.w()))));
+    max_force = std::max(max_force, double(Eigen::Vector3f(t.force[3 * i], t.force[3 * i + 1], t.force[3 * i + 2]).norm()));
+  }
+  EXPECT_NEAR(max_angle, 0.4, 0.02);  // the twist's angle is in the orientation columns
+  EXPECT_GT(max_force, 0.0);          // pressed into the plate
+}
+
+TEST(Replay, ThinsLongRunsToTheFrameCap) {
+  TempDir dir;
+  RunTiny(dir);
+  const Replay r = ReadReplay(dir / "out", 0, 20);
+  EXPECT_EQ(r.stride, 4);  // 61 cycles, at most 20 frames
+  for (const ReplayTrack& t : r.tracks) {
+    EXPECT_LE(t.t.size(), 20u);
+    EXPECT_NEAR(t.t[1] - t.t[0], 0.004, 1e-6);
+  }
+}
+
+TEST(Replay, PageDataHoldsBothBodiesThePointshellAndEveryTrack) {
+  TempDir dir;
+  RunTiny(dir);
+  const Replay r = ReadReplay(dir / "out", std::nullopt);
+  AssetOptions o;
+  o.cache_dir = dir / "cache";
+  o.verbose = false;
+  SceneAssets assets(r.scene, o);
+  SceneViewOptions options;
+  options.max_points = 100;
+  const nlohmann::json j = ReplayViewData(r, assets, options);
+  ASSERT_EQ(j["bodies"].size(), 2u);
+  EXPECT_EQ(j["bodies"][0]["name"], "ball");
+  EXPECT_EQ(j["replay"]["moving"], 0);
+  EXPECT_EQ(j["replay"]["models"].size(), 2u);
+  const auto positions = DecodeArray<float>(j["bodies"][1]["positions"].get<std::string>(), "plate");
+  EXPECT_EQ(positions.size(), 3 * j["bodies"][1]["vertices"].get<std::size_t>());
+  const auto levels = DecodeArray<std::uint8_t>(j["pointshell"]["level"].get<std::string>(), "levels");
+  EXPECT_LE(levels.size(), 100u);
+  EXPECT_EQ(std::set<int>(levels.begin(), levels.end()).size(), 3u);  // every level drawn
+  // The slice goes through the ball's origin and holds both signs (the plate's surface).
+  EXPECT_LT(j["slice"]["min"].get<double>(), 0);
+  EXPECT_GT(j["slice"]["max"].get<double>(), 0);
+  // The page embeds it all and nothing else is needed.
+  if (std::filesystem::exists(ThreeJsDir() / "three.min.js")) {
+    const std::string page = ViewerPage(j);
+    EXPECT_NE(page.find("REVISION=\"111\""), std::string::npos);
+    EXPECT_NE(page.find("OrbitControls"), std::string::npos);
+    EXPECT_EQ(page.find("@DATA@"), std::string::npos);
+    EXPECT_EQ(page.find("<script src"), std::string::npos);
+  }
+}
+
+// The points flagged in contact are those below the plate's top face (z = 0) at the start poses.
+TEST(SceneView, PointsInContactAreThoseInsideTheFieldBody) {
+  TempDir dir;
+  std::ofstream(dir / "config.yaml") << kConfig;
+  ExperimentConfig config = LoadExperimentConfig(dir / "config.yaml");
+  Scene scene = config.scene;
+  scene.pointshell_body.pose.translation.z() = 0.018;  // 2 mm into the plate
+  scene.pointshell_body.pose.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()));
+  AssetOptions o;
+  o.cache_dir = dir / "cache";
+  o.verbose = false;
+  SceneAssets assets(scene, o);
+  const nlohmann::json j = SceneViewData(scene, assets, SceneViewOptions{});
+  const auto xyz = DecodeArray<float>(j["pointshell"]["positions"].get<std::string>(), "positions");
+  const auto contact = DecodeArray<std::uint8_t>(j["pointshell"]["contact"].get<std::string>(), "contact");
+  ASSERT_EQ(contact.size() * 3, xyz.size());
+  const double h = assets.B.field()->spacing();
+  int flagged = 0;
+  for (std::size_t i = 0; i < contact.size(); ++i) {
+    const Eigen::Vector3d p_W = scene.pointshell_body.pose * Eigen::Vector3d(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+    if (contact[i]) {
+      ++flagged;
+      EXPECT_LT(p_W.z(), h) << i;
+    } else {
+      EXPECT_GT(p_W.z(), -h) << i;
+    }
+  }
+  EXPECT_GT(flagged, 0);
+  EXPECT_EQ(j["pointshell"]["in_contact"].get<int>(), flagged);  // every point is drawn here
+}
+
+// A deformable ball pressed onto a plate: the replay carries its reduced coordinates per frame
+// and the basis at its mesh vertices, and U q reproduces the run's largest displacement.
+TEST(Replay, DeformableBodyCarriesItsCoordinatesAndBasis) {
+  TempDir dir;
+  std::ofstream(dir / "ball.yaml") << R"(name: soft-ball-plate
+bodies:
+  - name: ball
+    mesh: "sphere:0.02,2"
+    pose: [0, 0, 0.0205, 1, 0, 0, 0]
+    role: pointshell
+    pointshell: {points: 256, levels: 2, seed: 2}
+    field: {resolution: 24}
+    deformable: {model: stvk, modes: 6, cells: 8, E: 2.0e5, nu: 0.4, rho: 1000,
+                 damping: {alpha: 10.0, beta: 0.001}, anchor: none}
+  - name: plate
+    mesh: "box:0.05,0.05,0.01,2"
+    pose: [0, 0, -0.01, 1, 0, 0, 0]
+    role: field
+    field: {resolution: 24}
+model: {k_C: 1000, L: 10}
+)";
+  std::ofstream(dir / "config.yaml") << "name: soft\nscene: ball.yaml\nmodels: [pointshell]\nmoving_body: ball\n"
+                                        "trajectory: {type: approach-press, direction: [0, 0, -1], approach: 0.0, "
+                                        "depth: 0.003, duration: 0.4}\n";
+  RunExperiment(LoadExperimentConfig(dir / "config.yaml"), Options(dir));
+  const Replay r = ReadReplay(dir / "out", std::nullopt);
+  ASSERT_EQ(r.tracks.size(), 1u);
+  const ReplayTrack& t = r.tracks[0];
+  EXPECT_EQ(t.r, 6);
+  EXPECT_EQ(t.r_B, 0);
+  ASSERT_EQ(t.q.size(), 6 * t.t.size());
+  AssetOptions o;
+  o.cache_dir = dir / "cache";
+  o.verbose = false;
+  SceneAssets assets(r.scene, o);
+  const nlohmann::json j = ReplayViewData(r, assets, SceneViewOptions{});
+  ASSERT_EQ(j["bodies"][0]["modes"], 6);
+  EXPECT_FALSE(j["bodies"][1].contains("basis"));  // the plate is rigid
+  const auto basis = DecodeArray<float>(j["bodies"][0]["basis"].get<std::string>(), "basis");
+  const int V = j["bodies"][0]["vertices"].get<int>();
+  ASSERT_EQ(basis.size(), std::size_t(V) * 3 * 6);
+  // The largest surface displacement over the run, against cycles.csv's max_displacement (over
+  // the simulation mesh's vertices, which enclose the surface).
+  double largest_u = 0;
+  for (std::size_t f = 0; f < t.t.size(); ++f) {
+    for (int v = 0; v < V; ++v) {
+      Eigen::Vector3d u = Eigen::Vector3d::Zero();
+      for (int k = 0; k < 3; ++k)
+        for (int m = 0; m < 6; ++m) u[k] += double(basis[(3 * v + k) * 6 + m]) * t.q[6 * f + m];
+      largest_u = std::max(largest_u, u.norm());
+    }
+  }
+  double largest_recorded = 0;
+  {
+    std::istringstream in(ReadWholeFile(dir / "out" / "cycles.csv"));
+    std::string line;
+    std::getline(in, line);
+    const std::vector<std::string> header = SplitCsvLine(line);
+    const std::size_t c = std::find(header.begin(), header.end(), "max_displacement") - header.begin();
+    while (std::getline(in, line)) largest_recorded = std::max(largest_recorded, std::stod(SplitCsvLine(line)[c]));
+  }
+  EXPECT_GT(largest_recorded, 1e-5);  // it did deform
+  EXPECT_GT(largest_u, 0.5 * largest_recorded);
+  EXPECT_LT(largest_u, 1.05 * largest_recorded);
+}
+
+TEST(Replay, SeveralJobsNeedAJobNumber) {
+  TempDir dir;
+  RunTiny(dir, {"sweep={k_C: [500, 1500]}"});
+  const std::string e = ErrorOf([&] { ReadReplay(dir / "out", std::nullopt); });
+  EXPECT_NE(e.find("cycles.csv"), std::string::npos) << e;
+  EXPECT_NE(e.find("holds jobs 0, 1: choose one with --job"), std::string::npos) << e;
+  const Replay r = ReadReplay(dir / "out", 1);
+  EXPECT_EQ(r.job, 1);
+  EXPECT_EQ(r.job_label, "k_C=1500");
+  EXPECT_DOUBLE_EQ(r.scene.model.penalty.k_C, 1500);
+  const std::string e2 = ErrorOf([&] { ReadReplay(dir / "out", 7); });
+  EXPECT_NE(e2.find("has no job 7 (it holds 0, 1)"), std::string::npos) << e2;
+}
+
+TEST(Replay, BadResultsFolderIsAClearErrorNamingTheFile) {
+  TempDir dir;
+  // No folder.
+  std::string e = ErrorOf([&] { ReadReplay(dir / "absent", std::nullopt); });
+  EXPECT_NE(e.find((dir / "absent").string() + ": results folder not found"), std::string::npos) << e;
+  // A file, not a folder.
+  std::ofstream(dir / "file") << "x";
+  e = ErrorOf([&] { ReadReplay(dir / "file", std::nullopt); });
+  EXPECT_NE(e.find("is not a results folder"), std::string::npos) << e;
+  // No cycles.csv.
+  std::filesystem::create_directories(dir / "empty");
+  e = ErrorOf([&] { ReadReplay(dir / "empty", std::nullopt); });
+  EXPECT_NE(e.find((dir / "empty" / "cycles.csv").string() + ": not found"), std::string::npos) << e;
+  // cycles.csv from before the orientation columns.
+  RunTiny(dir);
+  const std::string csv = ReadWholeFile(dir / "out" / "cycles.csv");
+  std::string old = csv;
+  const std::size_t at = old.find(",qw,qx,qy,qz");
+  ASSERT_NE(at, std::string::npos);
+  old.erase(at, 12);
+  WriteFileAtomically(dir / "out" / "cycles.csv", old);
+  e = ErrorOf([&] { ReadReplay(dir / "out", std::nullopt); });
+  EXPECT_NE(e.find("cycles.csv: has no orientation column qw"), std::string::npos) << e;
+  // A cell that is not a number names the line and the column.
+  std::vector<std::string> lines;
+  {
+    std::istringstream in(csv);
+    for (std::string l; std::getline(in, l);) lines.push_back(l);
+  }
+  const std::vector<std::string> header = SplitCsvLine(lines[0]);
+  std::vector<std::string> cells = SplitCsvLine(lines[3]);
+  const std::size_t t_col = std::find(header.begin(), header.end(), "t") - header.begin();
+  ASSERT_LT(t_col, cells.size());
+  cells[t_col] = "soon";
+  lines[3].clear();
+  for (std::size_t c = 0; c < cells.size(); ++c) lines[3] += (c ? "," : "") + cells[c];
+  std::string bad;
+  for (const std::string& l : lines) bad += l + "\n";
+  WriteFileAtomically(dir / "out" / "cycles.csv", bad);
+  e = ErrorOf([&] { ReadReplay(dir / "out", std::nullopt); });
+  EXPECT_NE(e.find("cycles.csv:4: column t: soon is not a number"), std::string::npos) << e;
+  // meta.json that is not JSON.
+  WriteFileAtomically(dir / "out" / "cycles.csv", csv);
+  WriteFileAtomically(dir / "out" / "meta.json", "{not json");
+  e = ErrorOf([&] { ReadReplay(dir / "out", std::nullopt); });
+  EXPECT_NE(e.find("meta.json: not valid JSON"), std::string::npos) << e;
+}
+
+}  // namespace
+}  // namespace contactlab
