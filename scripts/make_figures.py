@@ -530,13 +530,13 @@ class Figures:
         return True
 
 
-    # Issue 20: a ball pushed through a thin plate, every model, both role orders: the force on
-    # the ball along the push against the depth of its lowest point below the plate's top.
-    def hard_cases_medial_axis(self):
-        rows = self.load("hard-cases-medial-axis", "cycles")
+    # Issue 20, hard cases pushed through: per role order, every model's force opposing the push
+    # against the depth, over the pressing half of the run (until DEEPEST picks the deepest
+    # cycle), with dotted lines at MARKS [(depth, label)].
+    def push_through(self, experiment, depth_of, force_of, deepest, marks, xlabel, ylabel, titles, out):
+        rows = self.load(experiment, "cycles")
         if not rows:
             return False
-        top = 0.002 + 0.01  # ball centre when its lowest point touches the plate's top face, m
         by = defaultdict(list)
         for r in rows:
             by[(r.get("roles", "normal"), r["model"])].append(r)
@@ -546,23 +546,48 @@ class Figures:
             for (o, model), rs in sorted(by.items()):
                 if o != order:
                     continue
-                # The pressing half: until the deepest pose.
-                deepest = min(range(len(rs)), key=lambda i: num(rs[i], "z"))
-                rs = rs[: deepest + 1]
-                ax.plot([1000 * (top - num(r, "z")) for r in rs], [num(r, "fz") for r in rs], lw=1.0, label=model,
+                rs = rs[: deepest(rs) + 1]
+                ax.plot([depth_of(r) for r in rs], [force_of(r) for r in rs], lw=1.0, label=model,
                         ls="--" if model.endswith("-linear") else "-")
-            for d, what in [(2, "lowest point at mid-plane"), (12, "centre at mid-plane")]:
+            for d, what in marks:
                 ax.axvline(d, color="0.5", ls=":", lw=0.8)
                 ax.text(d, 0, " " + what, rotation=90, va="bottom", fontsize=7, color="0.4")
             ax.axhline(0, color="k", lw=0.6)
-            ax.set_xlabel("depth of the ball's lowest point below the plate's top (mm)")
-            ax.set_ylabel("force on the ball along +z, opposing the push (N)")
-            ax.set_title("ball r 1 cm through a 4 mm plate: " +
-                         ("ball = pointshell" if order == "normal" else "ball = field"), fontsize=10)
+            ax.set_xlabel(xlabel)
+            ax.set_ylabel(ylabel)
+            ax.set_title(titles[order == "normal"], fontsize=10)
             ax.grid(True, alpha=0.3)
             ax.legend(fontsize=8)
-        self.save(fig, "hard_cases_medial_axis.png")
+        self.save(fig, out)
         return True
+
+    # A ball pushed through a thin plate: the force on the ball along the push against the depth
+    # of its lowest point below the plate's top.
+    def hard_cases_medial_axis(self):
+        top = 0.002 + 0.01  # ball centre when its lowest point touches the plate's top face, m
+        return self.push_through(
+            "hard-cases-medial-axis", lambda r: 1000 * (top - num(r, "z")), lambda r: num(r, "fz"),
+            lambda rs: min(range(len(rs)), key=lambda i: num(rs[i], "z")),
+            [(2, "lowest point at mid-plane"), (12, "centre at mid-plane")],
+            "depth of the ball's lowest point below the plate's top (mm)",
+            "force on the ball along +z, opposing the push (N)",
+            {True: "ball r 1 cm through a 4 mm plate: ball = pointshell",
+             False: "ball r 1 cm through a 4 mm plate: ball = field"},
+            "hard_cases_medial_axis.png")
+
+    # A thin-walled tube over a peg pushed sideways into it and on through its 0.5 mm wall: the
+    # force on the tube opposing the push against the depth.
+    def hard_cases_tube_peg(self):
+        touch = 0.0015  # tube offset along x where its inner wall touches the peg, m
+        return self.push_through(
+            "hard-cases-tube-peg", lambda r: 1000 * (num(r, "x") - touch), lambda r: -num(r, "fx"),
+            lambda rs: max(range(len(rs)), key=lambda i: num(rs[i], "x")),
+            [(0.25, "wall mid-surface in the peg"), (0.5, "wall through the peg's side")],
+            "depth of the tube's inner wall in the peg (mm)",
+            "force on the tube along -x, opposing the push (N)",
+            {True: "tube (wall 0.5 mm) pushed into a peg: tube = pointshell",
+             False: "tube (wall 0.5 mm) pushed into a peg: tube = field"},
+            "hard_cases_tube_peg.png")
 
     # Issue 15: every model against the overlap volume: direction error to -grad V (median, bar;
     # p95, whisker), magnitude error after the fitted stiffness scale, and the largest
@@ -656,38 +681,6 @@ class Figures:
         self.save(fig, "tessellation.png")
         return True
 
-    # Issue 20, a thin feature: a thin-walled tube over a peg pushed sideways into it and on
-    # through its 0.5 mm wall: the force on the tube opposing the push against the depth.
-    def hard_cases_tube_peg(self):
-        rows = self.load("hard-cases-tube-peg", "cycles")
-        if not rows:
-            return False
-        touch = 0.0015  # tube offset along x where its inner wall touches the peg, m
-        by = defaultdict(list)
-        for r in rows:
-            by[(r.get("roles", "normal"), r["model"])].append(r)
-        orders = sorted({k[0] for k in by})
-        fig, axes = plt.subplots(1, len(orders), figsize=(5.5 * len(orders), 4.2), squeeze=False)
-        for ax, order in zip(axes[0], orders):
-            for (o, model), rs in sorted(by.items()):
-                if o != order:
-                    continue
-                deepest = max(range(len(rs)), key=lambda i: num(rs[i], "x"))
-                rs = rs[: deepest + 1]
-                ax.plot([1000 * (num(r, "x") - touch) for r in rs], [-num(r, "fx") for r in rs], lw=1.0, label=model,
-                        ls="--" if model.endswith("-linear") else "-")
-            for d, what in [(0.25, "wall mid-surface in the peg"), (0.5, "wall through the peg's side")]:
-                ax.axvline(d, color="0.5", ls=":", lw=0.8)
-                ax.text(d, 0, " " + what, rotation=90, va="bottom", fontsize=7, color="0.4")
-            ax.axhline(0, color="k", lw=0.6)
-            ax.set_xlabel("depth of the tube's inner wall in the peg (mm)")
-            ax.set_ylabel("force on the tube along -x, opposing the push (N)")
-            ax.set_title("tube (wall 0.5 mm) pushed into a peg: " +
-                         ("tube = pointshell" if order == "normal" else "tube = field"), fontsize=10)
-            ax.grid(True, alpha=0.3)
-            ax.legend(fontsize=8)
-        self.save(fig, "hard_cases_tube_peg.png")
-        return True
 
 
 def main():

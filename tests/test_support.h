@@ -2,7 +2,10 @@
 #pragma once
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
+#include <array>
+#include <cstdio>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -47,5 +50,24 @@ class TempDir {
   std::filesystem::path path_;
   static inline int counter_ = 0;
 };
+
+// What a shell command printed (stdout and stderr together) and its exit code (-1 when it
+// did not exit normally).
+struct CommandOutcome {
+  int exit_code = -1;
+  std::string output;
+};
+
+// Runs COMMAND through the shell with stderr joined to stdout.
+inline CommandOutcome RunShellCommand(const std::string& command) {
+  CommandOutcome o;
+  FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) return o;
+  std::array<char, 4096> buf;
+  while (std::fgets(buf.data(), int(buf.size()), pipe)) o.output += buf.data();
+  const int status = ::pclose(pipe);
+  o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return o;
+}
 
 }  // namespace contactlab::testing

@@ -16,22 +16,11 @@ namespace {
 
 using testing::TempDir;
 
-struct Outcome {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
+using Outcome = testing::CommandOutcome;
 
 // Runs `contactlab ARGS` through the shell after the shell commands PREFIX.
 Outcome RunCli(const std::string& args, const std::string& prefix = "") {
-  const std::string command = prefix + " " + std::string(CONTACTLAB_CLI) + " " + args + " 2>&1";
-  Outcome o;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (!pipe) return o;
-  std::array<char, 4096> buf;
-  while (std::fgets(buf.data(), int(buf.size()), pipe)) o.output += buf.data();
-  const int status = ::pclose(pipe);
-  o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return o;
+  return testing::RunShellCommand(prefix + " " + std::string(CONTACTLAB_CLI) + " " + args);
 }
 
 const char* kScene = R"(name: view-cli
