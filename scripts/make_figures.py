@@ -589,19 +589,20 @@ class Figures:
              False: "tube (wall 0.5 mm) pushed into a peg: tube = field"},
             "hard_cases_tube_peg.png")
 
-    # Issue 15: every model against the overlap volume: direction error to -grad V (median, bar;
-    # p95, whisker), magnitude error after the fitted stiffness scale, and the largest
-    # per-cycle force jump relative to the model's own median force.
-    def compare_volume(self):
-        rows = self.load("compare-volume", "summary")
+    # Issue 15: every model against a reference, per case (a sweep axis): direction error
+    # (median, bar; p95, whisker), magnitude error after the fitted stiffness scale, and the
+    # largest per-cycle force jump relative to the model's own median force.
+    def model_bars(self, experiment, axis_prefix, reference, title, out):
+        rows = self.load(experiment, "summary")
         if not rows:
             return False
-        scenes = sorted({r["scene"] for r in rows})
+        axis = next(k for k in rows[0] if k.startswith(axis_prefix))
+        cases = sorted({r[axis] for r in rows})
         models = []
         for r in rows:
             if r["model"] not in models:
                 models.append(r["model"])
-        panels = [("median_dir_error_deg", "p95_dir_error_deg", "angle to -∇V (°): median, whisker p95"),
+        panels = [("median_dir_error_deg", "p95_dir_error_deg", f"angle to {reference} (°): median, whisker p95"),
                   ("rms_rel_error_calibrated", None, "relative RMS error after the fitted scale"),
                   ("max_jump_rel", None, "largest jump / median |F| in contact")]
         fig, axes = plt.subplots(1, len(panels), figsize=(5.0 * len(panels), 4.2), squeeze=False)
@@ -609,22 +610,32 @@ class Figures:
         for ax, (key, whisker, label) in zip(axes[0], panels):
             for j, model in enumerate(models):
                 xs, ys, hi = [], [], []
-                for i, sc in enumerate(scenes):
+                for i, case in enumerate(cases):
                     for r in rows:
-                        if r["scene"] == sc and r["model"] == model and num(r, key) >= 0:
+                        if r[axis] == case and r["model"] == model and num(r, key) >= 0:
                             xs.append(i + (j - (len(models) - 1) / 2) * width)
                             ys.append(num(r, key))
                             hi.append(num(r, whisker) - num(r, key) if whisker else 0)
                 ax.bar(xs, ys, width, color=f"C{j}", label=model,
                        yerr=[[0] * len(hi), hi] if whisker else None, capsize=2)
-            ax.set_xticks(range(len(scenes)))
-            ax.set_xticklabels([os.path.splitext(os.path.basename(sc))[0] for sc in scenes], fontsize=8)
+            ax.set_xticks(range(len(cases)))
+            ax.set_xticklabels([os.path.splitext(os.path.basename(c))[0] for c in cases], fontsize=8)
             ax.set_ylabel(label, fontsize=9)
             ax.grid(True, axis="y", alpha=0.3)
         axes[0][0].legend(fontsize=7)
-        fig.suptitle("Against the exact overlap volume (reference 'volume'), per model and scene", fontsize=10)
-        self.save(fig, "compare_volume.png")
+        fig.suptitle(title, fontsize=10)
+        self.save(fig, out)
         return True
+
+    def compare_volume(self):
+        return self.model_bars("compare-volume", "scene", "-∇V",
+                               "Against the exact overlap volume (reference 'volume'), per model and scene",
+                               "compare_volume.png")
+
+    def analytic_cases(self):
+        return self.model_bars("analytic-cases", "scene.bodies", "the limit",
+                               "Against the closed-form eq. (2) limit (reference 'eq2-halfspace'), per model and case",
+                               "analytic_cases.png")
 
     # Issue 15, tessellation invariance: per model, how much the force changes between two
     # meshes of one shape at the same poses: RMS |F_coarse - F_fine| / RMS |F_fine| over the
@@ -690,7 +701,7 @@ def main():
     figs = Figures(os.path.abspath(args.results))
     for name in ["fig05b", "convergence_eq2", "fig10", "fig11", "fig14b", "fig15", "table1", "table1_deformable", "table1_defo_defo",
                  "deformable_cantilever",
-                 "continuity", "speed_vs_error", "compare_volume", "tessellation", "hard_cases_medial_axis", "hard_cases_tube_peg"]:
+                 "continuity", "speed_vs_error", "compare_volume", "analytic_cases", "tessellation", "hard_cases_medial_axis", "hard_cases_tube_peg"]:
         try:
             if not getattr(figs, name)():
                 print(f"make_figures: {name}: no results yet (run its experiment first)", file=sys.stderr)
