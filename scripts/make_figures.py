@@ -637,6 +637,56 @@ class Figures:
                                "Against the closed-form eq. (2) limit (reference 'eq2-halfspace'), per model and case",
                                "analytic_cases.png")
 
+    # Issue 15, role reversal on identical motion, every model: per scene and model the median
+    # relative difference of the force magnitudes and the median angle between the two forces
+    # over the cycles where both orders have a force (printed, and bars).
+    def asymmetry_models(self):
+        rows = self.load("asymmetry-models", "cycles")
+        if not rows:
+            return False
+        by = defaultdict(list)
+        for r in rows:
+            by[(r["scene"], r["model"], r["roles"])].append(r)
+        scenes = sorted({k[0] for k in by})
+        models = []
+        for r in rows:
+            if r["model"] not in models:
+                models.append(r["model"])
+        fig, axes = plt.subplots(1, 2, figsize=(10, 4.0))
+        width = 0.8 / max(1, len(models))
+        for i, scene in enumerate(scenes):
+            for j, model in enumerate(models):
+                a, b = by.get((scene, model, "normal"), []), by.get((scene, model, "swapped"), [])
+                mags, angles = [], []
+                for ra, rb in zip(a, b):
+                    fa = [num(ra, c) for c in ("fx", "fy", "fz")]
+                    fb = [num(rb, c) for c in ("fx", "fy", "fz")]
+                    na, nb = math.hypot(*fa), math.hypot(*fb)
+                    if na > 1e-9 and nb > 1e-9:
+                        mags.append(abs(na - nb) / max(na, nb))
+                        cos = sum(x * y for x, y in zip(fa, fb)) / (na * nb)
+                        angles.append(math.degrees(math.acos(max(-1.0, min(1.0, cos)))))
+                if not mags:
+                    continue
+                mags.sort()
+                angles.sort()
+                mag, ang = mags[len(mags) // 2], angles[len(angles) // 2]
+                name = os.path.splitext(os.path.basename(scene))[0]
+                print(f"asymmetry {name} {model}: median magnitude difference {mag:.3f}, median angle {ang:.2f} deg "
+                      f"({len(mags)} cycles)")
+                x = i + (j - (len(models) - 1) / 2) * width
+                axes[0].bar(x, mag, width, color=f"C{j}", label=model if i == 0 else None)
+                axes[1].bar(x, ang, width, color=f"C{j}")
+        for ax, label in zip(axes, ["median ||F₁| − |F₂|| / max", "median angle between F₁ and F₂ (°)"]):
+            ax.set_xticks(range(len(scenes)))
+            ax.set_xticklabels([os.path.splitext(os.path.basename(sc))[0] for sc in scenes], fontsize=8)
+            ax.set_ylabel(label)
+            ax.grid(True, axis="y", alpha=0.3)
+        axes[0].legend(fontsize=7)
+        fig.suptitle("Role reversal on identical motion, every model", fontsize=10)
+        self.save(fig, "asymmetry_models.png")
+        return True
+
     # Issue 15, tessellation invariance: per model, how much the force changes between two
     # meshes of one shape at the same poses: RMS |F_coarse - F_fine| / RMS |F_fine| over the
     # cycles (printed, and a bar per shape), and the force on both meshes over time.
@@ -701,7 +751,7 @@ def main():
     figs = Figures(os.path.abspath(args.results))
     for name in ["fig05b", "convergence_eq2", "fig10", "fig11", "fig14b", "fig15", "table1", "table1_deformable", "table1_defo_defo",
                  "deformable_cantilever",
-                 "continuity", "speed_vs_error", "compare_volume", "analytic_cases", "tessellation", "hard_cases_medial_axis", "hard_cases_tube_peg"]:
+                 "continuity", "speed_vs_error", "compare_volume", "analytic_cases", "asymmetry_models", "tessellation", "hard_cases_medial_axis", "hard_cases_tube_peg"]:
         try:
             if not getattr(figs, name)():
                 print(f"make_figures: {name}: no results yet (run its experiment first)", file=sys.stderr)
