@@ -628,9 +628,33 @@ class Figures:
         return True
 
     def compare_volume(self):
-        return self.model_bars("compare-volume", "scene", "-∇V",
+        made = self.model_bars("compare-volume", "scene", "-∇V",
                                "Against the exact overlap volume (reference 'volume'), per model and scene",
                                "compare_volume.png")
+        if made:
+            self.monotonicity("compare-volume")
+        return made
+
+    # Monotonicity along a pure approach: while the moving body presses deeper (the first half
+    # of an approach-press run, every cycle deeper than the one before; over these shallow
+    # presses the overlap volume grows with the depth), |F| should not fall. Prints, per scene and model, the cycles where it falls by
+    # more than 1 % of the model's median force in contact.
+    def monotonicity(self, experiment):
+        rows = self.load(experiment, "cycles")
+        by = defaultdict(list)
+        for r in rows:
+            by[(r["scene"], r["model"])].append(r)
+        for (scene, model), rs in sorted(by.items()):
+            half = rs[: len(rs) // 2 + 1]
+            forces = [math.hypot(num(r, "fx"), num(r, "fy"), num(r, "fz")) for r in half]
+            touching = sorted(f for f in forces if f > 0)
+            if not touching:
+                continue
+            tol = 0.01 * touching[len(touching) // 2]
+            drops = sum(1 for a, b in zip(forces, forces[1:]) if b < a - tol)
+            name = os.path.splitext(os.path.basename(scene))[0]
+            print(f"monotonicity {name} {model}: {drops} of {len(forces) - 1} pressing cycles with |F| falling "
+                  f"by more than 1 % of the median force")
 
     def analytic_cases(self):
         return self.model_bars("analytic-cases", "scene.bodies", "the limit",
