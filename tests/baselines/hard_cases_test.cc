@@ -824,14 +824,26 @@ TEST(HardCases, InputExtremes) {
   }
 }
 
-// Fields of 8, 128 and 512 cells along the longest side: the ball's 512³ field has 134 M
-// nodes (537 MB of floats), the plate's 512 x 512 x 35. About 35 s and 1.8 GB here.
-TEST(HardCases, FieldsOf8To512Cells) {
+// Fields of 8 and 128 cells along the longest side.
+TEST(HardCases, FieldsOf8And128Cells) {
   RegisterBaselineContactModels();
   testing::TempDir cache;
   HardCaseRunner runner(cache);
   runner.Run(BallThroughPlate(8, 8, "fields-8"));
   runner.Run(BallThroughPlate(128, 128, "fields-128"));
+}
+
+// Fields of 512 cells: the ball's 512³ field has 134 M nodes (537 MB of floats), the plate's
+// 512 x 512 x 35. About 35-70 s and 1.8 GB in the Release build, most of it VPS's 512³ voxmap;
+// under AddressSanitizer it runs past ctest's 10-minute limit, and the same code is checked
+// there at 8 and 128 cells.
+TEST(HardCases, FieldsOf512Cells) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "512-cell fields take more than 10 minutes under AddressSanitizer; the Release suite runs them";
+#endif
+  RegisterBaselineContactModels();
+  testing::TempDir cache;
+  HardCaseRunner runner(cache);
   runner.Run(BallThroughPlate(512, 512, "fields-512"));
 }
 
