@@ -16,14 +16,6 @@ Aabb WorldBox(const TriangleMesh& mesh, const Pose& X) {
   return box;
 }
 
-double SurfaceArea(const TriangleMesh& mesh) {
-  double area = 0;
-  for (const auto& t : mesh.triangles) {
-    area += 0.5 * (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross(mesh.vertices[t[2]] - mesh.vertices[t[0]]).norm();
-  }
-  return area;
-}
-
 }  // namespace
 
 VolumeReference::VolumeReference(std::shared_ptr<const TriangleMesh> mesh_A, std::shared_ptr<const TriangleMesh> mesh_B,
@@ -34,7 +26,7 @@ VolumeReference::VolumeReference(std::shared_ptr<const TriangleMesh> mesh_A, std
   }
   volume_ = std::make_unique<PenetrationVolume>(*mesh_A_, *mesh_B_);
   const double L = penalty.L > 0 ? penalty.L : PenaltyParams::kDefaultManyPointThreshold;
-  k_V_ = penalty.k_C * L / std::sqrt(SurfaceArea(*mesh_A_));
+  k_V_ = penalty.k_C * L / std::sqrt(mesh_A_->SurfaceArea());
   step_ = 1e-3 * mesh_B_->Bounds().size().norm();
 }
 

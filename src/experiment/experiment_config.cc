@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "experiment/deformed_field_study.h"
@@ -498,17 +499,46 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
   return c;
 }
 
+namespace {
+
+// The value picked on each sweep axis by job INDEX (the last axis varies fastest), and back.
+std::vector<std::size_t> AxisPicks(const ExperimentConfig& config, std::size_t index) {
+  std::vector<std::size_t> pick(config.sweep.size());
+  for (std::size_t a = config.sweep.size(); a-- > 0;) {
+    pick[a] = index % config.sweep[a].values.size();
+    index /= config.sweep[a].values.size();
+  }
+  return pick;
+}
+
+std::size_t JobIndex(const ExperimentConfig& config, const std::vector<std::size_t>& pick) {
+  std::size_t index = 0;
+  for (std::size_t a = 0; a < config.sweep.size(); ++a) index = index * config.sweep[a].values.size() + pick[a];
+  return index;
+}
+
+}  // namespace
+
+std::optional<Job> ConfigRoleOrderJob(const ExperimentConfig& config, const Job& job) {
+  if (!job.roles_swapped) return job;
+  std::vector<std::size_t> pick = AxisPicks(config, std::size_t(job.index));
+  for (std::size_t a = 0; a < config.sweep.size(); ++a) {
+    if (config.sweep[a].name != "roles") continue;
+    const auto& values = config.sweep[a].values;
+    const auto normal = std::find(values.begin(), values.end(), "normal");
+    if (normal == values.end()) return std::nullopt;
+    pick[a] = std::size_t(normal - values.begin());
+    return BuildJob(config, int(JobIndex(config, pick)), pick);
+  }
+  return std::nullopt;
+}
+
 std::vector<Job> ExpandJobs(const ExperimentConfig& config) {
   std::vector<Job> jobs;
   std::size_t total = 1;
   for (const SweepAxis& a : config.sweep) total *= a.values.size();
   for (std::size_t index = 0; index < total; ++index) {
-    std::size_t rest = index;
-    std::vector<std::size_t> pick(config.sweep.size());
-    for (std::size_t a = config.sweep.size(); a-- > 0;) {
-      pick[a] = rest % config.sweep[a].values.size();
-      rest /= config.sweep[a].values.size();
-    }
+    const std::vector<std::size_t> pick = AxisPicks(config, index);
     try {
       jobs.push_back(BuildJob(config, int(index), pick));
     } catch (const Error& e) {

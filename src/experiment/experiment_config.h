@@ -115,6 +115,12 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
 // Error naming the config file, the job and its values when a combination does not parse.
 std::vector<Job> ExpandJobs(const ExperimentConfig& config);
 
+// The job with JOB's sweep values but the bodies in the config's roles: JOB itself when its
+// roles were not swapped, the roles axis's "normal" job otherwise (none when that axis has no
+// "normal" value). Runs of both role orders take their touch placement from it, so they follow
+// one motion.
+std::optional<Job> ConfigRoleOrderJob(const ExperimentConfig& config, const Job& job);
+
 // Sets DOC at PATH (dot-separated keys; "key[N]", "key[field=value]" pick a list element) to
 // VALUE (a YAML node), creating mappings along the way; no VALUE (nullopt) removes the key. Throws
 // Error("WHERE: ...") when the path runs into a value that is not a mapping or a list

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <optional>
 
 #include "experiment/contact_placement.h"
 #include "experiment/metrics.h"
@@ -131,21 +132,9 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
     // Both role orders follow one motion: a job whose roles were swapped takes the placement of
     // the job with the same sweep values in the config's role order (the same poses, the same
     // field resolutions on the same bodies), so role reversal compares like with like.
-    const Job* placement = &job;
-    std::vector<Job> jobs;
-    if (job.roles_swapped) {
-      jobs = ExpandJobs(config);
-      for (const Job& j : jobs) {
-        if (j.roles_swapped || j.axis_values.size() != job.axis_values.size()) continue;
-        bool same = true;
-        for (std::size_t a = 0; a < j.axis_values.size(); ++a) {
-          same = same && (j.axis_values[a].first == "roles" || j.axis_values[a] == job.axis_values[a]);
-        }
-        if (same) placement = &j;
-      }
-    }
+    const std::optional<Job> placement = job.roles_swapped ? ConfigRoleOrderJob(config, job) : std::nullopt;
     Pose moved;
-    if (placement == &job) {
+    if (!placement) {
       moved = TouchAlong(scene, assets, moving_is_B, X_WA0, X_WB0, dir, depth, where);
     } else {
       const Scene& normal = placement->scene;
@@ -172,8 +161,8 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
   const std::unique_ptr<ContactModel> reference = MakeReference(config, scene, options, &reference_assets);
   // Every model follows the same poses: a reference that ignores deformation (all but a
   // deformable pointshell reference) is evaluated once per cycle and reused by each model.
-  const bool reuse_reference = reference && !FindContactModel(config.reference_model)->needs.deformable_A &&
-                               !FindContactModel(config.reference_model)->needs.deformable_B;
+  const ContactModelNeeds* reference_needs = reference ? &FindContactModel(config.reference_model)->needs : nullptr;
+  const bool reuse_reference = reference_needs && !reference_needs->deformable_A && !reference_needs->deformable_B;
   std::map<std::int64_t, Eigen::Vector3d> reference_at;
 
   for (const std::string& name : job.models) {

@@ -11,6 +11,7 @@
 #include "deform/embedded_points.h"
 #include "experiment/experiment_config.h"
 #include "experiment/result_csv.h"
+#include "geometry/line_scanner.h"
 #include "util/atomic_file.h"
 #include "util/config_node.h"
 #include "util/error.h"
@@ -144,21 +145,9 @@ Replay ReadReplay(const fs::path& dir, std::optional<int> job, int max_frames) {
 
   // cycles.csv: the columns by name.
   const std::string text = ReadWholeFile(cycles_file);
-  std::size_t pos = 0;
-  long line_no = 0;
-  auto next_line = [&](std::string* line) {
-    if (pos >= text.size()) return false;
-    std::size_t eol = text.find('\n', pos);
-    if (eol == std::string::npos) eol = text.size();
-    *line = text.substr(pos, eol - pos);
-    if (!line->empty() && line->back() == '\r') line->pop_back();
-    pos = eol + 1;
-    ++line_no;
-    return true;
-  };
-  std::string line;
-  if (!next_line(&line) || line.empty()) Fail(cycles_file.string(), "is empty");
-  const std::vector<std::string> header = SplitCsvLine(line);
+  internal::LineScanner scan(text, cycles_file.string());
+  if (!scan.NextLine() || scan.line().empty()) Fail(cycles_file.string(), "is empty");
+  const std::vector<std::string> header = SplitCsvLine(std::string(scan.line()));
   std::map<std::string, int> column;
   for (int c = 0; c < int(header.size()); ++c) column.emplace(header[c], c);
   auto col = [&](const char* name) {
@@ -196,7 +185,7 @@ Replay ReadReplay(const fs::path& dir, std::optional<int> job, int max_frames) {
     std::istringstream in(cells[c]);
     for (std::string item; in >> item;) {
       const std::optional<double> v = ParseDouble(item);
-      if (!v) FailAtLine(cycles_file.string(), line_no, std::string("column ") + what + ": " + QuoteToken(item) + " is not a number");
+      if (!v) FailAtLine(cycles_file.string(), scan.line_number(), std::string("column ") + what + ": " + QuoteToken(item) + " is not a number");
       q.push_back(float(*v));
     }
     return q;
@@ -206,17 +195,17 @@ Replay ReadReplay(const fs::path& dir, std::optional<int> job, int max_frames) {
   auto number = [&](const std::vector<std::string>& cells, int c, const char* what) {
     const std::optional<double> v = c < int(cells.size()) ? ParseDouble(cells[c]) : std::nullopt;
     if (!v) {
-      FailAtLine(cycles_file.string(), line_no,
+      FailAtLine(cycles_file.string(), scan.line_number(),
                  std::string("column ") + what + ": " + (c < int(cells.size()) ? QuoteToken(cells[c]) : "(missing)") +
                      " is not a number");
     }
     return *v;
   };
-  while (next_line(&line)) {
-    if (line.empty()) continue;
-    const std::vector<std::string> cells = SplitCsvLine(line);
+  while (scan.NextLine()) {
+    if (scan.line().empty()) continue;
+    const std::vector<std::string> cells = SplitCsvLine(std::string(scan.line()));
     if (cells.size() != header.size()) {
-      FailAtLine(cycles_file.string(), line_no,
+      FailAtLine(cycles_file.string(), scan.line_number(),
                  std::to_string(cells.size()) + " cells, the header has " + std::to_string(header.size()));
     }
     const int row_job = int(number(cells, c_job, "job"));
