@@ -26,12 +26,15 @@ class ContactAccumulator {
     const Eigen::Vector3d f = d * N_B;
     force_ += f;
     torque_ += p_B.cross(f);
-    const Eigen::Matrix3d M = N_B * g_B.transpose();  // N g^T
-    const Eigen::Matrix3d P = Skew(p_B);
-    M_ += M;
-    MP_ += M * P;
-    PM_ += P * M;
-    PMP_ += P * M * P;
+    // With P = [p]x (so P^T = -P): g^T P = (g x p)^T and P N = p x N, hence
+    // M P = N (g x p)^T, P M = (p x N) g^T, P M P = (p x N)(g x p)^T: four outer products
+    // instead of three 3x3 matrix products per point.
+    const Eigen::Vector3d gp = g_B.cross(p_B);
+    const Eigen::Vector3d pN = p_B.cross(N_B);
+    M_.noalias() += N_B * g_B.transpose();
+    MP_.noalias() += N_B * gp.transpose();
+    PM_.noalias() += pN * g_B.transpose();
+    PMP_.noalias() += pN * gp.transpose();
     ++count_;
     if (-d > max_penetration_) max_penetration_ = -d;
   }
