@@ -4,6 +4,7 @@
 #pragma once
 
 #include "geometry/pose.h"
+#include "sdf/batch_distance.h"
 
 namespace contactlab {
 
@@ -22,6 +23,12 @@ struct FloatTransform {
     out[0] = r[0] * x + r[1] * y + r[2] * z + t[0];
     out[1] = r[3] * x + r[4] * y + r[5] * z + t[1];
     out[2] = r[6] * x + r[7] * y + r[8] * z + t[2];
+  }
+  BatchTransform AsBatch() const {
+    BatchTransform b;
+    for (int i = 0; i < 9; ++i) b.r[i] = r[i];
+    for (int i = 0; i < 3; ++i) b.t[i] = t[i];
+    return b;
   }
   // v_B = R_BA v_A, for v_A = (x, y, z).
   void Rotate(float x, float y, float z, float* out) const {

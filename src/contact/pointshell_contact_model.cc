@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "contact/float_transform.h"
+#include "sdf/batch_distance.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -62,6 +63,7 @@ struct RigidShellPolicy {
   std::int64_t* earliest_cycle;  // (#N) first cycle a culled node may touch again
   std::int64_t cycle;
   double step;  // lipschitz * max_point_speed * cycle_seconds: distance closed per cycle
+  const BatchTransform X_batch = X_BA.AsBatch();
 
   float EvaluatePoint(int i) {
     float p_BQ[3];
@@ -72,6 +74,19 @@ struct RigidShellPolicy {
       AddContactPoint(field, X_BA, n_A, p_BQ, d, gradient, acc);
     }
     return d;
+  }
+  void EvaluatePoints(int begin, const std::int32_t* index, int n, float* d) {
+    const int offset = index ? 0 : begin;
+    BatchDistances(field, X_batch, s.x.data() + offset, s.y.data() + offset, s.z.data() + offset, index, n, d);
+    for (int k = 0; k < n; ++k) {
+      if (d[k] < 0.f) [[unlikely]] {
+        const int i = index ? index[k] : begin + k;
+        float p_BQ[3];
+        X_BA.Apply(s.x[i], s.y[i], s.z[i], p_BQ);
+        const float n_A[3] = {s.nx[i], s.ny[i], s.nz[i]};
+        AddContactPoint(field, X_BA, n_A, p_BQ, d[k], gradient, acc);
+      }
+    }
   }
   float Radius(int node) const { return s.node_radius[node]; }
   bool Asleep(int node) const { return cycle < earliest_cycle[node]; }

@@ -6,6 +6,9 @@
 //
 //   struct Policy {
 //     float EvaluatePoint(int i);        // d of point i in B's field; adds its force when d < 0
+//     // Optional (BatchPolicy), many points at once: D[k] for point INDEX[k], or for point
+//     // BEGIN + k when INDEX is null, k < N; adds the force of each point in contact.
+//     void EvaluatePoints(int begin, const std::int32_t* index, int n, float* d);
 //     float Radius(int node) const;      // bounding radius of the node's subtree this cycle
 //     bool Asleep(int node) const;       // temporal coherence: skip the node this cycle
 //     void Sleep(int node, double margin);  // the node's ball is MARGIN (> 0) clear of contact
@@ -13,6 +16,7 @@
 #pragma once
 
 #include <algorithm>
+#include <concepts>
 #include <cstdint>
 #include <vector>
 
@@ -56,6 +60,12 @@ inline void AddContactPoint(const DistanceField& field, const FloatTransform& X_
                       n_B);
 }
 
+// A policy that evaluates a batch of points at once (the vectorised lookups).
+template <class Policy>
+concept BatchPolicy = requires(Policy& p, const std::int32_t* index, int n, float* d) {
+  { p.EvaluatePoints(0, index, n, d) };
+};
+
 // Scratch of the tree traversal, sized once for a shell.
 class TreeTraversalState {
  public:
@@ -64,7 +74,9 @@ class TreeTraversalState {
       : queue_a_(std::size_t(s.num_nodes())),
         queue_b_(std::size_t(s.num_nodes())),
         point_stamp_(std::size_t(s.num_points()), 0u),
-        point_d_(std::size_t(s.num_points()), 0.f) {}
+        point_d_(std::size_t(s.num_points()), 0.f),
+        batch_(std::size_t(s.num_nodes())),
+        batch_d_(std::size_t(s.num_nodes())) {}
 
   int last_level_rendered() const { return last_level_rendered_; }
   void Reset() { last_level_rendered_ = -1; }
@@ -103,23 +115,35 @@ class TreeTraversalState {
         if (double(visited + current_size) > threshold) break;
       }
       const bool leaf_level = (level == max_level) || (level + 1 >= s.num_levels());
-      std::int64_t next_size = 0;
+      // 1. The level's awake nodes, kept in place, and the points not yet evaluated this cycle.
+      std::int64_t awake = 0;
+      int batch = 0;
       for (std::int64_t k = 0; k < current_size; ++k) {
         const std::int32_t node = current[k];
         if (params.coherence && policy.Asleep(node)) {
           ++skipped;
           continue;
         }
-        ++visited;
+        current[awake++] = node;
         const std::int32_t i = s.node_point[node];
-        float d;
-        if (point_stamp_[i] == stamp_) {
-          d = point_d_[i];
-        } else {
-          d = policy.EvaluatePoint(i);
+        if (point_stamp_[i] != stamp_) {
           point_stamp_[i] = stamp_;
-          point_d_[i] = d;
+          batch_[batch++] = i;
         }
+      }
+      visited += awake;
+      // 2. Their distances (and forces), as one batch.
+      if constexpr (BatchPolicy<Policy>) {
+        policy.EvaluatePoints(0, batch_.data(), batch, batch_d_.data());
+        for (int b = 0; b < batch; ++b) point_d_[batch_[b]] = batch_d_[b];
+      } else {
+        for (int b = 0; b < batch; ++b) point_d_[batch_[b]] = policy.EvaluatePoint(batch_[b]);
+      }
+      // 3. Cull a node whose ball is clear of contact, else queue its children.
+      std::int64_t next_size = 0;
+      for (std::int64_t k = 0; k < awake; ++k) {
+        const std::int32_t node = current[k];
+        const float d = point_d_[s.node_point[node]];
         const float radius = leaf_level ? 0.f : policy.Radius(node);
         if (d > lip * radius) {
           if (params.coherence) policy.Sleep(node, double(d - lip * radius));
@@ -142,6 +166,8 @@ class TreeTraversalState {
   std::vector<std::int32_t> queue_a_, queue_b_;  // (#N) traversal queues
   std::vector<std::uint32_t> point_stamp_;       // (#P) evaluation stamp of each point's d
   std::vector<float> point_d_;                   // (#P) d cached for the stamp
+  std::vector<std::int32_t> batch_;              // (#N) points evaluated at this level
+  std::vector<float> batch_d_;                   // (#N) their distances
   std::uint32_t stamp_ = 0;
   int last_level_rendered_ = -1;
 };
@@ -150,7 +176,13 @@ class TreeTraversalState {
 template <class Policy>
 void RunLinearTraversal(const Pointshell& s, int max_level, Policy& policy, ContactStats* stats) {
   const int n = s.level_point_end[max_level];
-  for (int i = 0; i < n; ++i) policy.EvaluatePoint(i);
+  if constexpr (BatchPolicy<Policy>) {
+    constexpr int kChunk = 512;  // distances on the stack, in L1
+    float d[kChunk];
+    for (int begin = 0; begin < n; begin += kChunk) policy.EvaluatePoints(begin, nullptr, std::min(kChunk, n - begin), d);
+  } else {
+    for (int i = 0; i < n; ++i) policy.EvaluatePoint(i);
+  }
   stats->nodes_visited = n;
   stats->level_rendered = max_level;
 }

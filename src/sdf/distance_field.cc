@@ -14,6 +14,9 @@ DistanceField::DistanceField(const Eigen::Vector3d& origin, double spacing, cons
   if ((dims.array() < 2).any()) Fail(where, "every grid dimension must be at least 2");
   if (!origin.allFinite()) Fail(where, "origin is not finite");
   const std::int64_t n = std::int64_t(dims.x()) * dims.y() * dims.z();
+  if (n >= (std::int64_t(1) << 31)) {  // 32-bit sample indices in the vectorised lookups
+    Fail(where, "has " + std::to_string(n) + " samples, more than 2^31 - 1");
+  }
   if (std::int64_t(values_.size()) != n) {
     Fail(where, "holds " + std::to_string(values_.size()) + " samples, dimensions need " + std::to_string(n));
   }

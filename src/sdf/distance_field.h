@@ -63,6 +63,17 @@ class DistanceField {
   // the bound and the gradient of d_box). Double precision throughout.
   double DistanceAndGradient(const Eigen::Vector3d& p, Eigen::Vector3d* gradient) const;
 
+  // The hot-path constants of Distance, for the vectorised lookups (sdf/batch_distance.h).
+  struct FloatGrid {
+    const float* values;
+    int nx, ny, nz;
+    float ox, oy, oz, inv_h, ex, ey, ez, x1, y1, z1, boundary_min;
+  };
+  FloatGrid float_grid() const {
+    return {values_.data(), dims_.x(), dims_.y(), dims_.z(), ox_, oy_, oz_, inv_h_, ex_, ey_, ez_,
+            x1_, y1_, z1_, boundary_min_};
+  }
+
   // True when P lies inside the grid box.
   bool Inside(const Eigen::Vector3d& p) const;
 

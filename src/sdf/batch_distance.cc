@@ -1,0 +1,139 @@
+// BatchDistances for each instruction set Highway compiles (this file is included once per
+// target by foreach_target.h), and the run-time dispatch between them.
+#include "sdf/batch_distance.h"
+
+#include <algorithm>
+#include <limits>
+
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "sdf/batch_distance.cc"
+#include <hwy/foreach_target.h>  // NOLINT: re-includes this file per target
+#include <hwy/highway.h>
+
+HWY_BEFORE_NAMESPACE();
+namespace contactlab {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+void BatchDistancesImpl(const DistanceField& field, const BatchTransform& X, const float* HWY_RESTRICT x,
+                        const float* HWY_RESTRICT y, const float* HWY_RESTRICT z,
+                        const std::int32_t* HWY_RESTRICT index, int n, float* HWY_RESTRICT d) {
+  const hn::ScalableTag<float> df;
+  const hn::RebindToSigned<decltype(df)> di;
+  using VF = hn::Vec<decltype(df)>;
+  using VI = hn::Vec<decltype(di)>;
+  const int lanes = int(hn::Lanes(df));
+  if (field.empty()) {  // never in contact, as Distance
+    for (int k = 0; k < n; ++k) d[k] = std::numeric_limits<float>::infinity();
+    return;
+  }
+  const DistanceField::FloatGrid g = field.float_grid();
+
+  const VF r0 = hn::Set(df, X.r[0]), r1 = hn::Set(df, X.r[1]), r2 = hn::Set(df, X.r[2]);
+  const VF r3 = hn::Set(df, X.r[3]), r4 = hn::Set(df, X.r[4]), r5 = hn::Set(df, X.r[5]);
+  const VF r6 = hn::Set(df, X.r[6]), r7 = hn::Set(df, X.r[7]), r8 = hn::Set(df, X.r[8]);
+  const VF t0 = hn::Set(df, X.t[0]), t1 = hn::Set(df, X.t[1]), t2 = hn::Set(df, X.t[2]);
+  const VF ox = hn::Set(df, g.ox), oy = hn::Set(df, g.oy), oz = hn::Set(df, g.oz);
+  const VF x1 = hn::Set(df, g.x1), y1 = hn::Set(df, g.y1), z1 = hn::Set(df, g.z1);
+  const VF inv_h = hn::Set(df, g.inv_h), zero = hn::Zero(df);
+  const VF ex = hn::Set(df, g.ex), ey = hn::Set(df, g.ey), ez = hn::Set(df, g.ez);
+  const VF inf = hn::Set(df, std::numeric_limits<float>::infinity());
+  const VF boundary_min = hn::Set(df, g.boundary_min);
+  const VI last_i = hn::Set(di, g.nx - 2), last_j = hn::Set(di, g.ny - 2), last_k = hn::Set(di, g.nz - 2);
+  const VI sy = hn::Set(di, g.nx), sz = hn::Set(di, g.nx * g.ny);
+  const std::int32_t oxy = g.nx, oxz = g.nx * g.ny;
+
+  // One vector of points in A's frame -> their distances.
+  auto lookup = [&](VF px, VF py, VF pz) HWY_ATTR {
+    const VF bx = hn::MulAdd(r0, px, hn::MulAdd(r1, py, hn::MulAdd(r2, pz, t0)));
+    const VF by = hn::MulAdd(r3, px, hn::MulAdd(r4, py, hn::MulAdd(r5, pz, t1)));
+    const VF bz = hn::MulAdd(r6, px, hn::MulAdd(r7, py, hn::MulAdd(r8, pz, t2)));
+    // Outside the box: the conservative bound of Fig. 5(c); a NaN or infinite point: +inf.
+    const VF dx = hn::Max(hn::Max(ox - bx, bx - x1), zero);
+    const VF dy = hn::Max(hn::Max(oy - by, by - y1), zero);
+    const VF dz = hn::Max(hn::Max(oz - bz, bz - z1), zero);
+    const VF outside = hn::Sqrt(hn::MulAdd(dx, dx, hn::MulAdd(dy, dy, dz * dz))) + boundary_min;
+    const auto finite = (hn::Abs(bx) + hn::Abs(by) + hn::Abs(bz)) < inf;
+    VF result = hn::IfThenElse(finite, outside, inf);
+
+    VF gx = (bx - ox) * inv_h, gy = (by - oy) * inv_h, gz = (bz - oz) * inv_h;
+    const auto inside = hn::And(hn::And(hn::And(gx >= zero, gy >= zero), hn::And(gz >= zero, gx <= ex)),
+                                hn::And(gy <= ey, gz <= ez));
+    if (hn::AllFalse(df, inside)) return result;
+    // Lanes outside the box look up cell 0 (a valid address) and are discarded. The last
+    // grid plane uses the last cell with t = 1.
+    gx = hn::IfThenElseZero(inside, gx);
+    gy = hn::IfThenElseZero(inside, gy);
+    gz = hn::IfThenElseZero(inside, gz);
+    const VI ci = hn::Min(hn::ConvertTo(di, gx), last_i);
+    const VI cj = hn::Min(hn::ConvertTo(di, gy), last_j);
+    const VI ck = hn::Min(hn::ConvertTo(di, gz), last_k);
+    const VF tx = gx - hn::ConvertTo(df, ci), ty = gy - hn::ConvertTo(df, cj), tz = gz - hn::ConvertTo(df, ck);
+    const VI base = ci + sy * cj + sz * ck;
+    const float* v = g.values;
+    const VF v000 = hn::GatherIndex(df, v, base);
+    const VF v100 = hn::GatherIndex(df, v + 1, base);
+    const VF v010 = hn::GatherIndex(df, v + oxy, base);
+    const VF v110 = hn::GatherIndex(df, v + oxy + 1, base);
+    const VF v001 = hn::GatherIndex(df, v + oxz, base);
+    const VF v101 = hn::GatherIndex(df, v + oxz + 1, base);
+    const VF v011 = hn::GatherIndex(df, v + oxz + oxy, base);
+    const VF v111 = hn::GatherIndex(df, v + oxz + oxy + 1, base);
+    const VF c00 = hn::MulAdd(tx, v100 - v000, v000);
+    const VF c10 = hn::MulAdd(tx, v110 - v010, v010);
+    const VF c01 = hn::MulAdd(tx, v101 - v001, v001);
+    const VF c11 = hn::MulAdd(tx, v111 - v011, v011);
+    const VF c0 = hn::MulAdd(ty, c10 - c00, c00);
+    const VF c1 = hn::MulAdd(ty, c11 - c01, c01);
+    return hn::IfThenElse(inside, hn::MulAdd(tz, c1 - c0, c0), result);
+  };
+
+  int k = 0;
+  for (; k + lanes <= n; k += lanes) {
+    VF result;
+    if (index) {
+      const VI i = hn::LoadU(di, index + k);
+      result = lookup(hn::GatherIndex(df, x, i), hn::GatherIndex(df, y, i), hn::GatherIndex(df, z, i));
+    } else {
+      result = lookup(hn::LoadU(df, x + k), hn::LoadU(df, y + k), hn::LoadU(df, z + k));
+    }
+    hn::StoreU(result, df, d + k);
+  }
+  // The last N mod lanes points: one more vector, padded with the last point, so every point
+  // is rounded alike wherever it falls in a batch.
+  if (k < n) {
+    constexpr int kMaxLanes = HWY_MAX_BYTES / sizeof(float);
+    HWY_ALIGN float px[kMaxLanes], py[kMaxLanes], pz[kMaxLanes], out[kMaxLanes];
+    for (int j = 0; j < lanes; ++j) {
+      const int m = std::min(k + j, n - 1);
+      const int i = index ? index[m] : m;
+      px[j] = x[i];
+      py[j] = y[i];
+      pz[j] = z[i];
+    }
+    hn::Store(lookup(hn::Load(df, px), hn::Load(df, py), hn::Load(df, pz)), df, out);
+    for (int j = 0; k + j < n; ++j) d[k + j] = out[j];
+  }
+}
+
+const char* TargetNameImpl() { return hwy::TargetName(HWY_TARGET); }
+
+}  // namespace HWY_NAMESPACE
+}  // namespace contactlab
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace contactlab {
+
+HWY_EXPORT(BatchDistancesImpl);
+HWY_EXPORT(TargetNameImpl);
+
+void BatchDistances(const DistanceField& field, const BatchTransform& X, const float* x, const float* y,
+                    const float* z, const std::int32_t* index, int n, float* d) {
+  HWY_DYNAMIC_DISPATCH(BatchDistancesImpl)(field, X, x, y, z, index, n, d);
+}
+
+const char* BatchDistanceTarget() { return HWY_DYNAMIC_DISPATCH(TargetNameImpl)(); }
+
+}  // namespace contactlab
+#endif  // HWY_ONCE
