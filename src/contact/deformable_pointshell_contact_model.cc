@@ -1,10 +1,12 @@
 // Barbič & James 2008, sec. 4.1: deformable pointshell against a rigid distance field.
 #include "contact/deformable_pointshell_contact_model.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "contact/reduced_force_sum.h"
+#include "sdf/batch_distance.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -24,24 +26,50 @@ struct DeformableShellPolicy {
   ReducedForceSum* sum;  // A's reduced force, or null
   double* wake;        // (#N)
   double clock;
+  const BatchTransform X_batch = X_BA.AsBatch();
 
   float EvaluatePoint(int i) {
-    const EmbeddedPoints& points = shell.points();
-    float p_AQ[3], p_BQ[3];
-    points.PositionF(i, q, p_AQ);
+    float p_AQ[3];
+    shell.points().PositionF(i, q, p_AQ);
+    float p_BQ[3];
     X_BA.Apply(p_AQ[0], p_AQ[1], p_AQ[2], p_BQ);
     const float d = field.Distance(p_BQ[0], p_BQ[1], p_BQ[2]);
-    if (d < 0.f) {
-      float n_A[3];
-      points.CorrectedNormalF(i, q, n_A);
-      AddContactPoint(field, X_BA, n_A, p_BQ, d, gradient, acc);
-      if (sum != nullptr) {
-        float w[kMaxReducedModes];
-        points.ProjectF(i, n_A, w);
-        sum->Add(d, w);
+    if (d < 0.f) AddContact(i, p_AQ, d);
+    return d;
+  }
+  // The deformed positions x = X + U q of a chunk, then their distances as one batch.
+  void EvaluatePoints(int begin, const std::int32_t* index, int n, float* d) {
+    constexpr int kChunk = 256;
+    float px[kChunk], py[kChunk], pz[kChunk];
+    for (int c0 = 0; c0 < n; c0 += kChunk) {
+      const int m = std::min(kChunk, n - c0);
+      for (int k = 0; k < m; ++k) {
+        float p[3];
+        shell.points().PositionF(index ? index[c0 + k] : begin + c0 + k, q, p);
+        px[k] = p[0], py[k] = p[1], pz[k] = p[2];
+      }
+      BatchDistances(field, X_batch, px, py, pz, nullptr, m, d + c0);
+      for (int k = 0; k < m; ++k) {
+        if (d[c0 + k] < 0.f) [[unlikely]] {
+          const float p_AQ[3] = {px[k], py[k], pz[k]};
+          AddContact(index ? index[c0 + k] : begin + c0 + k, p_AQ, d[c0 + k]);
+        }
       }
     }
-    return d;
+  }
+  // Point I, at P_AQ in A with distance D < 0: its force on B and its reduced force on A.
+  void AddContact(int i, const float* p_AQ, float d) {
+    const EmbeddedPoints& points = shell.points();
+    float p_BQ[3];
+    X_BA.Apply(p_AQ[0], p_AQ[1], p_AQ[2], p_BQ);
+    float n_A[3];
+    points.CorrectedNormalF(i, q, n_A);
+    AddContactPoint(field, X_BA, n_A, p_BQ, d, gradient, acc);
+    if (sum != nullptr) {
+      float w[kMaxReducedModes];
+      points.ProjectF(i, n_A, w);
+      sum->Add(d, w);
+    }
   }
   float Radius(int node) const { return shell.RadiusF(node, abs_q); }
   bool Asleep(int node) const { return clock < wake[node]; }
