@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "contact/float_transform.h"
+#include "pointshell/point_tree.h"
 #include "sdf/batch_distance.h"
 #include "util/error.h"
 
@@ -30,6 +31,9 @@ int ValidatePointshellModelInputs(const Pointshell* shell, const DistanceField* 
                                   const PointshellContactParams& params, const std::string& where) {
   if (!shell || shell->num_points() == 0 || shell->num_levels() == 0) Fail(where, "needs a non-empty pointshell");
   if (!field || field->empty()) Fail(where, "needs a distance field");
+  if (const std::int32_t n = NodeWithoutOwnFirstChild(*shell); n >= 0) {
+    Fail(where, "pointshell node " + std::to_string(n) + ": its first child is not its own point one level down");
+  }
   CheckPenaltyParams(params.penalty, where);
   if (params.level >= shell->num_levels() || params.level < -1) {
     Fail(where, "level " + std::to_string(params.level) + " is out of range (the pointshell has " +

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <concepts>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "contact/contact_accumulator.h"
@@ -73,37 +74,48 @@ class TreeTraversalState {
   explicit TreeTraversalState(const Pointshell& s)
       : queue_a_(std::size_t(s.num_nodes())),
         queue_b_(std::size_t(s.num_nodes())),
-        point_stamp_(std::size_t(s.num_points()), 0u),
-        point_d_(std::size_t(s.num_points()), 0.f),
-        batch_(std::size_t(s.num_nodes())),
-        batch_d_(std::size_t(s.num_nodes())) {}
+        queue_d_a_(std::size_t(s.num_nodes())),
+        queue_d_b_(std::size_t(s.num_nodes())),
+        evaluated_(std::size_t(s.num_points())),
+        evaluated_d_(std::size_t(s.num_points())) {}
 
   int last_level_rendered() const { return last_level_rendered_; }
-  void Reset() { last_level_rendered_ = -1; }
+  void Reset() {
+    last_level_rendered_ = -1;
+    num_evaluated_ = 0;
+  }
+  // The points whose distance the last cycle evaluated, [0, num_evaluated()), with their d.
+  int num_evaluated() const { return num_evaluated_; }
+  const std::int32_t* evaluated_points() const { return evaluated_.data(); }
+  const float* evaluated_distances() const { return evaluated_d_.data(); }
 
   // Breadth-first traversal of S down to MAX_LEVEL (sec. 3): a node is culled with its subtree
   // when its point's d exceeds LIPSCHITZ times its radius; with a node budget (> 0) a level
   // is rendered only if the nodes visited so far plus its queue fit the warm threshold (the
   // cold one, COLD_FRACTION of it, for a level deeper than last cycle's). Each point's
-  // distance is evaluated (and its force added) once per cycle however many of its instances
-  // are visited. Fills STATS' traversal counts.
+  // distance is evaluated (and its force added) once per cycle: a node's first child is the
+  // same point one level down (ValidatePointshellTree), so it inherits the parent's d, and
+  // every other node is a point's first instance. Fills STATS' traversal counts.
   template <class Policy>
   void Run(const Pointshell& s, int max_level, const PointshellContactParams& params, std::int64_t budget,
            Policy& policy, ContactStats* stats) {
-    if (++stamp_ == 0) {  // a new stamp marks the points already evaluated this cycle
-      std::fill(point_stamp_.begin(), point_stamp_.end(), 0u);
-      stamp_ = 1;
-    }
+    constexpr float kUnknown = std::numeric_limits<float>::quiet_NaN();  // d not known yet
     const float lip = float(params.lipschitz);
     const double warm = double(budget);
     const double cold = params.cold_fraction * double(budget);
     std::int32_t* current = queue_a_.data();
     std::int32_t* next = queue_b_.data();
+    float* current_d = queue_d_a_.data();
+    float* next_d = queue_d_b_.data();
     std::int64_t current_size = 0;
-    for (int n = s.level_node_begin[0]; n < s.level_node_begin[1]; ++n) current[current_size++] = n;
+    for (int n = s.level_node_begin[0]; n < s.level_node_begin[1]; ++n) {
+      current[current_size] = n;
+      current_d[current_size++] = kUnknown;
+    }
 
     std::int64_t visited = 0;
     std::int32_t skipped = 0;
+    int evaluated = 0;
     int rendered = -1;
     for (int level = 0; level <= max_level; ++level) {
       if (current_size == 0) {  // everything culled: deeper levels add nothing
@@ -115,60 +127,67 @@ class TreeTraversalState {
         if (double(visited + current_size) > threshold) break;
       }
       const bool leaf_level = (level == max_level) || (level + 1 >= s.num_levels());
-      // 1. The level's awake nodes, kept in place, and the points not yet evaluated this cycle.
+      // 1. The level's awake nodes, kept in place, and the points they see first.
       std::int64_t awake = 0;
-      int batch = 0;
+      const int first = evaluated;
       for (std::int64_t k = 0; k < current_size; ++k) {
         const std::int32_t node = current[k];
         if (params.coherence && policy.Asleep(node)) {
           ++skipped;
           continue;
         }
-        current[awake++] = node;
-        const std::int32_t i = s.node_point[node];
-        if (point_stamp_[i] != stamp_) {
-          point_stamp_[i] = stamp_;
-          batch_[batch++] = i;
-        }
+        const float d = current_d[k];
+        current[awake] = node;
+        current_d[awake++] = d;
+        if (d != d) evaluated_[evaluated++] = s.node_point[node];
       }
       visited += awake;
       // 2. Their distances (and forces), as one batch.
+      std::int32_t* batch = evaluated_.data() + first;
+      float* batch_d = evaluated_d_.data() + first;
+      const int batch_size = evaluated - first;
       if constexpr (BatchPolicy<Policy>) {
-        policy.EvaluatePoints(0, batch_.data(), batch, batch_d_.data());
-        for (int b = 0; b < batch; ++b) point_d_[batch_[b]] = batch_d_[b];
+        policy.EvaluatePoints(0, batch, batch_size, batch_d);
       } else {
-        for (int b = 0; b < batch; ++b) point_d_[batch_[b]] = policy.EvaluatePoint(batch_[b]);
+        for (int b = 0; b < batch_size; ++b) batch_d[b] = policy.EvaluatePoint(batch[b]);
       }
       // 3. Cull a node whose ball is clear of contact, else queue its children.
       std::int64_t next_size = 0;
+      int b = 0;
       for (std::int64_t k = 0; k < awake; ++k) {
         const std::int32_t node = current[k];
-        const float d = point_d_[s.node_point[node]];
+        float d = current_d[k];
+        if (d != d) d = batch_d[b++];
         const float radius = leaf_level ? 0.f : policy.Radius(node);
         if (d > lip * radius) {
           if (params.coherence) policy.Sleep(node, double(d - lip * radius));
           continue;
         }
         if (leaf_level) continue;
-        for (std::int32_t c = s.child_begin[node]; c < s.child_begin[node + 1]; ++c) next[next_size++] = c;
+        const std::int32_t cb = s.child_begin[node], ce = s.child_begin[node + 1];
+        for (std::int32_t c = cb; c < ce; ++c) {
+          next[next_size] = c;
+          next_d[next_size++] = c == cb ? d : kUnknown;
+        }
       }
       rendered = level;
       std::swap(current, next);
+      std::swap(current_d, next_d);
       current_size = next_size;
     }
     last_level_rendered_ = rendered;
+    num_evaluated_ = evaluated;
     stats->nodes_visited = visited;
     stats->level_rendered = rendered;
     stats->nodes_skipped_coherence = skipped;
   }
 
  private:
-  std::vector<std::int32_t> queue_a_, queue_b_;  // (#N) traversal queues
-  std::vector<std::uint32_t> point_stamp_;       // (#P) evaluation stamp of each point's d
-  std::vector<float> point_d_;                   // (#P) d cached for the stamp
-  std::vector<std::int32_t> batch_;              // (#N) points evaluated at this level
-  std::vector<float> batch_d_;                   // (#N) their distances
-  std::uint32_t stamp_ = 0;
+  std::vector<std::int32_t> queue_a_, queue_b_;  // (#N) traversal queues: nodes
+  std::vector<float> queue_d_a_, queue_d_b_;     // (#N) and their point's d, NaN when not known
+  std::vector<std::int32_t> evaluated_;          // (#P) points evaluated this cycle, level by level
+  std::vector<float> evaluated_d_;               // (#P) their distances
+  int num_evaluated_ = 0;
   int last_level_rendered_ = -1;
 };
 

@@ -85,4 +85,14 @@ void BuildPointTree(Pointshell* shell) {
   }
 }
 
+std::int32_t NodeWithoutOwnFirstChild(const Pointshell& s) {
+  const int levels = s.num_levels();
+  if (levels < 2) return -1;
+  for (std::int32_t n = 0; n < s.level_node_begin[levels - 1]; ++n) {
+    const std::int32_t c = s.child_begin[n];
+    if (c >= s.child_begin[n + 1] || s.node_point[c] != s.node_point[n]) return n;
+  }
+  return -1;
+}
+
 }  // namespace contactlab

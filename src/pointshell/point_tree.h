@@ -18,4 +18,9 @@ namespace contactlab {
 // Precondition: level_point_end strictly increasing, ending at num_points() (Error otherwise).
 void BuildPointTree(Pointshell* shell);
 
+// The first node above the deepest level whose first child is not its own point one level
+// down, or -1 when there is none (as BuildPointTree makes every tree). The breadth-first
+// traversal relies on it: a first child inherits its parent's distance.
+std::int32_t NodeWithoutOwnFirstChild(const Pointshell& shell);
+
 }  // namespace contactlab

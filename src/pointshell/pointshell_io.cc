@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "pointshell/point_tree.h"
 #include "util/binary_io.h"
 #include "util/error.h"
 
@@ -78,6 +79,9 @@ void ValidatePointshell(const Pointshell& s, const std::string& where) {
     }
   }
   if (s.child_begin[nn] != std::int32_t(nn)) Fail(where, "the child range sentinel is wrong");
+  if (const std::int32_t n = NodeWithoutOwnFirstChild(s); n >= 0) {
+    Fail(where, "node " + std::to_string(n) + ": its first child is not its own point one level down");
+  }
 }
 
 void SavePointshell(const Pointshell& s, const std::filesystem::path& path) {

@@ -117,6 +117,12 @@ TEST(PointshellFile, StructurallyInvalidShellsAreRejectedOnLoadAndSave) {
       {"radius", "radius is negative", [](Pointshell& s) { s.node_radius[0] = -1; }},
       {"length", "differ in length", [](Pointshell& s) { s.y.pop_back(); }},
       {"children", "child range", [](Pointshell& s) { s.child_begin[1] = s.child_begin[0] - 1; }},
+      {"self", "first child is not its own point",
+       [](Pointshell& s) {  // swap the points of the first node's first two children
+         const int c = s.child_begin[0];
+         ASSERT_GE(s.child_begin[1] - c, 2);
+         std::swap(s.node_point[c], s.node_point[c + 1]);
+       }},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.name);
