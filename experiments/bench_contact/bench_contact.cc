@@ -7,6 +7,9 @@
 // while held at the placement depth, so coherence sees a moving configuration. Counters:
 // ns_per_node, nodes (visited per cycle), contacts, level, p99_us / p999_us / max_us (cycle
 // time percentiles and the slowest cycle, which includes the operating system's jitter).
+// Beside them, roofline/*: the machine's memory latency and bandwidth per cache level and the
+// cost of one trilinear field lookup (roofline.h), the bounds a traversal's ns/point is read
+// against.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -19,6 +22,7 @@
 
 #include "bench_common.h"
 #include "placed_scene.h"
+#include "roofline.h"
 #include "contact/pointshell_contact_model.h"
 #include "experiment/contact_placement.h"
 #include "experiment/scene_assets.h"
@@ -97,6 +101,7 @@ void RegisterAll() {
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   contactlab::RegisterAll();
+  contactlab::bench::RegisterRooflineBenchmarks();
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

@@ -3,32 +3,15 @@
 // mode (CONTACTLAB_BENCH_QUICK=1) a small procedural sphere at 32^3.
 #include <benchmark/benchmark.h>
 
-#include <iostream>
-
 #include "bench_common.h"
-#include "geometry/mesh_io.h"
-#include "geometry/procedural_shapes.h"
+#include "bench_mesh.h"
 #include "sdf/build_distance_field.h"
-#include "util/data_path.h"
 
 namespace contactlab {
 namespace {
 
-const TriangleMesh& BenchMesh() {
-  static const TriangleMesh mesh = [] {
-    if (bench::QuickRun()) return MakeSphere(0.1, 3);
-    const auto path = FindDataFile("dragon.obj");
-    if (!path) {
-      std::cerr << "dragon.obj not found on the data search path; using a procedural sphere\n";
-      return MakeSphere(0.1, 7);
-    }
-    return LoadMesh(*path);
-  }();
-  return mesh;
-}
-
 void BM_BuildClosedField(benchmark::State& state) {
-  const TriangleMesh& mesh = BenchMesh();
+  const TriangleMesh& mesh = bench::BenchMesh();
   DistanceFieldOptions options;
   options.resolution = bench::QuickRun() ? 32 : int(state.range(0));
   options.mode = FieldMode::kClosed;
@@ -41,6 +24,7 @@ void BM_BuildClosedField(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations() * samples);
   state.counters["triangles"] = mesh.num_triangles();
+  state.counters["MB"] = double(samples) * sizeof(float) * 1e-6;
 }
 BENCHMARK(BM_BuildClosedField)
     ->Arg(128)  // dragon at 128 cells along the longest side
@@ -49,7 +33,7 @@ BENCHMARK(BM_BuildClosedField)
     ->Iterations(1);
 
 void BM_BuildSoupField(benchmark::State& state) {
-  TriangleMesh mesh = BenchMesh();
+  TriangleMesh mesh = bench::BenchMesh();
   mesh.triangles.pop_back();  // an open surface: the soup pipeline
   DistanceFieldOptions options;
   options.resolution = bench::QuickRun() ? 32 : int(state.range(0));

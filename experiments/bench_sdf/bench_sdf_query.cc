@@ -6,9 +6,9 @@
 
 #include <cmath>
 #include <numbers>
-#include <random>
 
 #include "bench_common.h"
+#include "field_queries.h"
 #include "geometry/procedural_shapes.h"
 #include "sdf/build_distance_field.h"
 
@@ -26,45 +26,22 @@ const DistanceField& Field() {
   return field;
 }
 
-// Structure of arrays of query points.
-struct Points {
-  std::vector<float> x, y, z;
-};
+using bench::QueryPoints;
 
-Points CoherentPoints(int n) {
+QueryPoints CoherentPoints(int n) {
   // Fibonacci spiral on the sphere of radius 0.101, ordered by polar angle.
-  Points p;
+  QueryPoints p;
   const double golden = std::numbers::pi * (3 - std::sqrt(5.0));
   for (int s = 0; s < n; ++s) {
     const double zc = 1 - 2 * (s + 0.5) / n, r = std::sqrt(1 - zc * zc), phi = golden * s;
-    p.x.push_back(float(0.101 * r * std::cos(phi)));
-    p.y.push_back(float(0.101 * r * std::sin(phi)));
-    p.z.push_back(float(0.101 * zc));
+    p.Add(0.101 * r * std::cos(phi), 0.101 * r * std::sin(phi), 0.101 * zc);
   }
   return p;
 }
 
-Points RandomPoints(int n) {
-  const Aabb box = Field().box();
-  std::mt19937 rng(1);
-  Points p;
-  for (int s = 0; s < n; ++s) {
-    p.x.push_back(float(std::uniform_real_distribution<double>(box.min.x(), box.max.x())(rng)));
-    p.y.push_back(float(std::uniform_real_distribution<double>(box.min.y(), box.max.y())(rng)));
-    p.z.push_back(float(std::uniform_real_distribution<double>(box.min.z(), box.max.z())(rng)));
-  }
-  return p;
-}
-
-void RunQueries(benchmark::State& state, const Points& p) {
+void RunQueries(benchmark::State& state, const QueryPoints& p) {
   const DistanceField& f = Field();
-  const std::size_t n = p.x.size();
-  for (auto _ : state) {
-    float sum = 0;
-    for (std::size_t s = 0; s < n; ++s) sum += f.Distance(p.x[s], p.y[s], p.z[s]);
-    benchmark::DoNotOptimize(sum);
-  }
-  state.SetItemsProcessed(state.iterations() * std::int64_t(n));
+  bench::TimeLookups(state, p, [&f](float x, float y, float z) { return f.Distance(x, y, z); });
 }
 
 void BM_CoherentQueries(benchmark::State& state) {
@@ -76,7 +53,7 @@ BENCHMARK(BM_CoherentQueries)
     ->Unit(benchmark::kMicrosecond);
 
 void BM_RandomQueries(benchmark::State& state) {
-  RunQueries(state, RandomPoints(bench::QuickRun() ? 1000 : int(state.range(0))));
+  RunQueries(state, bench::RandomPointsInBox(Field().box(), bench::QuickRun() ? 1000 : int(state.range(0))));
 }
 BENCHMARK(BM_RandomQueries)
     ->Arg(10000)    // random points in the box, cache misses dominate
