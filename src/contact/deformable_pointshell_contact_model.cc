@@ -107,4 +107,21 @@ ContactResult DeformablePointshellContactModel::Evaluate(const ContactQuery& que
   return result;
 }
 
+int DeformablePointshellContactModel::PointStates(const ContactQuery& query, std::span<const std::int32_t> points,
+                                                  PointState* out) {
+  if (variant_ == Variant::kTree) return traversal_.PointStates(points, out);
+  // The points at the query's q, as Evaluate places them.
+  const int r = shell_->r();
+  const bool deformed = query.q_A != nullptr && query.q_A->size() == r;
+  float q[kMaxReducedModes];
+  for (int j = 0; j < r; ++j) q[j] = deformed ? float(query.q_A->q[j]) : 0.f;
+  const FloatTransform X_BA(query.X_WB.Inverse() * query.X_WA);
+  return LinearPointStates(shell_->shell(), max_level_, points, out, [&](int i) {
+    float p_AQ[3], p_BQ[3];
+    shell_->points().PositionF(i, q, p_AQ);
+    X_BA.Apply(p_AQ[0], p_AQ[1], p_AQ[2], p_BQ);
+    return field_->Distance(p_BQ[0], p_BQ[1], p_BQ[2]);
+  });
+}
+
 }  // namespace contactlab

@@ -103,4 +103,16 @@ ContactResult PointshellContactModel::EvaluateTree(const ContactQuery& query) {
   return result;
 }
 
+int PointshellContactModel::PointStates(const ContactQuery& query, std::span<const std::int32_t> points,
+                                        PointState* out) {
+  if (variant_ == Variant::kTree) return traversal_.PointStates(points, out);
+  const FloatTransform X_BA(query.X_WB.Inverse() * query.X_WA);  // as EvaluateLinear's
+  const Pointshell& s = *shell_;
+  return LinearPointStates(s, max_level_, points, out, [&](int i) {
+    float p_BQ[3];
+    X_BA.Apply(s.x[i], s.y[i], s.z[i], p_BQ);
+    return field_->Distance(p_BQ[0], p_BQ[1], p_BQ[2]);
+  });
+}
+
 }  // namespace contactlab

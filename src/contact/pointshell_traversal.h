@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "contact/contact_accumulator.h"
@@ -68,6 +69,18 @@ class TreeTraversalState {
 
   int last_level_rendered() const { return last_level_rendered_; }
   void Reset() { last_level_rendered_ = -1; }
+
+  // ContactModel::PointStates of the latest Run: a point was evaluated when it carries the
+  // current stamp, and is in contact when its cached d < 0. Reads the stamps only.
+  int PointStates(std::span<const std::int32_t> points, PointState* out) const {
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const std::int32_t i = points[k];
+      out[k] = stamp_ == 0 || point_stamp_[i] != stamp_ ? PointState::kNotEvaluated
+               : point_d_[i] < 0.f                     ? PointState::kInContact
+                                                       : PointState::kClear;
+    }
+    return int(points.size());
+  }
 
   // Breadth-first traversal of S down to MAX_LEVEL (sec. 3): a node is culled with its subtree
   // when its point's d exceeds LIPSCHITZ times its radius; with a node budget (> 0) a level
@@ -153,6 +166,23 @@ void RunLinearTraversal(const Pointshell& s, int max_level, Policy& policy, Cont
   for (int i = 0; i < n; ++i) policy.EvaluatePoint(i);
   stats->nodes_visited = n;
   stats->level_rendered = max_level;
+}
+
+// ContactModel::PointStates of the linear traversal, which keeps no per-point record: every
+// point of tree levels 0..MAX_LEVEL was evaluated, and DISTANCE(i) evaluates point i's d again at
+// the latest query (no force added). At most kLinearPointStatesPerCall points per call, so the
+// re-evaluation adds a few microseconds to a cycle.
+constexpr int kLinearPointStatesPerCall = 256;
+template <class Distance>
+int LinearPointStates(const Pointshell& s, int max_level, std::span<const std::int32_t> points, PointState* out,
+                      Distance&& distance) {
+  const int n = int(std::min<std::size_t>(points.size(), kLinearPointStatesPerCall));
+  const int end = s.level_point_end[max_level];
+  for (int k = 0; k < n; ++k) {
+    const std::int32_t i = points[k];
+    out[k] = i >= end ? PointState::kNotEvaluated : distance(i) < 0.f ? PointState::kInContact : PointState::kClear;
+  }
+  return n;
 }
 
 }  // namespace contactlab
