@@ -5,7 +5,8 @@
 # Usage: scripts/bench-viewer-page.sh CONTACTLAB SCENE.yaml [WORKDIR] [RUNS]
 # Prints, per page: its size, the time from navigation to the first frame drawn (data-ready-ms)
 # and the mean and 95th-percentile time between frames while the camera circles the scene once
-# in 240 frames (#bench=orbit, src/view/web/viewer.js), each over RUNS loads (default 3).
+# in 240 frames (#bench=orbit, src/view/web/viewer.js), each of RUNS loads (default 3) in a
+# fresh browser, read in real time through the DevTools protocol (viewer-page-timing.mjs).
 set -uo pipefail
 cli=$1; scene=$2; work=${3:-/tmp/contactlab-bench-viewer}; runs=${4:-3}
 here=$(cd "$(dirname "$0")" && pwd)
@@ -21,10 +22,11 @@ for budget in 50000 0; do
   "$cli" view "$scene" --out "$page" --max-triangles "$budget" 2> view.log || { cat view.log; exit 1; }
   echo "--max-triangles $budget: $(stat -c %s "$page") bytes ($(tail -1 view.log))"
   for run in $(seq "$runs"); do
-    # Real time (no virtual-time budget): the DOM is dumped after --timeout ms.
-    chromium_run --timeout=25000 --dump-dom "file://$page#bench=orbit" "run-$budget-$run.log" > "run-$budget-$run.dom"
-    tag=$(grep -o '<html[^>]*>' "run-$budget-$run.dom" | head -1)
-    attr() { echo "$tag" | sed -n "s/.* $1=\"\([0-9.]*\)\".*/\1/p"; }
-    echo "  run $run: ready $(attr data-ready-ms) ms, orbit frame mean $(attr data-bench-mean-ms) ms, p95 $(attr data-bench-p95-ms) ms"
+    port=$((20000 + RANDOM % 20000))
+    rm -rf "$work/profile"
+    CHROMIUM_SECONDS=150 chromium_run --remote-debugging-port=$port about:blank "run-$budget-$run.log" &
+    browser=$!
+    echo "  run $run: $(node --experimental-websocket "$here/viewer-page-timing.mjs" $port "file://$page#bench=orbit" 140 2>&1)"
+    kill "$browser" 2>/dev/null; wait "$browser" 2>/dev/null
   done
 done

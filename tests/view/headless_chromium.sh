@@ -4,10 +4,10 @@
 # set, is the profile folder instead (two browsers at once need two).
 #
 # chromium_run ARGS... LOG: runs Chromium on ARGS (options, then the address), its log to LOG,
-# at most 40 s.
+# for at most CHROMIUM_SECONDS (default 40).
 chromium_run() {
   local log=${*: -1}
-  timeout 40 "$CHROMIUM" --headless=new --no-sandbox --disable-gpu-sandbox --enable-unsafe-swiftshader \
+  timeout "${CHROMIUM_SECONDS:-40}" "$CHROMIUM" --headless=new --no-sandbox --disable-gpu-sandbox --enable-unsafe-swiftshader \
     --use-angle=swiftshader --use-gl=angle --enable-webgl --ignore-gpu-blocklist \
     --no-first-run --no-default-browser-check --disable-extensions --disable-background-networking \
     --user-data-dir="${PROFILE:-$WORK/profile}" --enable-logging=stderr --v=0 --hide-scrollbars \
