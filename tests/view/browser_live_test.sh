@@ -39,7 +39,7 @@ YAML
 "$cli" contact scene.yaml --cache cache > /dev/null 2>&1 || { echo "FAILED: contactlab contact"; exit 1; }
 
 # The session, in the background; its address is printed on stdout.
-"$cli" session scene.yaml --cache cache --device sim:circle:0.004:1 --touch 0.003 --duration 8 --no-realtime \
+"$cli" session scene.yaml --cache cache --device sim:circle:0.004:1 --touch 0.003 --duration 12 --no-realtime \
   --quiet --view > session.out 2>&1 &
 session=$!
 url=""

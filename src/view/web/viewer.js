@@ -514,7 +514,7 @@
           {size: 5, sizeAttenuation: false, color: CONTACT_COLOUR, depthTest: false, transparent: true, depthWrite: false}));
       touching.renderOrder = 5;
       touching.frustumCulled = false;
-      points.parent.add(touching);
+      points.add(touching);  // same frame; hidden with the points
       stream.addEventListener('marks', function (e) {
         var m = JSON.parse(e.data);
         var packed = decode(m.states, Uint8Array);
