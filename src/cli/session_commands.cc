@@ -35,6 +35,7 @@
 #include "util/error.h"
 #include "util/output_target.h"
 #include "util/parse_number.h"
+#include "view/display_points.h"
 #include "view/live_view_server.h"
 #include "view/view_data.h"
 #include "view/viewer_page.h"
@@ -137,6 +138,13 @@ void RunSession(const SessionArgs& args) {
     config.deformation_B = deformation_H.get();
     config.implicit_contact_B = d.implicit_contact;
   }
+  // --view: the displayed pointshell points (the page's, same decimation) are marked with
+  // their contact state by the haptic thread, a chunk per cycle.
+  std::unique_ptr<ContactPointMarks> marks;
+  if (args.view) {
+    marks = std::make_unique<ContactPointMarks>(DecimatePointshell(*assets.A.pointshell(), SceneViewOptions{}.max_points).index);
+    config.point_marks = marks.get();
+  }
   HapticCycle cycle(mapped, model.get(), config);
 
   HapticLoopOptions loop_options;
@@ -166,7 +174,7 @@ void RunSession(const SessionArgs& args) {
     data["title"] = scene.name + " (live)";
     data["live"] = {{"stream", "stream"}, {"haptic", 1}, {"model", model_name}, {"device", args.device}};
     live = std::make_unique<LatestValue<LiveSnapshot>>();
-    server = std::make_unique<LiveViewServer>(ViewerPage(data), *live, view_port);
+    server = std::make_unique<LiveViewServer>(ViewerPage(data), *live, view_port, 50, marks.get());
   }
 
   std::printf("session: scene %s, model %s, device %s, %.1f s (Ctrl-C stops)%s\n", scene.name.c_str(),

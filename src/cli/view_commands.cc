@@ -32,6 +32,7 @@ struct ViewArgs {
   std::string out;
   int job = -1;
   int max_points = 50000;
+  int max_triangles = 50000;
   int max_frames = 10000;
   std::string slice_axis = "auto";
   double slice_at = std::numeric_limits<double>::quiet_NaN();  // NaN: automatic
@@ -45,6 +46,10 @@ void RunView(const ViewArgs& args) {
   if (args.max_points < 16) Fail("--max-points", "must be at least 16, got " + std::to_string(args.max_points));
   SceneViewOptions options;
   options.max_points = args.max_points;
+  if (args.max_triangles != 0 && args.max_triangles < 4) {
+    Fail("--max-triangles", "must be at least 4 (or 0: every triangle), got " + std::to_string(args.max_triangles));
+  }
+  options.max_triangles = args.max_triangles;
   options.slice_axis = args.slice_axis == "auto" ? -1 : args.slice_axis == "x" ? 0 : args.slice_axis == "y" ? 1 : 2;
   if (!std::isnan(args.slice_at)) options.slice_at = args.slice_at;
   AssetOptions assets_options;
@@ -91,6 +96,8 @@ const CommandRegistration kView([](CLI::App& app) {
   cmd->add_option("--out", args->out, "the HTML file to write")->required();
   cmd->add_option("--job", args->job, "results folder: the job to replay (needed when it holds several)");
   cmd->add_option("--max-points", args->max_points, "pointshell points drawn at most, split over the levels (default 50000)");
+  cmd->add_option("--max-triangles", args->max_triangles,
+                  "triangles drawn per body at most, larger meshes thinned by edge collapse (default 50000; 0: all)");
   cmd->add_option("--max-frames", args->max_frames, "replay: frames per model at most, every k-th cycle kept (default 10000)");
   cmd->add_option("--slice-axis", args->slice_axis, "normal of the field slice in the field body's frame (default: auto)")
       ->check(CLI::IsMember({"auto", "x", "y", "z"}));

@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <span>
 #include <string_view>
 
 #include "deform/reduced_state.h"
@@ -71,6 +72,13 @@ struct ContactResult {
   ContactStats stats;
 };
 
+// What one pointshell point did in a model's latest query (for display, as the paper's Fig. 2).
+enum class PointState : std::uint8_t {
+  kNotEvaluated = 0,  // culled with its subtree, asleep under coherence, or below the level rendered
+  kClear = 1,         // evaluated, d >= 0
+  kInContact = 2,     // evaluated, d < 0: carries force
+};
+
 class ContactModel {
  public:
   virtual ~ContactModel() = default;
@@ -79,6 +87,15 @@ class ContactModel {
   virtual ContactResult Evaluate(const ContactQuery& query) = 0;
   // Forgets temporal state (coherence, level-of-detail hysteresis).
   virtual void Reset() = 0;
+  // For display: the states of body A's pointshell points POINTS (indices into the shell the
+  // model traverses) in the latest Evaluate, whose query was QUERY, written to OUT[0..k).
+  // Returns k, how many leading points were written: fewer than asked when a model bounds its
+  // work per call (it then re-evaluates distances), 0 when it has no pointshell. Call it after
+  // Evaluate and before the query's deformations change. Allocation-free, throws nothing.
+  virtual int PointStates(const ContactQuery& query, std::span<const std::int32_t> points, PointState* out) {
+    (void)query, (void)points, (void)out;
+    return 0;
+  }
 };
 
 }  // namespace contactlab

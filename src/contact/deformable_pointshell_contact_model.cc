@@ -135,4 +135,24 @@ ContactResult DeformablePointshellContactModel::Evaluate(const ContactQuery& que
   return result;
 }
 
+int DeformablePointshellContactModel::PointStates(const ContactQuery& query, std::span<const std::int32_t> points,
+                                                  PointState* out) {
+  if (variant_ == Variant::kTree) return traversal_.PointStates(points, out);
+  // The points at the query's q, as Evaluate places them.
+  const int r = shell_->r();
+  const bool deformed = query.q_A != nullptr && query.q_A->size() == r;
+  float q[kMaxReducedModes];
+  for (int j = 0; j < r; ++j) q[j] = deformed ? float(query.q_A->q[j]) : 0.f;
+  const FloatTransform X_BA(query.X_WB.Inverse() * query.X_WA);
+  return LinearPointStates(shell_->shell(), max_level_, points, out, [&](const std::int32_t* index, int n, float* d) {
+    float px[kLinearPointStatesPerCall], py[kLinearPointStatesPerCall], pz[kLinearPointStatesPerCall];
+    for (int k = 0; k < n; ++k) {
+      float p[3];
+      shell_->points().PositionF(index[k], q, p);
+      px[k] = p[0], py[k] = p[1], pz[k] = p[2];
+    }
+    BatchDistances(*field_, X_BA.AsBatch(), px, py, pz, nullptr, n, d);
+  });
+}
+
 }  // namespace contactlab

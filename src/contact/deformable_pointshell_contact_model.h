@@ -40,6 +40,9 @@ class DeformablePointshellContactModel final : public ContactModel {
   // rest). Allocation-free, throws nothing.
   ContactResult Evaluate(const ContactQuery& query) override;
   void Reset() override;
+  // Tree: from the traversal's list of evaluated points; linear: d evaluated again at QUERY's pose
+  // (kLinearPointStatesPerCall points per call).
+  int PointStates(const ContactQuery& query, std::span<const std::int32_t> points, PointState* out) override;
 
   const DeformablePointshell& deformable_shell() const { return *shell_; }
   int r() const { return shell_->r(); }

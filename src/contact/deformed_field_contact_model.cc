@@ -186,4 +186,30 @@ ContactResult DeformedFieldContactModel::EvaluateImpl(const ContactQuery& query)
   return result;
 }
 
+int DeformedFieldContactModel::PointStates(const ContactQuery& query, std::span<const std::int32_t> points,
+                                           PointState* out) {
+  if (variant_ == Variant::kTree) return traversal_.PointStates(points, out);
+  // A's points at the query's q_A, as EvaluateImpl places them, in B's field as the query left
+  // it (state_ at q_B).
+  const int rA = deformable_ ? deformable_->r() : 0;
+  const bool deformedA = query.q_A != nullptr && query.q_A->size() == rA;
+  float qA[kMaxReducedModes];
+  for (int j = 0; j < rA; ++j) qA[j] = deformedA ? float(query.q_A->q[j]) : 0.f;
+  const FloatTransform X_BA(query.X_WB.Inverse() * query.X_WA);
+  const Pointshell& s = *shell_;
+  return LinearPointStates(s, max_level_, points, out, [&](const std::int32_t* index, int n, float* d) {
+    for (int k = 0; k < n; ++k) {
+      const int i = index[k];
+      float p_AQ[3], p_BQ[3];
+      if (deformable_) {
+        deformable_->points().PositionF(i, qA, p_AQ);
+      } else {
+        p_AQ[0] = s.x[i], p_AQ[1] = s.y[i], p_AQ[2] = s.z[i];
+      }
+      X_BA.Apply(p_AQ[0], p_AQ[1], p_AQ[2], p_BQ);
+      d[k] = field_->Distance(state_, p_BQ, nullptr);
+    }
+  });
+}
+
 }  // namespace contactlab

@@ -44,6 +44,9 @@ class DeformedFieldContactModel final : public ContactModel {
   // or another size: at rest). Allocation-free, throws nothing.
   ContactResult Evaluate(const ContactQuery& query) override;
   void Reset() override;
+  // Tree: from the traversal's list of evaluated points; linear: d evaluated again at QUERY's pose
+  // (kLinearPointStatesPerCall points per call).
+  int PointStates(const ContactQuery& query, std::span<const std::int32_t> points, PointState* out) override;
 
   const DeformedDistanceField& field() const { return *field_; }
   const DeformedFieldState& field_state() const { return state_; }

@@ -122,4 +122,14 @@ ContactResult PointshellContactModel::EvaluateTree(const ContactQuery& query) {
   return result;
 }
 
+int PointshellContactModel::PointStates(const ContactQuery& query, std::span<const std::int32_t> points,
+                                        PointState* out) {
+  if (variant_ == Variant::kTree) return traversal_.PointStates(points, out);
+  const FloatTransform X_BA(query.X_WB.Inverse() * query.X_WA);  // as EvaluateLinear's
+  const Pointshell& s = *shell_;
+  return LinearPointStates(s, max_level_, points, out, [&](const std::int32_t* index, int n, float* d) {
+    BatchDistances(*field_, X_BA.AsBatch(), s.x.data(), s.y.data(), s.z.data(), index, n, d);
+  });
+}
+
 }  // namespace contactlab

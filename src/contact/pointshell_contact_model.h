@@ -46,6 +46,9 @@ class PointshellContactModel final : public ContactModel {
   // threshold) enables graceful degradation in the tree variant.
   ContactResult Evaluate(const ContactQuery& query) override;
   void Reset() override;
+  // Tree: from the traversal's list of evaluated points; linear: d evaluated again at QUERY's pose
+  // (kLinearPointStatesPerCall points per call).
+  int PointStates(const ContactQuery& query, std::span<const std::int32_t> points, PointState* out) override;
 
   const PointshellContactParams& params() const { return params_; }
   const Pointshell& shell() const { return *shell_; }

@@ -19,6 +19,7 @@
 #include <concepts>
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include "contact/contact_accumulator.h"
@@ -77,17 +78,44 @@ class TreeTraversalState {
         queue_d_a_(std::size_t(s.num_nodes())),
         queue_d_b_(std::size_t(s.num_nodes())),
         evaluated_(std::size_t(s.num_points())),
-        evaluated_d_(std::size_t(s.num_points())) {}
+        evaluated_d_(std::size_t(s.num_points())),
+        mark_stamp_(std::size_t(s.num_points()), 0u),
+        mark_d_(std::size_t(s.num_points()), 0.f) {}
 
   int last_level_rendered() const { return last_level_rendered_; }
   void Reset() {
     last_level_rendered_ = -1;
     num_evaluated_ = 0;
+    ++runs_;
   }
   // The points whose distance the last cycle evaluated, [0, num_evaluated()), with their d.
   int num_evaluated() const { return num_evaluated_; }
   const std::int32_t* evaluated_points() const { return evaluated_.data(); }
   const float* evaluated_distances() const { return evaluated_d_.data(); }
+
+  // ContactModel::PointStates of the latest Run. The first call after a Run spreads its list of
+  // evaluated points over a per-point stamp (O(points evaluated)); every call then reads the
+  // stamps of POINTS. The traversal itself never touches the stamps.
+  int PointStates(std::span<const std::int32_t> points, PointState* out) {
+    if (marked_run_ != runs_) {
+      if (++mark_value_ == 0) {  // the stamp wrapped: clear it
+        std::fill(mark_stamp_.begin(), mark_stamp_.end(), 0u);
+        mark_value_ = 1;
+      }
+      for (int k = 0; k < num_evaluated_; ++k) {
+        mark_stamp_[evaluated_[k]] = mark_value_;
+        mark_d_[evaluated_[k]] = evaluated_d_[k];
+      }
+      marked_run_ = runs_;
+    }
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const std::int32_t i = points[k];
+      out[k] = mark_stamp_[i] != mark_value_ ? PointState::kNotEvaluated
+               : mark_d_[i] < 0.f            ? PointState::kInContact
+                                             : PointState::kClear;
+    }
+    return int(points.size());
+  }
 
   // Breadth-first traversal of S down to MAX_LEVEL (sec. 3): a node is culled with its subtree
   // when its point's d exceeds LIPSCHITZ times its radius; with a node budget (> 0) a level
@@ -177,6 +205,7 @@ class TreeTraversalState {
     }
     last_level_rendered_ = rendered;
     num_evaluated_ = evaluated;
+    ++runs_;
     stats->nodes_visited = visited;
     stats->level_rendered = rendered;
     stats->nodes_skipped_coherence = skipped;
@@ -189,6 +218,11 @@ class TreeTraversalState {
   std::vector<float> evaluated_d_;               // (#P) their distances
   int num_evaluated_ = 0;
   int last_level_rendered_ = -1;
+  std::uint32_t runs_ = 0;                  // Run and Reset calls
+  std::uint32_t marked_run_ = ~0u;          // runs_ when the marks below were spread
+  std::vector<std::uint32_t> mark_stamp_;   // (#P) PointStates: mark_value_ when evaluated
+  std::vector<float> mark_d_;               // (#P) and its d
+  std::uint32_t mark_value_ = 0;
 };
 
 // The tree-less reference: every point of tree levels 0..MAX_LEVEL, in order.
@@ -204,6 +238,25 @@ void RunLinearTraversal(const Pointshell& s, int max_level, Policy& policy, Cont
   }
   stats->nodes_visited = n;
   stats->level_rendered = max_level;
+}
+
+// ContactModel::PointStates of the linear traversal, which keeps no per-point record: every
+// point of tree levels 0..MAX_LEVEL was evaluated, and DISTANCES(index, n, d) evaluates the d of
+// points INDEX[0..n) again at the latest query (no force added), rounded as the query's own
+// lookups. At most kLinearPointStatesPerCall points per call, so the re-evaluation adds a few
+// microseconds to a cycle.
+constexpr int kLinearPointStatesPerCall = 256;
+template <class Distances>
+int LinearPointStates(const Pointshell& s, int max_level, std::span<const std::int32_t> points, PointState* out,
+                      Distances&& distances) {
+  const int n = int(std::min<std::size_t>(points.size(), kLinearPointStatesPerCall));
+  float d[kLinearPointStatesPerCall];
+  distances(points.data(), n, d);
+  const int end = s.level_point_end[max_level];
+  for (int k = 0; k < n; ++k) {
+    out[k] = points[k] >= end ? PointState::kNotEvaluated : d[k] < 0.f ? PointState::kInContact : PointState::kClear;
+  }
+  return n;
 }
 
 }  // namespace contactlab

@@ -75,6 +75,7 @@ CycleRecord HapticCycle::Step(std::int64_t now_ns) {
     if (deformation_A_.active()) deformation_A_.Prepare(&q);
     if (deformation_B_.active()) deformation_B_.Prepare(&q);  // H deforms: its field at the current q_B
     contact = model_->Evaluate(q);
+    if (config_.point_marks != nullptr) config_.point_marks->Update(*model_, q, cycle_);
   }
 
   // Static virtual coupling, then the safety filter, then the device. A non-finite contact

@@ -9,6 +9,7 @@
 #include "contact/contact_model.h"
 #include "contact/reduced_contact_coupling.h"
 #include "deform/reduced_integrator.h"
+#include "haptics/contact_point_marks.h"
 #include "haptics/haptic_device.h"
 #include "haptics/safety_filter.h"
 #include "haptics/virtual_coupling.h"
@@ -45,6 +46,9 @@ struct HapticCycleConfig {
   double max_point_speed = 0;      // m/s (the scene's model.max_point_speed)
   double cycle_seconds = 1e-3;     // s, the cycle the coherence counts in (model.cycle_seconds)
   double body_radius_H = 0;        // m, bounding radius of H's geometry about its origin
+  // The live view's per-point contact marks (contact_point_marks.h), updated after each
+  // contact query; null (no view): nothing is done. Must outlive the cycle.
+  ContactPointMarks* point_marks = nullptr;
 };
 
 // What one cycle did; trivially copyable so it can travel through an SpscRing.

@@ -46,6 +46,7 @@ DisplayPoints DecimatePointshell(const Pointshell& shell, int max_points) {
   const int kept = std::accumulate(out.kept.begin(), out.kept.end(), 0);
   out.xyz.reserve(std::size_t(kept) * 3);
   out.level.reserve(std::size_t(kept));
+  out.index.reserve(std::size_t(kept));
   int begin = 0;
   for (int l = 0; l < shell.num_levels(); ++l) {
     const int n = out.total[l], m = out.kept[l];
@@ -54,6 +55,7 @@ DisplayPoints DecimatePointshell(const Pointshell& shell, int max_points) {
       const int i = begin + int((long long)k * n / m);
       out.xyz.insert(out.xyz.end(), {shell.x[i], shell.y[i], shell.z[i]});
       out.level.push_back(std::uint8_t(l));
+      out.index.push_back(i);
     }
     begin += n;
   }

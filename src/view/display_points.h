@@ -14,6 +14,7 @@ namespace contactlab {
 struct DisplayPoints {
   std::vector<float> xyz;              // (#kept x 3) positions, body frame, metres
   std::vector<std::uint8_t> level;     // (#kept) repulsion level of each kept point
+  std::vector<std::int32_t> index;     // (#kept) each kept point's index in the shell
   std::vector<std::int32_t> kept;      // (#levels) points kept per level
   std::vector<std::int32_t> total;     // (#levels) points of each level in the shell
   int num_kept() const { return static_cast<int>(level.size()); }

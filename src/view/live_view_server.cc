@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "util/error.h"
+#include "view/page_encoding.h"
 
 namespace contactlab {
 
@@ -48,9 +49,40 @@ std::string SnapshotJson(const LiveSnapshot& s) {
   return buf;
 }
 
-LiveViewServer::LiveViewServer(std::string page, const LatestValue<LiveSnapshot>& source, int port, double rate_hz)
-    : page_(std::move(page)), source_(source), rate_hz_(rate_hz), server_(std::make_unique<httplib::Server>()) {
+std::string PackPointStates(const std::vector<PointState>& states) {
+  std::string bytes((states.size() + 3) / 4, '\0');
+  for (std::size_t k = 0; k < states.size(); ++k) {
+    bytes[k / 4] = char(std::uint8_t(bytes[k / 4]) | (std::uint8_t(states[k]) << (2 * (k % 4))));
+  }
+  return bytes;
+}
+
+std::string MarksJson(const PointMarkSweep& s) {
+  char head[256];
+  std::snprintf(head, sizeof head,
+                "{\"sequence\":%llu,\"first_cycle\":%lld,\"last_cycle\":%lld,\"points\":%zu,\"in_contact\":%d,"
+                "\"evaluated\":%d,\"states\":\"",
+                static_cast<unsigned long long>(s.sequence), static_cast<long long>(s.first_cycle),
+                static_cast<long long>(s.last_cycle), s.states.size(), s.in_contact, s.evaluated);
+  return head + Base64Encode(PackPointStates(s.states)) + "\"}";
+}
+
+std::pair<std::uint64_t, std::string> LiveViewServer::LatestMarks() {
+  std::lock_guard<std::mutex> lock(marks_mutex_);
+  if (marks_->TakeLatest(&marks_sweep_)) marks_json_ = MarksJson(marks_sweep_);
+  return {marks_sweep_.sequence, marks_json_};
+}
+
+LiveViewServer::LiveViewServer(std::string page, const LatestValue<LiveSnapshot>& source, int port, double rate_hz,
+                               ContactPointMarks* marks, double marks_rate_hz)
+    : page_(std::move(page)),
+      source_(source),
+      rate_hz_(rate_hz),
+      marks_(marks),
+      marks_rate_hz_(marks_rate_hz),
+      server_(std::make_unique<httplib::Server>()) {
   if (!(rate_hz_ > 0 && rate_hz_ <= 1000)) Fail("live view", "stream rate must be in (0, 1000] Hz");
+  if (!(marks_rate_hz_ > 0 && marks_rate_hz_ <= rate_hz_)) Fail("live view", "marks rate must be in (0, stream rate] Hz");
   if (port < 0 || port > 65535) Fail("--view", "port " + std::to_string(port) + " is not in 0..65535");
 
   server_->Get("/", [this](const httplib::Request&, httplib::Response& res) {
@@ -64,17 +96,39 @@ LiveViewServer::LiveViewServer(std::string page, const LatestValue<LiveSnapshot>
     }
     res.set_content(SnapshotJson(s), "application/json");
   });
-  // Server-sent events: each new snapshot once, polled at the stream's rate; the stream ends
-  // when the server stops or the client goes away.
+  server_->Get("/marks", [this](const httplib::Request&, httplib::Response& res) {
+    const auto [sequence, json] = marks_ ? LatestMarks() : std::pair<std::uint64_t, std::string>{0, ""};
+    if (sequence == 0) {
+      res.status = 204;
+      return;
+    }
+    res.set_content(json, "application/json");
+  });
+  // Server-sent events: each new snapshot once, polled at the stream's rate, and the newest
+  // marks at their lower rate; the stream ends when the server stops or the client goes away.
   server_->Get("/stream", [this](const httplib::Request&, httplib::Response& res) {
     res.set_header("Cache-Control", "no-cache");
     auto last = std::make_shared<std::uint64_t>(0);
-    res.set_chunked_content_provider("text/event-stream", [this, last](std::size_t, httplib::DataSink& sink) {
+    auto last_marks = std::make_shared<std::uint64_t>(0);
+    auto marks_due = std::make_shared<std::chrono::steady_clock::time_point>();
+    res.set_chunked_content_provider("text/event-stream", [this, last, last_marks, marks_due](std::size_t,
+                                                                                             httplib::DataSink& sink) {
       const auto period = std::chrono::duration<double>(1.0 / rate_hz_);
       for (;;) {
         if (stopping_.load()) {
           sink.done();
           return true;
+        }
+        if (marks_ && std::chrono::steady_clock::now() >= *marks_due) {
+          const auto [sequence, json] = LatestMarks();
+          if (sequence != 0 && sequence != *last_marks) {
+            *last_marks = sequence;
+            *marks_due = std::chrono::steady_clock::now() +
+                         std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                             std::chrono::duration<double>(1.0 / marks_rate_hz_));
+            const std::string event = "event: marks\ndata: " + json + "\n\n";
+            if (!sink.write(event.data(), event.size())) return false;
+          }
         }
         LiveSnapshot s;
         const std::uint64_t version = source_.version();

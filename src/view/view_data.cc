@@ -1,6 +1,7 @@
 #include "view/view_data.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <set>
@@ -8,6 +9,9 @@
 #include <string_view>
 #include <tuple>
 
+#ifdef CONTACTLAB_HAVE_CGAL
+#include "baselines/reference/simplify_mesh.h"
+#endif
 #include "deform/embedded_points.h"
 #include "experiment/experiment_config.h"
 #include "experiment/result_csv.h"
@@ -30,8 +34,20 @@ nlohmann::json PoseJson(const Pose& X) {
           X.rotation.w(),    X.rotation.x(),    X.rotation.y(),    X.rotation.z()};
 }
 
-nlohmann::json BodyJson(BodyAssets& body, const Pose& X_WBody) {
-  const TriangleMesh& mesh = *body.mesh();
+// The mesh the page draws: BODY's, thinned by edge collapse to MAX_TRIANGLES when it has more
+// (builds with CGAL; others draw it whole).
+TriangleMesh DisplayMesh(BodyAssets& body, int max_triangles) {
+#ifdef CONTACTLAB_HAVE_CGAL
+  if (max_triangles > 0 && body.mesh()->num_triangles() > max_triangles) {
+    return SimplifyMesh(*body.mesh(), max_triangles, "view: mesh of body " + body.spec().name);
+  }
+#else
+  (void)max_triangles;
+#endif
+  return *body.mesh();
+}
+
+nlohmann::json BodyJson(BodyAssets& body, const Pose& X_WBody, const TriangleMesh& mesh) {
   std::vector<float> positions;
   positions.reserve(mesh.vertices.size() * 3);
   for (const Eigen::Vector3d& p : mesh.vertices) positions.insert(positions.end(), {float(p.x()), float(p.y()), float(p.z())});
@@ -46,22 +62,23 @@ nlohmann::json BodyJson(BodyAssets& body, const Pose& X_WBody) {
           {"pose", PoseJson(X_WBody)},
           {"vertices", mesh.num_vertices()},
           {"triangles", mesh.num_triangles()},
+          {"source_triangles", body.mesh()->num_triangles()},
           {"positions", EncodeArray(positions)},
           {"indices", EncodeArray(indices)}};
 }
 
 nlohmann::json Vector3Json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
-}  // namespace
-
-nlohmann::json SceneViewData(const Scene& scene, SceneAssets& assets, const SceneViewOptions& options,
-                             const std::optional<BodyPoses>& poses) {
+// SceneViewData, and the meshes drawn (A's, B's) in *MESHES.
+nlohmann::json SceneViewDataAndMeshes(const Scene& scene, SceneAssets& assets, const SceneViewOptions& options,
+                                      const std::optional<BodyPoses>& poses, std::array<TriangleMesh, 2>* meshes) {
   const Pose X_WA = poses ? poses->X_WA : scene.pointshell_body.pose;
   const Pose X_WB = poses ? poses->X_WB : scene.field_body.pose;
   nlohmann::json j;
   j["title"] = scene.name;
   j["scene"] = scene.file;
-  j["bodies"] = {BodyJson(assets.A, X_WA), BodyJson(assets.B, X_WB)};
+  *meshes = {DisplayMesh(assets.A, options.max_triangles), DisplayMesh(assets.B, options.max_triangles)};
+  j["bodies"] = {BodyJson(assets.A, X_WA, (*meshes)[0]), BodyJson(assets.B, X_WB, (*meshes)[1])};
 
   // A's pointshell, thinned per level.
   const auto shell = assets.A.pointshell();
@@ -113,6 +130,14 @@ nlohmann::json SceneViewData(const Scene& scene, SceneAssets& assets, const Scen
                 {"max", *hi},
                 {"values", EncodeArray(s.values)}};
   return j;
+}
+
+}  // namespace
+
+nlohmann::json SceneViewData(const Scene& scene, SceneAssets& assets, const SceneViewOptions& options,
+                             const std::optional<BodyPoses>& poses) {
+  std::array<TriangleMesh, 2> meshes;
+  return SceneViewDataAndMeshes(scene, assets, options, poses, &meshes);
 }
 
 Replay ReadReplay(const fs::path& dir, std::optional<int> job, int max_frames) {
@@ -302,7 +327,8 @@ nlohmann::json ReplayViewData(const Replay& replay, SceneAssets& assets, const S
     const Pose X{Eigen::Quaterniond(p[3], p[4], p[5], p[6]).normalized(), Eigen::Vector3d(p[0], p[1], p[2])};
     (moving_is_B ? poses.X_WB : poses.X_WA) = X;
   }
-  nlohmann::json j = SceneViewData(replay.scene, assets, options, poses);
+  std::array<TriangleMesh, 2> meshes;
+  nlohmann::json j = SceneViewDataAndMeshes(replay.scene, assets, options, poses, &meshes);
 
   // Deformable bodies with recorded coordinates: the reduced basis at their mesh vertices.
   for (int b = 0; b < 2; ++b) {
@@ -315,7 +341,7 @@ nlohmann::json ReplayViewData(const Replay& replay, SceneAssets& assets, const S
       Fail((replay.dir / "cycles.csv").string(), "holds " + std::to_string(r) + " reduced coordinates of " +
                                                      body.spec().name + ", whose model has " + std::to_string(model->r()));
     }
-    const TriangleMesh& mesh = *body.mesh();
+    const TriangleMesh& mesh = meshes[b];  // the basis at the vertices drawn
     if (double(mesh.num_vertices()) * 3 * r > 16e6) {
       j["bodies"][b]["basis_omitted"] = true;
       continue;

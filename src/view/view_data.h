@@ -19,6 +19,8 @@ namespace contactlab {
 
 struct SceneViewOptions {
   int max_points = 50000;          // pointshell points drawn at most (display_points.h)
+  int max_triangles = 50000;       // triangles drawn per body at most: larger meshes are thinned
+                                   // by edge collapse (CGAL builds); <= 0: all
   int slice_axis = -1;             // field slice normal in the field body's frame: 0..2, -1 automatic
   std::optional<double> slice_at;  // the slice's coordinate along slice_axis (body frame, metres);
                                    // none: through the pointshell body's origin
@@ -31,7 +33,8 @@ struct BodyPoses {
 };
 
 // {"title", "scene", "bodies": [A, B] each {"name", "role", "pose": [x,y,z,qw,qx,qy,qz],
-// "positions": f32 (#V x 3), "indices": u32 (#T x 3), "vertices", "triangles"},
+// "positions": f32 (#V x 3), "indices": u32 (#T x 3), "vertices", "triangles" (drawn),
+// "source_triangles" (of the body's mesh)},
 // "pointshell": {"body": 0, "positions", "level": u8, "kept": [...], "total": [...],
 // "in_contact": points of the whole shell with d < 0 in B's field at these poses, "contact": u8
 // per drawn point (1: d < 0)},

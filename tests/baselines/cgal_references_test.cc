@@ -5,10 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <memory>
 
 #include "baselines/reference/analytic_references.h"
 #include "baselines/reference/penetration_volume.h"
+#include "baselines/reference/simplify_mesh.h"
 #include "baselines/reference/halfspace_limit_reference.h"
 #include "baselines/reference/surface_quadrature_reference.h"
 #include "baselines/reference/volume_reference.h"
@@ -209,6 +211,36 @@ TEST(VolumeReference, IsAReferenceOnlyModel) {
   for (const std::string& n : ContactModelNames()) EXPECT_NE(n, "volume");
   const std::vector<std::string> refs = ReferenceModelNames();
   EXPECT_NE(std::find(refs.begin(), refs.end(), "volume"), refs.end());
+}
+
+// Display thinning (the viewer's large meshes): a torus of 1/3 m and 1/9 m radii, 32,768
+// triangles, thinned to 2,000 keeps to the budget (within the stop's rounding), stays a closed
+// surface on the analytic torus (every vertex within 2% of the minor radius of it) and keeps
+// its enclosed volume (2 pi^2 R r^2) within 3%.
+TEST(SimplifyMesh, ThinnedTorusKeepsItsShapeAndTheBudget) {
+  const double R = 1.0 / 3, r = 1.0 / 9;
+  const TriangleMesh torus = MakeTorus(R, r, 256, 64);
+  ASSERT_EQ(torus.num_triangles(), 32768);
+  const TriangleMesh thin = SimplifyMesh(torus, 2000, "torus");
+  EXPECT_LE(thin.num_triangles(), 2000);
+  EXPECT_GE(thin.num_triangles(), 1900);
+  double worst = 0;
+  for (const Eigen::Vector3d& v : thin.vertices) {
+    worst = std::max(worst, std::abs(std::hypot(std::hypot(v.x(), v.y()) - R, v.z()) - r));
+  }
+  EXPECT_LT(worst, 0.02 * r);
+  const double volume = 2 * M_PI * M_PI * R * r * r;
+  EXPECT_NEAR(std::abs(thin.SignedVolume()), volume, 0.03 * volume);
+  // Still closed and oriented: each directed edge once, and its reverse once.
+  std::map<std::pair<int, int>, int> directed;
+  for (const Eigen::Vector3i& t : thin.triangles)
+    for (int k = 0; k < 3; ++k) ++directed[{t[k], t[(k + 1) % 3]}];
+  int unmatched = 0;
+  for (const auto& [e, n] : directed) unmatched += n != 1 || !directed.count({e.second, e.first});
+  EXPECT_EQ(unmatched, 0);
+  // A mesh within the budget comes back as it is; a budget below 4 is refused.
+  EXPECT_EQ(SimplifyMesh(torus, 40000, "torus").triangles, torus.triangles);
+  EXPECT_THROW(SimplifyMesh(torus, 3, "torus"), Error);
 }
 
 }  // namespace

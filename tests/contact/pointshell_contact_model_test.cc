@@ -2,9 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numeric>
 #include <random>
+#include <span>
 
 #include "allocation_counter.h"
 #include "test_shells.h"
@@ -346,6 +349,86 @@ TEST(PointshellContactModel, EvaluateAllocatesNothing) {
   }
   EXPECT_EQ(testing::AllocationCount() - before, 0);
   EXPECT_GT(contacts, 0);
+}
+
+// States of every point of SHELL in MODEL's latest query Q, asked for in the chunks the model
+// accepts.
+std::vector<PointState> AllPointStates(ContactModel& model, const ContactQuery& q, const Pointshell& shell) {
+  std::vector<std::int32_t> all(std::size_t(shell.num_points()));
+  std::iota(all.begin(), all.end(), 0);
+  std::vector<PointState> states(all.size());
+  for (std::size_t k = 0; k < all.size();) {
+    const int n = model.PointStates(q, std::span<const std::int32_t>(all).subspan(k), states.data() + k);
+    if (n <= 0) ADD_FAILURE() << "PointStates wrote nothing at point " << k;
+    if (n <= 0) break;
+    k += std::size_t(n);
+  }
+  return states;
+}
+
+// The per-point states the live view shows (paper Fig. 2) against the field itself: each
+// point's d computed directly (double-precision pose, DistanceField::Distance) at the query's
+// pose. A point marked in contact has d < 0 and a clear one d >= 0; at full depth without
+// coherence every point with d < 0 is reached (the culling test is conservative), so the
+// points marked in contact are exactly those with d < 0 and their count is the model's
+// points_in_contact. Points within 1e-6 m of the surface are left out (float vs double pose).
+TEST(PointshellContactModel, PointStatesAreTheFieldsSignAtTheQueryPose) {
+  auto shell = testing::SphereShell(0.05, 48, 4);
+  auto field = SphereField(0.06, 0.004);
+  std::mt19937 rng(7);
+  int culled = 0, clear = 0;
+  for (Variant variant : {Variant::kLinear, Variant::kTree}) {
+    PointshellContactModel model(variant, shell, field, {});
+    for (int trial = 0; trial < 10; ++trial) {
+      ContactQuery q;
+      q.cycle = trial;
+      q.X_WB = RandomPose(rng, 0.02);
+      const Eigen::Vector3d dir = Eigen::Vector3d::Random().normalized();
+      q.X_WA = {RotationFromVector(Eigen::Vector3d::Random()), q.X_WB.translation + (0.096 + 0.001 * trial) * dir};
+      const ContactResult result = model.Evaluate(q);
+      const std::vector<PointState> states = AllPointStates(model, q, *shell);
+      const Pose X_BA = q.X_WB.Inverse() * q.X_WA;
+      int in_contact = 0;
+      for (int i = 0; i < shell->num_points(); ++i) {
+        const double d = field->Distance(X_BA * Eigen::Vector3d(shell->x[i], shell->y[i], shell->z[i]));
+        in_contact += states[i] == PointState::kInContact;
+        culled += states[i] == PointState::kNotEvaluated;
+        clear += states[i] == PointState::kClear;
+        if (std::abs(d) < 1e-6) continue;
+        EXPECT_EQ(states[i] == PointState::kInContact, d < 0) << "point " << i << ", d = " << d << ", trial " << trial;
+        if (variant == Variant::kLinear) {
+          EXPECT_NE(states[i], PointState::kNotEvaluated) << "point " << i;
+        }
+      }
+      EXPECT_EQ(in_contact, result.stats.points_in_contact) << "trial " << trial;
+      EXPECT_GT(in_contact, 0) << "trial " << trial;
+    }
+  }
+  EXPECT_GT(culled, 0);  // the tree culled some points, so its states are not all "evaluated"
+  EXPECT_GT(clear, 0);
+}
+
+// Points below the level rendered are not evaluated, and a model that has not evaluated yet
+// marks nothing.
+TEST(PointshellContactModel, PointStatesMarkNothingBelowTheLevelRendered) {
+  auto shell = testing::SphereShell(0.05, 48, 4);
+  auto field = SphereField(0.06, 0.004);
+  PointshellContactParams params;
+  params.level = 1;
+  for (Variant variant : {Variant::kLinear, Variant::kTree}) {
+    PointshellContactModel model(variant, shell, field, params);
+    ContactQuery q;
+    q.X_WA = Pose::FromTranslation(Eigen::Vector3d(0.1, 0, 0));
+    if (variant == Variant::kTree) {
+      const std::vector<PointState> before = AllPointStates(model, q, *shell);
+      EXPECT_EQ(std::count(before.begin(), before.end(), PointState::kNotEvaluated), shell->num_points());
+    }
+    const ContactResult result = model.Evaluate(q);
+    const std::vector<PointState> states = AllPointStates(model, q, *shell);
+    for (int i = shell->level_point_end[1]; i < shell->num_points(); ++i) EXPECT_EQ(states[i], PointState::kNotEvaluated);
+    EXPECT_EQ(std::count(states.begin(), states.end(), PointState::kInContact), result.stats.points_in_contact);
+    EXPECT_GT(result.stats.points_in_contact, 0);
+  }
 }
 
 }  // namespace

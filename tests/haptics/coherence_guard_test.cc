@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
+#include <numeric>
 #include <vector>
 
 #include "allocation_counter.h"
@@ -65,7 +67,9 @@ double BoundingRadius(const TriangleMesh& mesh) {
 }
 
 // COHERENCE: the model's temporal coherence; GUARD: the cycle's speed guard.
-SweepRun RunSweep(bool coherence, bool guard) {
+// MARKS_CHUNK > 0: the cycle also marks every point of the slab's pointshell, that many a
+// cycle, into *MARKS.
+SweepRun RunSweep(bool coherence, bool guard, int marks_chunk = 0, std::unique_ptr<ContactPointMarks>* marks = nullptr) {
   testing::TempDir dir;
   Scene scene = ParseScene(ConfigNode::LoadString(kSlab, "slab.yaml"));
   scene.model.coherence = coherence;
@@ -81,6 +85,12 @@ SweepRun RunSweep(bool coherence, bool guard) {
     config.max_point_speed = scene.model.max_point_speed;
     config.cycle_seconds = scene.model.cycle_seconds;
     config.body_radius_H = BoundingRadius(*assets.B.mesh());
+  }
+  if (marks_chunk > 0) {
+    std::vector<std::int32_t> all(std::size_t(assets.A.pointshell()->num_points()));
+    std::iota(all.begin(), all.end(), 0);
+    *marks = std::make_unique<ContactPointMarks>(all, marks_chunk);
+    config.point_marks = marks->get();
   }
   HapticCycle cycle(device, model.get(), config);
   cycle.Start(0);
@@ -126,6 +136,25 @@ TEST(CoherenceGuard, FastBodyRendersTheSameContactsWithCoherenceOnAsOff) {
   EXPECT_GT(guarded.resets, 0);
   EXPECT_EQ(guarded.records.back().coherence_resets, guarded.resets);
   EXPECT_EQ(guarded.allocations, 0);  // the guard and the reset allocate nothing
+}
+
+// The live view's marks (contact_point_marks.h) cost the cycle no allocation, and a sweep made
+// in one cycle holds exactly that cycle's points in contact.
+TEST(CoherenceGuard, ContactMarksAllocateNothingAndCountTheCyclesContacts) {
+  for (int chunk : {4096, 100}) {  // one sweep a cycle; a sweep over 11 cycles
+    std::unique_ptr<ContactPointMarks> marks;
+    const SweepRun run = RunSweep(true, true, chunk, &marks);
+    EXPECT_EQ(run.allocations, 0) << "chunk " << chunk;
+    PointMarkSweep sweep;
+    ASSERT_TRUE(marks->TakeLatest(&sweep));
+    EXPECT_EQ(sweep.states.size(), std::size_t(marks->size()));
+    EXPECT_GE(sweep.last_cycle, 1200 - 2 * (marks->size() + chunk - 1) / chunk);
+    if (chunk >= marks->size()) {
+      ASSERT_EQ(sweep.first_cycle, sweep.last_cycle);
+      EXPECT_EQ(sweep.in_contact, run.records[std::size_t(sweep.last_cycle)].points_in_contact);
+      EXPECT_GT(sweep.in_contact, 0);
+    }
+  }
 }
 
 }  // namespace

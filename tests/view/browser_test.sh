@@ -19,19 +19,10 @@ cd "$work" || exit 1
 export HOME="$work/home"   # Chromium's profile and crash folders stay in the work folder
 mkdir -p "$HOME"
 
-# Headless Chromium with software WebGL (SwiftShader), no GPU, no network, a fixed window.
-browse() {  # browse OUT_OPTION URL LOG
-  timeout 40 "$chromium" --headless=new --no-sandbox --disable-gpu-sandbox --enable-unsafe-swiftshader \
-    --use-angle=swiftshader --use-gl=angle --enable-webgl --ignore-gpu-blocklist \
-    --no-first-run --no-default-browser-check --disable-extensions --disable-background-networking \
-    --user-data-dir="$work/profile" --enable-logging=stderr --v=0 --hide-scrollbars \
-    --window-size=1000,700 --virtual-time-budget=8000 "$1" "$2" 2>"$3"
-}
-
-# Chromium must start: a trivial page.
-echo '<html><body><script>document.title="alive"</script></body></html>' > alive.html
-browse --dump-dom "file://$work/alive.html" alive.log > alive.dom
-grep -q "<title>alive</title>" alive.dom || { cat alive.log; skip "headless Chromium does not start here"; }
+CHROMIUM=$chromium WORK=$work
+source "$here/headless_chromium.sh"
+browse() { chromium_run --virtual-time-budget=8000 "$@"; }  # browse OUT_OPTION URL LOG
+chromium_alive  # Chromium must start: a trivial page
 
 # A small procedural scene: a soft ball (pointshell, reduced StVK) resting on a plate (field),
 # and a run of it, whose replay deforms the ball's mesh in the page.

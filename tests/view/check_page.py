@@ -4,7 +4,8 @@
 DOM (--dump-dom after the virtual-time budget): <html data-ready="1" data-errors="0">.
 Logs (Chromium's stderr with --enable-logging): no uncaught error or console error of the page.
 PNG (--screenshot): not blank (pixel variance above a threshold), body A's orange and body B's
-blue each cover enough pixels (src/view/web/viewer.js keeps other colours off those hues).
+blue each cover enough pixels (src/view/web/viewer.js keeps other colours off those hues), and
+with --min-red the contact red covers at least that many.
 """
 import argparse
 import re
@@ -32,6 +33,8 @@ def main():
     ap.add_argument("--logs", nargs="*", default=[])
     ap.add_argument("--replay", action="store_true")
     ap.add_argument("--expect-text", default=None, help="text the page's DOM must contain")
+    ap.add_argument("--min-red", type=int, default=0,
+                    help="pixels of the contact red the screenshot must hold outside the panel (data-panel)")
     a = ap.parse_args()
     failures = []
 
@@ -62,8 +65,18 @@ def main():
     variance = float(img.var())
     orange = int(hue_mask(img, 15, 42).sum())
     blue = int(hue_mask(img, 205, 228).sum())
-    print("%s: %dx%d, pixel variance %.4f, orange (body A) %d px, blue (body B) %d px"
-          % (a.page, img.shape[1], img.shape[0], variance, orange, blue))
+    # The contact red (#ff1010, saturation 0.94): hue within 8 degrees of 0, saturation above 0.9
+    # (the force arrow, #ff3030, has 0.81).
+    red_mask = hue_mask(img, 0, 8, min_sat=0.9, min_val=0.5) | hue_mask(img, 352, 360, min_sat=0.9, min_val=0.5)
+    panel = re.search(r'data-panel="(\d+),(\d+),(\d+),(\d+)"', tag)
+    if panel:  # the legend's swatches are not points; 8 px of margin
+        x, y, w, h = (int(v) for v in panel.groups())
+        red_mask[max(0, y - 8):y + h + 8, max(0, x - 8):x + w + 8] = False
+    red = int(red_mask.sum())
+    print("%s: %dx%d, pixel variance %.4f, orange (body A) %d px, blue (body B) %d px, red (contact) %d px"
+          % (a.page, img.shape[1], img.shape[0], variance, orange, blue, red))
+    if red < a.min_red:
+        failures.append("points in contact (red) cover only %d pixels" % red)
     if variance < 0.002:
         failures.append("the screenshot is blank (variance %.5f)" % variance)
     if orange < 2000:

@@ -51,6 +51,11 @@ TEST(DisplayPoints, LargeShellRespectsTheCapAndKeepsEveryLevel) {
     for (int i = 0; i < d.num_kept(); ++i) {
       // Each kept point comes from its own level's run, and none twice.
       ASSERT_EQ(d.xyz[3 * i], float(d.level[i])) << "cap " << cap;
+      // Its index names the shell point it was taken from.
+      const std::int32_t k = d.index[i];
+      ASSERT_TRUE(k >= 0 && k < s.num_points());
+      EXPECT_EQ(d.xyz[3 * i + 1], s.y[k]);
+      EXPECT_EQ(d.xyz[3 * i], s.x[k]);
       EXPECT_TRUE(seen[d.level[i]].insert(d.xyz[3 * i + 1]).second) << "cap " << cap;
     }
     for (int l = 0; l < s.num_levels(); ++l) {

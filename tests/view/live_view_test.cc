@@ -20,6 +20,7 @@
 #include "allocation_counter.h"
 #include "test_support.h"
 #include "util/atomic_file.h"
+#include "view/page_encoding.h"
 #include "view/latest_value.h"
 #include "view/live_view_server.h"
 
@@ -196,14 +197,27 @@ TEST(LiveView, SessionStreamMatchesItsLog) {
   EXPECT_NE(page->body.find("\"live\":{"), std::string::npos);
   EXPECT_NE(page->body.find("THREE.OrbitControls"), std::string::npos);
 
-  // One second of the stream.
+  // The pointshell points the page draws (all of them: the shell is small).
+  const std::string data_start = "<script type=\"application/json\" id=\"contactlab-data\">";
+  const std::size_t data_at = page->body.find(data_start) + data_start.size();
+  const nlohmann::json data =
+      nlohmann::json::parse(page->body.substr(data_at, page->body.find("</script>", data_at) - data_at));
+  const int drawn = data["pointshell"]["points"].get<int>();
+  ASSERT_EQ(data["pointshell"]["kept"], data["pointshell"]["total"]);
+
+  // One second of the stream: snapshots, and the contact marks of the drawn points.
   std::string buffer;
-  std::vector<nlohmann::json> events;
+  std::vector<nlohmann::json> events, marks;
   client.Get("/stream", [&](const char* data, std::size_t n) {
     buffer.append(data, n);
     for (std::size_t end; (end = buffer.find("\n\n")) != std::string::npos;) {
       const std::string event = buffer.substr(0, end);
       buffer.erase(0, end + 2);
+      const std::string marks_prefix = "event: marks\ndata: ";
+      if (event.rfind(marks_prefix, 0) == 0) {
+        marks.push_back(nlohmann::json::parse(event.substr(marks_prefix.size())));
+        continue;
+      }
       EXPECT_EQ(event.rfind("data: ", 0), 0u) << event;
       events.push_back(nlohmann::json::parse(event.substr(6)));
     }
@@ -248,6 +262,38 @@ TEST(LiveView, SessionStreamMatchesItsLog) {
   }
   EXPECT_GT(in_contact, 0) << "the hand never pressed the plate into the ball";
   EXPECT_GT(moved, 1e-3) << "the device did not move";
+
+  // Marks, 5 to 20 a second: every drawn point marked, the counts those of the 2-bit states,
+  // and (the shell fits in one chunk, so a sweep is one cycle) the points marked in contact
+  // are as many as the log's points in contact at that cycle. The log's rows are the cycles
+  // in order when the consumer dropped none, which the snapshots' rows confirm.
+  ASSERT_NE(output.find("records dropped by the log consumer: 0"), std::string::npos) << output;
+  std::vector<double> contacts_by_cycle;
+  for (const auto& [t, r] : rows) contacts_by_cycle.push_back(r[contacts]);  // t has a fixed width: in order
+  for (const nlohmann::json& e : events) {
+    char t[32];
+    std::snprintf(t, sizeof t, "%.6f", e["t"].get<double>());
+    ASSERT_EQ(std::distance(rows.begin(), rows.find(t)), e["cycle"].get<long>()) << "t = " << t;
+  }
+  EXPECT_GE(marks.size(), 5u);
+  EXPECT_LE(double(marks.size()), 20.0 * (span + 0.2));
+  int marks_in_contact = 0;
+  for (const nlohmann::json& m : marks) {
+    EXPECT_EQ(m["points"].get<int>(), drawn);
+    const std::string packed = Base64Decode(m["states"].get<std::string>(), "marks");
+    ASSERT_EQ(int(packed.size()), (drawn + 3) / 4);
+    int counts[4] = {0, 0, 0, 0};
+    for (int i = 0; i < drawn; ++i) ++counts[(std::uint8_t(packed[i / 4]) >> (2 * (i % 4))) & 3];
+    EXPECT_EQ(counts[3], 0);
+    EXPECT_EQ(counts[2], m["in_contact"].get<int>());
+    EXPECT_EQ(counts[1] + counts[2], m["evaluated"].get<int>());
+    ASSERT_EQ(m["first_cycle"], m["last_cycle"]);
+    const long cycle = m["last_cycle"].get<long>();
+    ASSERT_LT(cycle, long(contacts_by_cycle.size()));
+    EXPECT_EQ(counts[2], int(contacts_by_cycle[std::size_t(cycle)])) << "cycle " << cycle;
+    marks_in_contact += counts[2] > 0;
+  }
+  EXPECT_GT(marks_in_contact, 0);
 }
 
 }  // namespace

@@ -13,6 +13,8 @@
   var LEVEL_COLOURS = ['#ffe14d', '#3cc83c', '#d040d0', '#40e0e0', '#a0ff60', '#9060ff',
                        '#f0f0f0', '#ff80c0', '#00a080', '#c0c000', '#b0b0ff', '#808080'];
   var CONTACT_COLOUR = '#ff1010';
+  // Live contact marks: evaluated points sky blue (clear of body B's hue), the rest dim grey.
+  var EVALUATED_COLOUR = '#38c8ff', UNEVALUATED_COLOUR = '#5a5e64';
   var FORCE_COLOUR = 0xff3030;
 
   var data = JSON.parse(document.getElementById('contactlab-data').textContent);
@@ -121,8 +123,9 @@
         var cg = new THREE.BufferGeometry();
         cg.setAttribute('position', new THREE.BufferAttribute(new Float32Array(touching), 3));
         // Drawn through everything: the contact region is usually hidden inside the other body.
-        contactPoints = new THREE.Points(cg, new THREE.PointsMaterial({size: 4, sizeAttenuation: false,
-                                                                       color: CONTACT_COLOUR, depthTest: false}));
+        // Transparent, so that it is drawn with (after, by renderOrder) the translucent bodies.
+        contactPoints = new THREE.Points(cg, new THREE.PointsMaterial({size: 4, sizeAttenuation: false, color: CONTACT_COLOUR,
+                                                                       depthTest: false, transparent: true, depthWrite: false}));
         contactPoints.renderOrder = 5;
         bodies[ps.body].group.add(contactPoints);
       }
@@ -222,8 +225,9 @@
     row.appendChild(el('span', {'class': 'swatch', style: 'background:' + hex(BODY_COLOURS[i])}));
     var how = !b.spec.deformable ? '' : b.basis ? ', deformable: mesh deformed per frame, points at rest'
                                                : ', deformable, shown at rest';
-    row.appendChild(el('span', {}, b.spec.name + ' (' + b.spec.role + how +
-                                   ', ' + b.spec.triangles + ' triangles)'));
+    var triangles = b.spec.source_triangles > b.spec.triangles
+        ? b.spec.source_triangles + ' \u2192 ' + b.spec.triangles + ' triangles for display' : b.spec.triangles + ' triangles';
+    row.appendChild(el('span', {}, b.spec.name + ' (' + b.spec.role + how + ', ' + triangles + ')'));
     legend.appendChild(row);
   });
   if (data.pointshell) {
@@ -232,7 +236,7 @@
     legend.appendChild(el('div', {'class': 'small'}, 'pointshell: ' + ps2.points + ' points, ' + ps2.levels +
                                                     ' levels; ' + shown + ' drawn'));
     ps2.kept.forEach(function (kept, l) {
-      var row = el('div', {'class': 'row small'});
+      var row = el('div', {'class': 'row small level-row'});
       row.appendChild(el('span', {'class': 'swatch', style: 'background:' + LEVEL_COLOURS[l % LEVEL_COLOURS.length]}));
       row.appendChild(el('span', {}, 'level ' + l + ': ' + kept + (kept < ps2.total[l] ? ' of ' + ps2.total[l] : '') + ' points'));
       legend.appendChild(row);
@@ -494,6 +498,64 @@
       frameIndex = history.length - 1;
       drawPlot();
     };
+    // Per-point contact state of the drawn points, from a sweep over a few consecutive cycles
+    // (docs/viewer.md): red in contact (d < 0), blue evaluated (d >= 0), grey not evaluated.
+    if (points) {
+      var markColours = [UNEVALUATED_COLOUR, EVALUATED_COLOUR, CONTACT_COLOUR].map(function (h) { return new THREE.Color(h); });
+      var marksRow = null, marksReceived = 0;
+      // The points in contact again, larger and through everything, as on a scene page: they
+      // usually lie inside the other body.
+      var drawnPositions = points.geometry.attributes.position.array;
+      var touchingGeometry = new THREE.BufferGeometry();
+      touchingGeometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(drawnPositions.length), 3));
+      touchingGeometry.setDrawRange(0, 0);
+      // Transparent, so that it is drawn with (after, by renderOrder) the translucent bodies.
+      var touching = new THREE.Points(touchingGeometry, new THREE.PointsMaterial(
+          {size: 5, sizeAttenuation: false, color: CONTACT_COLOUR, depthTest: false, transparent: true, depthWrite: false}));
+      touching.renderOrder = 5;
+      touching.frustumCulled = false;
+      points.add(touching);  // same frame; hidden with the points
+      stream.addEventListener('marks', function (e) {
+        var m = JSON.parse(e.data);
+        var packed = decode(m.states, Uint8Array);
+        var col = points.geometry.attributes.color, a = col.array;
+        var n = Math.min(m.points, a.length / 3), counts = [0, 0, 0];
+        var tp = touchingGeometry.attributes.position;
+        for (var i = 0; i < n; ++i) {
+          var state = (packed[i >> 2] >> (2 * (i & 3))) & 3, mc = markColours[state] || markColours[0];
+          if (state === 2) {
+            tp.array[3 * counts[2]] = drawnPositions[3 * i];
+            tp.array[3 * counts[2] + 1] = drawnPositions[3 * i + 1];
+            tp.array[3 * counts[2] + 2] = drawnPositions[3 * i + 2];
+          }
+          ++counts[state];
+          a[3 * i] = mc.r; a[3 * i + 1] = mc.g; a[3 * i + 2] = mc.b;
+        }
+        col.needsUpdate = true;
+        tp.needsUpdate = true;
+        touchingGeometry.setDrawRange(0, counts[2]);
+        if (!marksRow) {  // the points now show contact state, not level
+          Array.prototype.forEach.call(document.querySelectorAll('.level-row'), function (r) { r.hidden = true; });
+          marksRow = el('div', {'class': 'small'});
+          legend.appendChild(marksRow);
+        }
+        marksRow.innerHTML = '';
+        [[CONTACT_COLOUR, 'in contact (d < 0): ' + counts[2]], [EVALUATED_COLOUR, 'evaluated, d >= 0: ' + counts[1]],
+         [UNEVALUATED_COLOUR, 'not evaluated: ' + counts[0]]].forEach(function (x) {
+          var r = el('div', {'class': 'row small'});
+          r.appendChild(el('span', {'class': 'swatch', style: 'background:' + x[0]}));
+          r.appendChild(el('span', {}, x[1]));
+          marksRow.appendChild(r);
+        });
+        marksRow.appendChild(el('div', {'class': 'small'}, 'drawn points by contact state, cycles ' + m.first_cycle +
+                                                         '-' + m.last_cycle));
+        document.documentElement.setAttribute('data-marks', String(++marksReceived));
+        document.documentElement.setAttribute('data-marks-contact', String(counts[2]));
+        // Where the panel is (x,y,w,h, CSS px): its legend swatches are not points.
+        var pr = document.getElementById('panel').getBoundingClientRect();
+        document.documentElement.setAttribute('data-panel', [pr.left, pr.top, pr.width, pr.height].map(Math.round).join(','));
+      });
+    }
     stream.onerror = function () {
       // The session ended (or the server went away): keep the last pose.
       stream.close();
@@ -514,9 +576,32 @@
   }
   layout();
   window.addEventListener('resize', layout);
+  // #bench=orbit[&frames=N]: after the first frame the camera circles the scene once in N
+  // frames (default 240); the mean and 95th-percentile time between frames (requestAnimationFrame
+  // timestamps), in ms, go to data-bench-mean-ms and data-bench-p95-ms on <html> and to
+  // window.contactlabBench.
+  var bench = options.bench === 'orbit' ? {n: Math.max(2, Number(options.frames) || 240), times: [], last: null} : null;
+  function benchFrame(now) {
+    if (bench.last !== null) bench.times.push(now - bench.last);
+    bench.last = now;
+    var offset = camera.position.clone().sub(controls.target);
+    offset.applyAxisAngle(camera.up, 2 * Math.PI / bench.n);
+    camera.position.copy(controls.target).add(offset);
+    camera.lookAt(controls.target);
+    if (bench.times.length === bench.n) {
+      var sorted = bench.times.slice().sort(function (a, b) { return a - b; });
+      var mean = sorted.reduce(function (a, b) { return a + b; }, 0) / sorted.length;
+      var p95 = sorted[Math.min(sorted.length - 1, Math.floor(0.95 * sorted.length))];
+      window.contactlabBench = {frames: sorted.length, mean_ms: mean, p95_ms: p95};
+      document.documentElement.setAttribute('data-bench-mean-ms', mean.toFixed(2));
+      document.documentElement.setAttribute('data-bench-p95-ms', p95.toFixed(2));
+      bench = null;
+    }
+  }
   var frames = 0;
   function animate(now) {
     requestAnimationFrame(animate);
+    if (bench && frames > 0) benchFrame(now);
     if (playing && tracks.length > 0) {
       var tr = tracks[current];
       if (lastWall !== null) playTime += (now - lastWall) / 1000 * Number(document.getElementById('speed').value);
@@ -528,6 +613,8 @@
     renderer.render(scene, camera);
     if (++frames === 1) {
       document.documentElement.setAttribute('data-ready', '1');
+      // Time from the start of navigation to the first frame drawn, ms.
+      document.documentElement.setAttribute('data-ready-ms', performance.now().toFixed(0));
       window.contactlabReady = true;
     }
   }
