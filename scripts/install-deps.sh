@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs ContactLab's build, test and figure dependencies from Debian 12 packages (with
+# Installs ContactLab's build, test and figure dependencies from Debian 12 packages (Highway
+# for the vectorised field lookups, src/sdf/batch_distance; with
 # slurm-wlm and munge for the single-node Slurm cluster test, tests/slurm/; clang with its
 # runtime libraries, which hold libFuzzer, for the fuzz targets, tests/fuzz/; cpp-httplib, three.js
 # and Chromium for the 3D viewer and its browser tests, src/view/; OpenVDB for the reference
@@ -14,7 +15,7 @@ packages=(
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libbullet-dev
   libspectra-dev libnanoflann-dev libspnav-dev
-  libopenvdb-dev
+  libhwy-dev libopenvdb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-14-dev
   python3 python3-numpy python3-matplotlib python3-yaml
