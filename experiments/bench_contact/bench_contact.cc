@@ -7,6 +7,7 @@
 // while held at the placement depth, so coherence sees a moving configuration. Counters:
 // ns_per_node, nodes (visited per cycle), contacts, level, p99_us / p999_us / max_us (cycle
 // time percentiles and the slowest cycle, which includes the operating system's jitter).
+// CONTACTLAB_BENCH_LARGE_POINTS=1048576,4194304 replaces the scenes with dragon-bunny at those sizes.
 // Beside them, roofline/*: the machine's memory latency and bandwidth per cache level and the
 // cost of one trilinear field lookup (roofline.h), the bounds a traversal's ns/point is read
 // against.
@@ -14,6 +15,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -69,6 +72,22 @@ void RegisterAll() {
   std::vector<SceneCase> scenes;
   if (bench::QuickRun()) {
     scenes = {{"scenes/sphere-on-plate.yaml", {4096}}};
+  } else if (const char* large = std::getenv("CONTACTLAB_BENCH_LARGE_POINTS")) {
+    // Scale study beyond the default sizes (a 1M-point pointshell takes minutes to build the
+    // first time, then comes from the cache): dragon-bunny at the comma-separated sizes.
+    std::vector<int> sizes;
+    for (const char* c = large;;) {
+      char* end = nullptr;
+      const long n = std::strtol(c, &end, 10);
+      if (end == c || n < 256 || n > (1L << 26) || (*end != ',' && *end != 0)) {
+        std::fprintf(stderr, "CONTACTLAB_BENCH_LARGE_POINTS: '%s' is not a list of sizes 256..2^26\n", large);
+        std::exit(2);
+      }
+      sizes.push_back(int(n));
+      if (*end == 0) break;
+      c = end + 1;
+    }
+    scenes = {{"scenes/dragon-bunny.yaml", sizes}};
   } else {
     // Sizes 4k..256k points (levels so level 0 keeps ~250 points).
     const std::vector<int> sizes = {4096, 16384, 65536, 262144};
