@@ -77,8 +77,8 @@ class TreeTraversalState {
         queue_b_(std::size_t(s.num_nodes())),
         queue_d_a_(std::size_t(s.num_nodes())),
         queue_d_b_(std::size_t(s.num_nodes())),
-        evaluated_(std::size_t(s.num_points())),
-        evaluated_d_(std::size_t(s.num_points())),
+        evaluated_(std::size_t(s.num_nodes())),  // at most one entry per node visited, whatever the tree
+        evaluated_d_(std::size_t(s.num_nodes())),
         mark_stamp_(std::size_t(s.num_points()), 0u),
         mark_d_(std::size_t(s.num_points()), 0.f) {}
 
@@ -214,8 +214,8 @@ class TreeTraversalState {
  private:
   std::vector<std::int32_t> queue_a_, queue_b_;  // (#N) traversal queues: nodes
   std::vector<float> queue_d_a_, queue_d_b_;     // (#N) and their point's d, NaN when not known
-  std::vector<std::int32_t> evaluated_;          // (#P) points evaluated this cycle, level by level
-  std::vector<float> evaluated_d_;               // (#P) their distances
+  std::vector<std::int32_t> evaluated_;          // (#N) points evaluated this cycle, level by level
+  std::vector<float> evaluated_d_;               // (#N) their distances
   int num_evaluated_ = 0;
   int last_level_rendered_ = -1;
   std::uint32_t runs_ = 0;                  // Run and Reset calls
