@@ -28,15 +28,6 @@ struct DeformableShellPolicy {
   double clock;
   const BatchTransform X_batch = X_BA.AsBatch();
 
-  float EvaluatePoint(int i) {
-    float p_AQ[3];
-    shell.points().PositionF(i, q, p_AQ);
-    float p_BQ[3];
-    X_BA.Apply(p_AQ[0], p_AQ[1], p_AQ[2], p_BQ);
-    const float d = field.Distance(p_BQ[0], p_BQ[1], p_BQ[2]);
-    if (d < 0.f) AddContact(i, p_AQ, d);
-    return d;
-  }
   // The deformed positions x = X + U q of a chunk, then their distances as one batch.
   void EvaluatePoints(int begin, const std::int32_t* index, int n, float* d) {
     constexpr int kChunk = 256;

@@ -69,16 +69,6 @@ struct RigidShellPolicy {
   double step;  // lipschitz * max_point_speed * cycle_seconds: distance closed per cycle
   const BatchTransform X_batch = X_BA.AsBatch();
 
-  float EvaluatePoint(int i) {
-    float p_BQ[3];
-    X_BA.Apply(s.x[i], s.y[i], s.z[i], p_BQ);
-    const float d = field.Distance(p_BQ[0], p_BQ[1], p_BQ[2]);
-    if (d < 0.f) {
-      const float n_A[3] = {s.nx[i], s.ny[i], s.nz[i]};
-      AddContactPoint(field, X_BA, n_A, p_BQ, d, gradient, acc);
-    }
-    return d;
-  }
   void EvaluatePoints(int begin, const std::int32_t* index, int n, float* d) {
     const int offset = index ? 0 : begin;
     BatchDistances(field, X_batch, s.x.data() + offset, s.y.data() + offset, s.z.data() + offset, index, n, d);

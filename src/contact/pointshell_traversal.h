@@ -5,9 +5,10 @@
 // own code (no branch per point on "deformable?"):
 //
 //   struct Policy {
-//     float EvaluatePoint(int i);        // d of point i in B's field; adds its force when d < 0
-//     // Optional (BatchPolicy), many points at once: D[k] for point INDEX[k], or for point
-//     // BEGIN + k when INDEX is null, k < N; adds the force of each point in contact.
+//     // One of the two: point i's d in B's field, adding its force when d < 0; or, many
+//     // points at once (BatchPolicy), D[k] for point INDEX[k], or for point BEGIN + k when
+//     // INDEX is null, k < N, adding the force of each point in contact.
+//     float EvaluatePoint(int i);
 //     void EvaluatePoints(int begin, const std::int32_t* index, int n, float* d);
 //     float Radius(int node) const;      // bounding radius of the node's subtree this cycle
 //     bool Asleep(int node) const;       // temporal coherence: skip the node this cycle
