@@ -113,6 +113,11 @@ MeshSignedDistance::MeshSignedDistance(const TriangleMesh& mesh, const std::stri
 double MeshSignedDistance::Distance(const Eigen::Vector3d& p, Eigen::Vector3d* closest) const {
   std::int32_t t = -1;
   const double d2 = bvh_.ClosestSquared(p.data(), std::numeric_limits<double>::infinity(), &t);
+  const double d = std::sqrt(d2);
+  return Inside(p, t, closest) ? -d : d;
+}
+
+bool MeshSignedDistance::Inside(const Eigen::Vector3d& p, std::int32_t t, Eigen::Vector3d* closest) const {
   const Eigen::Vector3i& f = mesh_.triangles[t];
   const Eigen::Vector3d &a = mesh_.vertices[f[0]], &b = mesh_.vertices[f[1]], &c = mesh_.vertices[f[2]];
   const Eigen::Vector3d w = ClosestBarycentric(p, a, b, c);
@@ -132,8 +137,7 @@ double MeshSignedDistance::Distance(const Eigen::Vector3d& p, Eigen::Vector3d* c
   const Eigen::Vector3d& n = zeros >= 2   ? vertex_normal_[f[one]]
                              : zeros == 1 ? edge_normal_[3 * std::size_t(t) + (zero + 1) % 3]
                                           : face_normal_[t];
-  const double d = std::sqrt(d2);
-  return (p - q).dot(n) < 0 ? -d : d;
+  return (p - q).dot(n) < 0;
 }
 
 }  // namespace contactlab

@@ -32,6 +32,11 @@ class MeshSignedDistance {
   // Never throws or allocates.
   double Distance(const Eigen::Vector3d& p, Eigen::Vector3d* closest = nullptr) const;
 
+  // True when P is inside, given the triangle T closest to P (its index in the mesh): the
+  // pseudo-normal test alone, for callers that found the closest triangle themselves.
+  // CLOSEST (may be null) gets the closest point. Never throws or allocates.
+  bool Inside(const Eigen::Vector3d& p, std::int32_t t, Eigen::Vector3d* closest = nullptr) const;
+
   const TriangleMesh& mesh() const { return mesh_; }
 
  private:
