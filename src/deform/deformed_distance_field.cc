@@ -187,6 +187,7 @@ DeformedDistanceField::DeformedDistanceField(std::shared_ptr<const DistanceField
     : rest_(std::move(rest)), k_(options.neighbours), force_at_(options.force_at) {
   ValidateDeformedFieldOptions(options, where);
   if (!rest_ || rest_->empty()) Fail(where, "the deformed distance field needs the body's rest field");
+  if (rest_->sparse()) Fail(where, "the deformed distance field needs a dense rest field, not a sparse one");
   overlap_ = options.overlap >= 0 ? options.overlap : 3 * rest_->spacing();
 
   // The proxyshell: one repulsion level on the rest surface.

@@ -2,6 +2,8 @@
 // target by foreach_target.h), and the run-time dispatch between them.
 #include "sdf/batch_distance.h"
 
+#include "sdf/sparse_field.h"
+
 #include <algorithm>
 #include <limits>
 
@@ -42,6 +44,66 @@ void BatchDistancesImpl(const DistanceField& field, const BatchTransform& X, con
   const VI last_i = hn::Set(di, g.nx - 2), last_j = hn::Set(di, g.ny - 2), last_k = hn::Set(di, g.nz - 2);
   const VI sy = hn::Set(di, g.nx), sz = hn::Set(di, g.nx * g.ny);
   const std::int32_t oxy = g.nx, oxz = g.nx * g.ny;
+  // Sparse fields (sdf/sparse_field.h): brick slots, 16-bit samples read in x-pairs, coarse cells.
+  const SparseFieldStorage* sp = g.sparse;
+  constexpr int kE = SparseFieldStorage::kBrickEdge;
+  const VI seven = hn::Set(di, 7), zero_i = hn::Zero(di);
+  const VI brick_stride = hn::Set(di, SparseFieldStorage::kBrickStride), outside_code = hn::Set(di, SparseFieldStorage::kOutside);
+  const VI nbx = hn::Set(di, sp ? sp->bricks.x() : 0), nby = hn::Set(di, sp ? sp->bricks.y() : 0);
+  const VI cx = hn::Set(di, sp ? sp->bricks.x() + 1 : 0),
+           cxy = hn::Set(di, sp ? (sp->bricks.x() + 1) * (sp->bricks.y() + 1) : 0);
+  const std::int32_t ocy = sp ? sp->bricks.x() + 1 : 0, ocz = sp ? (sp->bricks.x() + 1) * (sp->bricks.y() + 1) : 0;
+  const VF quantum = hn::Set(df, sp ? sp->quantum : 0.f), eighth = hn::Set(df, 0.125f);
+  const VF band_floor = hn::Set(df, sp ? sp->floor : 0.f), margin = hn::Set(df, sp ? sp->margin : 0.f);
+  const std::int32_t* slots = sp ? sp->slot.data() : nullptr;
+  const std::int32_t* words = sp ? reinterpret_cast<const std::int32_t*>(sp->samples.data()) : nullptr;
+  const float* coarse = sp ? sp->coarse.data() : nullptr;
+  auto trilinear = [&](VF tx, VF ty, VF tz, VF v000, VF v100, VF v010, VF v110, VF v001, VF v101, VF v011,
+                       VF v111) HWY_ATTR {
+    const VF c00 = hn::MulAdd(tx, v100 - v000, v000);
+    const VF c10 = hn::MulAdd(tx, v110 - v010, v010);
+    const VF c01 = hn::MulAdd(tx, v101 - v001, v001);
+    const VF c11 = hn::MulAdd(tx, v111 - v011, v011);
+    const VF c0 = hn::MulAdd(ty, c10 - c00, c00);
+    const VF c1 = hn::MulAdd(ty, c11 - c01, c01);
+    return hn::MulAdd(tz, c1 - c0, c0);
+  };
+  // Fine cells (CI, CJ, CK) at fine coordinates (GX, GY, GZ) of a sparse field.
+  auto sparse_lookup = [&](VF gx, VF gy, VF gz, VI ci, VI cj, VI ck, decltype(gx < zero) inside) HWY_ATTR {
+    const VI bi = hn::ShiftRight<3>(ci), bj = hn::ShiftRight<3>(cj), bk = hn::ShiftRight<3>(ck);
+    const VI s = hn::GatherIndex(di, slots, bi + nbx * (bj + nby * bk));
+    const auto stored = hn::RebindMask(df, s > hn::Set(di, -1));
+    VF result = zero;
+    if (!hn::AllFalse(df, hn::And(stored, inside))) {
+      // Word offsets in bytes: sample e and e + 1 share a 32-bit load (little-endian).
+      const VI e = hn::Max(s, zero_i) * brick_stride + (ci & seven) + hn::Set(di, kE) * ((cj & seven) + hn::Set(di, kE) * (ck & seven));
+      const VI off = hn::ShiftLeft<1>(e);
+      const VI w0 = hn::GatherOffset(di, words, off);
+      const VI w1 = hn::GatherOffset(di, words, off + hn::Set(di, 2 * kE));
+      const VI w2 = hn::GatherOffset(di, words, off + hn::Set(di, 2 * kE * kE));
+      const VI w3 = hn::GatherOffset(di, words, off + hn::Set(di, 2 * (kE * kE + kE)));
+      auto lo = [&](VI w) HWY_ATTR { return hn::ConvertTo(df, hn::ShiftRight<16>(hn::ShiftLeft<16>(w))); };
+      auto hi = [&](VI w) HWY_ATTR { return hn::ConvertTo(df, hn::ShiftRight<16>(w)); };
+      const VF tx = gx - hn::ConvertTo(df, ci), ty = gy - hn::ConvertTo(df, cj), tz = gz - hn::ConvertTo(df, ck);
+      result = trilinear(tx, ty, tz, lo(w0), hi(w0), lo(w1), hi(w1), lo(w2), hi(w2), lo(w3), hi(w3)) * quantum;
+    }
+    if (!hn::AllFalse(df, hn::AndNot(stored, inside))) {
+      // The coarse cell is the brick; its samples are 8 fine spacings apart.
+      const VF tx = (gx - hn::ConvertTo(df, hn::ShiftLeft<3>(bi))) * eighth;
+      const VF ty = (gy - hn::ConvertTo(df, hn::ShiftLeft<3>(bj))) * eighth;
+      const VF tz = (gz - hn::ConvertTo(df, hn::ShiftLeft<3>(bk))) * eighth;
+      const VI base = bi + cx * bj + cxy * bk;
+      const VF d = trilinear(tx, ty, tz, hn::GatherIndex(df, coarse, base), hn::GatherIndex(df, coarse + 1, base),
+                             hn::GatherIndex(df, coarse + ocy, base), hn::GatherIndex(df, coarse + ocy + 1, base),
+                             hn::GatherIndex(df, coarse + ocz, base), hn::GatherIndex(df, coarse + ocz + 1, base),
+                             hn::GatherIndex(df, coarse + ocz + ocy, base),
+                             hn::GatherIndex(df, coarse + ocz + ocy + 1, base));
+      const auto out = hn::RebindMask(df, s == outside_code);
+      const VF bounded = hn::IfThenElse(out, hn::Max(band_floor, d - margin), hn::Min(hn::Neg(band_floor), d));
+      result = hn::IfThenElse(stored, result, bounded);
+    }
+    return result;
+  };
 
   // One vector of points in A's frame -> their distances.
   auto lookup = [&](VF px, VF py, VF pz) HWY_ATTR {
@@ -68,6 +130,7 @@ void BatchDistancesImpl(const DistanceField& field, const BatchTransform& X, con
     const VI ci = hn::Min(hn::ConvertTo(di, gx), last_i);
     const VI cj = hn::Min(hn::ConvertTo(di, gy), last_j);
     const VI ck = hn::Min(hn::ConvertTo(di, gz), last_k);
+    if (sp) return hn::IfThenElse(inside, sparse_lookup(gx, gy, gz, ci, cj, ck, inside), result);
     const VF tx = gx - hn::ConvertTo(df, ci), ty = gy - hn::ConvertTo(df, cj), tz = gz - hn::ConvertTo(df, ck);
     const VI base = ci + sy * cj + sz * ck;
     const float* v = g.values;
@@ -79,13 +142,7 @@ void BatchDistancesImpl(const DistanceField& field, const BatchTransform& X, con
     const VF v101 = hn::GatherIndex(df, v + oxz + 1, base);
     const VF v011 = hn::GatherIndex(df, v + oxz + oxy, base);
     const VF v111 = hn::GatherIndex(df, v + oxz + oxy + 1, base);
-    const VF c00 = hn::MulAdd(tx, v100 - v000, v000);
-    const VF c10 = hn::MulAdd(tx, v110 - v010, v010);
-    const VF c01 = hn::MulAdd(tx, v101 - v001, v001);
-    const VF c11 = hn::MulAdd(tx, v111 - v011, v011);
-    const VF c0 = hn::MulAdd(ty, c10 - c00, c00);
-    const VF c1 = hn::MulAdd(ty, c11 - c01, c01);
-    return hn::IfThenElse(inside, hn::MulAdd(tz, c1 - c0, c0), result);
+    return hn::IfThenElse(inside, trilinear(tx, ty, tz, v000, v100, v010, v110, v001, v101, v011, v111), result);
   };
 
   int k = 0;

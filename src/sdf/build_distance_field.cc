@@ -11,7 +11,9 @@
 #include "sdf/enclosed_components.h"
 #include "sdf/field_grid.h"
 #include "sdf/marching_cubes.h"
+#include "sdf/mesh_signed_distance.h"
 #include "sdf/signed_distance_grid.h"
+#include "sdf/sparse_field.h"
 #include "sdf/unsigned_distance_grid.h"
 #include "util/error.h"
 
@@ -49,6 +51,12 @@ void CheckInputs(const TriangleMesh& mesh, const DistanceFieldOptions& options) 
 
 }  // namespace
 
+FieldStorage ParseFieldStorage(const std::string& text, const std::string& where) {
+  if (text == "dense") return FieldStorage::kDense;
+  if (text == "sparse") return FieldStorage::kSparse;
+  Fail(where, "unknown distance-field storage '" + text + "' (expected dense or sparse)");
+}
+
 FieldMode ParseFieldMode(const std::string& text, const std::string& where) {
   if (text == "auto") return FieldMode::kAuto;
   if (text == "closed") return FieldMode::kClosed;
@@ -75,6 +83,32 @@ DistanceField BuildDistanceFieldImpl(const TriangleMesh& mesh, const DistanceFie
                       "use mode soup or auto");
     }
     mode = report.watertight ? FieldMode::kClosed : FieldMode::kSoup;
+  }
+  if (options.storage == FieldStorage::kSparse) {
+    if (mode != FieldMode::kClosed) {
+      Fail(where, "a sparse distance field needs a watertight mesh (the closed pipeline); use storage dense");
+    }
+    if (options.resolution % SparseFieldStorage::kBrick != 0 || options.resolution < 64) {
+      Fail(where, "a sparse distance field needs a resolution that is a multiple of 8 and at least 64, not " +
+                      std::to_string(options.resolution));
+    }
+    if (options.band_voxels < 1 || options.band_voxels > 16) {
+      Fail(where, "the sparse field's band of " + std::to_string(options.band_voxels) +
+                      " voxels is outside [1, 16]");
+    }
+    const FieldGrid coarse_grid =
+        MakeFieldGrid(mesh.Bounds(), options.resolution / SparseFieldStorage::kBrick, options.padding);
+    const MeshSignedDistance sign(mesh, where);
+    SparseFieldStorage storage =
+        BuildSparseStorage(mesh, sign, coarse_grid,
+                           ComputeSignedDistance(mesh, coarse_grid, kClosedBandVoxels, options.show_progress),
+                           options.band_voxels);
+    DistanceFieldInfo info;
+    info.source = mesh.name;
+    info.mode = "closed";
+    info.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return DistanceField(coarse_grid.origin, coarse_grid.spacing / SparseFieldStorage::kBrick, std::move(storage),
+                         std::move(info));
   }
   const FieldGrid grid = MakeFieldGrid(mesh.Bounds(), options.resolution, options.padding);
 

@@ -30,6 +30,9 @@
 namespace contactlab {
 
 enum class FieldMode { kAuto, kClosed, kSoup };
+// Dense: every grid sample. Sparse: fine samples in a band around the surface over a coarse
+// field at 1/8 the resolution (sdf/sparse_field.h), for resolutions a dense grid cannot hold.
+enum class FieldStorage { kDense, kSparse };
 
 struct DistanceFieldOptions {
   int resolution = 128;        // grid cells along the longest side of the padded box
@@ -37,17 +40,23 @@ struct DistanceFieldOptions {
   double padding = 0.1;        // box margin on each side, as a fraction of the largest extent
   double soup_offset = -1;     // soup iso-offset in metres; < 0: 1.5 voxel spacings
   bool show_progress = true;   // progress on a terminal (util/progress.h)
+  FieldStorage storage = FieldStorage::kDense;
+  int band_voxels = 3;         // sparse: the band of fine samples, |d| <= band_voxels spacings
 };
 
 // Builds the field of MESH (metres). Throws Error naming MESH.name for an empty mesh, a
 // resolution outside [8, 1024], or (forced closed mode) a mesh that is not watertight
 // (ValidateMesh, geometry/mesh_validation.h; auto mode uses it to pick the pipeline), a
-// negative or non-finite padding, invalid triangle indices or non-finite vertices.
+// negative or non-finite padding, invalid triangle indices or non-finite vertices. A sparse
+// field needs a closed mesh (mode auto or closed), a resolution that is a multiple of 8 and at
+// least 64, and a band of 1 to 16 voxels.
 // Parallel (TBB, all cores); show_progress draws stage progress on a terminal.
 DistanceField BuildDistanceField(const TriangleMesh& mesh, const DistanceFieldOptions& options = {});
 
 // Parses "auto" | "closed" | "soup"; throws Error naming WHERE.
 FieldMode ParseFieldMode(const std::string& text, const std::string& where);
+// Parses "dense" | "sparse"; throws Error naming WHERE.
+FieldStorage ParseFieldStorage(const std::string& text, const std::string& where);
 
 // Versioned binary file with a checksum (util/binary_io.h), magic "CLSDF", version 1: origin
 // (3 doubles), spacing (double), dims (3 int32), samples (float array), info (source, mode,

@@ -2,9 +2,26 @@
 
 #include <limits>
 
+#include "sdf/sparse_field.h"
 #include "util/error.h"
 
 namespace contactlab {
+namespace {
+
+// Smallest sample on the boundary faces of a grid of DIMS points (x fastest).
+float BoundaryMinimum(const std::vector<float>& values, const Eigen::Vector3i& dims) {
+  float m = std::numeric_limits<float>::infinity();
+  auto at = [&](int i, int j, int k) { return values[i + std::int64_t(dims.x()) * (j + std::int64_t(dims.y()) * k)]; };
+  for (int k = 0; k < dims.z(); ++k) {
+    for (int j = 0; j < dims.y(); ++j) {
+      const bool face = (k == 0 || k == dims.z() - 1 || j == 0 || j == dims.y() - 1);
+      for (int i = 0; i < dims.x(); i += (face ? 1 : dims.x() - 1)) m = std::min(m, at(i, j, k));
+    }
+  }
+  return m;
+}
+
+}  // namespace
 
 DistanceField::DistanceField(const Eigen::Vector3d& origin, double spacing, const Eigen::Vector3i& dims,
                              std::vector<float> values, DistanceFieldInfo info)
@@ -27,22 +44,49 @@ DistanceField::DistanceField(const Eigen::Vector3d& origin, double spacing, cons
     min_value_ = std::min(min_value_, v);
     max_value_ = std::max(max_value_, v);
   }
-  boundary_min_ = std::numeric_limits<float>::infinity();
-  for (int k = 0; k < dims.z(); ++k) {
-    for (int j = 0; j < dims.y(); ++j) {
-      const bool face = (k == 0 || k == dims.z() - 1 || j == 0 || j == dims.y() - 1);
-      for (int i = 0; i < dims.x(); i += (face ? 1 : dims.x() - 1)) {
-        boundary_min_ = std::min(boundary_min_, value(i, j, k));
-      }
-    }
+  boundary_min_ = BoundaryMinimum(values_, dims);
+  SetHotPathConstants();
+}
+
+DistanceField::DistanceField(const Eigen::Vector3d& origin, double spacing, SparseFieldStorage storage,
+                             DistanceFieldInfo info)
+    : origin_(origin), spacing_(spacing), info_(std::move(info)) {
+  const std::string where = "sparse distance field" + (info_.source.empty() ? "" : " of " + info_.source);
+  if (!(spacing > 0) || !std::isfinite(spacing)) Fail(where, "spacing must be positive and finite");
+  if (!origin.allFinite()) Fail(where, "origin is not finite");
+  storage.Validate(where);
+  dims_ = SparseFieldStorage::kBrick * storage.bricks + Eigen::Vector3i::Ones();
+  if (std::int64_t(dims_.x()) * dims_.y() * dims_.z() >= (std::int64_t(1) << 31)) {
+    Fail(where, "has more than 2^31 - 1 grid points");
   }
-  ox_ = float(origin.x());
-  oy_ = float(origin.y());
-  oz_ = float(origin.z());
-  inv_h_ = float(1.0 / spacing);
-  ex_ = float(dims.x() - 1);
-  ey_ = float(dims.y() - 1);
-  ez_ = float(dims.z() - 1);
+  min_value_ = std::numeric_limits<float>::infinity();
+  max_value_ = -min_value_;
+  for (float v : storage.coarse) {
+    min_value_ = std::min(min_value_, v);
+    max_value_ = std::max(max_value_, v);
+  }
+  for (std::int16_t q : storage.samples) {
+    min_value_ = std::min(min_value_, q * storage.quantum);
+    max_value_ = std::max(max_value_, q * storage.quantum);
+  }
+  // The grid box is the coarse grid's, whose boundary samples bound the distance on its faces.
+  boundary_min_ = BoundaryMinimum(storage.coarse, storage.bricks + Eigen::Vector3i::Ones());
+  sparse_ = std::make_shared<const SparseFieldStorage>(std::move(storage));
+  SetHotPathConstants();
+}
+
+std::int64_t DistanceField::memory_bytes() const {
+  return sparse_ ? sparse_->memory_bytes() : std::int64_t(values_.size() * sizeof(float));
+}
+
+void DistanceField::SetHotPathConstants() {
+  ox_ = float(origin_.x());
+  oy_ = float(origin_.y());
+  oz_ = float(origin_.z());
+  inv_h_ = float(1.0 / spacing_);
+  ex_ = float(dims_.x() - 1);
+  ey_ = float(dims_.y() - 1);
+  ez_ = float(dims_.z() - 1);
   const Eigen::Vector3d upper = box().max;
   x1_ = float(upper.x());
   y1_ = float(upper.y());
@@ -68,6 +112,11 @@ double DistanceField::DistanceAndGradient(const Eigen::Vector3d& p, Eigen::Vecto
     return len + boundary_min_;
   }
   const Eigen::Vector3d g = (p - origin_) / spacing_;
+  if (sparse_) {
+    const double value = sparse_->LookupWithGradient(g, gradient);
+    if (gradient) *gradient /= spacing_;
+    return value;
+  }
   const int i = std::clamp(int(g.x()), 0, dims_.x() - 2);
   const int j = std::clamp(int(g.y()), 0, dims_.y() - 2);
   const int k = std::clamp(int(g.z()), 0, dims_.z() - 2);

@@ -1,6 +1,8 @@
 // A signed distance field on a dense, uniform float grid (Barbič & James 2008, sec. 2.3).
 // Negative inside the object. Trilinear interpolation inside the grid box; outside it the
-// conservative bound d(p) >= d_box(p) + d_boundary_min of the paper's Fig. 5(c).
+// conservative bound d(p) >= d_box(p) + d_boundary_min of the paper's Fig. 5(c). A field is
+// either dense (every grid sample stored) or sparse (a narrow band of fine samples over a coarse
+// field, sdf/sparse_field.h); both answer every query below.
 #pragma once
 
 #include <Eigen/Core>
@@ -8,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -23,6 +26,10 @@ struct DistanceFieldInfo {
   double build_seconds = 0;  // wall time of the build
 };
 
+struct SparseFieldStorage;
+float SparseLookup(const SparseFieldStorage& s, float gx, float gy, float gz);
+float SparseSample(const SparseFieldStorage& s, int i, int j, int k);
+
 class DistanceField {
  public:
   DistanceField() = default;
@@ -31,15 +38,27 @@ class DistanceField {
   // Throws Error when sizes disagree or a value is not finite.
   DistanceField(const Eigen::Vector3d& origin, double spacing, const Eigen::Vector3i& dims,
                 std::vector<float> values, DistanceFieldInfo info = {});
+  // A sparse field (sdf/sparse_field.h): the fine grid has 8 STORAGE.bricks + 1 points per
+  // axis. Throws Error when STORAGE is inconsistent (SparseFieldStorage::Validate).
+  DistanceField(const Eigen::Vector3d& origin, double spacing, SparseFieldStorage storage,
+                DistanceFieldInfo info = {});
 
   const Eigen::Vector3d& origin() const { return origin_; }
   double spacing() const { return spacing_; }
   const Eigen::Vector3i& dims() const { return dims_; }  // grid points per axis
+  // Every sample, x fastest; empty for a sparse field (use value()).
   const std::vector<float>& values() const { return values_; }
+  // The sparse storage, or null for a dense field.
+  const SparseFieldStorage* sparse() const { return sparse_.get(); }
   const DistanceFieldInfo& info() const { return info_; }
   DistanceFieldInfo& mutable_info() { return info_; }
-  bool empty() const { return values_.empty(); }
-  std::int64_t num_samples() const { return std::int64_t(values_.size()); }
+  bool empty() const { return values_.empty() && !sparse_; }
+  // Grid points (stored or not).
+  std::int64_t num_samples() const {
+    return empty() ? 0 : std::int64_t(dims_.x()) * dims_.y() * dims_.z();
+  }
+  // Bytes the samples occupy (dense: 4 a grid point; sparse: coarse grid, slots and bricks).
+  std::int64_t memory_bytes() const;
   // Box spanned by the grid points.
   Aabb box() const;
   // Smallest sample on the grid's boundary faces (the paper's d_boundary).
@@ -49,7 +68,9 @@ class DistanceField {
   std::int64_t Index(int i, int j, int k) const {
     return i + std::int64_t(dims_.x()) * (j + std::int64_t(dims_.y()) * k);
   }
-  float value(int i, int j, int k) const { return values_[Index(i, j, k)]; }
+  float value(int i, int j, int k) const {
+    return sparse_ ? SparseSample(*sparse_, i, j, k) : values_[Index(i, j, k)];
+  }
   Eigen::Vector3d GridPoint(int i, int j, int k) const {
     return origin_ + spacing_ * Eigen::Vector3d(i, j, k);
   }
@@ -64,13 +85,15 @@ class DistanceField {
   double DistanceAndGradient(const Eigen::Vector3d& p, Eigen::Vector3d* gradient) const;
 
   // The hot-path constants of Distance, for the vectorised lookups (sdf/batch_distance.h).
+  // VALUES is null for a sparse field, whose lookups go through SPARSE.
   struct FloatGrid {
     const float* values;
+    const SparseFieldStorage* sparse;
     int nx, ny, nz;
     float ox, oy, oz, inv_h, ex, ey, ez, x1, y1, z1, boundary_min;
   };
   FloatGrid float_grid() const {
-    return {values_.data(), dims_.x(), dims_.y(), dims_.z(), ox_, oy_, oz_, inv_h_, ex_, ey_, ez_,
+    return {sparse_ ? nullptr : values_.data(), sparse_.get(), dims_.x(), dims_.y(), dims_.z(), ox_, oy_, oz_, inv_h_, ex_, ey_, ez_,
             x1_, y1_, z1_, boundary_min_};
   }
 
@@ -84,7 +107,10 @@ class DistanceField {
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
   double spacing_ = 1;
   Eigen::Vector3i dims_ = Eigen::Vector3i::Zero();
+  void SetHotPathConstants();
+
   std::vector<float> values_;
+  std::shared_ptr<const SparseFieldStorage> sparse_;
   DistanceFieldInfo info_;
   float boundary_min_ = 0, min_value_ = 0, max_value_ = 0;
   // Hot-path copies in float.
@@ -97,6 +123,7 @@ inline float DistanceField::Distance(float x, float y, float z) const {
   if (!(gx >= 0.f && gy >= 0.f && gz >= 0.f && gx <= ex_ && gy <= ey_ && gz <= ez_)) {
     return OutsideBound(x, y, z);
   }
+  if (sparse_) return SparseLookup(*sparse_, gx, gy, gz);
   // Cell index clamped so the last grid point uses the last cell with t = 1.
   const int i = std::min(int(gx), dims_.x() - 2);
   const int j = std::min(int(gy), dims_.y() - 2);
@@ -115,7 +142,7 @@ inline float DistanceField::Distance(float x, float y, float z) const {
 
 inline float DistanceField::OutsideBound(float x, float y, float z) const {
   // NaN or infinite input, or an empty field: never in contact.
-  if (values_.empty() || !(std::abs(x) + std::abs(y) + std::abs(z) < std::numeric_limits<float>::infinity())) {
+  if (empty() || !(std::abs(x) + std::abs(y) + std::abs(z) < std::numeric_limits<float>::infinity())) {
     return std::numeric_limits<float>::infinity();
   }
   const float dx = std::max(std::max(ox_ - x, x - x1_), 0.f);

@@ -10,6 +10,9 @@
 #include <span>
 
 #include "allocation_counter.h"
+#include "geometry/procedural_shapes.h"
+#include "sdf/build_distance_field.h"
+#include "sdf/signed_distance_grid.h"
 #include "test_shells.h"
 #include "util/error.h"
 
@@ -71,6 +74,55 @@ TEST(PointshellContactModel, TreeTraversalEqualsLinearTraversalOfTheSameLevel) {
     }
   }
   EXPECT_GT(contacts_seen, 100);
+}
+
+// A sparse field behind the model: in shallow contact (within the band) the wrench equals the
+// dense field's on the same grid to the 16-bit step, and the tree still equals the linear
+// traversal (its culling holds on the sparse field's bounds).
+TEST(PointshellContactModel, SparseFieldGivesTheDenseWrenchInTheBandAndTreeEqualsLinear) {
+  TriangleMesh ball = MakeSphere(0.06, 5);
+  ball.name = "ball";
+  DistanceFieldOptions o;
+  o.resolution = 128;
+  o.storage = FieldStorage::kSparse;
+  o.show_progress = false;
+  auto sparse = std::make_shared<DistanceField>(BuildDistanceField(ball, o));
+  FieldGrid grid;
+  grid.origin = sparse->origin();
+  grid.spacing = sparse->spacing();
+  grid.dims = sparse->dims();
+  auto dense = std::make_shared<DistanceField>(grid.origin, grid.spacing, grid.dims, ComputeSignedDistance(ball, grid, 3));
+  const double h = sparse->spacing();
+  auto shell = SphereShell(0.05, 48, 4);
+  PointshellContactParams params;
+  PointshellContactModel tree_sparse(Variant::kTree, shell, sparse, params);
+  PointshellContactModel linear_sparse(Variant::kLinear, shell, sparse, params);
+  PointshellContactModel tree_dense(Variant::kTree, shell, dense, params);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(0, 1);
+  int contacts = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    ContactQuery q;
+    q.X_WB = RandomPose(rng, 0.01);
+    const Eigen::Vector3d dir = Eigen::Vector3d(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5).normalized();
+    // Penetration up to 2 voxels: every point in contact reads fine samples.
+    q.X_WA = {RotationFromVector(Eigen::Vector3d::Random()), q.X_WB.translation + (0.11 - 2 * h * u(rng)) * dir};
+    const ContactResult rs = tree_sparse.Evaluate(q), rl = linear_sparse.Evaluate(q), rd = tree_dense.Evaluate(q);
+    ExpectWrenchNear(rs, rl, 1e-9);
+    // A point within a 16-bit step of d = 0 may fall either side; the wrench depends on the
+    // count of points in contact (the stiffness is shared among them), so compare wrenches
+    // where the counts agree.
+    EXPECT_NEAR(rs.stats.points_in_contact, rd.stats.points_in_contact, 1) << "trial " << trial;
+    if (rd.stats.points_in_contact == 0 || rs.stats.points_in_contact != rd.stats.points_in_contact) continue;
+    ++contacts;
+    // Relative, with a floor of 1 mN (a 16-bit step on a few points of very shallow contact;
+    // typical forces here are a few N). Two spheres: the torque about B's origin is near zero,
+    // so it is held to the force's tolerance times the lever arm (0.11 m), not its own size.
+    const double tolerance = 1e-3 * rd.on_B.force.norm() + 1e-3;
+    EXPECT_LT((rs.on_B.force - rd.on_B.force).norm(), tolerance) << "trial " << trial;
+    EXPECT_LT((rs.on_B.torque - rd.on_B.torque).norm(), 0.11 * tolerance) << "trial " << trial;
+  }
+  EXPECT_GT(contacts, 35);
 }
 
 TEST(PointshellContactModel, TemporalCoherenceGivesIdenticalResultsWithinTheSpeedBound) {

@@ -1,0 +1,384 @@
+// The narrow-band field's lookups, checks and builder (sdf/sparse_field.h).
+#include "sdf/sparse_field.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "sdf/distance_field.h"
+#include "sdf/point_triangle_batch.h"
+#include "sdf/point_triangle_distance.h"
+#include "sdf/unsigned_distance_grid.h"
+#include "util/error.h"
+
+namespace contactlab {
+
+float SparseLookup(const SparseFieldStorage& s, float gx, float gy, float gz) { return s.Lookup(gx, gy, gz); }
+float SparseSample(const SparseFieldStorage& s, int i, int j, int k) { return s.Sample(i, j, k); }
+
+float SparseFieldStorage::Lookup(float gx, float gy, float gz) const {
+  // The fine cell, clamped so the last grid plane uses the last cell with t = 1, and its brick.
+  const int i = std::min(int(gx), kBrick * bricks.x() - 1);
+  const int j = std::min(int(gy), kBrick * bricks.y() - 1);
+  const int k = std::min(int(gz), kBrick * bricks.z() - 1);
+  const int bx = i >> 3, by = j >> 3, bz = k >> 3;
+  const std::int32_t s = slot[BrickIndex(bx, by, bz)];
+  if (s >= 0) {
+    const float tx = gx - float(i), ty = gy - float(j), tz = gz - float(k);
+    const std::int16_t* v =
+        samples.data() + std::int64_t(s) * kBrickStride + (i & 7) + kBrickEdge * ((j & 7) + kBrickEdge * (k & 7));
+    constexpr int sy = kBrickEdge, sz = kBrickEdge * kBrickEdge;
+    const float c00 = v[0] + tx * float(v[1] - v[0]);
+    const float c10 = v[sy] + tx * float(v[sy + 1] - v[sy]);
+    const float c01 = v[sz] + tx * float(v[sz + 1] - v[sz]);
+    const float c11 = v[sz + sy] + tx * float(v[sz + sy + 1] - v[sz + sy]);
+    const float c0 = c00 + ty * (c10 - c00);
+    const float c1 = c01 + ty * (c11 - c01);
+    return (c0 + tz * (c1 - c0)) * quantum;
+  }
+  // No samples here: the coarse cell (the brick itself), bounded as the header says.
+  const float tx = (gx - float(kBrick * bx)) * 0.125f, ty = (gy - float(kBrick * by)) * 0.125f,
+              tz = (gz - float(kBrick * bz)) * 0.125f;
+  const std::int64_t sy = bricks.x() + 1, sz = sy * (bricks.y() + 1);
+  const float* v = coarse.data() + CoarseIndex(bx, by, bz);
+  const float c00 = v[0] + tx * (v[1] - v[0]);
+  const float c10 = v[sy] + tx * (v[sy + 1] - v[sy]);
+  const float c01 = v[sz] + tx * (v[sz + 1] - v[sz]);
+  const float c11 = v[sz + sy] + tx * (v[sz + sy + 1] - v[sz + sy]);
+  const float c0 = c00 + ty * (c10 - c00);
+  const float c1 = c01 + ty * (c11 - c01);
+  const float d = c0 + tz * (c1 - c0);
+  return s == kOutside ? std::max(floor, d - margin) : std::min(-floor, d);
+}
+
+float SparseFieldStorage::Sample(int i, int j, int k) const {
+  const int bx = std::min(i / kBrick, bricks.x() - 1), by = std::min(j / kBrick, bricks.y() - 1),
+            bz = std::min(k / kBrick, bricks.z() - 1);
+  const std::int32_t s = slot[BrickIndex(bx, by, bz)];
+  if (s < 0) return Lookup(float(i), float(j), float(k));
+  const int l = (i - kBrick * bx) + kBrickEdge * ((j - kBrick * by) + kBrickEdge * (k - kBrick * bz));
+  return samples[std::size_t(s) * kBrickStride + l] * quantum;
+}
+
+double SparseFieldStorage::LookupWithGradient(const Eigen::Vector3d& g, Eigen::Vector3d* gradient) const {
+  const int i = std::clamp(int(g.x()), 0, kBrick * bricks.x() - 1);
+  const int j = std::clamp(int(g.y()), 0, kBrick * bricks.y() - 1);
+  const int k = std::clamp(int(g.z()), 0, kBrick * bricks.z() - 1);
+  const int bx = i >> 3, by = j >> 3, bz = k >> 3;
+  const std::int32_t s = slot[BrickIndex(bx, by, bz)];
+  double c[2][2][2];
+  double tx, ty, tz, unit;  // UNIT: cell edge in fine-grid units
+  if (s >= 0) {
+    const std::int16_t* v =
+        samples.data() + std::int64_t(s) * kBrickStride + (i & 7) + kBrickEdge * ((j & 7) + kBrickEdge * (k & 7));
+    for (int dz = 0; dz < 2; ++dz)
+      for (int dy = 0; dy < 2; ++dy)
+        for (int dx = 0; dx < 2; ++dx) c[dx][dy][dz] = double(v[dx + kBrickEdge * (dy + kBrickEdge * dz)]) * quantum;
+    tx = g.x() - i, ty = g.y() - j, tz = g.z() - k, unit = 1;
+  } else {
+    for (int dz = 0; dz < 2; ++dz)
+      for (int dy = 0; dy < 2; ++dy)
+        for (int dx = 0; dx < 2; ++dx) c[dx][dy][dz] = coarse[CoarseIndex(bx + dx, by + dy, bz + dz)];
+    tx = (g.x() - kBrick * bx) / kBrick, ty = (g.y() - kBrick * by) / kBrick, tz = (g.z() - kBrick * bz) / kBrick;
+    unit = kBrick;
+  }
+  auto lerp = [](double a, double b, double t) { return a + t * (b - a); };
+  const double c00 = lerp(c[0][0][0], c[1][0][0], tx), c10 = lerp(c[0][1][0], c[1][1][0], tx);
+  const double c01 = lerp(c[0][0][1], c[1][0][1], tx), c11 = lerp(c[0][1][1], c[1][1][1], tx);
+  const double c0 = lerp(c00, c10, ty), c1 = lerp(c01, c11, ty);
+  double value = lerp(c0, c1, tz);
+  Eigen::Vector3d grad;
+  const double dx00 = c[1][0][0] - c[0][0][0], dx10 = c[1][1][0] - c[0][1][0];
+  const double dx01 = c[1][0][1] - c[0][0][1], dx11 = c[1][1][1] - c[0][1][1];
+  grad << lerp(lerp(dx00, dx10, ty), lerp(dx01, dx11, ty), tz), lerp(c10 - c00, c11 - c01, tz), c1 - c0;
+  grad /= unit;
+  if (s == kOutside) {
+    value -= margin;
+    if (value < floor) value = floor, grad.setZero();
+  } else if (s == kInside && value > -floor) {
+    value = -floor, grad.setZero();
+  }
+  if (gradient) *gradient = grad;
+  return value;
+}
+
+void SparseFieldStorage::Validate(const std::string& where) const {
+  if ((bricks.array() < 1).any()) Fail(where, "needs at least one brick per axis");
+  const std::int64_t nb = std::int64_t(bricks.x()) * bricks.y() * bricks.z();
+  const std::int64_t nc = std::int64_t(bricks.x() + 1) * (bricks.y() + 1) * (bricks.z() + 1);
+  if (std::int64_t(coarse.size()) != nc) {
+    Fail(where, "holds " + std::to_string(coarse.size()) + " coarse samples, its bricks need " + std::to_string(nc));
+  }
+  if (std::int64_t(slot.size()) != nb) {
+    Fail(where, "holds " + std::to_string(slot.size()) + " brick slots, its bricks need " + std::to_string(nb));
+  }
+  if (samples.size() % kBrickStride != 0) Fail(where, "holds a partial brick of samples");
+  const std::int64_t stored = num_stored();
+  if (stored >= std::numeric_limits<std::int32_t>::max() / kBrickStride) Fail(where, "holds too many bricks");
+  for (std::int32_t s : slot) {
+    if (s < kInside || s >= stored) Fail(where, "a brick slot " + std::to_string(s) + " is out of range");
+  }
+  for (float v : coarse) {
+    if (!std::isfinite(v)) Fail(where, "a coarse sample is not finite");
+  }
+  if (!(quantum > 0) || !std::isfinite(quantum)) Fail(where, "the sample quantum must be positive and finite");
+  if (!(floor >= 0) || !std::isfinite(floor) || !(margin >= 0) || !std::isfinite(margin)) {
+    Fail(where, "the bounds outside the band must be finite and non-negative");
+  }
+  if (band_voxels < 1) Fail(where, "the band must be at least one voxel");
+}
+
+namespace {
+
+constexpr int kEdge = SparseFieldStorage::kBrickEdge;
+constexpr int kBrickSamples = kEdge * kEdge * kEdge;
+
+// Trilinear interpolation of the coarse samples at fine grid point (I, J, K) of brick (BX, BY, BZ).
+double CoarseAt(const SparseFieldStorage& s, int bx, int by, int bz, int i, int j, int k) {
+  const double tx = double(i) / SparseFieldStorage::kBrick, ty = double(j) / SparseFieldStorage::kBrick,
+               tz = double(k) / SparseFieldStorage::kBrick;
+  double v = 0;
+  for (int dz = 0; dz < 2; ++dz)
+    for (int dy = 0; dy < 2; ++dy)
+      for (int dx = 0; dx < 2; ++dx) {
+        const double w = (dx ? tx : 1 - tx) * (dy ? ty : 1 - ty) * (dz ? tz : 1 - tz);
+        if (w != 0) v += w * s.coarse[s.CoarseIndex(bx + dx, by + dy, bz + dz)];
+      }
+  return v;
+}
+
+}  // namespace
+
+SparseFieldStorage BuildSparseStorage(const TriangleMesh& mesh, const MeshSignedDistance& sign,
+                                      const FieldGrid& coarse_grid, std::vector<float> coarse, int band_voxels) {
+  SparseFieldStorage s;
+  s.bricks = coarse_grid.dims - Eigen::Vector3i::Ones();
+  s.coarse = std::move(coarse);
+  s.band_voxels = band_voxels;
+  const double H = coarse_grid.spacing, h = H / SparseFieldStorage::kBrick;
+  const double band = band_voxels * h, exact = band + h;
+  s.floor = float(band - std::sqrt(3.0) / 2 * h);
+  s.margin = float(std::sqrt(3.0) / 2 * H);
+  const Eigen::Vector3d o = coarse_grid.origin;
+  const Eigen::Vector3i last = SparseFieldStorage::kBrick * s.bricks;  // last fine sample per axis
+  const std::vector<double> corners = FlattenTriangles(mesh);
+  const int T = mesh.num_triangles();
+
+  // Fine-sample index range [lo, hi] per axis within EXACT of triangle T's box.
+  auto sample_range = [&](int t, Eigen::Vector3i* lo, Eigen::Vector3i* hi) {
+    const double* c = corners.data() + 9 * std::size_t(t);
+    for (int a = 0; a < 3; ++a) {
+      const double mn = std::min({c[a], c[3 + a], c[6 + a]}) - exact, mx = std::max({c[a], c[3 + a], c[6 + a]}) + exact;
+      (*lo)[a] = std::clamp(int(std::floor((mn - o[a]) / h)), 0, last[a]);
+      (*hi)[a] = std::clamp(int(std::ceil((mx - o[a]) / h)), 0, last[a]);
+    }
+  };
+
+  // 1. (brick, triangle) for every brick whose samples a triangle's grown box reaches.
+  struct Pair {
+    std::int64_t brick;
+    std::int32_t tri;
+  };
+  tbb::enumerable_thread_specific<std::vector<Pair>> local;
+  tbb::parallel_for(tbb::blocked_range<int>(0, T, 256), [&](const tbb::blocked_range<int>& r) {
+    auto& out = local.local();
+    for (int t = r.begin(); t < r.end(); ++t) {
+      Eigen::Vector3i lo, hi;
+      sample_range(t, &lo, &hi);
+      Eigen::Vector3i b0, b1;  // brick b holds samples [8 b, 8 b + 8]
+      for (int a = 0; a < 3; ++a) {
+        b0[a] = std::max(0, (lo[a] - 1) / SparseFieldStorage::kBrick);
+        b1[a] = std::min(s.bricks[a] - 1, hi[a] / SparseFieldStorage::kBrick);
+      }
+      for (int bz = b0.z(); bz <= b1.z(); ++bz)
+        for (int by = b0.y(); by <= b1.y(); ++by)
+          for (int bx = b0.x(); bx <= b1.x(); ++bx) out.push_back({s.BrickIndex(bx, by, bz), t});
+    }
+  });
+  std::vector<Pair> pairs;
+  for (auto& v : local) pairs.insert(pairs.end(), v.begin(), v.end());
+  local.clear();
+  tbb::parallel_sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
+    return a.brick != b.brick ? a.brick < b.brick : a.tri < b.tri;
+  });
+  std::vector<std::int64_t> candidate;  // brick ids, ascending
+  std::vector<std::size_t> begin;       // their first pair
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    if (p == 0 || pairs[p].brick != pairs[p - 1].brick) {
+      candidate.push_back(pairs[p].brick);
+      begin.push_back(p);
+    }
+  }
+  begin.push_back(pairs.size());
+
+  // Bricks no triangle comes near: every sample is farther than EXACT, one sign, the coarse one.
+  s.slot.resize(std::size_t(s.bricks.prod()));
+  for (int bz = 0; bz < s.bricks.z(); ++bz)
+    for (int by = 0; by < s.bricks.y(); ++by)
+      for (int bx = 0; bx < s.bricks.x(); ++bx) {
+        s.slot[s.BrickIndex(bx, by, bz)] =
+            s.coarse[s.CoarseIndex(bx, by, bz)] < 0 ? SparseFieldStorage::kInside : SparseFieldStorage::kOutside;
+      }
+
+  // 2. Exact distances within EXACT of the surface, per candidate brick, in parallel.
+  std::vector<std::vector<float>> kept(candidate.size());
+  std::vector<std::int32_t> code(candidate.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidate.size(), 4), [&](const tbb::blocked_range<std::size_t>& r) {
+    double d2[kBrickSamples];
+    std::int32_t tri[kBrickSamples];
+    double qx[kBrickSamples], qy[kBrickSamples], qz[kBrickSamples], e2[kBrickSamples];
+    int ql[kBrickSamples], queue[kBrickSamples];
+    std::int8_t sgn[kBrickSamples];
+    float value[kBrickSamples];
+    for (std::size_t c = r.begin(); c < r.end(); ++c) {
+      const std::int64_t id = candidate[c];
+      const int bx = int(id % s.bricks.x()), by = int((id / s.bricks.x()) % s.bricks.y()),
+                bz = int(id / (std::int64_t(s.bricks.x()) * s.bricks.y()));
+      const Eigen::Vector3i first = SparseFieldStorage::kBrick * Eigen::Vector3i(bx, by, bz);
+      std::fill(d2, d2 + kBrickSamples, exact * exact);
+      std::fill(tri, tri + kBrickSamples, -1);
+      for (std::size_t p = begin[c]; p < begin[c + 1]; ++p) {
+        const int t = pairs[p].tri;
+        Eigen::Vector3i lo, hi;
+        sample_range(t, &lo, &hi);
+        lo = lo.cwiseMax(first);
+        hi = hi.cwiseMin(first + Eigen::Vector3i::Constant(SparseFieldStorage::kBrick));
+        const double* tc = corners.data() + 9 * std::size_t(t);
+        // The triangle's plane, s(p) = n . p - c with |n| = 1 (zero for a degenerate one): no
+        // point farther from the plane than from its best triangle so far can gain, and none
+        // farther than EXACT is wanted, which bounds each grid row to a run of samples.
+        const Eigen::Vector3d A(tc[0], tc[1], tc[2]), B(tc[3], tc[4], tc[5]), C(tc[6], tc[7], tc[8]);
+        Eigen::Vector3d n = (B - A).cross(C - A);
+        // Degenerate as PointTriangleDistanceSquared decides it: the union of its edges.
+        const bool degenerate = !(n.squaredNorm() > 1e-24 * (B - A).squaredNorm() * (C - A).squaredNorm());
+        n = degenerate ? Eigen::Vector3d::Zero() : n.normalized();
+        const double c = n.dot(A);
+        int m = 0;
+        for (int k = lo.z(); k <= hi.z(); ++k)
+          for (int j = lo.y(); j <= hi.y(); ++j) {
+            int i0 = lo.x(), i1 = hi.x();
+            const double s0 = n.x() * o.x() + n.y() * (o.y() + h * j) + n.z() * (o.z() + h * k) - c;  // s at i = 0
+            const double ds = n.x() * h;
+            if (std::abs(ds) > 1e-12 * h) {
+              const double a0 = (-exact - s0) / ds, a1 = (exact - s0) / ds;
+              i0 = std::max(i0, int(std::floor(std::min(a0, a1))));
+              i1 = std::min(i1, int(std::ceil(std::max(a0, a1))));
+            } else if (std::abs(s0) >= exact) {
+              continue;
+            }
+            for (int i = i0; i <= i1; ++i) {
+              const int l = (i - first.x()) + kEdge * ((j - first.y()) + kEdge * (k - first.z()));
+              const double plane = s0 + ds * i;
+              if (plane * plane >= d2[l]) continue;
+              if (degenerate) {
+                const double q[3] = {o.x() + h * i, o.y() + h * j, o.z() + h * k};
+                const double e2 = PointTriangleDistanceSquared(q, tc, tc + 3, tc + 6);
+                if (e2 < d2[l]) d2[l] = e2, tri[l] = t;
+                continue;
+              }
+              qx[m] = o.x() + h * i, qy[m] = o.y() + h * j, qz[m] = o.z() + h * k, ql[m] = l;
+              ++m;
+            }
+          }
+        // The samples the plane left, several per instruction.
+        PointsTriangleDistancesSquared(tc, qx, qy, qz, m, e2);
+        for (int r = 0; r < m; ++r) {
+          if (e2[r] < d2[ql[r]]) d2[ql[r]] = e2[r], tri[ql[r]] = t;
+        }
+      }
+      // Signs of the exact samples (pseudo-normals), then spread to the rest: a sample farther
+      // than EXACT has no surface within EXACT > h of it, so its neighbours share its sign.
+      double nearest = std::numeric_limits<double>::infinity();
+      bool any = false;
+      for (int l = 0; l < kBrickSamples; ++l) {
+        sgn[l] = 0;
+        if (tri[l] < 0) continue;
+        const int i = first.x() + l % kEdge, j = first.y() + (l / kEdge) % kEdge, k = first.z() + l / (kEdge * kEdge);
+        const double d = std::sqrt(d2[l]);
+        const bool inside = sign.Inside(o + h * Eigen::Vector3d(i, j, k), tri[l]);
+        sgn[l] = inside ? -1 : 1;
+        value[l] = float(inside ? -d : d);
+        nearest = std::min(nearest, d);
+        any = true;
+      }
+      if (!any) {  // the grown box reached the brick, no sample is within EXACT: as a far brick
+        code[c] = s.slot[id];
+        continue;
+      }
+      // Breadth-first from the exact samples over the brick's 6-neighbour grid.
+      int head = 0, tail = 0;
+      for (int l = 0; l < kBrickSamples; ++l) {
+        if (sgn[l] != 0) queue[tail++] = l;
+      }
+      while (head < tail) {
+        const int l = queue[head++];
+        const int i = l % kEdge, j = (l / kEdge) % kEdge, k = l / (kEdge * kEdge);
+        const int n[6] = {i > 0 ? l - 1 : -1, i < kEdge - 1 ? l + 1 : -1, j > 0 ? l - kEdge : -1,
+                          j < kEdge - 1 ? l + kEdge : -1, k > 0 ? l - kEdge * kEdge : -1,
+                          k < kEdge - 1 ? l + kEdge * kEdge : -1};
+        for (int m : n) {
+          if (m >= 0 && sgn[m] == 0) {
+            sgn[m] = sgn[l];
+            queue[tail++] = m;
+          }
+        }
+      }
+      if (nearest > band) {  // not stored: every sample is beyond the band
+        code[c] = sgn[0] < 0 ? SparseFieldStorage::kInside : SparseFieldStorage::kOutside;
+        continue;
+      }
+      for (int l = 0; l < kBrickSamples; ++l) {
+        if (tri[l] >= 0) continue;
+        const double d = CoarseAt(s, bx, by, bz, l % kEdge, (l / kEdge) % kEdge, l / (kEdge * kEdge));
+        // Every sample of a stored brick is within 8 sqrt(3) h of one with |d| <= band, so the
+        // clamp to band + 14 h loses nothing true and keeps the 16-bit step below 6e-4 h.
+        const double v = sgn[l] < 0 ? std::min(-exact, d) : std::max(exact, d - s.margin);
+        value[l] = float(std::clamp(v, -(band + 14 * h), band + 14 * h));
+      }
+      kept[c].assign(value, value + kBrickSamples);
+      code[c] = 0;
+    }
+  });
+
+  // 3. Stored bricks in Morton (z-curve) order of their position, so bricks near in space are
+  // near in memory; samples quantised to one step for the whole field.
+  auto morton = [&](std::int64_t id) {
+    const std::uint64_t b[3] = {std::uint64_t(id % s.bricks.x()), std::uint64_t((id / s.bricks.x()) % s.bricks.y()),
+                                std::uint64_t(id / (std::int64_t(s.bricks.x()) * s.bricks.y()))};
+    std::uint64_t code = 0;
+    for (int bit = 0; bit < 21; ++bit)
+      for (int a = 0; a < 3; ++a) code |= ((b[a] >> bit) & 1u) << (3 * bit + a);
+    return code;
+  };
+  std::vector<std::pair<std::uint64_t, std::size_t>> order;
+  double largest = 0;
+  for (std::size_t c = 0; c < candidate.size(); ++c) {
+    if (kept[c].empty()) {
+      s.slot[candidate[c]] = code[c];
+      continue;
+    }
+    order.emplace_back(morton(candidate[c]), c);
+    for (float v : kept[c]) largest = std::max(largest, double(std::abs(v)));
+  }
+  std::sort(order.begin(), order.end());
+  const std::int64_t stored = std::int64_t(order.size());
+  for (std::size_t r = 0; r < order.size(); ++r) s.slot[candidate[order[r].second]] = std::int32_t(r);
+  s.quantum = float(largest > 0 ? largest / 32767 : h * 1e-6);
+  s.samples.assign(std::size_t(stored) * SparseFieldStorage::kBrickStride, 0);
+  tbb::parallel_for(std::size_t(0), candidate.size(), [&](std::size_t c) {
+    if (kept[c].empty()) return;
+    std::int16_t* out = s.samples.data() + std::size_t(s.slot[candidate[c]]) * SparseFieldStorage::kBrickStride;
+    for (int l = 0; l < kBrickSamples; ++l) {
+      out[l] = std::int16_t(std::clamp(std::lround(kept[c][l] / s.quantum), -32767L, 32767L));
+    }
+  });
+  return s;
+}
+
+}  // namespace contactlab
