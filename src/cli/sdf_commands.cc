@@ -23,6 +23,8 @@ struct SdfArgs {
   double scale = 1.0;
   double offset = -1;
   double padding = 0.1;
+  std::string storage = "dense";
+  int band = 3;
   std::string out;
 };
 
@@ -35,6 +37,8 @@ void RunSdf(const SdfArgs& args) {
   options.mode = ParseFieldMode(args.mode, "--mode");
   options.padding = args.padding;
   options.soup_offset = args.offset;
+  options.storage = ParseFieldStorage(args.storage, "--storage");
+  options.band_voxels = args.band;
   options.show_progress = true;
   MeshLoadOptions load;
   load.scale = args.scale;
@@ -79,6 +83,11 @@ const CommandRegistration kSdfCommands([](CLI::App& app) {
       ->check(CLI::PositiveNumber);
   build->add_option("--padding", sdf->padding, "box margin per side, fraction of the largest extent")
       ->check(CLI::NonNegativeNumber);
+  build->add_option("--storage", sdf->storage,
+                    "dense (every sample) | sparse (fine samples in a band around the surface over a "
+                    "1/8-resolution field; closed meshes, resolution a multiple of 8, at least 64)");
+  build->add_option("--band", sdf->band, "sparse: voxels of fine samples on each side of the surface [1, 16]")
+      ->check(CLI::Range(1, 16));
   build->add_option("--out", sdf->out, "output field file (.sdf)")->required();
   build->callback([sdf] { RunSdf(*sdf); });
 

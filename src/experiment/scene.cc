@@ -10,10 +10,20 @@ namespace contactlab {
 namespace {
 
 FieldSpec ParseField(const ConfigNode& n) {
-  n.ExpectKeys({"resolution", "mode", "padding", "offset"});
+  n.ExpectKeys({"resolution", "mode", "padding", "offset", "storage", "band"});
   FieldSpec f;
   f.resolution = int(n.IntInRange("resolution", f.resolution, 8, kMaxFieldResolution));
   f.mode = n.OneOf("mode", f.mode, {"auto", "closed", "soup"});
+  f.storage = n.OneOf("storage", f.storage, {"dense", "sparse"});
+  f.band = int(n.IntInRange("band", f.band, 1, 16));
+  if (f.storage == "sparse") {
+    if (f.mode == "soup") n.Get("mode").Fail("a sparse field needs the closed pipeline (mode auto or closed)");
+    if (f.resolution % 8 != 0 || f.resolution < 64) {
+      n.Get("resolution").Fail("a sparse field needs a resolution that is a multiple of 8 and at least 64");
+    }
+  } else if (n.Has("band")) {
+    n.Get("band").Fail("band applies to storage: sparse only");
+  }
   f.padding = n.NonNegative("padding", f.padding);
   if (n.Has("offset")) f.offset = n.Positive("offset", 0);
   return f;
@@ -155,6 +165,9 @@ BodySpec ParseBody(const ConfigNode& n) {
   if (auto f = n.Find("field")) b.field = ParseField(*f);
   if (auto s = n.Find("pointshell")) b.pointshell = ParsePointshell(*s);
   if (auto d = n.Find("deformable")) b.deformable = ParseDeformable(*d);
+  if (b.deformable && b.field.storage == "sparse") {
+    n.Get("field").Get("storage").Fail("a deformable body needs a dense field (its reduced model and deformed field read every sample)");
+  }
   return b;
 }
 

@@ -62,6 +62,8 @@ struct FieldSpec {
   std::string mode = "auto";  // auto | closed | soup
   double padding = 0.1;       // fraction of the largest extent
   double offset = -1;         // soup iso-offset, metres (< 0: the builder's default)
+  std::string storage = "dense";  // dense | sparse (a fine band over a 1/8-resolution field)
+  int band = 3;               // sparse: voxels of fine samples on each side of the surface
 };
 
 struct PointshellSpec {

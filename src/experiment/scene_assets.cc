@@ -170,16 +170,30 @@ std::shared_ptr<const T> CachedOrBuilt(const fs::path& cached, const AssetOption
 
 }  // namespace
 
+namespace {
+
+// The field spec's part of a cache key. Dense fields hash as before sparse storage existed,
+// so their cached files stay valid.
+void HashFieldSpec(const FieldSpec& f, Hasher* h) {
+  h->Value(f.resolution);
+  h->Text(f.mode);
+  h->Value(f.padding);
+  h->Value(f.offset);
+  if (f.storage != "dense") {
+    h->Text(f.storage);
+    h->Value(f.band);
+  }
+}
+
+}  // namespace
+
 std::shared_ptr<const DistanceField> BodyAssets::field() {
   if (field_) return field_;
   const FieldSpec& f = spec_.field;
   Hasher h;
   h.Text(mesh_key());
   h.Text("field");
-  h.Value(f.resolution);
-  h.Text(f.mode);
-  h.Value(f.padding);
-  h.Value(f.offset);
+  HashFieldSpec(f, &h);
   field_ = CachedOrBuilt<DistanceField>(
       options_.cache_dir / ("field-" + h.Hex() + ".sdf"), options_,
       "the " + std::to_string(f.resolution) + "-cell field of " + spec_.name, LoadDistanceField, SaveDistanceField,
@@ -189,6 +203,8 @@ std::shared_ptr<const DistanceField> BodyAssets::field() {
         o.mode = ParseFieldMode(f.mode, "body '" + spec_.name + "' field.mode");
         o.padding = f.padding;
         o.soup_offset = f.offset;
+        o.storage = ParseFieldStorage(f.storage, "body '" + spec_.name + "' field.storage");
+        o.band_voxels = f.band;
         return BuildDistanceField(*mesh(), o);
       });
   return field_;
@@ -201,10 +217,7 @@ std::shared_ptr<const Pointshell> BodyAssets::pointshell() {
   Hasher h;
   h.Text(mesh_key());
   h.Text("pointshell");
-  h.Value(spec_.field.resolution);
-  h.Text(spec_.field.mode);
-  h.Value(spec_.field.padding);
-  h.Value(spec_.field.offset);
+  HashFieldSpec(spec_.field, &h);
   h.Value(s.points);
   h.Value(s.levels);
   h.Text(s.method);
@@ -232,10 +245,7 @@ std::shared_ptr<const ReducedModel> BodyAssets::reduced_model() {
   Hasher h;
   h.Text(mesh_key());
   h.Text("reduced-model");
-  h.Value(spec_.field.resolution);
-  h.Text(spec_.field.mode);
-  h.Value(spec_.field.padding);
-  h.Value(spec_.field.offset);
+  HashFieldSpec(spec_.field, &h);
   h.Value(std::int32_t(d.kind));
   h.Value(d.modes);
   h.Value(d.cells);

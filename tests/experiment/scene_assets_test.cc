@@ -53,6 +53,30 @@ TEST(SceneAssets, ASecondRunReadsFieldsAndPointshellsFromTheCache) {
   EXPECT_EQ(CountFiles(dir / "cache", "field-"), 1);  // same mesh, same field
 }
 
+TEST(SceneAssets, ASparseFieldIsBuiltCachedUnderItsOwnKeyAndReadBackSparse) {
+  testing::TempDir dir;
+  AssetOptions options{.cache_dir = dir / "cache", .use_cache = true, .verbose = false};
+  BodySpec dense = Ball(256);
+  dense.role = "field";
+  BodySpec sparse = dense;
+  sparse.field.resolution = 64;
+  sparse.field.storage = "sparse";
+  BodyAssets a(sparse, options);
+  ASSERT_NE(a.field()->sparse(), nullptr);
+  EXPECT_EQ(a.field()->dims().maxCoeff(), 65);
+  BodyAssets b(sparse, options);  // from the cache
+  ASSERT_NE(b.field()->sparse(), nullptr);
+  EXPECT_EQ(b.field()->memory_bytes(), a.field()->memory_bytes());
+  // The dense field of the same resolution is another file; another band another again.
+  dense.field.resolution = 64;
+  BodyAssets c(dense, options);
+  EXPECT_EQ(c.field()->sparse(), nullptr);
+  sparse.field.band = 2;
+  BodyAssets d(sparse, options);
+  d.field();
+  EXPECT_EQ(CountFiles(dir / "cache", "field-"), 3);
+}
+
 TEST(SceneAssets, ACorruptCacheEntryIsRebuilt) {
   testing::TempDir dir;
   AssetOptions options{.cache_dir = dir / "cache", .use_cache = true, .verbose = false};

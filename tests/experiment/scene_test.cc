@@ -103,6 +103,28 @@ TEST(Scene, SizesAreBoundedBeforeAllocatingNamingTheKeyAndTheLimit) {
       << e;
 }
 
+TEST(Scene, SparseFieldStorageIsParsedAndWhatItCannotServeIsRefusedByKey) {
+  Scene s = Parse(Replace(kScene, "field: {resolution: 48}", "field: {resolution: 1024, storage: sparse, band: 4}"));
+  EXPECT_EQ(s.field_body.field.storage, "sparse");
+  EXPECT_EQ(s.field_body.field.band, 4);
+  EXPECT_EQ(Parse(kScene).field_body.field.storage, "dense");
+  std::string e = ErrorOf(Replace(kScene, "field: {resolution: 48}", "field: {resolution: 48, storage: bricked}"));
+  EXPECT_NE(e.find("bodies[1].field.storage"), std::string::npos) << e;
+  e = ErrorOf(Replace(kScene, "field: {resolution: 48}", "field: {resolution: 100, storage: sparse}"));
+  EXPECT_NE(e.find("bodies[1].field.resolution: a sparse field needs a resolution that is a multiple of 8"),
+            std::string::npos)
+      << e;
+  e = ErrorOf(Replace(kScene, "field: {resolution: 48}", "field: {resolution: 64, storage: sparse, mode: soup}"));
+  EXPECT_NE(e.find("bodies[1].field.mode: a sparse field needs the closed pipeline"), std::string::npos) << e;
+  e = ErrorOf(Replace(kScene, "field: {resolution: 48}", "field: {resolution: 48, band: 3}"));
+  EXPECT_NE(e.find("bodies[1].field.band: band applies to storage: sparse only"), std::string::npos) << e;
+  e = ErrorOf(Replace(kScene, "field: {resolution: 48}", "field: {resolution: 64, storage: sparse, band: 40}"));
+  EXPECT_NE(e.find("bodies[1].field.band: must be between 1 and 16"), std::string::npos) << e;
+  e = ErrorOf(Replace(kScene, "field: {resolution: 48}",
+                      "field: {resolution: 64, storage: sparse}\n    deformable: {modes: 4, cells: 8}"));
+  EXPECT_NE(e.find("bodies[1].field.storage: a deformable body needs a dense field"), std::string::npos) << e;
+}
+
 TEST(Scene, DuplicateKeyIsRejectedNamingFileLineAndKey) {
   const std::string e = ErrorOf(Replace(kScene, "  L: 10\n", "  L: 10\n  k_C: 0.5\n"));
   EXPECT_NE(e.find("scene.yaml:15: model.k_C: duplicate key 'k_C'"), std::string::npos) << e;
