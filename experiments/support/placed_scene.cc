@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <vector>
 
@@ -22,6 +24,21 @@ PlacedScene& PreparePlacedScene(const std::string& scene_file, int points, int l
   p.scene = LoadScene(RequireDataFile(scene_file));
   if (points > 0) p.scene.pointshell_body.pointshell.points = points;
   if (levels > 0) p.scene.pointshell_body.pointshell.levels = levels;
+  if (const char* field = std::getenv("CONTACTLAB_BENCH_FIELD")) {
+    const std::string text = field;
+    const auto colon = text.find(':');
+    char* end = nullptr;
+    const long resolution = colon == std::string::npos ? 0 : std::strtol(text.c_str() + colon + 1, &end, 10);
+    const std::string storage = text.substr(0, colon);
+    if ((storage != "dense" && storage != "sparse") || resolution < 8 || resolution > kMaxFieldResolution ||
+        end == nullptr || *end != 0) {
+      std::fprintf(stderr, "CONTACTLAB_BENCH_FIELD: '%s' is not STORAGE:RESOLUTION (dense|sparse, 8..%d)\n", field,
+                   kMaxFieldResolution);
+      std::exit(2);
+    }
+    p.scene.field_body.field.storage = storage;
+    p.scene.field_body.field.resolution = int(resolution);
+  }
   AssetOptions options;
   options.verbose = false;
   p.assets = std::make_unique<SceneAssets>(p.scene, options);

@@ -34,6 +34,9 @@ struct PlacedScene {
 // paper's linear model at kDepths (experiment/contact_placement.h TouchAlong); with ADD_OFFSET the target depth grows by the
 // pointshell's offset, so the meshes themselves (not the offset surface) overlap by about
 // kDepths, as the mesh-based models need. Cached per argument set for the program's lifetime.
+// CONTACTLAB_BENCH_FIELD=STORAGE:RESOLUTION (e.g. sparse:1024, dense:256) replaces the field
+// body's field spec in every scene, to time the models on another field; a malformed value
+// stops the program with a message.
 PlacedScene& PreparePlacedScene(const std::string& scene_file, int points, int levels, bool add_offset);
 
 // Sums over the timed cycles of TimeCirclingCycles (divide by cycles for means).
