@@ -15,7 +15,7 @@
 //    narrow-band field at N, sdf/sparse_field.h, DistanceField::Distance), and dense_batch /
 //    sparse_batch (the vectorised BatchDistances the contact models call, 256 points a call).
 //    With CONTACTLAB_BENCH_DENSE_1024=1 also dense_same / dense_same_batch: a dense field at N
-//    cells itself (at 1024: 4.3 GB, about 13 GB while it is built, minutes), the lookup cost a
+//    cells itself (the dragon at 1024: 1.9 GB, 5.8 GB while it is built, minutes), the lookup cost a
 //    dense field of the sparse one's resolution would have.
 //  * sparse_build/cells:N: our narrow-band field (band ±3 voxels) at N cells, wall time.
 //    Counters: MB (memory_bytes), stored bricks, OpenVDB's field on the very same grid points
