@@ -53,7 +53,8 @@ void BatchDistancesImpl(const DistanceField& field, const BatchTransform& X, con
   const VI cx = hn::Set(di, sp ? sp->bricks.x() + 1 : 0),
            cxy = hn::Set(di, sp ? (sp->bricks.x() + 1) * (sp->bricks.y() + 1) : 0);
   const std::int32_t ocy = sp ? sp->bricks.x() + 1 : 0, ocz = sp ? (sp->bricks.x() + 1) * (sp->bricks.y() + 1) : 0;
-  const VF quantum = hn::Set(df, sp ? sp->quantum : 0.f), eighth = hn::Set(df, 0.125f);
+  const VF quantum = hn::Set(df, sp ? sp->quantum : 0.f), eighth = hn::Set(df, 0.125f), one = hn::Set(df, 1.f);
+  const VF coarse_h = hn::Set(df, sp ? sp->coarse_spacing : 0.f);
   const VF band_floor = hn::Set(df, sp ? sp->floor : 0.f), margin = hn::Set(df, sp ? sp->margin : 0.f);
   const std::int32_t* slots = sp ? sp->slot.data() : nullptr;
   const std::int32_t* words = sp ? reinterpret_cast<const std::int32_t*>(sp->samples.data()) : nullptr;
@@ -93,13 +94,26 @@ void BatchDistancesImpl(const DistanceField& field, const BatchTransform& X, con
       const VF ty = (gy - hn::ConvertTo(df, hn::ShiftLeft<3>(bj))) * eighth;
       const VF tz = (gz - hn::ConvertTo(df, hn::ShiftLeft<3>(bk))) * eighth;
       const VI base = bi + cx * bj + cxy * bk;
-      const VF d = trilinear(tx, ty, tz, hn::GatherIndex(df, coarse, base), hn::GatherIndex(df, coarse + 1, base),
-                             hn::GatherIndex(df, coarse + ocy, base), hn::GatherIndex(df, coarse + ocy + 1, base),
-                             hn::GatherIndex(df, coarse + ocz, base), hn::GatherIndex(df, coarse + ocz + 1, base),
-                             hn::GatherIndex(df, coarse + ocz + ocy, base),
-                             hn::GatherIndex(df, coarse + ocz + ocy + 1, base));
+      const VF c000 = hn::GatherIndex(df, coarse, base), c100 = hn::GatherIndex(df, coarse + 1, base);
+      const VF c010 = hn::GatherIndex(df, coarse + ocy, base), c110 = hn::GatherIndex(df, coarse + ocy + 1, base);
+      const VF c001 = hn::GatherIndex(df, coarse + ocz, base), c101 = hn::GatherIndex(df, coarse + ocz + 1, base);
+      const VF c011 = hn::GatherIndex(df, coarse + ocz + ocy, base);
+      const VF c111 = hn::GatherIndex(df, coarse + ocz + ocy + 1, base);
+      const VF d = trilinear(tx, ty, tz, c000, c100, c010, c110, c001, c101, c011, c111);
+      // Outside: the interpolant less the margin, or a corner's value less its distance.
+      const VF ux = one - tx, uy = one - ty, uz = one - tz;
+      const VF x0 = tx * tx, x1 = ux * ux, y0 = ty * ty, y1 = uy * uy, z0 = tz * tz, z1 = uz * uz;
+      VF lip = hn::Max(band_floor, d - margin);
+      lip = hn::Max(lip, c000 - coarse_h * hn::Sqrt(x0 + y0 + z0));
+      lip = hn::Max(lip, c100 - coarse_h * hn::Sqrt(x1 + y0 + z0));
+      lip = hn::Max(lip, c010 - coarse_h * hn::Sqrt(x0 + y1 + z0));
+      lip = hn::Max(lip, c110 - coarse_h * hn::Sqrt(x1 + y1 + z0));
+      lip = hn::Max(lip, c001 - coarse_h * hn::Sqrt(x0 + y0 + z1));
+      lip = hn::Max(lip, c101 - coarse_h * hn::Sqrt(x1 + y0 + z1));
+      lip = hn::Max(lip, c011 - coarse_h * hn::Sqrt(x0 + y1 + z1));
+      lip = hn::Max(lip, c111 - coarse_h * hn::Sqrt(x1 + y1 + z1));
       const auto out = hn::RebindMask(df, s == outside_code);
-      const VF bounded = hn::IfThenElse(out, hn::Max(band_floor, d - margin), hn::Min(hn::Neg(band_floor), d));
+      const VF bounded = hn::IfThenElse(out, lip, hn::Min(hn::Neg(band_floor), d));
       result = hn::IfThenElse(stored, result, bounded);
     }
     return result;

@@ -71,6 +71,7 @@ DistanceField::DistanceField(const Eigen::Vector3d& origin, double spacing, Spar
   }
   // The grid box is the coarse grid's, whose boundary samples bound the distance on its faces.
   boundary_min_ = BoundaryMinimum(storage.coarse, storage.bricks + Eigen::Vector3i::Ones());
+  storage.coarse_spacing = float(SparseFieldStorage::kBrick * spacing);
   sparse_ = std::make_shared<const SparseFieldStorage>(std::move(storage));
   SetHotPathConstants();
 }

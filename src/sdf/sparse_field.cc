@@ -54,7 +54,19 @@ float SparseFieldStorage::Lookup(float gx, float gy, float gz) const {
   const float c0 = c00 + ty * (c10 - c00);
   const float c1 = c01 + ty * (c11 - c01);
   const float d = c0 + tz * (c1 - c0);
-  return s == kOutside ? std::max(floor, d - margin) : std::min(-floor, d);
+  if (s != kOutside) return std::min(-floor, d);
+  float bound = std::max(floor, d - margin);
+  const float ux = 1 - tx, uy = 1 - ty, uz = 1 - tz;
+  const float x0 = tx * tx, x1 = ux * ux, y0 = ty * ty, y1 = uy * uy, z0 = tz * tz, z1 = uz * uz;
+  bound = std::max(bound, v[0] - coarse_spacing * std::sqrt(x0 + y0 + z0));
+  bound = std::max(bound, v[1] - coarse_spacing * std::sqrt(x1 + y0 + z0));
+  bound = std::max(bound, v[sy] - coarse_spacing * std::sqrt(x0 + y1 + z0));
+  bound = std::max(bound, v[sy + 1] - coarse_spacing * std::sqrt(x1 + y1 + z0));
+  bound = std::max(bound, v[sz] - coarse_spacing * std::sqrt(x0 + y0 + z1));
+  bound = std::max(bound, v[sz + 1] - coarse_spacing * std::sqrt(x1 + y0 + z1));
+  bound = std::max(bound, v[sz + sy] - coarse_spacing * std::sqrt(x0 + y1 + z1));
+  bound = std::max(bound, v[sz + sy + 1] - coarse_spacing * std::sqrt(x1 + y1 + z1));
+  return bound;
 }
 
 float SparseFieldStorage::Sample(int i, int j, int k) const {
@@ -99,8 +111,19 @@ double SparseFieldStorage::LookupWithGradient(const Eigen::Vector3d& g, Eigen::V
   grad << lerp(lerp(dx00, dx10, ty), lerp(dx01, dx11, ty), tz), lerp(c10 - c00, c11 - c01, tz), c1 - c0;
   grad /= unit;
   if (s == kOutside) {
+    // The largest of the bounds (Lookup), with its gradient per fine-grid unit.
     value -= margin;
     if (value < floor) value = floor, grad.setZero();
+    const Eigen::Vector3d t(tx, ty, tz);
+    for (int corner = 0; corner < 8; ++corner) {
+      const Eigen::Vector3d k(corner & 1, (corner >> 1) & 1, corner >> 2);
+      const double r = (t - k).norm();
+      const double b = c[corner & 1][(corner >> 1) & 1][corner >> 2] - coarse_spacing * r;
+      if (b > value) {
+        value = b;
+        grad = r > 0 ? Eigen::Vector3d(-(t - k) / r * (coarse_spacing / kBrick)) : Eigen::Vector3d::Zero();
+      }
+    }
   } else if (s == kInside && value > -floor) {
     value = -floor, grad.setZero();
   }
@@ -338,7 +361,20 @@ SparseFieldStorage BuildSparseStorage(const TriangleMesh& mesh, const MeshSigned
         const double d = CoarseAt(s, bx, by, bz, l % kEdge, (l / kEdge) % kEdge, l / (kEdge * kEdge));
         // Every sample of a stored brick is within 8 sqrt(3) h of one with |d| <= band, so the
         // clamp to band + 14 h loses nothing true and keeps the 16-bit step below 6e-4 h.
-        const double v = sgn[l] < 0 ? std::min(-exact, d) : std::max(exact, d - s.margin);
+        double v;
+        if (sgn[l] < 0) {
+          v = std::min(-exact, d);
+        } else {
+          // Lower bounds: the interpolant less the margin, and (1-Lipschitz) each corner's
+          // value less its distance, tight near the corners.
+          v = std::max(exact, d - s.margin);
+          const Eigen::Vector3d q(l % kEdge, (l / kEdge) % kEdge, l / (kEdge * kEdge));
+          for (int corner = 0; corner < 8; ++corner) {
+            const Eigen::Vector3i k(corner & 1, (corner >> 1) & 1, corner >> 2);
+            const double D = s.coarse[s.CoarseIndex(bx + k.x(), by + k.y(), bz + k.z())];
+            v = std::max(v, D - h * (q - SparseFieldStorage::kBrick * k.cast<double>()).norm());
+          }
+        }
         value[l] = float(std::clamp(v, -(band + 14 * h), band + 14 * h));
       }
       kept[c].assign(value, value + kBrickSamples);

@@ -17,10 +17,12 @@
 //    |d| < band + h are exact (as the dense field's band, rounded to the quantum); farther ones
 //    are |d| >= band + h and hold the coarse value there, clamped to that bound;
 //  * in a brick not stored every sample has |d| > band, so |d| >= floor = band - sqrt(3)/2 h in
-//    all of it, with one sign. Outside the body the lookup is max(floor, D_H - sqrt(3)/2 H),
-//    D_H the coarse trilinear interpolant: a conservative lower bound (each coarse corner is
-//    within sqrt(3)/2 H of the point on average over the trilinear weights, and the distance is
-//    1-Lipschitz). Inside it is min(-floor, D_H): depth beyond the band at the coarse resolution.
+//    all of it, with one sign. Outside the body the lookup is the largest of three lower
+//    bounds: floor; D_H - sqrt(3)/2 H, D_H the coarse trilinear interpolant (the trilinear
+//    weights put the corners within sqrt(3)/2 H of the point on average, and the distance is
+//    1-Lipschitz); and D_k - |p - c_k| for each corner c_k (tight near the corners). Inside it
+//    is min(-floor, D_H): depth beyond the band at the coarse resolution. Stored samples
+//    beyond band + h get the same bounds at build time.
 #pragma once
 
 #include <Eigen/Core>
@@ -47,6 +49,7 @@ struct SparseFieldStorage {
   float floor = 0;    // |d| lower bound in a brick not stored, metres
   float margin = 0;   // sqrt(3)/2 H, metres
   int band_voxels = 0;
+  float coarse_spacing = 0;  // H, metres: set by DistanceField from its spacing (not stored in files)
 
   std::int64_t num_stored() const { return std::int64_t(samples.size()) / kBrickStride; }
   std::int64_t memory_bytes() const {
