@@ -16,6 +16,17 @@ constexpr char kMagic[] = "CLSDF";
 constexpr std::uint32_t kVersion = 2;  // 1: dense samples; 2: sparse storage (sdf/sparse_field.h)
 constexpr int kMaxDim = 1 << 14;
 
+// The info block that ends both layouts, then the end of the file.
+DistanceFieldInfo ReadInfoToEnd(BinaryReader& r) {
+  DistanceFieldInfo info;
+  info.source = r.GetString("source");
+  info.mode = r.GetString("mode");
+  info.offset = r.Get<double>("offset");
+  info.build_seconds = r.Get<double>("build time");
+  r.ExpectEnd();
+  return info;
+}
+
 }  // namespace
 
 void SaveDistanceField(const DistanceField& field, const std::filesystem::path& path) {
@@ -87,12 +98,7 @@ DistanceField LoadDistanceField(const std::filesystem::path& path) {
     s.coarse = r.GetArray<float>("coarse samples", std::uint64_t(s.bricks.x() + 1) * (s.bricks.y() + 1) * (s.bricks.z() + 1));
     s.slot = r.GetArray<std::int32_t>("brick slots", nb);
     s.samples = r.GetArray<std::int16_t>("brick samples", nb * SparseFieldStorage::kBrickStride);
-    DistanceFieldInfo info;
-    info.source = r.GetString("source");
-    info.mode = r.GetString("mode");
-    info.offset = r.Get<double>("offset");
-    info.build_seconds = r.Get<double>("build time");
-    r.ExpectEnd();
+    DistanceFieldInfo info = ReadInfoToEnd(r);
     try {
       return DistanceField(origin, spacing, std::move(s), std::move(info));
     } catch (const Error& e) {
@@ -104,12 +110,7 @@ DistanceField LoadDistanceField(const std::filesystem::path& path) {
   if (values.size() != n) {
     r.Corrupt("holds " + std::to_string(values.size()) + " samples, dimensions need " + std::to_string(n));
   }
-  DistanceFieldInfo info;
-  info.source = r.GetString("source");
-  info.mode = r.GetString("mode");
-  info.offset = r.Get<double>("offset");
-  info.build_seconds = r.Get<double>("build time");
-  r.ExpectEnd();
+  DistanceFieldInfo info = ReadInfoToEnd(r);
   try {
     return DistanceField(origin, spacing, dims, std::move(values), std::move(info));
   } catch (const Error& e) {

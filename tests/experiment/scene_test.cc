@@ -108,21 +108,21 @@ TEST(Scene, SparseFieldStorageIsParsedAndWhatItCannotServeIsRefusedByKey) {
   EXPECT_EQ(s.field_body.field.storage, "sparse");
   EXPECT_EQ(s.field_body.field.band, 4);
   EXPECT_EQ(Parse(kScene).field_body.field.storage, "dense");
-  std::string e = ErrorOf(Replace(kScene, "field: {resolution: 48}", "field: {resolution: 48, storage: bricked}"));
-  EXPECT_NE(e.find("bodies[1].field.storage"), std::string::npos) << e;
-  e = ErrorOf(Replace(kScene, "field: {resolution: 48}", "field: {resolution: 100, storage: sparse}"));
-  EXPECT_NE(e.find("bodies[1].field.resolution: a sparse field needs a resolution that is a multiple of 8"),
-            std::string::npos)
-      << e;
-  e = ErrorOf(Replace(kScene, "field: {resolution: 48}", "field: {resolution: 64, storage: sparse, mode: soup}"));
-  EXPECT_NE(e.find("bodies[1].field.mode: a sparse field needs the closed pipeline"), std::string::npos) << e;
-  e = ErrorOf(Replace(kScene, "field: {resolution: 48}", "field: {resolution: 48, band: 3}"));
-  EXPECT_NE(e.find("bodies[1].field.band: band applies to storage: sparse only"), std::string::npos) << e;
-  e = ErrorOf(Replace(kScene, "field: {resolution: 48}", "field: {resolution: 64, storage: sparse, band: 40}"));
-  EXPECT_NE(e.find("bodies[1].field.band: must be between 1 and 16"), std::string::npos) << e;
-  e = ErrorOf(Replace(kScene, "field: {resolution: 48}",
-                      "field: {resolution: 64, storage: sparse}\n    deformable: {modes: 4, cells: 8}"));
-  EXPECT_NE(e.find("bodies[1].field.storage: a deformable body needs a dense field"), std::string::npos) << e;
+  // (field block, the message that must name the key) pairs.
+  const std::pair<const char*, const char*> refused[] = {
+      {"{resolution: 48, storage: bricked}", "bodies[1].field.storage"},
+      {"{resolution: 100, storage: sparse}",
+       "bodies[1].field.resolution: a sparse field needs a resolution that is a multiple of 8"},
+      {"{resolution: 64, storage: sparse, mode: soup}", "bodies[1].field.mode: a sparse field needs the closed pipeline"},
+      {"{resolution: 48, band: 3}", "bodies[1].field.band: band applies to storage: sparse only"},
+      {"{resolution: 64, storage: sparse, band: 40}", "bodies[1].field.band: must be between 1 and 16"},
+      {"{resolution: 64, storage: sparse}\n    deformable: {modes: 4, cells: 8}",
+       "bodies[1].field.storage: a deformable body needs a dense field"},
+  };
+  for (const auto& [field, message] : refused) {
+    const std::string e = ErrorOf(Replace(kScene, "field: {resolution: 48}", std::string("field: ") + field));
+    EXPECT_NE(e.find(message), std::string::npos) << field << ": " << e;
+  }
 }
 
 TEST(Scene, DuplicateKeyIsRejectedNamingFileLineAndKey) {
