@@ -18,6 +18,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.ticker import FuncFormatter, NullLocator  # noqa: E402
 
 
 def read_csv(path):
@@ -43,10 +44,12 @@ class Figures:
             return None
         return read_csv(path)
 
-    def save(self, fig, name):
+    # RECT (left, bottom, right, top, figure fraction): where tight_layout puts the axes, leaving
+    # room for a figure legend.
+    def save(self, fig, name, rect=None):
         path = os.path.join(self.out, name)
         tmp = path + ".tmp.png"
-        fig.tight_layout()
+        fig.tight_layout(rect=rect)
         fig.savefig(tmp, dpi=110)
         plt.close(fig)
         os.replace(tmp, path)
@@ -767,6 +770,95 @@ class Figures:
         return True
 
 
+    # Scale study (experiments/scale-points.yaml and scale-resolution.yaml): cycle time of every
+    # model against pointshell size and against field resolution, shallow and deep contact, and
+    # the memory of each body against the resolution.
+    def scale_study(self):
+        points = self.load("scale-points", "summary")
+        resolution = self.load("scale-resolution", "summary")
+        if not points and not resolution:
+            return False
+        fig, axes = plt.subplots(1, 3, figsize=(15, 4.6))
+        models = ["pointshell", "pointshell-linear", "fcl", "bullet"]
+        styles = {"shallow": ("-", "o"), "deep": ("--", "s")}
+
+        # Median per model and depth, with a bar up to the 99th percentile.
+        def time_panel(ax, rows, size_of, xlabel, title):
+            if not rows:
+                ax.text(0.5, 0.5, "no results yet", ha="center", transform=ax.transAxes)
+                ax.set_title(title)
+                return
+            extra = sorted({r["model"] for r in rows} - set(models))
+            for j, model in enumerate(models + extra):
+                for depth, (ls, marker) in styles.items():
+                    rs = sorted((r for r in rows if r["model"] == model and r["trajectory.depth"] == depth), key=size_of)
+                    if not rs:
+                        continue
+                    x = [size_of(r) for r in rs]
+                    med = [num(r, "median_us") for r in rs]
+                    up = [max(0.0, num(r, "p99_us") - m) for r, m in zip(rs, med)]
+                    ax.errorbar(x, med, yerr=[[0] * len(med), up], color=f"C{j}", ls=ls, marker=marker, ms=4,
+                                capsize=2, lw=1.1, elinewidth=0.7, label=f"{model}, {depth}")
+            ax.axhline(1000, color="gray", lw=0.8, ls=":")
+            ax.text(min(size_of(r) for r in rows), 1000, " 1 kHz cycle", va="bottom",
+                    fontsize=7, color="gray")
+            ax.set_xscale("log", base=2)
+            ax.set_yscale("log")
+            ax.set_xlabel(xlabel)
+            ax.set_ylabel("cycle time (µs): median, bar to 99th percentile")
+            ax.set_title(title)
+            ax.grid(True, which="both", alpha=0.3)
+
+        def resolution_of(r):
+            for key in ("scene.bodies[role=field].field", "resolution"):
+                if key in r:
+                    return float(r[key])
+            raise KeyError("scene.bodies[role=field].field")
+
+        time_panel(axes[0], points, lambda r: num(r, "points"), "pointshell points (dragon, body A)",
+                   "Cycle time against pointshell size (bunny field 128³)")
+        time_panel(axes[1], resolution, resolution_of, "field resolution, cells along the longest side (bunny, body B)",
+                   "Cycle time against field resolution (65k points)")
+        handles, labels = axes[0].get_legend_handles_labels() if points else axes[1].get_legend_handles_labels()
+        fig.legend(handles, labels, fontsize=8, ncol=4, loc="lower center", bbox_to_anchor=(0.36, 0.0))
+
+        # Memory per body: the bunny's field and the dragon's pointshell, as read by the paper's model.
+        ax = axes[2]
+        mem = sorted((r for r in (resolution or []) if r["model"] == "pointshell-linear" and r["trajectory.depth"] == "shallow"
+                      and num(r, "field_B_bytes") > 0), key=resolution_of)
+        if mem:
+            x = [resolution_of(r) for r in mem]
+            ax.plot(x, [num(r, "field_B_bytes") / 2**20 for r in mem], "o-", color="C0", label="field (bunny, body B)")
+            ax.plot(x, [num(r, "pointshell_A_bytes") / 2**20 for r in mem], "s--", color="C1",
+                    label=f"pointshell (dragon, body A, {int(num(mem[0], 'points'))} points)")
+            for xi, r in zip(x, mem):
+                for key in ("field_B_bytes", "pointshell_A_bytes"):
+                    ax.annotate(f"{num(r, key) / 2**20:.3g} MiB", (xi, num(r, key) / 2**20),
+                                textcoords="offset points", xytext=(4, -10), fontsize=7)
+            ax.legend(fontsize=7, loc="upper left")
+        else:
+            ax.text(0.5, 0.5, "no results with memory columns yet", ha="center", transform=ax.transAxes)
+        ax.set_xscale("log", base=2)
+        ax.set_yscale("log")
+        ax.set_xlabel("field resolution, cells along the longest side")
+        ax.set_ylabel("memory (MiB)")
+        ax.set_title("Memory per body against field resolution")
+        ax.grid(True, which="both", alpha=0.3)
+        # Ticks at the sizes measured, written out.
+        for ax, rows, size_of in ((axes[0], points, lambda r: num(r, "points")), (axes[1], resolution, resolution_of),
+                                  (axes[2], resolution, resolution_of)):
+            if rows:
+                ticks = sorted({size_of(r) for r in rows})
+                ax.set_xticks(ticks)
+                ax.set_xticklabels([f"{t:.0f}" for t in ticks], rotation=30 if len(ticks) > 4 else 0)
+                ax.xaxis.set_minor_locator(NullLocator())
+                ax.set_xlim(ticks[0] / 1.4, ticks[-1] * 1.4)
+        # Memory in plain numbers: every decade, and 2 and 5 times it.
+        axes[2].yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+        axes[2].yaxis.set_minor_formatter(FuncFormatter(lambda v, _: f"{v:g}" if f"{v:.0e}"[0] in "25" else ""))
+        self.save(fig, "scale_study.png", rect=(0, 0.1, 1, 1))
+        return True
+
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -775,7 +867,8 @@ def main():
     figs = Figures(os.path.abspath(args.results))
     for name in ["fig05b", "convergence_eq2", "fig10", "fig11", "fig14b", "fig15", "table1", "table1_deformable", "table1_defo_defo",
                  "deformable_cantilever",
-                 "continuity", "speed_vs_error", "compare_volume", "analytic_cases", "asymmetry_models", "tessellation", "hard_cases_medial_axis", "hard_cases_tube_peg"]:
+                 "continuity", "speed_vs_error", "compare_volume", "analytic_cases", "asymmetry_models", "tessellation", "hard_cases_medial_axis", "hard_cases_tube_peg",
+                 "scale_study"]:
         try:
             if not getattr(figs, name)():
                 print(f"make_figures: {name}: no results yet (run its experiment first)", file=sys.stderr)

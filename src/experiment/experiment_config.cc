@@ -92,9 +92,22 @@ std::vector<PathStep> ParsePath(const std::string& path, const std::string& wher
   return steps;
 }
 
-// Sets ROOT[path] = VALUE (YAML text), creating maps along the path, for --set.
+// The '=' that ends the key path of ASSIGNMENT: the first one outside a "[field=value]"
+// selector (npos when there is none).
+std::size_t AssignmentEquals(const std::string& assignment) {
+  int depth = 0;
+  for (std::size_t i = 0; i < assignment.size(); ++i) {
+    const char c = assignment[i];
+    if (c == '[') ++depth;
+    if (c == ']' && depth > 0) --depth;
+    if (c == '=' && depth == 0) return i;
+  }
+  return std::string::npos;
+}
+
+// Sets ROOT[path] = VALUE (YAML text), creating maps along the path, for --set and profiles.
 void ApplyOverride(YAML::Node root, const std::string& assignment, const std::string& file) {
-  const auto eq = assignment.find('=');
+  const auto eq = AssignmentEquals(assignment);
   if (eq == std::string::npos || eq == 0) Fail("--set " + assignment, "expected key.path=value");
   YAML::Node value;
   try {
@@ -103,7 +116,19 @@ void ApplyOverride(YAML::Node root, const std::string& assignment, const std::st
   } catch (const YAML::Exception& e) {
     Fail("--set " + assignment, "the value is not valid YAML: " + e.msg);
   }
-  SetAtPath(root, assignment.substr(0, eq), value, "--set " + assignment + " (in " + file + ")");
+  const std::string path = assignment.substr(0, eq);
+  const std::string where = "--set " + assignment + " (in " + file + ")";
+  // A sweep axis is named by a key path itself ("sweep.scene.bodies[role=field].field"): what
+  // follows "sweep." is one key of the sweep mapping, not more steps of the path.
+  const std::string sweep_prefix = "sweep.";
+  if (path.size() > sweep_prefix.size() && path.compare(0, sweep_prefix.size(), sweep_prefix) == 0) {
+    YAML::Node sweep = root["sweep"];
+    if (sweep && !sweep.IsMap()) Fail(where, "cannot set '" + path + "': 'sweep' is not a mapping");
+    if (!sweep) root["sweep"] = YAML::Node(YAML::NodeType::Map);
+    root["sweep"][path.substr(sweep_prefix.size())] = value;
+    return;
+  }
+  SetAtPath(root, path, value, where);
 }
 
 std::string ScalarText(const ConfigNode& n) {

@@ -16,6 +16,8 @@
 //   metrics: {cutoff_hz: 100, timing: false}
 //   sweep: {points: [1024, 4096, 16384]}   # an axis is a key path or a short alias (below)
 //   profiles: {paper: {sweep.points: [...]}} # named sets of overrides: --profile paper
+//                                          # (as --set: "sweep.AXIS" replaces the axis AXIS
+//                                          # whole, also an axis named by a key path)
 //   study: contact                         # contact (default): models along a trajectory;
 //                                          # deformed-field: the field body's deformed distance
 //                                          # field against the exact one (deformed_field_study.h),

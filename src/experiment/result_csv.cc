@@ -51,7 +51,8 @@ const Column<CycleRow> kCycleColumns[] = {
 };
 
 // summary.csv: per model and job, continuity, timing, error against the reference and force
-// magnitude metrics (an error of -1: no reference).
+// magnitude metrics (an error of -1: no reference), and the memory of the body data the model
+// reads (empty cells for data it does not read).
 const Column<SummaryRow> kSummaryColumns[] = {
     {"model", [](const SummaryRow& r, CsvLine& l) { l.Text(r.model); }},
     {"points", [](const SummaryRow& r, CsvLine& l) { l.Int(r.points); }},
@@ -80,6 +81,8 @@ const Column<SummaryRow> kSummaryColumns[] = {
     {"modes_B", [](const SummaryRow& r, CsvLine& l) { l.Int(r.modes_B); }},
     {"median_step_B_us", [](const SummaryRow& r, CsvLine& l) { r.modes_B > 0 ? l.Num("%.3f", r.median_step_B_us) : l.Empty(); }},
     {"max_displacement", [](const SummaryRow& r, CsvLine& l) { r.modes + r.modes_B > 0 ? l.Num("%.9g", r.max_displacement) : l.Empty(); }},
+    {"field_B_bytes", [](const SummaryRow& r, CsvLine& l) { r.field_B_bytes >= 0 ? l.Int(r.field_B_bytes) : l.Empty(); }},
+    {"pointshell_A_bytes", [](const SummaryRow& r, CsvLine& l) { r.pointshell_A_bytes >= 0 ? l.Int(r.pointshell_A_bytes) : l.Empty(); }},
 };
 
 // experiment,job,<axis names>,<column names>

@@ -8,6 +8,7 @@
 #include <map>
 #include <optional>
 
+#include "experiment/body_memory.h"
 #include "experiment/contact_placement.h"
 #include "experiment/metrics.h"
 #include "experiment/runner.h"
@@ -292,6 +293,10 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
       s.median_step_B_us = Median(&step_times_B);
     }
     if (coupling || coupling_B) s.max_displacement = max_displacement;
+    // The memory of the body data this model reads, from the loaded arrays.
+    const ContactModelNeeds& needs = FindContactModel(name)->needs;
+    if (needs.field_B) s.field_B_bytes = FieldBytes(*assets.B.field());
+    if (needs.pointshell_A) s.pointshell_A_bytes = PointshellBytes(*assets.A.pointshell());
     result.summary.push_back(s);
   }
   return result;

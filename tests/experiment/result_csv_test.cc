@@ -69,5 +69,31 @@ TEST(ResultCsv, HeaderAndRowsHaveTheSameColumnsAndEmptyCellsWithoutAReference) {
   EXPECT_EQ(t[1][5], "128");
 }
 
+TEST(ResultCsv, MemoryColumnsAreIntegerBytesOrEmptyForDataAModelDoesNotRead) {
+  ExperimentConfig config;
+  config.name = "exp";
+  JobResult r;
+  SummaryRow reads;  // a model that reads the field and the pointshell
+  reads.model = "pointshell";
+  reads.field_B_bytes = 3'000'000'000LL;  // beyond 32 bits: a 1024-cell field
+  reads.pointshell_A_bytes = 123456;
+  SummaryRow meshes_only;  // one that reads neither (field_B_bytes, pointshell_A_bytes = -1)
+  meshes_only.model = "fcl";
+  r.summary = {reads, meshes_only};
+  std::string summary = SummaryCsvHeader(config);
+  AppendSummaryCsv(config, r, &summary);
+  const auto t = Rows(summary);
+  ASSERT_EQ(t.size(), 3u);
+  const auto col = [&](const std::string& name) {
+    const auto it = std::find(t[0].begin(), t[0].end(), name);
+    EXPECT_NE(it, t[0].end()) << name;
+    return std::size_t(it - t[0].begin());
+  };
+  EXPECT_EQ(t[1][col("field_B_bytes")], "3000000000");
+  EXPECT_EQ(t[1][col("pointshell_A_bytes")], "123456");
+  EXPECT_EQ(t[2][col("field_B_bytes")], "");
+  EXPECT_EQ(t[2][col("pointshell_A_bytes")], "");
+}
+
 }  // namespace
 }  // namespace contactlab

@@ -150,6 +150,29 @@ TEST(Sweep, AnUnknownAxisOrABadPathIsNamed) {
   EXPECT_NE(e.find("unknown key"), std::string::npos) << e;
 }
 
+TEST(Sweep, OverridesAndProfilesTakeKeyPathsWithSelectors) {
+  TempDir dir;
+  Load(dir, "  trajectory.depth: [0.001]\n");
+  // A key path holding "[field=value]" ends at the '=' after the selector, in --set and in a
+  // profile (whose overrides are written the same way); after "sweep." the whole rest is the
+  // name of one axis, itself a key path.
+  std::ofstream(dir / "config.yaml", std::ios::app)
+      << "profiles:\n  big:\n    sweep.scene.bodies[role=pointshell].pointshell:\n"
+         "      - {label: a, value: {points: 128, levels: 3}}\n";
+  ExperimentConfig c = LoadExperimentConfig(dir / "config.yaml", {"sweep.scene.bodies[name=plate].field.resolution=[32]"});
+  ASSERT_EQ(c.sweep.size(), 2u);
+  ASSERT_EQ(ExpandJobs(c).size(), 1u);
+  EXPECT_EQ(ExpandJobs(c)[0].scene.field_body.field.resolution, 32);
+  EXPECT_EQ(c.sweep[1].name, "scene.bodies[name=plate].field.resolution");
+  c = LoadExperimentConfig(dir / "config.yaml", {}, "big");
+  ASSERT_EQ(c.sweep.size(), 2u);
+  const std::vector<Job> jobs = ExpandJobs(c);
+  ASSERT_EQ(jobs.size(), 1u);
+  EXPECT_EQ(jobs[0].scene.pointshell_body.pointshell.points, 128);
+  EXPECT_EQ(jobs[0].scene.pointshell_body.pointshell.levels, 3);
+  EXPECT_EQ(jobs[0].axis_values[1].second, "a");
+}
+
 TEST(SetAtPath, CreatesMappingsPicksElementsAndRemovesKeys) {
   YAML::Node doc = YAML::Load("a: {b: 1}\nlist: [{name: x, v: 1}, {name: y, v: 2}]\n");
   SetAtPath(doc, "a.c.d", YAML::Node(5), "t");
