@@ -809,11 +809,15 @@ class Figures:
             ax.set_title(title)
             ax.grid(True, which="both", alpha=0.3)
 
-        def resolution_of(r):
+        # The resolution axis's label: cells, then "sparse" for a sparse field ("1024 sparse").
+        def resolution_label(r):
             for key in ("scene.bodies[role=field].field", "resolution"):
                 if key in r:
-                    return float(r[key])
+                    return r[key]
             raise KeyError("scene.bodies[role=field].field")
+
+        def resolution_of(r):
+            return float(resolution_label(r).split()[0])
 
         time_panel(axes[0], points, lambda r: num(r, "points"), "pointshell points (dragon, body A)",
                    "Cycle time against pointshell size (bunny field 128³)")
@@ -850,7 +854,9 @@ class Figures:
             if rows:
                 ticks = sorted({size_of(r) for r in rows})
                 ax.set_xticks(ticks)
-                ax.set_xticklabels([f"{t:.0f}" for t in ticks], rotation=30 if len(ticks) > 4 else 0)
+                sparse = {size_of(r) for r in rows if size_of is resolution_of and "sparse" in resolution_label(r)}
+                ax.set_xticklabels([f"{t:.0f}" + ("\nsparse" if t in sparse else "") for t in ticks],
+                                   rotation=30 if len(ticks) > 4 else 0)
                 ax.xaxis.set_minor_locator(NullLocator())
                 ax.set_xlim(ticks[0] / 1.4, ticks[-1] * 1.4)
         # Memory in plain numbers: every decade, and 2 and 5 times it.

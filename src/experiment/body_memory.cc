@@ -12,7 +12,7 @@ std::int64_t Bytes(const std::vector<T>& v) {
 
 }  // namespace
 
-std::int64_t FieldBytes(const DistanceField& field) { return Bytes(field.values()); }
+std::int64_t FieldBytes(const DistanceField& field) { return field.memory_bytes(); }
 
 std::int64_t PointshellBytes(const Pointshell& p) {
   return Bytes(p.x) + Bytes(p.y) + Bytes(p.z) + Bytes(p.nx) + Bytes(p.ny) + Bytes(p.nz) + Bytes(p.level_point_end) +

@@ -9,8 +9,9 @@
 
 namespace contactlab {
 
-// Bytes of FIELD's samples: one float per grid point of the dense grid (dims.x * dims.y *
-// dims.z of them). The few scalars beside them (origin, spacing, bounds) are not counted.
+// Bytes of FIELD's samples (DistanceField::memory_bytes): a dense field's float per grid point
+// (dims.x * dims.y * dims.z of them); a sparse field's coarse grid, brick slots and stored
+// bricks' 16-bit samples. The few scalars beside them (origin, spacing, bounds) are not counted.
 std::int64_t FieldBytes(const DistanceField& field);
 
 // Bytes of POINTSHELL's arrays: positions and normals per point, the level table, and per

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "experiment/result_csv.h"
+#include "sdf/sparse_field.h"
 #include "experiment/runner.h"
 #include "test_support.h"
 #include "util/atomic_file.h"
@@ -23,6 +24,22 @@ TEST(BodyMemory, FieldBytesAreFourPerGridPoint) {
   const DistanceField field(Eigen::Vector3d::Zero(), 0.5, Eigen::Vector3i(3, 4, 5), std::vector<float>(60, 1.0f));
   EXPECT_EQ(FieldBytes(field), 3 * 4 * 5 * 4);
   EXPECT_EQ(FieldBytes(DistanceField()), 0);
+}
+
+TEST(BodyMemory, SparseFieldBytesAreItsCoarseGridSlotsAndBricks) {
+  // Two bricks along x, one stored: 3 x 2 x 2 coarse floats, 2 slots, 730 16-bit words.
+  SparseFieldStorage s;
+  s.bricks = Eigen::Vector3i(2, 1, 1);
+  s.coarse.assign(12, 0.05f);
+  s.slot = {0, SparseFieldStorage::kOutside};
+  s.samples.assign(SparseFieldStorage::kBrickStride, 100);
+  s.quantum = 1e-5f;
+  s.floor = 0.02f;
+  s.margin = 0.07f;
+  s.band_voxels = 3;
+  const DistanceField field(Eigen::Vector3d::Zero(), 0.01, std::move(s));
+  EXPECT_EQ(FieldBytes(field), 12 * 4 + 2 * 4 + 730 * 2);
+  EXPECT_LT(FieldBytes(field), 17 * 9 * 9 * 4);  // what the dense grid of its points would take
 }
 
 TEST(BodyMemory, PointshellBytesCountPointsNormalsAndTree) {
