@@ -9,6 +9,7 @@
 #include "geometry/mesh_io.h"
 #include "sdf/build_distance_field.h"
 #include "sdf/point_csv.h"
+#include "sdf/sparse_field.h"
 #include "util/data_path.h"
 #include "util/error.h"
 #include "util/output_target.h"
@@ -87,7 +88,7 @@ const CommandRegistration kSdfCommands([](CLI::App& app) {
                     "dense (every sample) | sparse (fine samples in a band around the surface over a "
                     "1/8-resolution field; closed meshes, resolution a multiple of 8, at least 64)");
   build->add_option("--band", sdf->band, "sparse: voxels of fine samples on each side of the surface [1, 16]")
-      ->check(CLI::Range(1, 16));
+      ->check(CLI::Range(1, SparseFieldStorage::kMaxBand));
   build->add_option("--out", sdf->out, "output field file (.sdf)")->required();
   build->callback([sdf] { RunSdf(*sdf); });
 

@@ -8,7 +8,6 @@
 #include <map>
 #include <optional>
 
-#include "experiment/body_memory.h"
 #include "experiment/contact_placement.h"
 #include "experiment/metrics.h"
 #include "experiment/runner.h"
@@ -295,8 +294,8 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
     if (coupling || coupling_B) s.max_displacement = max_displacement;
     // The memory of the body data this model reads, from the loaded arrays.
     const ContactModelNeeds& needs = FindContactModel(name)->needs;
-    if (needs.field_B) s.field_B_bytes = FieldBytes(*assets.B.field());
-    if (needs.pointshell_A) s.pointshell_A_bytes = PointshellBytes(*assets.A.pointshell());
+    if (needs.field_B) s.field_B_bytes = assets.B.field()->memory_bytes();
+    if (needs.pointshell_A) s.pointshell_A_bytes = assets.A.pointshell()->memory_bytes();
     result.summary.push_back(s);
   }
   return result;

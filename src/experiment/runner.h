@@ -74,7 +74,7 @@ struct SummaryRow {
   int modes_B = 0;              // r of a deformable field body B, 0 when rigid
   double median_step_B_us = 0;  // B's reduced integrator step
   double max_displacement = 0;  // m, over the trajectory (deformable bodies)
-  // Memory of the body data the model reads (experiment/body_memory.h), bytes; -1 when the
+  // Memory of the body data the model reads (DistanceField and Pointshell memory_bytes); -1 when the
   // model does not read it: B's distance field and A's pointshell (points, normals, tree).
   std::int64_t field_B_bytes = -1, pointshell_A_bytes = -1;
 };

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "sdf/sparse_field.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -15,11 +16,12 @@ FieldSpec ParseField(const ConfigNode& n) {
   f.resolution = int(n.IntInRange("resolution", f.resolution, 8, kMaxFieldResolution));
   f.mode = n.OneOf("mode", f.mode, {"auto", "closed", "soup"});
   f.storage = n.OneOf("storage", f.storage, {"dense", "sparse"});
-  f.band = int(n.IntInRange("band", f.band, 1, 16));
+  f.band = int(n.IntInRange("band", f.band, 1, SparseFieldStorage::kMaxBand));
   if (f.storage == "sparse") {
     if (f.mode == "soup") n.Get("mode").Fail("a sparse field needs the closed pipeline (mode auto or closed)");
-    if (f.resolution % 8 != 0 || f.resolution < 64) {
-      n.Get("resolution").Fail("a sparse field needs a resolution that is a multiple of 8 and at least 64");
+    if (f.resolution % SparseFieldStorage::kBrick != 0 || f.resolution < SparseFieldStorage::kMinResolution) {
+      n.Get("resolution").Fail("a sparse field needs a resolution that is a multiple of 8 and at least " +
+                               std::to_string(SparseFieldStorage::kMinResolution));
     }
   } else if (n.Has("band")) {
     n.Get("band").Fail("band applies to storage: sparse only");

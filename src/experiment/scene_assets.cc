@@ -168,10 +168,6 @@ std::shared_ptr<const T> CachedOrBuilt(const fs::path& cached, const AssetOption
   return value;
 }
 
-}  // namespace
-
-namespace {
-
 // The field spec's part of a cache key. Dense fields hash as before sparse storage existed,
 // so their cached files stay valid.
 void HashFieldSpec(const FieldSpec& f, Hasher* h) {

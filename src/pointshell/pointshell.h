@@ -39,6 +39,13 @@ struct Pointshell {
   int num_levels() const { return static_cast<int>(level_point_end.size()); }
   int num_nodes() const { return static_cast<int>(node_point.size()); }
   int points_in_level(int level) const { return level_point_end[level]; }
+  // Bytes of the arrays above: positions and normals per point, the level table, and per node
+  // its point, radius, children range and parent (the description strings not counted).
+  std::int64_t memory_bytes() const {
+    auto bytes = [](const auto& v) { return std::int64_t(v.size() * sizeof(v[0])); };
+    return bytes(x) + bytes(y) + bytes(z) + bytes(nx) + bytes(ny) + bytes(nz) + bytes(level_point_end) +
+           bytes(level_node_begin) + bytes(node_point) + bytes(node_radius) + bytes(child_begin) + bytes(node_parent);
+  }
 };
 
 }  // namespace contactlab

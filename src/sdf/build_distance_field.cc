@@ -88,13 +88,13 @@ DistanceField BuildDistanceFieldImpl(const TriangleMesh& mesh, const DistanceFie
     if (mode != FieldMode::kClosed) {
       Fail(where, "a sparse distance field needs a watertight mesh (the closed pipeline); use storage dense");
     }
-    if (options.resolution % SparseFieldStorage::kBrick != 0 || options.resolution < 64) {
-      Fail(where, "a sparse distance field needs a resolution that is a multiple of 8 and at least 64, not " +
-                      std::to_string(options.resolution));
+    if (options.resolution % SparseFieldStorage::kBrick != 0 || options.resolution < SparseFieldStorage::kMinResolution) {
+      Fail(where, "a sparse distance field needs a resolution that is a multiple of 8 and at least " +
+                      std::to_string(SparseFieldStorage::kMinResolution) + ", not " + std::to_string(options.resolution));
     }
-    if (options.band_voxels < 1 || options.band_voxels > 16) {
-      Fail(where, "the sparse field's band of " + std::to_string(options.band_voxels) +
-                      " voxels is outside [1, 16]");
+    if (options.band_voxels < 1 || options.band_voxels > SparseFieldStorage::kMaxBand) {
+      Fail(where, "the sparse field's band of " + std::to_string(options.band_voxels) + " voxels is outside [1, " +
+                      std::to_string(SparseFieldStorage::kMaxBand) + "]");
     }
     const FieldGrid coarse_grid =
         MakeFieldGrid(mesh.Bounds(), options.resolution / SparseFieldStorage::kBrick, options.padding);

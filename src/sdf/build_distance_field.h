@@ -58,9 +58,11 @@ FieldMode ParseFieldMode(const std::string& text, const std::string& where);
 // Parses "dense" | "sparse"; throws Error naming WHERE.
 FieldStorage ParseFieldStorage(const std::string& text, const std::string& where);
 
-// Versioned binary file with a checksum (util/binary_io.h), magic "CLSDF", version 1: origin
-// (3 doubles), spacing (double), dims (3 int32), samples (float array), info (source, mode,
-// offset, build seconds). Save writes atomically. Load throws Error naming PATH for a missing,
+// Versioned binary file with a checksum (util/binary_io.h), magic "CLSDF". Version 1 (dense):
+// origin (3 doubles), spacing (double), dims (3 int32), samples (float array), info (source,
+// mode, offset, build seconds). Version 2 (sparse, sdf/sparse_field.h): origin, spacing, bricks
+// (3 int32), band (int32), quantum (float), coarse samples (float array), brick slots (int32
+// array), brick samples (int16 array), info. Save writes atomically. Load throws Error naming PATH for a missing,
 // truncated, corrupt (checksum), foreign or inconsistent file.
 void SaveDistanceField(const DistanceField& field, const std::filesystem::path& path);
 DistanceField LoadDistanceField(const std::filesystem::path& path);

@@ -71,7 +71,7 @@ DistanceField::DistanceField(const Eigen::Vector3d& origin, double spacing, Spar
   }
   // The grid box is the coarse grid's, whose boundary samples bound the distance on its faces.
   boundary_min_ = BoundaryMinimum(storage.coarse, storage.bricks + Eigen::Vector3i::Ones());
-  storage.coarse_spacing = float(SparseFieldStorage::kBrick * spacing);
+  storage.SetSpacing(spacing);
   sparse_ = std::make_shared<const SparseFieldStorage>(std::move(storage));
   SetHotPathConstants();
 }
@@ -114,7 +114,7 @@ double DistanceField::DistanceAndGradient(const Eigen::Vector3d& p, Eigen::Vecto
   }
   const Eigen::Vector3d g = (p - origin_) / spacing_;
   if (sparse_) {
-    const double value = sparse_->LookupWithGradient(g, gradient);
+    const double value = sparse_->Lookup(g, gradient);
     if (gradient) *gradient /= spacing_;
     return value;
   }

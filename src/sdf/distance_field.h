@@ -101,14 +101,14 @@ class DistanceField {
   bool Inside(const Eigen::Vector3d& p) const;
 
  private:
+  // The float copies of origin, spacing and box the hot paths read.
+  void SetHotPathConstants();
   // The conservative bound outside the box: distance to the box + boundary_min.
   inline float OutsideBound(float x, float y, float z) const;
 
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
   double spacing_ = 1;
   Eigen::Vector3i dims_ = Eigen::Vector3i::Zero();
-  void SetHotPathConstants();
-
   std::vector<float> values_;
   std::shared_ptr<const SparseFieldStorage> sparse_;
   DistanceFieldInfo info_;

@@ -38,8 +38,6 @@ void SaveDistanceField(const DistanceField& field, const std::filesystem::path& 
     for (int a = 0; a < 3; ++a) w.Put<std::int32_t>(s->bricks[a]);
     w.Put<std::int32_t>(s->band_voxels);
     w.Put<float>(s->quantum);
-    w.Put<float>(s->floor);
-    w.Put<float>(s->margin);
     w.PutArray(s->coarse);
     w.PutArray(s->slot);
     w.PutArray(s->samples);
@@ -92,8 +90,6 @@ DistanceField LoadDistanceField(const std::filesystem::path& path) {
     s.bricks = (dims - Eigen::Vector3i::Ones()) / SparseFieldStorage::kBrick;
     s.band_voxels = r.Get<std::int32_t>("band");
     s.quantum = r.Get<float>("quantum");
-    s.floor = r.Get<float>("band floor");
-    s.margin = r.Get<float>("coarse margin");
     const std::uint64_t nb = std::uint64_t(s.bricks.x()) * s.bricks.y() * s.bricks.z();
     s.coarse = r.GetArray<float>("coarse samples", std::uint64_t(s.bricks.x() + 1) * (s.bricks.y() + 1) * (s.bricks.z() + 1));
     s.slot = r.GetArray<std::int32_t>("brick slots", nb);

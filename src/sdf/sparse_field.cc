@@ -19,113 +19,100 @@
 
 namespace contactlab {
 
-float SparseLookup(const SparseFieldStorage& s, float gx, float gy, float gz) { return s.Lookup(gx, gy, gz); }
+float SparseLookup(const SparseFieldStorage& s, float gx, float gy, float gz) {
+  return float(s.Lookup(Eigen::Vector3d(gx, gy, gz)));
+}
 float SparseSample(const SparseFieldStorage& s, int i, int j, int k) { return s.Sample(i, j, k); }
 
-float SparseFieldStorage::Lookup(float gx, float gy, float gz) const {
-  // The fine cell, clamped so the last grid plane uses the last cell with t = 1, and its brick.
-  const int i = std::min(int(gx), kBrick * bricks.x() - 1);
-  const int j = std::min(int(gy), kBrick * bricks.y() - 1);
-  const int k = std::min(int(gz), kBrick * bricks.z() - 1);
-  const int bx = i >> 3, by = j >> 3, bz = k >> 3;
-  const std::int32_t s = slot[BrickIndex(bx, by, bz)];
-  if (s >= 0) {
-    const float tx = gx - float(i), ty = gy - float(j), tz = gz - float(k);
-    const std::int16_t* v =
-        samples.data() + std::int64_t(s) * kBrickStride + (i & 7) + kBrickEdge * ((j & 7) + kBrickEdge * (k & 7));
-    constexpr int sy = kBrickEdge, sz = kBrickEdge * kBrickEdge;
-    const float c00 = v[0] + tx * float(v[1] - v[0]);
-    const float c10 = v[sy] + tx * float(v[sy + 1] - v[sy]);
-    const float c01 = v[sz] + tx * float(v[sz + 1] - v[sz]);
-    const float c11 = v[sz + sy] + tx * float(v[sz + sy + 1] - v[sz + sy]);
-    const float c0 = c00 + ty * (c10 - c00);
-    const float c1 = c01 + ty * (c11 - c01);
-    return (c0 + tz * (c1 - c0)) * quantum;
+namespace {
+
+constexpr int kEdge = SparseFieldStorage::kBrickEdge;
+constexpr int kBrickSamples = kEdge * kEdge * kEdge;
+
+// Trilinear interpolation of corner values C at T in [0, 1]^3; GRAD: its gradient per cell edge.
+double Trilinear(const double c[2][2][2], const Eigen::Vector3d& t, Eigen::Vector3d* grad) {
+  auto lerp = [](double a, double b, double u) { return a + u * (b - a); };
+  const double c00 = lerp(c[0][0][0], c[1][0][0], t.x()), c10 = lerp(c[0][1][0], c[1][1][0], t.x());
+  const double c01 = lerp(c[0][0][1], c[1][0][1], t.x()), c11 = lerp(c[0][1][1], c[1][1][1], t.x());
+  const double c0 = lerp(c00, c10, t.y()), c1 = lerp(c01, c11, t.y());
+  const double dx00 = c[1][0][0] - c[0][0][0], dx10 = c[1][1][0] - c[0][1][0];
+  const double dx01 = c[1][0][1] - c[0][0][1], dx11 = c[1][1][1] - c[0][1][1];
+  *grad << lerp(lerp(dx00, dx10, t.y()), lerp(dx01, dx11, t.y()), t.z()), lerp(c10 - c00, c11 - c01, t.z()), c1 - c0;
+  return lerp(c0, c1, t.z());
+}
+
+// A coarse cell (edge H) with corner values C, at T in [0, 1]^3, where every point is farther
+// than FLOOR from the surface. Outside the body: the largest lower bound of FLOOR, the
+// interpolant less MARGIN and each corner's value less its distance (the distance is
+// 1-Lipschitz). Inside: the interpolant, at most -FLOOR. GRAD: per coarse-cell edge.
+double CoarseCellValue(const double c[2][2][2], const Eigen::Vector3d& t, bool outside, double floor, double margin,
+                       double H, Eigen::Vector3d* grad) {
+  double value = Trilinear(c, t, grad);
+  if (!outside) {
+    if (value > -floor) value = -floor, grad->setZero();
+    return value;
   }
-  // No samples here: the coarse cell (the brick itself), bounded as the header says.
-  const float tx = (gx - float(kBrick * bx)) * 0.125f, ty = (gy - float(kBrick * by)) * 0.125f,
-              tz = (gz - float(kBrick * bz)) * 0.125f;
-  const std::int64_t sy = bricks.x() + 1, sz = sy * (bricks.y() + 1);
-  const float* v = coarse.data() + CoarseIndex(bx, by, bz);
-  const float c00 = v[0] + tx * (v[1] - v[0]);
-  const float c10 = v[sy] + tx * (v[sy + 1] - v[sy]);
-  const float c01 = v[sz] + tx * (v[sz + 1] - v[sz]);
-  const float c11 = v[sz + sy] + tx * (v[sz + sy + 1] - v[sz + sy]);
-  const float c0 = c00 + ty * (c10 - c00);
-  const float c1 = c01 + ty * (c11 - c01);
-  const float d = c0 + tz * (c1 - c0);
-  if (s != kOutside) return std::min(-floor, d);
-  float bound = std::max(floor, d - margin);
-  const float ux = 1 - tx, uy = 1 - ty, uz = 1 - tz;
-  const float x0 = tx * tx, x1 = ux * ux, y0 = ty * ty, y1 = uy * uy, z0 = tz * tz, z1 = uz * uz;
-  bound = std::max(bound, v[0] - coarse_spacing * std::sqrt(x0 + y0 + z0));
-  bound = std::max(bound, v[1] - coarse_spacing * std::sqrt(x1 + y0 + z0));
-  bound = std::max(bound, v[sy] - coarse_spacing * std::sqrt(x0 + y1 + z0));
-  bound = std::max(bound, v[sy + 1] - coarse_spacing * std::sqrt(x1 + y1 + z0));
-  bound = std::max(bound, v[sz] - coarse_spacing * std::sqrt(x0 + y0 + z1));
-  bound = std::max(bound, v[sz + 1] - coarse_spacing * std::sqrt(x1 + y0 + z1));
-  bound = std::max(bound, v[sz + sy] - coarse_spacing * std::sqrt(x0 + y1 + z1));
-  bound = std::max(bound, v[sz + sy + 1] - coarse_spacing * std::sqrt(x1 + y1 + z1));
-  return bound;
+  value -= margin;
+  if (value < floor) value = floor, grad->setZero();
+  for (int corner = 0; corner < 8; ++corner) {
+    const Eigen::Vector3d k(corner & 1, (corner >> 1) & 1, corner >> 2);
+    const double r = (t - k).norm();
+    const double b = c[corner & 1][(corner >> 1) & 1][corner >> 2] - H * r;
+    if (b > value) {
+      value = b;
+      *grad = r > 0 ? Eigen::Vector3d(-H * (t - k) / r) : Eigen::Vector3d::Zero();
+    }
+  }
+  return value;
+}
+
+// The corner values of coarse cell (BX, BY, BZ).
+void CoarseCorners(const SparseFieldStorage& s, int bx, int by, int bz, double c[2][2][2]) {
+  for (int dz = 0; dz < 2; ++dz)
+    for (int dy = 0; dy < 2; ++dy)
+      for (int dx = 0; dx < 2; ++dx) c[dx][dy][dz] = s.coarse[s.CoarseIndex(bx + dx, by + dy, bz + dz)];
+}
+
+}  // namespace
+
+void SparseFieldStorage::SetSpacing(double h) {
+  floor = float((band_voxels - std::sqrt(3.0) / 2) * h);
+  margin = float(std::sqrt(3.0) / 2 * kBrick * h);
+  coarse_spacing = float(kBrick * h);
 }
 
 float SparseFieldStorage::Sample(int i, int j, int k) const {
   const int bx = std::min(i / kBrick, bricks.x() - 1), by = std::min(j / kBrick, bricks.y() - 1),
             bz = std::min(k / kBrick, bricks.z() - 1);
   const std::int32_t s = slot[BrickIndex(bx, by, bz)];
-  if (s < 0) return Lookup(float(i), float(j), float(k));
+  if (s < 0) return float(Lookup(Eigen::Vector3d(i, j, k)));
   const int l = (i - kBrick * bx) + kBrickEdge * ((j - kBrick * by) + kBrickEdge * (k - kBrick * bz));
   return samples[std::size_t(s) * kBrickStride + l] * quantum;
 }
 
-double SparseFieldStorage::LookupWithGradient(const Eigen::Vector3d& g, Eigen::Vector3d* gradient) const {
+double SparseFieldStorage::Lookup(const Eigen::Vector3d& g, Eigen::Vector3d* gradient) const {
+  // The fine cell, clamped so the last grid plane uses the last cell with t = 1, and its brick.
   const int i = std::clamp(int(g.x()), 0, kBrick * bricks.x() - 1);
   const int j = std::clamp(int(g.y()), 0, kBrick * bricks.y() - 1);
   const int k = std::clamp(int(g.z()), 0, kBrick * bricks.z() - 1);
   const int bx = i >> 3, by = j >> 3, bz = k >> 3;
   const std::int32_t s = slot[BrickIndex(bx, by, bz)];
   double c[2][2][2];
-  double tx, ty, tz, unit;  // UNIT: cell edge in fine-grid units
+  double value;
+  Eigen::Vector3d grad;
   if (s >= 0) {
     const std::int16_t* v =
         samples.data() + std::int64_t(s) * kBrickStride + (i & 7) + kBrickEdge * ((j & 7) + kBrickEdge * (k & 7));
     for (int dz = 0; dz < 2; ++dz)
       for (int dy = 0; dy < 2; ++dy)
         for (int dx = 0; dx < 2; ++dx) c[dx][dy][dz] = double(v[dx + kBrickEdge * (dy + kBrickEdge * dz)]) * quantum;
-    tx = g.x() - i, ty = g.y() - j, tz = g.z() - k, unit = 1;
+    value = Trilinear(c, Eigen::Vector3d(g.x() - i, g.y() - j, g.z() - k), &grad);
   } else {
-    for (int dz = 0; dz < 2; ++dz)
-      for (int dy = 0; dy < 2; ++dy)
-        for (int dx = 0; dx < 2; ++dx) c[dx][dy][dz] = coarse[CoarseIndex(bx + dx, by + dy, bz + dz)];
-    tx = (g.x() - kBrick * bx) / kBrick, ty = (g.y() - kBrick * by) / kBrick, tz = (g.z() - kBrick * bz) / kBrick;
-    unit = kBrick;
-  }
-  auto lerp = [](double a, double b, double t) { return a + t * (b - a); };
-  const double c00 = lerp(c[0][0][0], c[1][0][0], tx), c10 = lerp(c[0][1][0], c[1][1][0], tx);
-  const double c01 = lerp(c[0][0][1], c[1][0][1], tx), c11 = lerp(c[0][1][1], c[1][1][1], tx);
-  const double c0 = lerp(c00, c10, ty), c1 = lerp(c01, c11, ty);
-  double value = lerp(c0, c1, tz);
-  Eigen::Vector3d grad;
-  const double dx00 = c[1][0][0] - c[0][0][0], dx10 = c[1][1][0] - c[0][1][0];
-  const double dx01 = c[1][0][1] - c[0][0][1], dx11 = c[1][1][1] - c[0][1][1];
-  grad << lerp(lerp(dx00, dx10, ty), lerp(dx01, dx11, ty), tz), lerp(c10 - c00, c11 - c01, tz), c1 - c0;
-  grad /= unit;
-  if (s == kOutside) {
-    // The largest of the bounds (Lookup), with its gradient per fine-grid unit.
-    value -= margin;
-    if (value < floor) value = floor, grad.setZero();
-    const Eigen::Vector3d t(tx, ty, tz);
-    for (int corner = 0; corner < 8; ++corner) {
-      const Eigen::Vector3d k(corner & 1, (corner >> 1) & 1, corner >> 2);
-      const double r = (t - k).norm();
-      const double b = c[corner & 1][(corner >> 1) & 1][corner >> 2] - coarse_spacing * r;
-      if (b > value) {
-        value = b;
-        grad = r > 0 ? Eigen::Vector3d(-(t - k) / r * (coarse_spacing / kBrick)) : Eigen::Vector3d::Zero();
-      }
-    }
-  } else if (s == kInside && value > -floor) {
-    value = -floor, grad.setZero();
+    // No samples here: the coarse cell (the brick itself), bounded as the header says.
+    CoarseCorners(*this, bx, by, bz, c);
+    const Eigen::Vector3d t = (g - kBrick * Eigen::Vector3d(bx, by, bz)) / kBrick;
+    value = CoarseCellValue(c, t, s == kOutside, floor, margin, coarse_spacing, &grad);
+    grad /= kBrick;
   }
   if (gradient) *gradient = grad;
   return value;
@@ -151,32 +138,10 @@ void SparseFieldStorage::Validate(const std::string& where) const {
     if (!std::isfinite(v)) Fail(where, "a coarse sample is not finite");
   }
   if (!(quantum > 0) || !std::isfinite(quantum)) Fail(where, "the sample quantum must be positive and finite");
-  if (!(floor >= 0) || !std::isfinite(floor) || !(margin >= 0) || !std::isfinite(margin)) {
-    Fail(where, "the bounds outside the band must be finite and non-negative");
+  if (band_voxels < 1 || band_voxels > kMaxBand) {
+    Fail(where, "the band of " + std::to_string(band_voxels) + " voxels is outside [1, " + std::to_string(kMaxBand) + "]");
   }
-  if (band_voxels < 1) Fail(where, "the band must be at least one voxel");
 }
-
-namespace {
-
-constexpr int kEdge = SparseFieldStorage::kBrickEdge;
-constexpr int kBrickSamples = kEdge * kEdge * kEdge;
-
-// Trilinear interpolation of the coarse samples at fine grid point (I, J, K) of brick (BX, BY, BZ).
-double CoarseAt(const SparseFieldStorage& s, int bx, int by, int bz, int i, int j, int k) {
-  const double tx = double(i) / SparseFieldStorage::kBrick, ty = double(j) / SparseFieldStorage::kBrick,
-               tz = double(k) / SparseFieldStorage::kBrick;
-  double v = 0;
-  for (int dz = 0; dz < 2; ++dz)
-    for (int dy = 0; dy < 2; ++dy)
-      for (int dx = 0; dx < 2; ++dx) {
-        const double w = (dx ? tx : 1 - tx) * (dy ? ty : 1 - ty) * (dz ? tz : 1 - tz);
-        if (w != 0) v += w * s.coarse[s.CoarseIndex(bx + dx, by + dy, bz + dz)];
-      }
-  return v;
-}
-
-}  // namespace
 
 SparseFieldStorage BuildSparseStorage(const TriangleMesh& mesh, const MeshSignedDistance& sign,
                                       const FieldGrid& coarse_grid, std::vector<float> coarse, int band_voxels) {
@@ -186,8 +151,7 @@ SparseFieldStorage BuildSparseStorage(const TriangleMesh& mesh, const MeshSigned
   s.band_voxels = band_voxels;
   const double H = coarse_grid.spacing, h = H / SparseFieldStorage::kBrick;
   const double band = band_voxels * h, exact = band + h;
-  s.floor = float(band - std::sqrt(3.0) / 2 * h);
-  s.margin = float(std::sqrt(3.0) / 2 * H);
+  s.SetSpacing(h);
   const Eigen::Vector3d o = coarse_grid.origin;
   const Eigen::Vector3i last = SparseFieldStorage::kBrick * s.bricks;  // last fine sample per axis
   const std::vector<double> corners = FlattenTriangles(mesh);
@@ -356,25 +320,17 @@ SparseFieldStorage BuildSparseStorage(const TriangleMesh& mesh, const MeshSigned
         code[c] = sgn[0] < 0 ? SparseFieldStorage::kInside : SparseFieldStorage::kOutside;
         continue;
       }
+      // Samples beyond EXACT: the bounds of the coarse cell, with EXACT as the floor. Every
+      // sample of a stored brick is within 8 sqrt(3) h of one with |d| <= band, so the clamp to
+      // band + 14 h loses nothing true and keeps the 16-bit step below 6e-4 h.
+      double corners_c[2][2][2];
+      CoarseCorners(s, bx, by, bz, corners_c);
       for (int l = 0; l < kBrickSamples; ++l) {
         if (tri[l] >= 0) continue;
-        const double d = CoarseAt(s, bx, by, bz, l % kEdge, (l / kEdge) % kEdge, l / (kEdge * kEdge));
-        // Every sample of a stored brick is within 8 sqrt(3) h of one with |d| <= band, so the
-        // clamp to band + 14 h loses nothing true and keeps the 16-bit step below 6e-4 h.
-        double v;
-        if (sgn[l] < 0) {
-          v = std::min(-exact, d);
-        } else {
-          // Lower bounds: the interpolant less the margin, and (1-Lipschitz) each corner's
-          // value less its distance, tight near the corners.
-          v = std::max(exact, d - s.margin);
-          const Eigen::Vector3d q(l % kEdge, (l / kEdge) % kEdge, l / (kEdge * kEdge));
-          for (int corner = 0; corner < 8; ++corner) {
-            const Eigen::Vector3i k(corner & 1, (corner >> 1) & 1, corner >> 2);
-            const double D = s.coarse[s.CoarseIndex(bx + k.x(), by + k.y(), bz + k.z())];
-            v = std::max(v, D - h * (q - SparseFieldStorage::kBrick * k.cast<double>()).norm());
-          }
-        }
+        const Eigen::Vector3d t(l % kEdge, (l / kEdge) % kEdge, l / (kEdge * kEdge));
+        Eigen::Vector3d unused;
+        const double v = CoarseCellValue(corners_c, t / SparseFieldStorage::kBrick, sgn[l] > 0, exact, s.margin, H,
+                                         &unused);
         value[l] = float(std::clamp(v, -(band + 14 * h), band + 14 * h));
       }
       kept[c].assign(value, value + kBrickSamples);

@@ -40,16 +40,20 @@ struct SparseFieldStorage {
   static constexpr int kBrickEdge = 9;      // samples per brick edge
   static constexpr int kBrickStride = 730;  // 16-bit words per stored brick: 9^3 samples and a pad
   static constexpr std::int32_t kOutside = -1, kInside = -2;
+  static constexpr int kMinResolution = 64;  // cells along the longest side: 8 bricks at least
+  static constexpr int kMaxBand = 16;        // voxels
 
   Eigen::Vector3i bricks = Eigen::Vector3i::Zero();  // per axis
   std::vector<float> coarse;                          // (bricks + 1) per axis, x fastest, metres
   std::vector<std::int32_t> slot;                     // per brick, x fastest
   std::vector<std::int16_t> samples;                  // kBrickStride per stored brick, x fastest
   float quantum = 0;  // metres per sample unit
-  float floor = 0;    // |d| lower bound in a brick not stored, metres
-  float margin = 0;   // sqrt(3)/2 H, metres
   int band_voxels = 0;
-  float coarse_spacing = 0;  // H, metres: set by DistanceField from its spacing (not stored in files)
+  // Derived from the fine spacing h and the band by SetSpacing (not stored in files): the |d|
+  // lower bound in a brick not stored, band - sqrt(3)/2 h; sqrt(3)/2 H; and H = 8 h, metres.
+  float floor = 0, margin = 0, coarse_spacing = 0;
+
+  void SetSpacing(double h);
 
   std::int64_t num_stored() const { return std::int64_t(samples.size()) / kBrickStride; }
   std::int64_t memory_bytes() const {
@@ -65,12 +69,11 @@ struct SparseFieldStorage {
 
   // Fine sample (i, j, k), 0 <= i <= 8 bricks.x() etc.
   float Sample(int i, int j, int k) const;
-  // Distance at fine-grid coordinates (GX, GY, GZ) inside the box: in [0, 8 bricks] per axis.
-  float Lookup(float gx, float gy, float gz) const;
-  // The same in double with the gradient of the interpolant per fine-grid unit (divide by h).
-  double LookupWithGradient(const Eigen::Vector3d& g, Eigen::Vector3d* gradient) const;
+  // Distance at fine-grid coordinates G inside the box (in [0, 8 bricks] per axis), and its
+  // gradient per fine-grid unit (divide by h) when GRADIENT is not null.
+  double Lookup(const Eigen::Vector3d& g, Eigen::Vector3d* gradient = nullptr) const;
   // Throws Error (WHERE) when the arrays disagree with BRICKS or each other, a slot is out of
-  // range, or a number is not finite.
+  // range, a number is not finite, or the band is below one voxel.
   void Validate(const std::string& where) const;
 };
 

@@ -1,7 +1,8 @@
 // summary.csv's memory columns: the bytes of the field and pointshell each model reads, checked
 // against counts made independently of the run (grid points of a freshly built field, the
 // documented pointshell layout).
-#include "experiment/body_memory.h"
+#include "pointshell/pointshell.h"
+#include "sdf/distance_field.h"
 
 #include <gtest/gtest.h>
 
@@ -22,8 +23,8 @@ using testing::TempDir;
 
 TEST(BodyMemory, FieldBytesAreFourPerGridPoint) {
   const DistanceField field(Eigen::Vector3d::Zero(), 0.5, Eigen::Vector3i(3, 4, 5), std::vector<float>(60, 1.0f));
-  EXPECT_EQ(FieldBytes(field), 3 * 4 * 5 * 4);
-  EXPECT_EQ(FieldBytes(DistanceField()), 0);
+  EXPECT_EQ(field.memory_bytes(), 3 * 4 * 5 * 4);
+  EXPECT_EQ(DistanceField().memory_bytes(), 0);
 }
 
 TEST(BodyMemory, SparseFieldBytesAreItsCoarseGridSlotsAndBricks) {
@@ -34,12 +35,10 @@ TEST(BodyMemory, SparseFieldBytesAreItsCoarseGridSlotsAndBricks) {
   s.slot = {0, SparseFieldStorage::kOutside};
   s.samples.assign(SparseFieldStorage::kBrickStride, 100);
   s.quantum = 1e-5f;
-  s.floor = 0.02f;
-  s.margin = 0.07f;
   s.band_voxels = 3;
   const DistanceField field(Eigen::Vector3d::Zero(), 0.01, std::move(s));
-  EXPECT_EQ(FieldBytes(field), 12 * 4 + 2 * 4 + 730 * 2);
-  EXPECT_LT(FieldBytes(field), 17 * 9 * 9 * 4);  // what the dense grid of its points would take
+  EXPECT_EQ(field.memory_bytes(), 12 * 4 + 2 * 4 + 730 * 2);
+  EXPECT_LT(field.memory_bytes(), 17 * 9 * 9 * 4);  // what the dense grid of its points would take
 }
 
 TEST(BodyMemory, PointshellBytesCountPointsNormalsAndTree) {
@@ -54,7 +53,7 @@ TEST(BodyMemory, PointshellBytesCountPointsNormalsAndTree) {
   p.node_parent = {-1, 0, 0, 0};
   p.method = "a long description that is not counted";
   // 3 points x 6 floats, 2 + 3 level entries, 4 nodes x (point, radius, parent), 5 child ranges.
-  EXPECT_EQ(PointshellBytes(p), 3 * 6 * 4 + (2 + 3) * 4 + 4 * 3 * 4 + 5 * 4);
+  EXPECT_EQ(p.memory_bytes(), 3 * 6 * 4 + (2 + 3) * 4 + 4 * 3 * 4 + 5 * 4);
 }
 
 // A 4 cm ball pressed into a plate, at two plate-field resolutions.
