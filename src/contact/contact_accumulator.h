@@ -17,6 +17,18 @@ enum class ContactGradient {
   kField,      // the field's own gradient g at the point (exact derivative of the model)
 };
 
+// Sums over many points in contact under the halfspace rule (g = N), with G = N x p. Then
+// p x N = -G, so the sums of ContactAccumulator::Add are M = NN, MP = NG, PM = -NG^T, PMP = -GG.
+struct HalfspaceSums {
+  double dN[3] = {};      // sum d N
+  double p_x_dN[3] = {};  // sum p x (d N)
+  double NN[6] = {};      // sum N N^T: xx, xy, xz, yy, yz, zz
+  double NG[9] = {};      // sum N G^T, row-major
+  double GG[6] = {};      // sum G G^T: xx, xy, xz, yy, yz, zz
+  int count = 0;
+  double max_penetration = 0;
+};
+
 class ContactAccumulator {
  public:
   // One point in contact, field-body frame B: position p_B (metres), the pointshell point's
@@ -37,6 +49,20 @@ class ContactAccumulator {
     PMP_.noalias() += pN * gp.transpose();
     ++count_;
     if (-d > max_penetration_) max_penetration_ = -d;
+  }
+
+  // Many halfspace points at once (contact/halfspace_contacts.h).
+  void Add(const HalfspaceSums& s) {
+    force_ += Eigen::Vector3d(s.dN[0], s.dN[1], s.dN[2]);
+    torque_ += Eigen::Vector3d(s.p_x_dN[0], s.p_x_dN[1], s.p_x_dN[2]);
+    const Eigen::Matrix3d NN = Symmetric(s.NN), GG = Symmetric(s.GG);
+    const Eigen::Matrix3d NG = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(s.NG);
+    M_ += NN;
+    MP_ += NG;
+    PM_ -= NG.transpose();
+    PMP_ -= GG;
+    count_ += s.count;
+    if (s.max_penetration > max_penetration_) max_penetration_ = s.max_penetration;
   }
 
   int count() const { return count_; }
@@ -64,6 +90,13 @@ class ContactAccumulator {
     out->stats.points_in_contact = count_;
     out->stats.max_penetration = max_penetration_;
     out->stats.stiffness_scale = scale;
+  }
+
+  // The symmetric matrix of the upper triangle U = (xx, xy, xz, yy, yz, zz).
+  static Eigen::Matrix3d Symmetric(const double* U) {
+    Eigen::Matrix3d S;
+    S << U[0], U[1], U[2], U[1], U[3], U[4], U[2], U[4], U[5];
+    return S;
   }
 
   static Eigen::Matrix3d Skew(const Eigen::Vector3d& v) {

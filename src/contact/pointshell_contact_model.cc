@@ -5,14 +5,12 @@
 #include <limits>
 
 #include "contact/float_transform.h"
+#include "contact/halfspace_contacts.h"
 #include "pointshell/point_tree.h"
 #include "sdf/batch_distance.h"
 #include "util/error.h"
 
 namespace contactlab {
-namespace {
-
-}  // namespace
 
 PointshellContactModel::PointshellContactModel(Variant variant, std::shared_ptr<const Pointshell> shell,
                                                std::shared_ptr<const DistanceField> field,
@@ -64,6 +62,7 @@ struct RigidShellPolicy {
   const FloatTransform X_BA;
   ContactGradient gradient;
   ContactAccumulator* acc;
+  HalfspaceContactBuffer* contacts;  // the points in contact under the halfspace rule
   std::int64_t* earliest_cycle;  // (#N) first cycle a culled node may touch again
   std::int64_t cycle;
   double step;  // lipschitz * max_point_speed * cycle_seconds: distance closed per cycle
@@ -72,6 +71,10 @@ struct RigidShellPolicy {
   void EvaluatePoints(int begin, const std::int32_t* index, int n, float* d) {
     const int offset = index ? 0 : begin;
     BatchDistances(field, X_batch, s.x.data() + offset, s.y.data() + offset, s.z.data() + offset, index, n, d);
+    if (gradient == ContactGradient::kHalfspace) {
+      contacts->Collect(begin, index, d, n);
+      return;
+    }
     for (int k = 0; k < n; ++k) {
       if (d[k] < 0.f) [[unlikely]] {
         const int i = index ? index[k] : begin + k;
@@ -93,10 +96,12 @@ struct RigidShellPolicy {
 
 ContactResult PointshellContactModel::EvaluateLinear(const ContactQuery& query) {
   ContactAccumulator acc;
-  RigidShellPolicy policy{*shell_, *field_, FloatTransform(query.X_WB.Inverse() * query.X_WA), params_.gradient,
-                          &acc, nullptr, query.cycle, 0.0};
+  const FloatTransform X_BA(query.X_WB.Inverse() * query.X_WA);
+  HalfspaceContactBuffer contacts(*shell_, X_BA.AsBatch(), &acc);
+  RigidShellPolicy policy{*shell_, *field_, X_BA, params_.gradient, &acc, &contacts, nullptr, query.cycle, 0.0};
   ContactResult result;
   RunLinearTraversal(*shell_, max_level_, policy, &result.stats);
+  contacts.Flush();
   acc.Finish(params_.penalty, query.X_WB, &result);
   return result;
 }
@@ -104,10 +109,13 @@ ContactResult PointshellContactModel::EvaluateLinear(const ContactQuery& query) 
 ContactResult PointshellContactModel::EvaluateTree(const ContactQuery& query) {
   ContactAccumulator acc;
   const double step = params_.lipschitz * params_.max_point_speed * params_.cycle_seconds;
-  RigidShellPolicy policy{*shell_, *field_, FloatTransform(query.X_WB.Inverse() * query.X_WA), params_.gradient,
-                          &acc, earliest_cycle_.data(), query.cycle, step};
+  const FloatTransform X_BA(query.X_WB.Inverse() * query.X_WA);
+  HalfspaceContactBuffer contacts(*shell_, X_BA.AsBatch(), &acc);
+  RigidShellPolicy policy{*shell_, *field_, X_BA, params_.gradient, &acc, &contacts, earliest_cycle_.data(),
+                          query.cycle, step};
   ContactResult result;
   traversal_.Run(*shell_, max_level_, params_, query.node_budget, policy, &result.stats);
+  contacts.Flush();
   acc.Finish(params_.penalty, query.X_WB, &result);
   return result;
 }

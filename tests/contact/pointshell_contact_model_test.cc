@@ -42,10 +42,14 @@ Pose RandomPose(std::mt19937& rng, double spread) {
           spread * Eigen::Vector3d(u(rng), u(rng), u(rng))};
 }
 
+// The same points in contact, and the wrench to relative REL. The forces are summed in float
+// (contact/halfspace_contacts.h), so two traversals that meet the points in another order
+// agree to about 1e-7; one point more or less would change the force by far more than 1e-5.
+// Torques are compared on the scale of the force times the tests' lever arm (0.1 m).
 void ExpectWrenchNear(const ContactResult& a, const ContactResult& b, double rel) {
   const double scale = std::max(1e-12, a.on_B.force.norm());
   EXPECT_LT((a.on_B.force - b.on_B.force).norm(), rel * scale) << a.on_B.force.transpose() << " vs " << b.on_B.force.transpose();
-  EXPECT_LT((a.on_B.torque - b.on_B.torque).norm(), rel * std::max(1e-12, a.on_B.torque.norm()) + 1e-12);
+  EXPECT_LT((a.on_B.torque - b.on_B.torque).norm(), rel * (a.on_B.torque.norm() + 0.1 * scale));
   EXPECT_EQ(a.stats.points_in_contact, b.stats.points_in_contact);
 }
 
@@ -67,7 +71,7 @@ TEST(PointshellContactModel, TreeTraversalEqualsLinearTraversalOfTheSameLevel) {
       q.X_WA = {RotationFromVector(Eigen::Vector3d::Random()), q.X_WB.translation + (0.095 + 0.01 * trial / 40.0) * dir};
       const ContactResult rl = linear.Evaluate(q);
       const ContactResult rt = tree.Evaluate(q);
-      ExpectWrenchNear(rl, rt, 1e-9);
+      ExpectWrenchNear(rl, rt, 1e-5);
       EXPECT_EQ(rt.stats.level_rendered, level);
       EXPECT_LE(rt.stats.nodes_visited, shell->level_node_begin[level + 1]);
       contacts_seen += rl.stats.points_in_contact > 0;
@@ -108,7 +112,7 @@ TEST(PointshellContactModel, SparseFieldGivesTheDenseWrenchInTheBandAndTreeEqual
     // Penetration up to 2 voxels: every point in contact reads fine samples.
     q.X_WA = {RotationFromVector(Eigen::Vector3d::Random()), q.X_WB.translation + (0.11 - 2 * h * u(rng)) * dir};
     const ContactResult rs = tree_sparse.Evaluate(q), rl = linear_sparse.Evaluate(q), rd = tree_dense.Evaluate(q);
-    ExpectWrenchNear(rs, rl, 1e-9);
+    ExpectWrenchNear(rs, rl, 1e-5);
     // A point within a 16-bit step of d = 0 may fall either side; the wrench depends on the
     // count of points in contact (the stiffness is shared among them), so compare wrenches
     // where the counts agree.
@@ -188,7 +192,7 @@ TEST(PointshellContactModel, DegradationRendersTheDeepestLevelThatFitsAndHoldsIt
       PointshellContactParams lp = params;
       lp.level = r.stats.level_rendered;
       PointshellContactModel linear(Variant::kLinear, shell, field, lp);
-      ExpectWrenchNear(linear.Evaluate(q), r, 1e-9);
+      ExpectWrenchNear(linear.Evaluate(q), r, 1e-5);
     }
     for (int lv : levels) EXPECT_EQ(lv, levels.back()) << "level changed on a still pose, budget " << budget;
     // Deepest that fits: one level deeper would exceed the cold threshold.

@@ -1,0 +1,71 @@
+// The sec. 5 halfspace terms of many points in contact at once (Barbič & James 2008): the
+// per-point force d N, its torque and the four gradient sums of ContactAccumulator::Add with
+// g = N, formed and summed several points per instruction (Google Highway, the instruction set
+// chosen at run time as for sdf/batch_distance.h). The rigid pointshell model's traversals
+// collect their points in contact in a HalfspaceContactBuffer and add them a buffer at a time.
+#pragma once
+
+#include <cstdint>
+
+#include "contact/contact_accumulator.h"
+#include "pointshell/pointshell.h"
+#include "sdf/batch_distance.h"
+
+namespace contactlab {
+
+// Adds to ACC the points i = INDEX[k], k < N, of pointshell S, each at p_B = R p_i + t (X, in
+// float, as BatchDistances places it) with inward normal N_B = R n_i and distance D[k] < 0,
+// under the halfspace rule. Equal to N calls of ContactAccumulator::Add to float rounding: the
+// terms are formed and summed in float, then added to ACC's double sums. Allocates nothing.
+void AddHalfspaceContacts(const Pointshell& s, const BatchTransform& X, const std::int32_t* index, const float* d,
+                          int n, ContactAccumulator* acc);
+
+// Points in contact of one query, added to an accumulator kCapacity at a time (so the float
+// partial sums stay short). Each flush adds the next kCapacity points in the order they were
+// collected, however they were grouped, so the sums depend only on that order. Flush()
+// before reading the accumulator.
+class HalfspaceContactBuffer {
+ public:
+  static constexpr int kCapacity = 256;
+  static constexpr int kPadding = 64;  // room for one vector stored past kCapacity
+
+  HalfspaceContactBuffer(const Pointshell& s, const BatchTransform& X, ContactAccumulator* acc)
+      : s_(s), X_(X), acc_(acc) {}
+  HalfspaceContactBuffer(const HalfspaceContactBuffer&) = delete;
+  HalfspaceContactBuffer& operator=(const HalfspaceContactBuffer&) = delete;
+
+  // Adds the points in contact among N evaluated ones: point INDEX[k] (BEGIN + k when INDEX is
+  // null) when D[k] < 0. Picks them several at a time (vector compress, run-time dispatch).
+  void Collect(int begin, const std::int32_t* index, const float* d, int n);
+  // Adds every point collected so far.
+  void Flush() {
+    if (size_ > 0) AddHalfspaceContacts(s_, X_, index_, d_, size_, acc_);
+    size_ = 0;
+  }
+
+  // For the vector code: the first free entry (with at least kPadding floats of room behind
+  // it), and M more points written there.
+  std::int32_t* free_index() { return index_ + size_; }
+  float* free_d() { return d_ + size_; }
+  void Added(int m) {
+    size_ += m;
+    if (size_ >= kCapacity) {  // add the first kCapacity, keep the rest
+      AddHalfspaceContacts(s_, X_, index_, d_, kCapacity, acc_);
+      size_ -= kCapacity;
+      for (int k = 0; k < size_; ++k) {
+        index_[k] = index_[kCapacity + k];
+        d_[k] = d_[kCapacity + k];
+      }
+    }
+  }
+
+ private:
+  const Pointshell& s_;
+  const BatchTransform X_;
+  ContactAccumulator* acc_;
+  int size_ = 0;  // < kCapacity between calls
+  std::int32_t index_[kCapacity + kPadding];
+  float d_[kCapacity + kPadding];
+};
+
+}  // namespace contactlab
