@@ -17,9 +17,12 @@ namespace contactlab {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-void BatchDistancesImpl(const DistanceField& field, const BatchTransform& X, const float* HWY_RESTRICT x,
-                        const float* HWY_RESTRICT y, const float* HWY_RESTRICT z,
-                        const std::int32_t* HWY_RESTRICT index, int n, float* HWY_RESTRICT d) {
+// Dense and sparse storage compile to separate loops (KSPARSE), so the dense one keeps its
+// constants in registers.
+template <bool kSparse>
+void BatchDistancesOf(const DistanceField& field, const BatchTransform& X, const float* HWY_RESTRICT x,
+                      const float* HWY_RESTRICT y, const float* HWY_RESTRICT z,
+                      const std::int32_t* HWY_RESTRICT index, int n, float* HWY_RESTRICT d) {
   const hn::ScalableTag<float> df;
   const hn::RebindToSigned<decltype(df)> di;
   using VF = hn::Vec<decltype(df)>;
@@ -144,7 +147,9 @@ void BatchDistancesImpl(const DistanceField& field, const BatchTransform& X, con
     const VI ci = hn::Min(hn::ConvertTo(di, gx), last_i);
     const VI cj = hn::Min(hn::ConvertTo(di, gy), last_j);
     const VI ck = hn::Min(hn::ConvertTo(di, gz), last_k);
-    if (sp) return hn::IfThenElse(inside, sparse_lookup(gx, gy, gz, ci, cj, ck, inside), result);
+    if constexpr (kSparse) {
+      return hn::IfThenElse(inside, sparse_lookup(gx, gy, gz, ci, cj, ck, inside), result);
+    }
     const VF tx = gx - hn::ConvertTo(df, ci), ty = gy - hn::ConvertTo(df, cj), tz = gz - hn::ConvertTo(df, ck);
     const VI base = ci + sy * cj + sz * ck;
     const float* v = g.values;
@@ -208,6 +213,16 @@ void BatchDistancesImpl(const DistanceField& field, const BatchTransform& X, con
     }
     hn::Store(lookup(hn::Load(df, px), hn::Load(df, py), hn::Load(df, pz)), df, out);
     for (int j = 0; k + j < n; ++j) d[k + j] = out[j];
+  }
+}
+
+void BatchDistancesImpl(const DistanceField& field, const BatchTransform& X, const float* HWY_RESTRICT x,
+                        const float* HWY_RESTRICT y, const float* HWY_RESTRICT z,
+                        const std::int32_t* HWY_RESTRICT index, int n, float* HWY_RESTRICT d) {
+  if (field.sparse()) {
+    BatchDistancesOf<true>(field, X, x, y, z, index, n, d);
+  } else {
+    BatchDistancesOf<false>(field, X, x, y, z, index, n, d);
   }
 }
 
