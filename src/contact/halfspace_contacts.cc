@@ -14,17 +14,15 @@ namespace contactlab {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-void AddHalfspaceContactsImpl(const Pointshell& s, const BatchTransform& X, const std::int32_t* HWY_RESTRICT index,
-                              const float* HWY_RESTRICT d, int n, ContactAccumulator* acc) {
-  if (n <= 0) return;
+// The sums in A's frame (HalfspaceSums' terms with N = n_i and p = p_i + R^T t, which
+// AddHalfspaceContacts rotates into B's frame), N > 0.
+void HalfspaceSumsInAImpl(const Pointshell& s, const float* t_A, const std::int32_t* HWY_RESTRICT index,
+                          const float* HWY_RESTRICT d, int n, HalfspaceSums* out) {
   const hn::ScalableTag<float> df;
   const hn::RebindToSigned<decltype(df)> di;
   using VF = hn::Vec<decltype(df)>;
   const int lanes = int(hn::Lanes(df));
-  const VF r0 = hn::Set(df, X.r[0]), r1 = hn::Set(df, X.r[1]), r2 = hn::Set(df, X.r[2]);
-  const VF r3 = hn::Set(df, X.r[3]), r4 = hn::Set(df, X.r[4]), r5 = hn::Set(df, X.r[5]);
-  const VF r6 = hn::Set(df, X.r[6]), r7 = hn::Set(df, X.r[7]), r8 = hn::Set(df, X.r[8]);
-  const VF t0 = hn::Set(df, X.t[0]), t1 = hn::Set(df, X.t[1]), t2 = hn::Set(df, X.t[2]);
+  const VF t0 = hn::Set(df, t_A[0]), t1 = hn::Set(df, t_A[1]), t2 = hn::Set(df, t_A[2]);
   const float *x = s.x.data(), *y = s.y.data(), *z = s.z.data();
   const float *nx = s.nx.data(), *ny = s.ny.data(), *nz = s.nz.data();
 
@@ -39,14 +37,11 @@ void AddHalfspaceContactsImpl(const Pointshell& s, const BatchTransform& X, cons
 
   // One vector of points; lanes beyond the last point have N = 0 and d = 0, so add nothing.
   auto add = [&](hn::Vec<decltype(di)> i, VF dv, hn::Mask<decltype(df)> valid) HWY_ATTR {
-    const VF ax = hn::GatherIndex(df, x, i), ay = hn::GatherIndex(df, y, i), az = hn::GatherIndex(df, z, i);
-    const VF bx = hn::GatherIndex(df, nx, i), by = hn::GatherIndex(df, ny, i), bz = hn::GatherIndex(df, nz, i);
-    const VF px = hn::MulAdd(r0, ax, hn::MulAdd(r1, ay, hn::MulAdd(r2, az, t0)));
-    const VF py = hn::MulAdd(r3, ax, hn::MulAdd(r4, ay, hn::MulAdd(r5, az, t1)));
-    const VF pz = hn::MulAdd(r6, ax, hn::MulAdd(r7, ay, hn::MulAdd(r8, az, t2)));
-    const VF Nx = hn::IfThenElseZero(valid, hn::MulAdd(r0, bx, hn::MulAdd(r1, by, r2 * bz)));
-    const VF Ny = hn::IfThenElseZero(valid, hn::MulAdd(r3, bx, hn::MulAdd(r4, by, r5 * bz)));
-    const VF Nz = hn::IfThenElseZero(valid, hn::MulAdd(r6, bx, hn::MulAdd(r7, by, r8 * bz)));
+    const VF px = hn::GatherIndex(df, x, i) + t0, py = hn::GatherIndex(df, y, i) + t1;
+    const VF pz = hn::GatherIndex(df, z, i) + t2;
+    const VF Nx = hn::IfThenElseZero(valid, hn::GatherIndex(df, nx, i));
+    const VF Ny = hn::IfThenElseZero(valid, hn::GatherIndex(df, ny, i));
+    const VF Nz = hn::IfThenElseZero(valid, hn::GatherIndex(df, nz, i));
     const VF fx = dv * Nx, fy = dv * Ny, fz = dv * Nz;
     f[0] += fx;
     f[1] += fy;
@@ -93,19 +88,17 @@ void AddHalfspaceContactsImpl(const Pointshell& s, const BatchTransform& X, cons
   }
 
   auto sum = [&](VF v) HWY_ATTR { return double(hn::GetLane(hn::SumOfLanes(df, v))); };
-  HalfspaceSums out;
   for (int j = 0; j < 3; ++j) {
-    out.dN[j] = sum(f[j]);
-    out.p_x_dN[j] = sum(t[j]);
+    out->dN[j] = sum(f[j]);
+    out->p_x_dN[j] = sum(t[j]);
   }
   for (int j = 0; j < 6; ++j) {
-    out.NN[j] = sum(nn[j]);
-    out.GG[j] = sum(gg[j]);
+    out->NN[j] = sum(nn[j]);
+    out->GG[j] = sum(gg[j]);
   }
-  for (int j = 0; j < 9; ++j) out.NG[j] = sum(ng[j]);
-  out.count = n;
-  out.max_penetration = -double(hn::GetLane(hn::MinOfLanes(df, min_d)));
-  acc->Add(out);
+  for (int j = 0; j < 9; ++j) out->NG[j] = sum(ng[j]);
+  out->count = n;
+  out->max_penetration = -double(hn::GetLane(hn::MinOfLanes(df, min_d)));
 }
 
 // HalfspaceContactBuffer::Collect: each vector of distances with a lane below zero is
@@ -144,12 +137,39 @@ HWY_AFTER_NAMESPACE();
 #if HWY_ONCE
 namespace contactlab {
 
-HWY_EXPORT(AddHalfspaceContactsImpl);
+HWY_EXPORT(HalfspaceSumsInAImpl);
 HWY_EXPORT(CollectContactsImpl);
 
+// With p_B = R p_A + t = R (p_A + R^T t) and N_B = R N_A, the B-frame point is R q for
+// q = p_A + R^T t, and G_B = N_B x p_B = R (N_A x q): every sum is the A-frame sum of the
+// same terms, rotated (vectors R v, matrices R S R^T). The kernel then needs no rotation.
 void AddHalfspaceContacts(const Pointshell& s, const BatchTransform& X, const std::int32_t* index, const float* d,
                           int n, ContactAccumulator* acc) {
-  HWY_DYNAMIC_DISPATCH(AddHalfspaceContactsImpl)(s, X, index, d, n, acc);
+  if (n <= 0) return;
+  Eigen::Matrix3d R;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) R(i, j) = X.r[3 * i + j];
+  const Eigen::Vector3d t_A = R.transpose() * Eigen::Vector3d(X.t[0], X.t[1], X.t[2]);
+  const float t_Af[3] = {float(t_A[0]), float(t_A[1]), float(t_A[2])};
+  HalfspaceSums a;
+  HWY_DYNAMIC_DISPATCH(HalfspaceSumsInAImpl)(s, t_Af, index, d, n, &a);
+  using Row3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
+  auto vector = [&R](double* v) {
+    Eigen::Map<Eigen::Vector3d> m(v);
+    m = R * Eigen::Vector3d(m);
+  };
+  auto symmetric = [&R](double* U) {
+    const Eigen::Matrix3d S = R * ContactAccumulator::Symmetric(U) * R.transpose();
+    const double upper[6] = {S(0, 0), S(0, 1), S(0, 2), S(1, 1), S(1, 2), S(2, 2)};
+    std::copy(upper, upper + 6, U);
+  };
+  vector(a.dN);
+  vector(a.p_x_dN);
+  symmetric(a.NN);
+  symmetric(a.GG);
+  Eigen::Map<Row3> NG(a.NG);
+  NG = R * Row3(NG) * R.transpose();
+  acc->Add(a);
 }
 
 void HalfspaceContactBuffer::Collect(int begin, const std::int32_t* index, const float* d, int n) {

@@ -13,10 +13,10 @@
 
 namespace contactlab {
 
-// Adds to ACC the points i = INDEX[k], k < N, of pointshell S, each at p_B = R p_i + t (X, in
-// float, as BatchDistances places it) with inward normal N_B = R n_i and distance D[k] < 0,
-// under the halfspace rule. Equal to N calls of ContactAccumulator::Add to float rounding: the
-// terms are formed and summed in float, then added to ACC's double sums. Allocates nothing.
+// Adds to ACC the points i = INDEX[k], k < N, of pointshell S, each at p_B = R p_i + t (X)
+// with inward normal N_B = R n_i and distance D[k] < 0, under the halfspace rule. Equal to N
+// calls of ContactAccumulator::Add to float rounding: the terms are formed and summed in
+// float in A's frame, then rotated into B's and added to ACC's double sums. Allocates nothing.
 void AddHalfspaceContacts(const Pointshell& s, const BatchTransform& X, const std::int32_t* index, const float* d,
                           int n, ContactAccumulator* acc);
 
