@@ -193,7 +193,12 @@ void BatchDistancesOf(const DistanceField& field, const BatchTransform& X, const
     VF result;
     if (index) {
       const VI i = hn::LoadU(di, index + k);
-      result = lookup(hn::GatherIndex(df, x, i), hn::GatherIndex(df, y, i), hn::GatherIndex(df, z, i));
+      const std::int32_t i0 = index[k];
+      if (hn::AllTrue(di, i == hn::Iota(di, i0))) {  // consecutive points (a tree's top level): loads
+        result = lookup(hn::LoadU(df, x + i0), hn::LoadU(df, y + i0), hn::LoadU(df, z + i0));
+      } else {
+        result = lookup(hn::GatherIndex(df, x, i), hn::GatherIndex(df, y, i), hn::GatherIndex(df, z, i));
+      }
     } else {
       result = lookup(hn::LoadU(df, x + k), hn::LoadU(df, y + k), hn::LoadU(df, z + k));
     }

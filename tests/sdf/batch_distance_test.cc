@@ -87,6 +87,9 @@ TEST(BatchDistances, MatchTheExactAffineFieldAndTheScalarLookupOnEveryInstructio
   const int n = int(x.size());
   std::vector<std::int32_t> reversed(n);
   for (int k = 0; k < n; ++k) reversed[k] = n - 1 - k;
+  // Runs of consecutive points (read with plain loads) between scattered ones (gathered).
+  std::vector<std::int32_t> mixed(n);
+  for (int k = 0; k < n; ++k) mixed[k] = (k / 48) % 2 ? (k * 7919) % n : k;
 
   int inside = 0;
   const int targets = ForEachTarget([&](const char* target) {
@@ -94,6 +97,9 @@ TEST(BatchDistances, MatchTheExactAffineFieldAndTheScalarLookupOnEveryInstructio
     std::vector<float> d(n), d_indexed(n);
     BatchDistances(af.field, X, x.data(), y.data(), z.data(), nullptr, n, d.data());
     BatchDistances(af.field, X, x.data(), y.data(), z.data(), reversed.data(), n, d_indexed.data());
+    std::vector<float> d_mixed(n);
+    BatchDistances(af.field, X, x.data(), y.data(), z.data(), mixed.data(), n, d_mixed.data());
+    for (int k = 0; k < n; ++k) ASSERT_EQ(d_mixed[k], d[mixed[k]]) << k;
     inside = 0;
     for (int k = 0; k < n; ++k) {
       ASSERT_EQ(d_indexed[n - 1 - k], d[k]) << k;  // rounded alike wherever it is in the batch
