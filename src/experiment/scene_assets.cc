@@ -181,6 +181,13 @@ void HashFieldSpec(const FieldSpec& f, Hasher* h) {
   }
 }
 
+// A builder's version in a cache key; version 1 adds nothing (AssetOptions::builders).
+void HashBuilderVersion(const char* builder, int version, Hasher* h) {
+  if (version == 1) return;
+  h->Text(builder);
+  h->Value(version);
+}
+
 }  // namespace
 
 std::shared_ptr<const DistanceField> BodyAssets::field() {
@@ -190,6 +197,7 @@ std::shared_ptr<const DistanceField> BodyAssets::field() {
   h.Text(mesh_key());
   h.Text("field");
   HashFieldSpec(f, &h);
+  HashBuilderVersion("field-builder", options_.builders.field, &h);
   field_ = CachedOrBuilt<DistanceField>(
       options_.cache_dir / ("field-" + h.Hex() + ".sdf"), options_,
       "the " + std::to_string(f.resolution) + "-cell field of " + spec_.name, LoadDistanceField, SaveDistanceField,
@@ -214,6 +222,8 @@ std::shared_ptr<const Pointshell> BodyAssets::pointshell() {
   h.Text(mesh_key());
   h.Text("pointshell");
   HashFieldSpec(spec_.field, &h);
+  HashBuilderVersion("field-builder", options_.builders.field, &h);
+  HashBuilderVersion("pointshell-builder", options_.builders.pointshell, &h);
   h.Value(s.points);
   h.Value(s.levels);
   h.Text(s.method);
@@ -242,6 +252,8 @@ std::shared_ptr<const ReducedModel> BodyAssets::reduced_model() {
   h.Text(mesh_key());
   h.Text("reduced-model");
   HashFieldSpec(spec_.field, &h);
+  HashBuilderVersion("field-builder", options_.builders.field, &h);
+  HashBuilderVersion("reduced-model-builder", options_.builders.reduced_model, &h);
   h.Value(std::int32_t(d.kind));
   h.Value(d.modes);
   h.Value(d.cells);

@@ -14,17 +14,30 @@
 #include "deform/reduced_model.h"
 #include "experiment/scene.h"
 #include "geometry/triangle_mesh.h"
+#include "pointshell/build_pointshell.h"
 #include "pointshell/pointshell.h"
+#include "sdf/build_distance_field.h"
 #include "sdf/distance_field.h"
 #include "util/data_path.h"
 
 namespace contactlab {
+
+// The builder versions that enter the cache keys: a cached field, pointshell or reduced model
+// is found only under the versions of the builders it came from (a pointshell or reduced model
+// also depends on the field's). Version 1 adds nothing to a key, so entries cached before
+// versions existed stay valid. Tests set other values; programs keep the defaults.
+struct BuilderVersions {
+  int field = kDistanceFieldBuilderVersion;
+  int pointshell = kPointshellBuilderVersion;
+  int reduced_model = kReducedModelBuilderVersion;
+};
 
 struct AssetOptions {
   std::filesystem::path cache_dir;  // empty: DefaultCacheDir()
   bool use_cache = true;            // read and write cached fields and pointshells
   bool verbose = true;              // say on stderr what is built or reused
   std::filesystem::path mesh_dir;   // searched first for mesh files (the scene file's folder)
+  BuilderVersions builders;         // versions in the cache keys
 };
 
 // $CONTACTLAB_CACHE, else $XDG_CACHE_HOME/contactlab, else $HOME/.cache/contactlab, else

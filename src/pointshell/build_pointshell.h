@@ -66,6 +66,11 @@ std::vector<std::int32_t> NestedLevelEnds(std::int32_t num_points, int num_level
 Pointshell BuildPointshell(const DistanceField& field, const PointshellOptions& options,
                            const TriangleMesh* mesh = nullptr, PointshellBuildReport* report = nullptr);
 
+// The version of what BuildPointshell produces. Raise it with any change that alters the output for
+// the same inputs: cached results (experiment/scene_assets.h) of an older version are then
+// no longer found.
+inline constexpr int kPointshellBuilderVersion = 1;
+
 // "repulsion" | "voxel" | "vertices" | "random"; Parse throws Error naming WHERE.
 PointshellMethod ParsePointshellMethod(const std::string& text, const std::string& where);
 std::string PointshellMethodName(PointshellMethod method);

@@ -77,6 +77,31 @@ TEST(SceneAssets, ASparseFieldIsBuiltCachedUnderItsOwnKeyAndReadBackSparse) {
   EXPECT_EQ(CountFiles(dir / "cache", "field-"), 3);
 }
 
+TEST(SceneAssets, ANewBuilderVersionRebuildsWhatDependsOnIt) {
+  testing::TempDir dir;
+  AssetOptions options;
+  options.cache_dir = dir / "cache";
+  options.verbose = false;
+  BodyAssets(Ball(128), options).pointshell();
+  EXPECT_EQ(CountFiles(dir / "cache", "field-"), 1);
+  EXPECT_EQ(CountFiles(dir / "cache", "pointshell-"), 1);
+  // A new field builder: its field and the pointshell built from it are new entries.
+  AssetOptions new_field = options;
+  new_field.builders.field = 2;
+  BodyAssets(Ball(128), new_field).pointshell();
+  EXPECT_EQ(CountFiles(dir / "cache", "field-"), 2);
+  EXPECT_EQ(CountFiles(dir / "cache", "pointshell-"), 2);
+  // A new pointshell builder: the field is found, the pointshell is built again.
+  AssetOptions new_shell = options;
+  new_shell.builders.pointshell = 2;
+  BodyAssets(Ball(128), new_shell).pointshell();
+  EXPECT_EQ(CountFiles(dir / "cache", "field-"), 2);
+  EXPECT_EQ(CountFiles(dir / "cache", "pointshell-"), 3);
+  // The versions of today's builders find what they cached.
+  BodyAssets(Ball(128), options).pointshell();
+  EXPECT_EQ(CountFiles(dir / "cache", "pointshell-"), 3);
+}
+
 TEST(SceneAssets, ACorruptCacheEntryIsRebuilt) {
   testing::TempDir dir;
   AssetOptions options{.cache_dir = dir / "cache", .use_cache = true, .verbose = false};
