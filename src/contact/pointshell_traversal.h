@@ -132,63 +132,66 @@ class TreeTraversalState {
     const float lip = float(params.lipschitz);
     const double warm = double(budget);
     const double cold = params.cold_fraction * double(budget);
-    std::int32_t* current = queue_a_.data();
-    std::int32_t* next = queue_b_.data();
-    float* current_d = queue_d_a_.data();
-    float* next_d = queue_d_b_.data();
     // A level's queue holds its awake nodes only: asleep ones are dropped as they are queued
-    // (counted in *_queued for the budget and in *_asleep for the statistics), and the points
-    // the awake ones see first are listed for the level's batch, [*_first, evaluated).
+    // (counted in `queued` for the budget and in `asleep` for the statistics), and the points
+    // the awake ones see first are listed for the level's batch, [first, evaluated).
+    struct LevelQueue {
+      std::int32_t* node;
+      float* d;  // the node's point's d, NaN when not known
+      std::int64_t size = 0, queued = 0;
+      std::int32_t asleep = 0;
+      int first = 0;
+    };
     int evaluated = 0;
-    std::int64_t current_size = 0, current_queued = 0;
-    std::int32_t current_asleep = 0;
-    int current_first = 0;
-    for (int n = s.level_node_begin[0]; n < s.level_node_begin[1]; ++n) {
-      ++current_queued;
-      if (params.coherence && policy.Asleep(n)) {
-        ++current_asleep;
-        continue;
+    auto enqueue = [&](LevelQueue& q, std::int32_t node, float d) {
+      ++q.queued;
+      if (params.coherence && policy.Asleep(node)) {
+        ++q.asleep;
+        return;
       }
-      current[current_size] = n;
-      current_d[current_size++] = kUnknown;
-      evaluated_[evaluated++] = s.node_point[n];
-    }
+      q.node[q.size] = node;
+      q.d[q.size++] = d;
+      if (d != d) evaluated_[evaluated++] = s.node_point[node];
+    };
+    LevelQueue current{queue_a_.data(), queue_d_a_.data()};
+    LevelQueue next{queue_b_.data(), queue_d_b_.data()};
+    for (int n = s.level_node_begin[0]; n < s.level_node_begin[1]; ++n) enqueue(current, n, kUnknown);
 
     std::int64_t visited = 0;
     std::int32_t skipped = 0;
     int rendered = -1;
     for (int level = 0; level <= max_level; ++level) {
-      if (current_queued == 0) {  // everything culled: deeper levels add nothing
+      if (current.queued == 0) {  // everything culled: deeper levels add nothing
         rendered = max_level;
         break;
       }
       if (level > 0 && budget > 0) {  // graceful degradation
         const double threshold = level <= last_level_rendered_ ? warm : cold;
-        if (double(visited + current_queued) > threshold) {
-          evaluated = current_first;  // the level is not rendered
+        if (double(visited + current.queued) > threshold) {
+          evaluated = current.first;  // the level is not rendered
           break;
         }
       }
       const bool leaf_level = (level == max_level) || (level + 1 >= s.num_levels());
-      visited += current_size;
-      skipped += current_asleep;
+      visited += current.size;
+      skipped += current.asleep;
       // 1. The distances (and forces) of the points the level sees first, as one batch.
-      std::int32_t* batch = evaluated_.data() + current_first;
-      float* batch_d = evaluated_d_.data() + current_first;
-      const int batch_size = evaluated - current_first;
+      std::int32_t* batch = evaluated_.data() + current.first;
+      float* batch_d = evaluated_d_.data() + current.first;
+      const int batch_size = evaluated - current.first;
       if constexpr (BatchPolicy<Policy>) {
         policy.EvaluatePoints(0, batch, batch_size, batch_d);
       } else {
         for (int b = 0; b < batch_size; ++b) batch_d[b] = policy.EvaluatePoint(batch[b]);
       }
-      // 2. Cull a node whose ball is clear of contact, else queue its awake children.
-      const int next_first = evaluated;
-      std::int64_t next_size = 0, next_queued = 0;
-      std::int32_t next_asleep = 0;
+      // 2. Cull a node whose ball is clear of contact, else queue its children.
+      next.size = next.queued = 0;
+      next.asleep = 0;
+      next.first = evaluated;
       int b = 0;
-      for (std::int64_t k = 0; k < current_size; ++k) {
-        const std::int32_t node = current[k];
-        float d = current_d[k];
+      for (std::int64_t k = 0; k < current.size; ++k) {
+        const std::int32_t node = current.node[k];
+        float d = current.d[k];
         if (d != d) d = batch_d[b++];
         const float radius = leaf_level ? 0.f : policy.Radius(node);
         if (d > lip * radius) {
@@ -197,28 +200,10 @@ class TreeTraversalState {
         }
         if (leaf_level) continue;
         const std::int32_t cb = s.child_begin[node], ce = s.child_begin[node + 1];
-        next_queued += ce - cb;
-        for (std::int32_t c = cb; c < ce; ++c) {
-          if (params.coherence && policy.Asleep(c)) {
-            ++next_asleep;
-            continue;
-          }
-          next[next_size] = c;
-          if (c == cb) {
-            next_d[next_size++] = d;
-          } else {
-            next_d[next_size++] = kUnknown;
-            evaluated_[evaluated++] = s.node_point[c];
-          }
-        }
+        for (std::int32_t c = cb; c < ce; ++c) enqueue(next, c, c == cb ? d : kUnknown);
       }
       rendered = level;
       std::swap(current, next);
-      std::swap(current_d, next_d);
-      current_size = next_size;
-      current_queued = next_queued;
-      current_asleep = next_asleep;
-      current_first = next_first;
     }
     last_level_rendered_ = rendered;
     num_evaluated_ = evaluated;

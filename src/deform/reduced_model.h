@@ -48,9 +48,9 @@ struct ReducedModel {
 // vertex.
 ReducedModel BuildReducedModel(const TetMesh& mesh, const ReducedModelOptions& options, const std::string& source);
 
-// The version of what BuildReducedModel (with the voxel tet mesh it is given) produces. Raise it with any change that alters the output for
-// the same inputs: cached results (experiment/scene_assets.h) of an older version are then
-// no longer found.
+// The version of what BuildReducedModel (with the voxel tet mesh it is given) produces. Raise it
+// with any change that alters the output for the same inputs: cached results
+// (experiment/scene_assets.h) of an older version are then no longer found.
 inline constexpr int kReducedModelBuilderVersion = 1;
 
 // Versioned binary file (util/binary_io.h), magic "CLRM", version 1, with a checksum.

@@ -19,7 +19,7 @@ FieldSpec ParseField(const ConfigNode& n) {
   f.band = int(n.IntInRange("band", f.band, 1, SparseFieldStorage::kMaxBand));
   if (f.storage == "sparse") {
     if (f.mode == "soup") n.Get("mode").Fail("a sparse field needs the closed pipeline (mode auto or closed)");
-    if (f.resolution % SparseFieldStorage::kBrick != 0 || f.resolution < SparseFieldStorage::kMinResolution) {
+    if (!SparseFieldStorage::ResolutionFits(f.resolution)) {
       n.Get("resolution").Fail("a sparse field needs a resolution that is a multiple of 8 and at least " +
                                std::to_string(SparseFieldStorage::kMinResolution));
     }

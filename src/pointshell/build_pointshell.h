@@ -67,8 +67,8 @@ Pointshell BuildPointshell(const DistanceField& field, const PointshellOptions& 
                            const TriangleMesh* mesh = nullptr, PointshellBuildReport* report = nullptr);
 
 // The version of what BuildPointshell produces. Raise it with any change that alters the output for
-// the same inputs: cached results (experiment/scene_assets.h) of an older version are then
-// no longer found.
+// the same inputs: cached results (experiment/scene_assets.h) of an older version are then no
+// longer found.
 inline constexpr int kPointshellBuilderVersion = 1;
 
 // "repulsion" | "voxel" | "vertices" | "random"; Parse throws Error naming WHERE.

@@ -88,7 +88,7 @@ DistanceField BuildDistanceFieldImpl(const TriangleMesh& mesh, const DistanceFie
     if (mode != FieldMode::kClosed) {
       Fail(where, "a sparse distance field needs a watertight mesh (the closed pipeline); use storage dense");
     }
-    if (options.resolution % SparseFieldStorage::kBrick != 0 || options.resolution < SparseFieldStorage::kMinResolution) {
+    if (!SparseFieldStorage::ResolutionFits(options.resolution)) {
       Fail(where, "a sparse distance field needs a resolution that is a multiple of 8 and at least " +
                       std::to_string(SparseFieldStorage::kMinResolution) + ", not " + std::to_string(options.resolution));
     }

@@ -53,9 +53,9 @@ struct DistanceFieldOptions {
 // Parallel (TBB, all cores); show_progress draws stage progress on a terminal.
 DistanceField BuildDistanceField(const TriangleMesh& mesh, const DistanceFieldOptions& options = {});
 
-// The version of what BuildDistanceField produces. Raise it with any change that alters the output for
-// the same inputs: cached results (experiment/scene_assets.h) of an older version are then
-// no longer found.
+// The version of what BuildDistanceField produces. Raise it with any change that alters the output
+// for the same inputs: cached results (experiment/scene_assets.h) of an older version are then no
+// longer found.
 inline constexpr int kDistanceFieldBuilderVersion = 1;
 
 // Parses "auto" | "closed" | "soup"; throws Error naming WHERE.

@@ -42,6 +42,10 @@ struct SparseFieldStorage {
   static constexpr std::int32_t kOutside = -1, kInside = -2;
   static constexpr int kMinResolution = 64;  // cells along the longest side: 8 bricks at least
   static constexpr int kMaxBand = 16;        // voxels
+  // Whether a field of RESOLUTION cells can be sparse: whole bricks, kMinResolution at least.
+  static constexpr bool ResolutionFits(int resolution) {
+    return resolution % kBrick == 0 && resolution >= kMinResolution;
+  }
 
   Eigen::Vector3i bricks = Eigen::Vector3i::Zero();  // per axis
   std::vector<float> coarse;                          // (bricks + 1) per axis, x fastest, metres

@@ -11,8 +11,8 @@
 #include <sstream>
 
 #include "experiment/result_csv.h"
-#include "sdf/sparse_field.h"
 #include "experiment/runner.h"
+#include "sdf/sparse_field.h"
 #include "test_support.h"
 #include "util/atomic_file.h"
 
