@@ -9,7 +9,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake ninja-build pkg-config git
+  build-essential cmake ninja-build ccache pkg-config git
   libeigen3-dev libtbb-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev zlib1g-dev
   libfcl-dev liboctomap-dev libccd-dev
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev
