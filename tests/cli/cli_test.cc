@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "scene_fixtures.h"
 #include "test_support.h"
 #include "util/atomic_file.h"
 
@@ -45,21 +46,8 @@ int CountFiles(const std::filesystem::path& dir) {
 
 const char* kTetrahedron = "v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nv 0 0 0.1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
 
-const char* kScene = R"(name: cli-ball-plate
-bodies:
-  - name: ball
-    mesh: "sphere:0.02,3"
-    pose: [0, 0, 0.0205, 1, 0, 0, 0]
-    role: pointshell
-    pointshell: {points: 512, levels: 2}
-    field: {resolution: 24}
-  - name: plate
-    mesh: "box:0.05,0.05,0.01,2"
-    pose: [0, 0, -0.01, 1, 0, 0, 0]
-    role: field
-    field: {resolution: 24}
-model: {k_C: 1000}
-)";
+// The shared ball on plate (tests/scene_fixtures.h), resting 0.5 mm above it.
+const std::string kScene = testing::BallOnPlate{.name = "cli-ball-plate"}.Yaml();
 
 // The first COUNT numbers after "KEY": in JSON text (nested arrays read row by row).
 std::vector<double> JsonNumbers(const std::string& json, const std::string& key, int count) {
@@ -253,7 +241,7 @@ TEST(CliOutputs, FailedSessionLogWriteLeavesNoTemporary) {
 TEST(CliOutputs, RunOutOntoAFileFailsBeforeAnyJob) {
   testing::TempDir dir;
   std::ofstream(dir / "scene.yaml") << kScene;
-  std::ofstream(dir / "exp.yaml") << "name: e\nscene: scene.yaml\ntrajectory: {type: approach-press, duration: 0.01}\n";
+  std::ofstream(dir / "exp.yaml") << "name: e\nscene: scene.yaml\n" << testing::PressTrajectoryYaml(0.01) << "\n";
   std::ofstream(dir / "taken") << "x";
   const Outcome o = RunCli("run " + (dir / "exp.yaml").string() + " --out " + (dir / "taken").string() + " --cache " +
                            (dir / "cache").string());
@@ -268,7 +256,7 @@ TEST(CliOutputs, RunNameThatIsAPathIsRefused) {
   std::filesystem::create_directories(dir / "a" / "b");
   std::ofstream(dir / "scene.yaml") << kScene;
   std::ofstream(dir / "exp.yaml") << "name: ../../x\nscene: scene.yaml\n"
-                                  << "trajectory: {type: approach-press, duration: 0.01}\n";
+                                  << testing::PressTrajectoryYaml(0.01) << "\n";
   const Outcome o = RunCliAfter("cd " + (dir / "a" / "b").string() + " &&",
                                 "run " + (dir / "exp.yaml").string() + " --no-cache");
   EXPECT_EQ(o.exit_code, 1) << o.output;
@@ -279,7 +267,7 @@ TEST(CliOutputs, RunNameThatIsAPathIsRefused) {
 TEST(CliOutputs, FailedRunLeavesNoEmptyResultsFolder) {
   testing::TempDir dir;
   std::ofstream(dir / "scene.yaml") << kScene;
-  std::ofstream(dir / "exp.yaml") << "name: e\nscene: scene.yaml\ntrajectory: {type: approach-press, duration: 0.02}\n";
+  std::ofstream(dir / "exp.yaml") << "name: e\nscene: scene.yaml\n" << testing::PressTrajectoryYaml(0.02) << "\n";
   const Outcome o = RunCliAfter(std::string("cd ") + dir.path().string() + " && " + kSmallDisk, "run exp.yaml --no-cache");
   EXPECT_EQ(o.exit_code, 1) << o.output;
   EXPECT_NE(o.output.find("cycles.csv"), std::string::npos) << o.output;
@@ -321,7 +309,7 @@ TEST(Cli, RunListsJobsOfASweep) {
   testing::TempDir dir;
   std::ofstream(dir / "scene.yaml") << kScene;
   std::ofstream(dir / "exp.yaml") << "name: e\nscene: " << (dir / "scene.yaml").string()
-                                  << "\ntrajectory: {type: approach-press, duration: 0.01}\nsweep: {points: [64, 128, 256]}\n";
+                                  << "\n" << testing::PressTrajectoryYaml(0.01) << "\nsweep: {points: [64, 128, 256]}\n";
   const Outcome o = RunCli("run " + (dir / "exp.yaml").string() + " --list-jobs");
   ASSERT_EQ(o.exit_code, 0) << o.output;
   EXPECT_NE(o.output.find("2\tpoints=256"), std::string::npos) << o.output;
@@ -356,7 +344,7 @@ std::string WithoutTimings(const std::string& text) {
 TEST(Cli, SlurmScriptsRunByHandMergeToTheLocalRunsSummary) {
   testing::TempDir dir;
   std::ofstream(dir / "scene.yaml") << kScene;
-  std::ofstream(dir / "exp.yaml") << "name: e\nscene: scene.yaml\ntrajectory: {type: approach-press, duration: 0.02}"
+  std::ofstream(dir / "exp.yaml") << "name: e\nscene: scene.yaml\n" << testing::PressTrajectoryYaml(0.02)
                                   << "\nsweep: {points: [64, 128, 256]}\n";
   const std::string cache = " --cache " + (dir / "cache").string();
   const Outcome local = RunCli("run " + (dir / "exp.yaml").string() + " --out " + (dir / "local").string() + cache);

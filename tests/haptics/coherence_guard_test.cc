@@ -17,6 +17,7 @@
 #include "experiment/scene_assets.h"
 #include "haptics/haptic_cycle.h"
 #include "haptics/sim_device.h"
+#include "scene_fixtures.h"
 #include "test_support.h"
 
 namespace contactlab {
@@ -41,16 +42,12 @@ bodies:
 model: {k_C: 1000, L: 10, max_point_speed: 0.02, coherence: true}
 )";
 
-double Smooth(double t, double t0, double t1) {
-  if (t <= t0) return 0;
-  if (t >= t1) return 1;
-  return 0.5 - 0.5 * std::cos(M_PI * (t - t0) / (t1 - t0));
-}
+using testing::CosineRamp;
 
 // Down until the probe's bottom is 4 mm into the slab, then back and forth along it.
 Pose Sweep(double t) {
-  const double z = 0.03 - 0.014 * Smooth(t, 0.05, 0.25);
-  const double x = 0.06 * std::sin(2 * M_PI * t / 0.4) * Smooth(t, 0.25, 0.35);
+  const double z = 0.03 - 0.014 * CosineRamp(t, 0.05, 0.25);
+  const double x = 0.06 * std::sin(2 * M_PI * t / 0.4) * CosineRamp(t, 0.25, 0.35);
   return Pose{Eigen::Quaterniond::Identity(), Eigen::Vector3d(x, 0, z)};
 }
 

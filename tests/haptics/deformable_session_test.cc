@@ -13,6 +13,7 @@
 #include "experiment/scene_assets.h"
 #include "haptics/haptic_cycle.h"
 #include "haptics/sim_device.h"
+#include "scene_fixtures.h"
 #include "test_support.h"
 
 namespace contactlab {
@@ -37,18 +38,11 @@ bodies:
 model: {k_C: 1000, L: 10}
 )";
 
-double Smooth(double t, double t0, double t1) {
-  if (t <= t0) return 0;
-  if (t >= t1) return 1;
-  return 0.5 - 0.5 * std::cos(M_PI * (t - t0) / (t1 - t0));
-}
+using testing::CosineRamp;
 
 // Down onto the beam's free end (the probe's bottom 8 mm below the beam's top at the
 // deepest), hold, lift.
-Pose Press(double t) {
-  const double z = 0.03 - 0.018 * (Smooth(t, 0.2, 0.8) - Smooth(t, 1.6, 2.0));
-  return Pose{Eigen::Quaterniond::Identity(), Eigen::Vector3d(0.07, 0, z)};
-}
+const testing::PressAndLift kPress{Eigen::Vector3d(0.07, 0, 0.03), 0.018, 0.2, 0.8, 1.6, 2.0};
 
 struct PressResult {
   double max_contact_force = 0, max_q = 0, final_q = 0;
@@ -90,7 +84,7 @@ PressResult RunPress(bool deformable) {
   io.mass_damping = 8.0;
   io.stiffness_damping = 5e-4;
   ReducedIntegrator integrator(assets.A.reduced_model()->forces, io);
-  SimDevice device(SimDeviceParams{}, Press);
+  SimDevice device(SimDeviceParams{}, kPress);
   HapticCycleConfig config;
   config.X_WA = scene.pointshell_body.pose;
   if (deformable) config.deformation_A = &integrator;
@@ -134,10 +128,7 @@ model: {k_C: 1000, L: 10}
 )";
 
 // The bar's end comes down onto the sphere (8 mm past first touch at the deepest), holds, lifts.
-Pose PressBar(double t) {
-  const double z = 0.03 - 0.028 * (Smooth(t, 0.2, 0.8) - Smooth(t, 1.6, 2.0));
-  return Pose{Eigen::Quaterniond::Identity(), Eigen::Vector3d(0, 0, z)};
-}
+const testing::PressAndLift kPressBar{Eigen::Vector3d(0, 0, 0.03), 0.028, 0.2, 0.8, 1.6, 2.0};
 
 PressResult RunHeldBar(bool deformable) {
   testing::TempDir dir;
@@ -153,7 +144,7 @@ PressResult RunHeldBar(bool deformable) {
     integrator = std::make_unique<ReducedIntegrator>(assets.B.reduced_model()->forces,
                                                      DeformableIntegratorOptions(*scene.field_body.deformable, 1e-3));
   }
-  SimDevice device(SimDeviceParams{}, PressBar);
+  SimDevice device(SimDeviceParams{}, kPressBar);
   HapticCycleConfig config;
   config.X_WA = scene.pointshell_body.pose;
   config.deformation_B = integrator.get();

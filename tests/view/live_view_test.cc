@@ -18,6 +18,7 @@
 
 #include "experiment/result_csv.h"
 #include "allocation_counter.h"
+#include "scene_fixtures.h"
 #include "test_support.h"
 #include "util/atomic_file.h"
 #include "view/page_encoding.h"
@@ -34,22 +35,8 @@ namespace {
 using testing::TempDir;
 
 // A ball (pointshell) and a plate (field, the haptic body) pushed into it by a simulated hand
-// moving on a circle.
-const char* kScene = R"(name: live-ball-plate
-bodies:
-  - name: ball
-    mesh: "sphere:0.02,3"
-    pose: [0, 0, 0.0205, 1, 0, 0, 0]
-    role: pointshell
-    pointshell: {points: 512, levels: 2}
-    field: {resolution: 24}
-  - name: plate
-    mesh: "box:0.05,0.05,0.01,2"
-    pose: [0, 0, -0.01, 1, 0, 0, 0]
-    role: field
-    field: {resolution: 24}
-model: {k_C: 1000}
-)";
+// moving on a circle: the shared ball on plate (tests/scene_fixtures.h).
+const std::string kScene = testing::BallOnPlate{.name = "live-ball-plate"}.Yaml();
 
 TEST(LatestValue, ReadersSeeWholeValuesOnly) {
   struct Pair {

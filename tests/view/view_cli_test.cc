@@ -8,6 +8,7 @@
 #include <fstream>
 #include <string>
 
+#include "scene_fixtures.h"
 #include "test_support.h"
 #include "util/atomic_file.h"
 
@@ -23,20 +24,10 @@ Outcome RunCli(const std::string& args, const std::string& prefix = "") {
   return testing::RunShellCommand(prefix + " " + std::string(CONTACTLAB_CLI) + " " + args);
 }
 
-const char* kScene = R"(name: view-cli
-bodies:
-  - name: ball
-    mesh: "sphere:0.02,2"
-    pose: [0, 0, 0.0205, 1, 0, 0, 0]
-    role: pointshell
-    pointshell: {points: 256, levels: 2}
-    field: {resolution: 16}
-  - name: plate
-    mesh: "box:0.05,0.05,0.01,1"
-    pose: [0, 0, -0.01, 1, 0, 0, 0]
-    role: field
-    field: {resolution: 16}
-)";
+// The shared ball on plate (tests/scene_fixtures.h), coarse: pages of it are quick to make.
+const std::string kScene = testing::BallOnPlate{.name = "view-cli", .sphere_subdivisions = 2, .plate_subdivisions = 1,
+                                                .points = 256, .resolution = 16, .k_C = 0}
+                               .Yaml();
 
 TEST(ViewCli, ScenePageIsOneSelfContainedFile) {
   TempDir dir;

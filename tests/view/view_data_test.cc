@@ -10,6 +10,7 @@
 
 #include "experiment/result_csv.h"
 #include "experiment/runner.h"
+#include "scene_fixtures.h"
 #include "test_support.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
@@ -22,28 +23,16 @@ namespace {
 using testing::TempDir;
 
 // A 4 cm ball pressed into a plate and twisted, compared by two models: procedural and fast.
-const char* kConfig = R"(name: view-tiny
-description: a ball pressed into a plate and twisted
-scene:
-  name: ball-plate
-  bodies:
-    - name: ball
-      mesh: "sphere:0.02,3"
-      pose: [0, 0, 0.0215, 1, 0, 0, 0]
-      role: pointshell
-      pointshell: {points: 256, levels: 3, seed: 3}
-      field: {resolution: 24}
-    - name: plate
-      mesh: "box:0.05,0.05,0.01,2"
-      pose: [0, 0, -0.01, 1, 0, 0, 0]
-      role: field
-      field: {resolution: 24}
-  model: {k_C: 1000}
-models: [pointshell, pointshell-linear]
-moving_body: ball
-trajectory: {type: twist, direction: [0, 0, -1], depth: 0.002, angle: 0.4, duration: 0.06}
-reference: ''
-)";
+// The ball is the shared ball on plate (tests/scene_fixtures.h), 1.5 mm above the plate.
+const std::string kConfig =
+    "name: view-tiny\n"
+    "description: a ball pressed into a plate and twisted\n"
+    "scene:\n" +
+    testing::BallOnPlate{.ball_z = 0.0215, .points = 256, .levels = 3, .seed = 3}.Yaml(2) +
+    "models: [pointshell, pointshell-linear]\n"
+    "moving_body: ball\n"
+    "trajectory: {type: twist, direction: [0, 0, -1], depth: 0.002, angle: 0.4, duration: 0.06}\n"
+    "reference: ''\n";
 
 RunOptions Options(const TempDir& dir) {
   RunOptions o;
