@@ -29,19 +29,32 @@ timespec ToTimespec(std::int64_t ns) {
   return ts;
 }
 
-// Sleeps to SPIN_NS before DEADLINE_NS with an absolute-time sleep, then spins.
-void WaitUntil(std::int64_t deadline_ns, std::int64_t spin_ns) {
-  const std::int64_t wake = deadline_ns - spin_ns;
-  if (MonotonicNowNs() < wake) {
-    const timespec ts = ToTimespec(wake);
-    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
+class MonotonicClock final : public LoopClock {
+ public:
+  std::int64_t NowNs() override { return MonotonicNowNs(); }
+  // Sleeps to SPIN_NS before DEADLINE_NS with an absolute-time sleep, then spins.
+  void WaitUntil(std::int64_t deadline_ns, std::int64_t spin_ns) override {
+    const std::int64_t wake = deadline_ns - spin_ns;
+    if (MonotonicNowNs() < wake) {
+      const timespec ts = ToTimespec(wake);
+      while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
+      }
+    }
+    while (MonotonicNowNs() < deadline_ns) {
     }
   }
-  while (MonotonicNowNs() < deadline_ns) {
+  void Sleep(std::int64_t duration_ns) override {
+    const timespec ts = ToTimespec(duration_ns);
+    nanosleep(&ts, nullptr);
   }
-}
+};
 
 }  // namespace
+
+LoopClock& MonotonicLoopClock() {
+  static MonotonicClock clock;
+  return clock;
+}
 
 std::int64_t MonotonicNowNs() {
   timespec ts;
@@ -61,7 +74,8 @@ void InstallStopSignalHandlers() {
 bool StopSignalRequested() { return g_stop_signal.load(std::memory_order_relaxed); }
 void ClearStopSignal() { g_stop_signal.store(false, std::memory_order_relaxed); }
 
-HapticLoop::HapticLoop(HapticCycle& cycle, const HapticLoopOptions& options) : cycle_(cycle), options_(options) {
+HapticLoop::HapticLoop(HapticCycle& cycle, const HapticLoopOptions& options, LoopClock& clock)
+    : cycle_(cycle), options_(options), clock_(clock) {
   if (!(options_.rate_hz > 0 && options_.rate_hz <= 100000)) Fail("haptic loop", "rate_hz must lie in (0, 100000]");
   if (!(options_.spin_seconds >= 0 && options_.spin_seconds < 1.0 / options_.rate_hz))
     Fail("haptic loop", "spin_seconds must lie in [0, 1/rate_hz)");
@@ -104,12 +118,14 @@ void HapticLoop::WatchdogMain() {
   // Polls the loop's heartbeat every 1 ms; a stale heartbeat zeroes the device once per stall.
   const std::int64_t limit = std::int64_t(options_.watchdog_seconds * 1e9);
   bool tripped = false;
-  const timespec poll = ToTimespec(1000000);
   while (running_.load(std::memory_order_acquire)) {
-    nanosleep(&poll, nullptr);
-    const std::int64_t beat = heartbeat_ns_.load(std::memory_order_relaxed);
+    clock_.Sleep(1000000);
+    // The time before the heartbeat: a loop that beats between the two reads makes the age
+    // smaller, never larger, so a watchdog preempted here cannot see a stall that was not.
+    const std::int64_t now = clock_.NowNs();
+    const std::int64_t beat = heartbeat_ns_.load();
     if (beat == 0) continue;  // not armed yet
-    const std::int64_t age = MonotonicNowNs() - beat;
+    const std::int64_t age = now - beat;
     if (age > limit) {
       if (!tripped) {
         cycle_.device().EmergencyZero();
@@ -141,7 +157,7 @@ void HapticLoop::ThreadMain() {
 
   const std::int64_t period_ns = std::int64_t(1e9 / options_.rate_hz);
   const std::int64_t spin_ns = std::int64_t(options_.spin_seconds * 1e9);
-  const std::int64_t start_ns = MonotonicNowNs();
+  const std::int64_t start_ns = clock_.NowNs();
   const std::int64_t end_ns =
       options_.duration_seconds > 0 ? start_ns + std::int64_t(options_.duration_seconds * 1e9) : INT64_MAX;
   cycle_.Start(start_ns);
@@ -155,13 +171,13 @@ void HapticLoop::ThreadMain() {
       r.stopped_by_signal = true;
       break;
     }
-    WaitUntil(release, spin_ns);
-    const std::int64_t t0 = MonotonicNowNs();
+    clock_.WaitUntil(release, spin_ns);
+    const std::int64_t t0 = clock_.NowNs();
     if (t0 >= end_ns) break;
-    heartbeat_ns_.store(t0, std::memory_order_relaxed);
+    heartbeat_ns_.store(t0);
 
     CycleRecord rec = cycle_.Step(t0);
-    const std::int64_t t1 = MonotonicNowNs();
+    const std::int64_t t1 = clock_.NowNs();
     rec.work_ns = t1 - t0;
     ring_.TryPush(rec);
 
@@ -183,7 +199,7 @@ void HapticLoop::ThreadMain() {
   }
 
   // Clean stop: zero wrench, then let the watchdog go.
-  cycle_.WriteZero(MonotonicNowNs());
+  cycle_.WriteZero(clock_.NowNs());
   if (r.memory_locked) munlockall();
   running_.store(false, std::memory_order_release);
 }

@@ -2,7 +2,8 @@
 // millisecond): absolute deadlines, SCHED_FIFO and mlockall when permitted, a cycle-time
 // histogram, deadline-miss counting with a skip-ahead catch-up policy, a watchdog thread, a
 // lock-free ring of cycle records for a graphics or logging consumer, and a clean stop on
-// SIGINT that leaves the device at zero force.
+// SIGINT that leaves the device at zero force. Its time comes from a LoopClock: the monotonic
+// clock in a session, simulated time in tests.
 #pragma once
 
 #include <atomic>
@@ -45,10 +46,30 @@ struct HapticLoopReport {
 // Cycle records for consumers; the loop drops records (counted) when the consumer lags.
 using CycleRing = SpscRing<CycleRecord, 1024>;
 
+// Where the loop and its watchdog read the time and how they wait for it. The loop thread
+// calls NowNs and WaitUntil, the watchdog thread NowNs and Sleep, concurrently: an
+// implementation must be thread-safe. MonotonicLoopClock() is the real one; a test passes a
+// simulated clock so that cycles, misses and stalls happen in exact simulated time whatever
+// the scheduler does.
+class LoopClock {
+ public:
+  virtual ~LoopClock() = default;
+  // Nanoseconds on a monotonic time line (any origin).
+  virtual std::int64_t NowNs() = 0;
+  // Returns once NowNs() >= DEADLINE_NS. A real clock sleeps until SPIN_NS before the
+  // deadline, then spins.
+  virtual void WaitUntil(std::int64_t deadline_ns, std::int64_t spin_ns) = 0;
+  // Waits about DURATION_NS (the watchdog's poll); may return early.
+  virtual void Sleep(std::int64_t duration_ns) = 0;
+};
+
+// CLOCK_MONOTONIC with absolute-time sleeps: the clock of every real session.
+LoopClock& MonotonicLoopClock();
+
 class HapticLoop {
  public:
-  // CYCLE must outlive the loop. Throws Error when OPTIONS is invalid.
-  HapticLoop(HapticCycle& cycle, const HapticLoopOptions& options);
+  // CYCLE and CLOCK must outlive the loop. Throws Error when OPTIONS is invalid.
+  HapticLoop(HapticCycle& cycle, const HapticLoopOptions& options, LoopClock& clock = MonotonicLoopClock());
   ~HapticLoop();  // stops and joins
 
   // Starts the loop thread (throws Error if already running or the thread cannot start).
@@ -73,6 +94,7 @@ class HapticLoop {
 
   HapticCycle& cycle_;
   HapticLoopOptions options_;
+  LoopClock& clock_;
   CycleRing ring_;
   HapticLoopReport report_;
   std::atomic<bool> stop_{false};

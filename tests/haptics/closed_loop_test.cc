@@ -2,42 +2,36 @@
 // hand presses and slides a box on a penalty halfspace through static virtual coupling, stepped
 // in simulated time; passivity (energy into the hand) and settling are checked, and a sweep
 // reports the coupling stiffness where they stop holding. Real-time loop tests: clean stop on
-// SIGINT and the watchdog on a stalled loop.
+// SIGINT and the watchdog on a stalled loop, in simulated time (simulated_loop_clock.h).
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <chrono>
-#include <cstdlib>
-#include <new>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
-#include <thread>
+#include <cstdlib>
 
 #include "haptics/halfspace_contact_model.h"
 #include "haptics/haptic_cycle.h"
 #include "haptics/haptic_loop.h"
 #include "haptics/sim_device.h"
 #include "allocation_counter.h"
+#include "haptics/simulated_loop_clock.h"
+#include "scene_fixtures.h"
 
 namespace contactlab {
 namespace {
 
 constexpr std::int64_t kMs = 1000000;
 
-double Smooth(double t, double t0, double t1) {
-  if (t <= t0) return 0;
-  if (t >= t1) return 1;
-  return 0.5 - 0.5 * std::cos(M_PI * (t - t0) / (t1 - t0));
-}
+using testing::CosineRamp;
 
 // Press, slide with a tilt and a twist, hold, lift, rest. Box half height 0.01 m; the target
 // goes 6 mm below the plane while pressing.
 Pose PressAndSlide(double t) {
   const double z_up = 0.03, z_down = 0.004;
-  const double down = Smooth(t, 0.3, 0.8) - Smooth(t, 2.6, 3.1);
-  const double slide = Smooth(t, 0.9, 1.9);
-  const double tilt = 0.08 * (Smooth(t, 0.9, 1.4) - Smooth(t, 1.4, 1.9));
+  const double down = CosineRamp(t, 0.3, 0.8) - CosineRamp(t, 2.6, 3.1);
+  const double slide = CosineRamp(t, 0.9, 1.9);
+  const double tilt = 0.08 * (CosineRamp(t, 0.9, 1.4) - CosineRamp(t, 1.4, 1.9));
   const double twist = 0.3 * slide;
   const Eigen::Vector3d p(0.05 * slide, 0.01 * slide, z_up + (z_down - z_up) * down);
   const Eigen::Quaterniond q = Eigen::AngleAxisd(twist, Eigen::Vector3d::UnitZ()) *
@@ -213,7 +207,9 @@ TEST(ClosedLoop, SilentDeviceIsZeroedAndRampedBackIn) {
   EXPECT_LT(device.held_wrench().force.norm(), 0.05);
 }
 
-// A contact model that misbehaves on demand: NaN wrench, or a stall (sleep) on one cycle.
+// A contact model that misbehaves on demand: a NaN wrench on one cycle, or a stall of
+// STALL_NS on one cycle: the simulated clock jumps that far, then the cycle waits until the
+// loop's watchdog has zeroed the device (as it must while a real cycle is stuck).
 class FaultyModel final : public ContactModel {
  public:
   explicit FaultyModel(ContactModel& inner) : inner_(inner) {}
@@ -221,12 +217,19 @@ class FaultyModel final : public ContactModel {
   ContactResult Evaluate(const ContactQuery& q) override {
     ContactResult r = inner_.Evaluate(q);
     if (q.cycle == nan_cycle) r.on_B.force.x() = std::nan("");
-    if (q.cycle == stall_cycle) std::this_thread::sleep_for(std::chrono::milliseconds(40));
+    if (q.cycle == stall_cycle) {
+      clock->Advance(stall_ns);
+      watchdog_seen = device->WaitForZeroes(1);
+    }
     return r;
   }
   void Reset() override { inner_.Reset(); }
   std::int64_t nan_cycle = -1;
   std::int64_t stall_cycle = -1;
+  std::int64_t stall_ns = 0;
+  testing::SimulatedLoopClock* clock = nullptr;
+  testing::ZeroCountingDevice* device = nullptr;
+  bool watchdog_seen = false;
 
  private:
   ContactModel& inner_;
@@ -252,6 +255,9 @@ TEST(ClosedLoop, NonFiniteContactWrenchNeverReachesTheDevice) {
   EXPECT_TRUE(cycle.coupling().X_WH().translation.allFinite());
 }
 
+// The loop runs in simulated time and waits before its 200th release; the test sees 199
+// cycles pushing on the plane, raises SIGINT and lets the loop go: the waiting cycle runs,
+// the loop stops at the next cycle boundary and leaves the device at zero.
 TEST(HapticLoop, SigintStopsTheLoopAndLeavesZeroForce) {
   HalfspaceContactModel model(MakeBoxSamplePoints(Eigen::Vector3d(0.02, 0.02, 0.01), 3), 1000.0);
   SimDevice device(SimDeviceParams{}, [](double) { return Pose::FromTranslation(Eigen::Vector3d(0, 0, 0.005)); });
@@ -260,11 +266,14 @@ TEST(HapticLoop, SigintStopsTheLoopAndLeavesZeroForce) {
   HapticCycle cycle(device, &model, config);
   HapticLoopOptions opt;
   opt.try_realtime = false;
-  HapticLoop loop(cycle, opt);
+  opt.duration_seconds = 10;  // simulated: ends the run (and the test) should the signal be ignored
+  testing::SimulatedLoopClock clock;
+  clock.PauseAt(clock.NowNs() + 200 * kMs);
+  HapticLoop loop(cycle, opt, clock);
   ClearStopSignal();
   InstallStopSignalHandlers();
   loop.Start();
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  ASSERT_TRUE(clock.WaitUntilPaused()) << "the loop never reached its 200th release";
   // The loop is pushing on the plane before the signal.
   CycleRecord rec, last;
   int n = 0;
@@ -272,38 +281,51 @@ TEST(HapticLoop, SigintStopsTheLoopAndLeavesZeroForce) {
     last = rec;
     ++n;
   }
-  EXPECT_GT(n, 50);
+  EXPECT_EQ(n, 199);
   EXPECT_GT(std::abs(last.device_force[2]), 0.1);
   std::raise(SIGINT);
+  clock.Resume();
   const HapticLoopReport report = loop.Join();
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
   ClearStopSignal();
   EXPECT_TRUE(report.stopped_by_signal);
+  EXPECT_EQ(report.cycles, 200);
+  EXPECT_EQ(report.deadline_misses, 0);
   EXPECT_EQ(device.held_wrench().force, Eigen::Vector3d::Zero());
   EXPECT_EQ(device.held_wrench().torque, Eigen::Vector3d::Zero());
-  EXPECT_GT(report.cycles, 50);
 }
 
+// One cycle of a 300 ms run stalls for 40 ms of simulated time, four times the watchdog's
+// limit: the watchdog thread zeroes the device during the stall, the loop counts one miss
+// and skips the 40 releases it missed instead of running them in a burst, and the cycle
+// after the stall sees the gap.
 TEST(HapticLoop, WatchdogZeroesDeviceWhenTheLoopStalls) {
   HalfspaceContactModel inner(MakeBoxSamplePoints(Eigen::Vector3d(0.02, 0.02, 0.01), 3), 1000.0);
+  SimDevice sim(SimDeviceParams{}, [](double) { return Pose::FromTranslation(Eigen::Vector3d(0, 0, 0.005)); });
+  testing::ZeroCountingDevice device(sim);
+  testing::SimulatedLoopClock clock;
   FaultyModel model(inner);
-  model.stall_cycle = 100;  // a 40 ms stall inside one cycle
-  SimDevice device(SimDeviceParams{}, [](double) { return Pose::FromTranslation(Eigen::Vector3d(0, 0, 0.005)); });
+  model.stall_cycle = 100;
+  model.stall_ns = 40 * kMs;
+  model.clock = &clock;
+  model.device = &device;
   HapticCycle cycle(device, &model, HapticCycleConfig{});
   HapticLoopOptions opt;
   opt.try_realtime = false;
   opt.duration_seconds = 0.3;
   opt.watchdog_seconds = 0.01;
-  HapticLoop loop(cycle, opt);
+  HapticLoop loop(cycle, opt, clock);
   const HapticLoopReport report = loop.Run();
   std::printf("%s", FormatLoopReport(report).c_str());
-  EXPECT_GE(report.watchdog_zeroes, 1);          // the watchdog thread zeroed the device
-  EXPECT_GE(report.deadline_misses, 1);
-  EXPECT_GE(report.skipped_cycles, 30);          // missed releases skipped, not burst
-  EXPECT_LE(report.cycles, 300 - 30 + 5);
-  EXPECT_GE(report.safety.loop_stalls, 1);       // and the cycle itself saw the gap
-  EXPECT_EQ(device.held_wrench().force, Eigen::Vector3d::Zero());  // clean stop at the end
+  EXPECT_TRUE(model.watchdog_seen) << "the watchdog did not zero the device during the stall";
+  EXPECT_EQ(report.watchdog_zeroes, 1);
+  EXPECT_EQ(device.zeroes(), 1);
+  EXPECT_EQ(report.deadline_misses, 1);
+  EXPECT_EQ(report.skipped_cycles, 40);          // missed releases skipped, not burst
+  EXPECT_EQ(report.cycles, 299 - 40);            // releases at 1..299 ms, less the skipped
+  EXPECT_EQ(report.safety.loop_stalls, 1);       // and the cycle itself saw the gap
+  EXPECT_EQ(sim.held_wrench().force, Eigen::Vector3d::Zero());  // clean stop at the end
 }
 
 }  // namespace
