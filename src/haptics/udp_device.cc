@@ -3,6 +3,7 @@
 
 #include <arpa/inet.h>
 #include <netinet/in.h>
+#include <poll.h>
 #include <sys/socket.h>
 #include <time.h>
 #include <unistd.h>
@@ -117,6 +118,18 @@ bool UdpDevice::Read(std::int64_t now_ns, DeviceState* out) {
   }
   *out = last_;
   return fresh;
+}
+
+bool UdpDevice::WaitForInput(double timeout_seconds) const {
+  pollfd p{};
+  p.fd = fd_;
+  p.events = POLLIN;
+  const int timeout_ms = timeout_seconds <= 0 ? 0 : timeout_seconds >= 1e6 ? 1000000000 : int(timeout_seconds * 1e3);
+  for (;;) {
+    const int n = ::poll(&p, 1, timeout_ms);
+    if (n < 0 && errno == EINTR) continue;  // a signal: wait again (the full timeout, an upper bound)
+    return n > 0 && (p.revents & POLLIN);
+  }
 }
 
 bool UdpDevice::Send(const Wrench& w, std::int64_t now_ns, std::uint32_t flags, std::uint64_t pose_sequence) noexcept {

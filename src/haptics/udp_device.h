@@ -67,6 +67,11 @@ class UdpDevice final : public HapticDevice {
   // "udp on 127.0.0.1:PORT, ..." with the bound port (the one picked when listen_port is 0).
   std::string description() const override;
 
+  // Blocks until a datagram is queued on the socket (Read would see it) or TIMEOUT_SECONDS
+  // pass; true when one is queued. Not for the haptic loop: for a driver that waits for its
+  // device instead of polling it, and for tests that wait for a packet to arrive.
+  bool WaitForInput(double timeout_seconds) const;
+
   std::uint16_t bound_port() const { return bound_port_; }
   const UdpStats& stats() const { return stats_; }
   std::int64_t emergency_zeroes() const { return emergency_zeroes_.load(); }

@@ -9,9 +9,7 @@
 #include <unistd.h>
 
 #include <Eigen/Geometry>
-#include <chrono>
 #include <limits>
-#include <thread>
 
 #include "haptics/device_factory.h"
 #include "haptics/haptic_cycle.h"
@@ -34,7 +32,7 @@ class Peer {
     self.sin_family = AF_INET;
     self.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
     ::bind(fd_, reinterpret_cast<sockaddr*>(&self), sizeof(self));
-    timeval tv{0, 200000};
+    timeval tv{30, 0};  // a hang guard for Receive, far above any loopback delay
     ::setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof(tv));
     to_.sin_family = AF_INET;
     to_.sin_port = htons(device_port);
@@ -43,7 +41,10 @@ class Peer {
   ~Peer() { ::close(fd_); }
   void SendRaw(const std::uint8_t* d, std::size_t n) {
     ASSERT_EQ(::sendto(fd_, d, n, 0, reinterpret_cast<sockaddr*>(&to_), sizeof(to_)), ssize_t(n));
+    ++sent_;
   }
+  // Datagrams sent to the device so far.
+  std::int64_t sent() const { return sent_; }
   void SendPose(std::uint64_t seq, std::int64_t ts, double x) {
     udp::PosePacket p;
     p.sequence = seq;
@@ -54,12 +55,13 @@ class Peer {
     udp::EncodePose(p, &b);
     SendRaw(b.data(), b.size());
   }
-  // Receives one datagram (200 ms timeout); returns its size or -1.
+  // Receives one datagram (blocking, 30 s hang guard); returns its size or -1.
   ssize_t Receive(std::uint8_t* buf, std::size_t cap) { return ::recv(fd_, buf, cap, 0); }
 
  private:
   int fd_;
   sockaddr_in to_{};
+  std::int64_t sent_ = 0;
 };
 
 // Parameters of a device with force output, for a HapticCycle.
@@ -69,8 +71,26 @@ UdpDeviceParams WithForceOutput() {
   return p;
 }
 
-// Loopback delivery is immediate in practice; give the kernel a moment anyway.
-void Settle() { std::this_thread::sleep_for(std::chrono::milliseconds(5)); }
+// Real time a test waits for a datagram before it gives up: a hang guard, far above any
+// loopback delay (which is usually none: the kernel delivers within sendto).
+constexpr double kArrivalGuardSeconds = 30;
+
+// Reads DEV at NOW_NS until every datagram PEER has sent so far has arrived (the device's
+// datagram counter), waiting on the socket between reads: loopback delivery is usually
+// complete when sendto returns, but not promised, so datagrams sent together may take more
+// than one read. Returns whether any of the reads gave a fresh pose; *S holds the last
+// read's state.
+bool ReadWhenArrived(UdpDevice& dev, const Peer& peer, std::int64_t now_ns, DeviceState* s) {
+  bool fresh = false;
+  while (dev.stats().datagrams < peer.sent()) {
+    if (!dev.WaitForInput(kArrivalGuardSeconds)) {
+      ADD_FAILURE() << "received " << dev.stats().datagrams << " of " << peer.sent() << " datagrams";
+      break;
+    }
+    fresh = dev.Read(now_ns, s) || fresh;
+  }
+  return fresh;
+}
 
 TEST(UdpProtocol, PoseAndWrenchRoundTripBitExactly) {
   udp::PosePacket p;
@@ -170,8 +190,7 @@ TEST(UdpDevice, BadPacketsAreRejectedCountedAndNeverActedOn) {
 
   // A good packet is accepted.
   peer.SendPose(10, t0, 0.01);
-  Settle();
-  ASSERT_TRUE(dev.Read(t0 + kMs, &s));
+  ASSERT_TRUE(ReadWhenArrived(dev, peer, t0 + kMs, &s));
   EXPECT_EQ(s.X_WD.translation.x(), 0.01);
   EXPECT_EQ(s.sequence, 10u);
   EXPECT_EQ(s.buttons, 5u);
@@ -200,8 +219,7 @@ TEST(UdpDevice, BadPacketsAreRejectedCountedAndNeverActedOn) {
   peer.SendPose(10, t0 + kMs, 9.0);                         // duplicate of the accepted 10
   peer.SendPose(7, t0 + kMs, 9.0);                          // out of order
   peer.SendPose(12, t0 - 200 * kMs, 9.0);                   // stale: 200 ms older than expected
-  Settle();
-  EXPECT_FALSE(dev.Read(t0 + 2 * kMs, &s));
+  EXPECT_FALSE(ReadWhenArrived(dev, peer, t0 + 2 * kMs, &s));
   EXPECT_EQ(s.X_WD.translation.x(), 0.01) << "a rejected packet was acted on";
   EXPECT_EQ(s.sequence, 10u);
   const UdpStats& st = dev.stats();
@@ -215,11 +233,11 @@ TEST(UdpDevice, BadPacketsAreRejectedCountedAndNeverActedOn) {
   EXPECT_EQ(st.accepted, 1);
   EXPECT_EQ(st.rejected(), 8);
 
-  // The stream resumes with a newer packet; of several queued, the newest wins.
+  // The stream resumes with newer packets; a read keeps the newest of those queued (and
+  // should they arrive in two reads, the second keeps the newer one).
   peer.SendPose(13, t0 + 3 * kMs, 0.02);
   peer.SendPose(14, t0 + 3 * kMs, 0.03);
-  Settle();
-  ASSERT_TRUE(dev.Read(t0 + 4 * kMs, &s));
+  ASSERT_TRUE(ReadWhenArrived(dev, peer, t0 + 4 * kMs, &s));
   EXPECT_EQ(s.X_WD.translation.x(), 0.03);
   EXPECT_EQ(dev.stats().accepted, 3);
 }
@@ -229,8 +247,7 @@ TEST(UdpDevice, WrenchPacketsGoBackToTheSenderAndEmergencyZeroIsFlagged) {
   Peer peer(dev.bound_port());
   DeviceState s;
   peer.SendPose(1, 0, 0.0);
-  Settle();
-  ASSERT_TRUE(dev.Read(kMs, &s));
+  ASSERT_TRUE(ReadWhenArrived(dev, peer, kMs, &s));
   Wrench w;
   w.force = Eigen::Vector3d(1, 2, 3);
   w.torque = Eigen::Vector3d(-0.1, 0, 0.1);
@@ -274,17 +291,14 @@ TEST(UdpDevice, StaleFutureTimestampDoesNotLockTheDeviceOut) {
   DeviceState s;
   const std::int64_t t0 = 1000 * kMs;
   peer.SendPose(1, t0, 0.01);
-  Settle();
-  ASSERT_TRUE(dev.Read(t0 + kMs, &s));
+  ASSERT_TRUE(ReadWhenArrived(dev, peer, t0 + kMs, &s));
   peer.SendPose(2, t0 + 10000 * kMs, 0.5);  // 10 s in the future
-  Settle();
-  EXPECT_FALSE(dev.Read(t0 + 2 * kMs, &s));
+  EXPECT_FALSE(ReadWhenArrived(dev, peer, t0 + 2 * kMs, &s));
   EXPECT_EQ(s.X_WD.translation.x(), 0.01);
   EXPECT_EQ(dev.stats().future, 1);
   for (int i = 3; i < 10; ++i) {
     peer.SendPose(std::uint64_t(i), t0 + i * kMs, 0.001 * i);
-    Settle();
-    ASSERT_TRUE(dev.Read(t0 + (i + 1) * kMs, &s)) << "packet " << i << " refused";
+    ASSERT_TRUE(ReadWhenArrived(dev, peer, t0 + (i + 1) * kMs, &s)) << "packet " << i << " refused";
     EXPECT_EQ(s.X_WD.translation.x(), 0.001 * i);
   }
   EXPECT_EQ(dev.stats().stale, 0);
@@ -302,14 +316,12 @@ TEST(UdpDevice, FutureFirstPacketIsForgottenAfterResyncSeconds) {
   DeviceState s;
   const std::int64_t t0 = 1000 * kMs;
   peer.SendPose(1, t0 + 10000 * kMs, 0.5);
-  Settle();
-  ASSERT_TRUE(dev.Read(t0, &s));
+  ASSERT_TRUE(ReadWhenArrived(dev, peer, t0, &s));
   bool recovered = false;
   std::int64_t recovered_at = 0;
   for (int i = 2; i < 300 && !recovered; ++i) {
     peer.SendPose(std::uint64_t(i), t0 + i * kMs, 0.001);
-    Settle();
-    recovered = dev.Read(t0 + i * kMs, &s);
+    recovered = ReadWhenArrived(dev, peer, t0 + i * kMs, &s);
     recovered_at = i;
   }
   ASSERT_TRUE(recovered) << "the device stayed locked out";
@@ -318,8 +330,7 @@ TEST(UdpDevice, FutureFirstPacketIsForgottenAfterResyncSeconds) {
   EXPECT_EQ(dev.stats().resyncs, 1);
   // And it stays in sync.
   peer.SendPose(1000, t0 + (recovered_at + 1) * kMs, 0.002);
-  Settle();
-  ASSERT_TRUE(dev.Read(t0 + (recovered_at + 1) * kMs, &s));
+  ASSERT_TRUE(ReadWhenArrived(dev, peer, t0 + (recovered_at + 1) * kMs, &s));
   EXPECT_EQ(s.X_WD.translation.x(), 0.002);
   EXPECT_EQ(dev.stats().resyncs, 1);
 }
@@ -332,15 +343,12 @@ TEST(UdpDevice, HugeSequenceNumberDoesNotLockTheDeviceOut) {
   DeviceState s;
   const std::int64_t t0 = 1000 * kMs;
   peer.SendPose(1, t0, 0.01);
-  Settle();
-  ASSERT_TRUE(dev.Read(t0 + kMs, &s));
+  ASSERT_TRUE(ReadWhenArrived(dev, peer, t0 + kMs, &s));
   peer.SendPose(std::uint64_t(1) << 63, t0 + kMs, 0.5);
-  Settle();
-  dev.Read(t0 + 2 * kMs, &s);
+  ReadWhenArrived(dev, peer, t0 + 2 * kMs, &s);
   for (int i = 2; i < 10; ++i) {
     peer.SendPose(std::uint64_t(i), t0 + i * kMs, 0.001 * i);
-    Settle();
-    ASSERT_TRUE(dev.Read(t0 + (i + 1) * kMs, &s)) << "packet " << i << " refused";
+    ASSERT_TRUE(ReadWhenArrived(dev, peer, t0 + (i + 1) * kMs, &s)) << "packet " << i << " refused";
     EXPECT_EQ(s.X_WD.translation.x(), 0.001 * i);
   }
   EXPECT_EQ(dev.stats().out_of_order, 0);
@@ -354,20 +362,16 @@ TEST(UdpDevice, SenderRestartAfterASilenceIsAccepted) {
   DeviceState s;
   const std::int64_t t0 = 1000 * kMs;
   for (int i = 1; i <= 5; ++i) peer.SendPose(std::uint64_t(100 + i), t0 + i * kMs, 0.01);
-  Settle();
-  ASSERT_TRUE(dev.Read(t0 + 6 * kMs, &s));
+  ASSERT_TRUE(ReadWhenArrived(dev, peer, t0 + 6 * kMs, &s));
   // Restarted: sequence from 0, its clock 50 s behind; first within the silence (refused),
   // then after it (accepted).
   peer.SendPose(0, 7 * kMs, 0.02);
-  Settle();
-  EXPECT_FALSE(dev.Read(t0 + 7 * kMs, &s));
+  EXPECT_FALSE(ReadWhenArrived(dev, peer, t0 + 7 * kMs, &s));
   peer.SendPose(1, 400 * kMs, 0.03);
-  Settle();
-  ASSERT_TRUE(dev.Read(t0 + 400 * kMs, &s));
+  ASSERT_TRUE(ReadWhenArrived(dev, peer, t0 + 400 * kMs, &s));
   EXPECT_EQ(s.X_WD.translation.x(), 0.03);
   peer.SendPose(2, 401 * kMs, 0.04);
-  Settle();
-  ASSERT_TRUE(dev.Read(t0 + 401 * kMs, &s));
+  ASSERT_TRUE(ReadWhenArrived(dev, peer, t0 + 401 * kMs, &s));
   EXPECT_EQ(s.X_WD.translation.x(), 0.04);
   EXPECT_EQ(dev.stats().resyncs, 1);
 }
@@ -377,7 +381,7 @@ TEST(UdpDevice, WrenchPacketCarriesTheCycleSafetyFlags) {
   UdpDevice dev(WithForceOutput());
   Peer peer(dev.bound_port());
   peer.SendPose(1, 0, 0.0);
-  Settle();
+  ASSERT_TRUE(dev.WaitForInput(kArrivalGuardSeconds));  // the cycle's first read gets the pose
   HapticCycle cycle(dev, nullptr, HapticCycleConfig{});
   cycle.Start(0);
   const CycleRecord rec = cycle.Step(kMs);  // inside the start ramp
@@ -410,7 +414,10 @@ TEST(UdpDevice, RejectionCountersReachTheCycleRecordAndTheSummary) {
   peer.SendPose(12, t0 + 10000 * kMs, 0.0);      // future
   std::uint8_t junk[20] = {0};
   peer.SendRaw(junk, sizeof(junk));              // malformed
-  Settle();
+  // Read once all five have arrived, at the cycle's time: the counters are the device's
+  // totals, which the cycle's own read then reports.
+  DeviceState s;
+  ReadWhenArrived(dev, peer, t0 + kMs, &s);
   HapticCycle cycle(dev, nullptr, HapticCycleConfig{});
   cycle.Start(t0);
   const CycleRecord rec = cycle.Step(t0 + kMs);
