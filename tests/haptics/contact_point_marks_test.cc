@@ -43,14 +43,21 @@ TEST(ContactPointMarks, ReaderGetsWholeSweepsInOrder) {
     for (std::int64_t cycle = 0; !stop.load(); ++cycle) {
       q.cycle = cycle;
       marks.Update(model, q, cycle);
+      std::this_thread::yield();  // on a shared core, let the reader in after every chunk
     }
   });
   PointMarkSweep sweep;
   int sweeps = 0, torn = 0, miscounted = 0, backwards = 0;
   std::uint64_t previous = 0;
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  // Reads while the writer writes, until 1000 sweeps were taken. Both threads yield, so that
+  // on a loaded machine, where they share a core, a sweep costs a switch and not a time
+  // slice; the deadline only guards against a hang (a writer that never publishes).
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   while (sweeps < 1000 && std::chrono::steady_clock::now() < deadline) {
-    if (!marks.TakeLatest(&sweep)) continue;
+    if (!marks.TakeLatest(&sweep)) {
+      std::this_thread::yield();
+      continue;
+    }
     ++sweeps;
     backwards += sweep.sequence <= previous;
     previous = sweep.sequence;

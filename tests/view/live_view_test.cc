@@ -12,6 +12,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -51,20 +52,25 @@ TEST(LatestValue, ReadersSeeWholeValuesOnly) {
     do {
       v.Store({x, x});
       x += 1;
+      std::this_thread::yield();  // on a shared core, let the reader in after every value
     } while (!stop.load());
   });
-  // Reads while the writer writes as fast as it can, until 1000 different values were seen
-  // (or 10 s passed, on a very loaded machine).
+  // Reads while the writer writes, until 1000 different values were seen. Both threads
+  // yield, so that on a loaded machine, where they share a core, a new value costs a switch
+  // and not a time slice; the deadline only guards against a hang.
   int torn = 0, changes = 0, backwards = 0;
   double previous = 0;
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   while (changes < 1000 && std::chrono::steady_clock::now() < deadline) {
-    if (v.Load(&p)) {
-      if (p.a != p.b) ++torn;
-      if (p.a != previous) ++changes;
-      if (p.a < previous) ++backwards;  // an older value after a newer one
-      previous = p.a;
+    if (!v.Load(&p)) continue;
+    if (p.a != p.b) ++torn;
+    if (p.a < previous) ++backwards;  // an older value after a newer one
+    if (p.a != previous) {
+      ++changes;
+    } else {
+      std::this_thread::yield();
     }
+    previous = p.a;
   }
   stop.store(true);
   writer.join();
