@@ -1,5 +1,8 @@
 # The layering rule of DESIGN.md, checked on the sources: nothing in src/contact or baselines
-# includes a header of the experiment harness or the command line. Run by ctest as
+# includes a header of the experiment harness or the command line, nor of deform/ other than
+# where deformed points are (the kinematics: embedded points, the deformable pointshell, the
+# deformed distance field, the tet mesh they live in); baselines/CMakeLists.txt checks the
+# same of what they link when the build is configured. Run by ctest as
 #   cmake -DROOT=<source dir> -P tests/layering_check.cmake
 file(GLOB_RECURSE sources ${ROOT}/src/contact/*.h ${ROOT}/src/contact/*.cc ${ROOT}/baselines/*.h ${ROOT}/baselines/*.cc)
 list(LENGTH sources count)
@@ -8,12 +11,18 @@ if(count LESS 10)
 endif()
 set(violations "")
 foreach(f IN LISTS sources)
-  file(STRINGS ${f} lines REGEX "^[ \t]*#[ \t]*include[ \t]*\"(experiment|cli)/")
+  file(STRINGS ${f} lines REGEX "^[ \t]*#[ \t]*include[ \t]*\"(experiment|cli|haptics)/")
   foreach(l IN LISTS lines)
     string(APPEND violations "\n  ${f}: ${l}")
   endforeach()
+  file(STRINGS ${f} lines REGEX "^[ \t]*#[ \t]*include[ \t]*\"deform/")
+  foreach(l IN LISTS lines)
+    if(NOT l MATCHES "\"deform/(embedded_points|deformable_pointshell|deformed_distance_field|tet_mesh)\\.h\"")
+      string(APPEND violations "\n  ${f}: ${l}")
+    endif()
+  endforeach()
 endforeach()
 if(violations)
-  message(FATAL_ERROR "layering: contact/ and baselines/ must not include experiment/ or cli/:${violations}")
+  message(FATAL_ERROR "layering: contact/ and baselines/ must not include experiment/, cli/, haptics/ or the finite-element part of deform/:${violations}")
 endif()
-message(STATUS "layering: ${count} files of src/contact and baselines include nothing of experiment/ or cli/")
+message(STATUS "layering: ${count} files of src/contact and baselines include nothing of experiment/, cli/, haptics/ or deform/'s finite elements")

@@ -41,7 +41,7 @@
 #include <time.h>
 
 #include "bench_common.h"
-#include "contact/deformable_pointshell_contact_model.h"
+#include "contact/deformable_contact_models.h"
 #include "contact/pointshell_contact_model.h"
 #include "deform/reduced_integrator.h"
 #include "experiment/contact_placement.h"
@@ -181,18 +181,18 @@ Prepared& Prepare(const SceneCase& c, int r, ReducedModelKind kind = ReducedMode
   ContactQuery q;
   q.X_WA = p.X_WA;
   q.X_WB = p.X_WB;
-  q.reduced_force_A = &f;
-  q.reduced_stiffness_A = &K;
+  BodyDeformation deformation{nullptr, &f, &K};
+  q.deformation_A = &deformation;
   const int settle_cycles = bench::QuickRun() ? 200 : 2000;
   for (int k = 0; k < settle_cycles; ++k) {
     q.cycle = k;
-    q.q_A = &integrator.state();
+    deformation.q = &integrator.state();
     const ContactResult res = contact.Evaluate(q);
     p.contacts_settled = res.stats.points_in_contact;
     integrator.Step(f, &K);
   }
   p.settled = integrator.state();
-  q.q_A = &p.settled;
+  deformation.q = &p.settled;
   contact.Evaluate(q);
   p.f_settled = f;
   p.K_settled = K;
@@ -239,11 +239,8 @@ void BM_PerNode(benchmark::State& state, SceneCase c, int r, Shell shell, Points
   ContactQuery q;
   q.X_WA = p.X_WA;
   q.X_WB = p.X_WB;
-  if (shell != kRigid) {
-    q.q_A = shell == kDeformableSettled ? &p.settled : &rest;
-    q.reduced_force_A = &f;
-    q.reduced_stiffness_A = &K;
-  }
+  const BodyDeformation deformation{shell == kDeformableSettled ? &p.settled : &rest, &f, &K};
+  if (shell != kRigid) q.deformation_A = &deformation;
   double nodes = 0, contacts = 0;
   const long long allocations = g_allocations.load();
   for (auto _ : state) {
@@ -351,8 +348,8 @@ void BM_Cycle(benchmark::State& state, SceneCase c, int r, std::int64_t budget, 
   ContactQuery q;
   q.X_WA = p.X_WA;
   q.node_budget = budget;
-  q.reduced_force_A = &f;
-  q.reduced_stiffness_A = &K;
+  BodyDeformation deformation{nullptr, &f, &K};
+  q.deformation_A = &deformation;
   std::int64_t k = 0;
   const long long allocations = g_allocations.load();
   for (auto _ : state) {
@@ -365,7 +362,7 @@ void BM_Cycle(benchmark::State& state, SceneCase c, int r, std::int64_t budget, 
     // One haptic cycle: traverse with the deformation held fixed, then step.
     q.X_WB = traj.At(k);
     q.cycle = k;
-    q.q_A = &integrator.state();
+    deformation.q = &integrator.state();
     const ContactResult res = model.Evaluate(q);
     const auto t1 = std::chrono::steady_clock::now();
     integrator.Step(f, &K);

@@ -50,11 +50,10 @@ void RunContact(const ContactArgs& args) {
   q.X_WA = args.pose_a.empty() ? scene.pointshell_body.pose : ParsePose(args.pose_a, "--pose-a");
   q.X_WB = args.pose_b.empty() ? scene.field_body.pose : ParsePose(args.pose_b, "--pose-b");
   q.node_budget = args.budget >= 0 ? args.budget : scene.node_budget;
-  q.q_A = q_A.get();
-  q.q_B = q_B.get();
-  if (assets.A.deformable()) q.reduced_force_A = &reduced_force;
   ReducedVector reduced_force_B;
-  if (assets.B.deformable()) q.reduced_force_B = &reduced_force_B;
+  const BodyDeformation deformation_A{q_A.get(), &reduced_force}, deformation_B{q_B.get(), &reduced_force_B};
+  if (assets.A.deformable()) q.deformation_A = &deformation_A;
+  if (assets.B.deformable()) q.deformation_B = &deformation_B;
   const auto t0 = std::chrono::steady_clock::now();
   const ContactResult r = model->Evaluate(q);
   const double micros = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
@@ -78,10 +77,10 @@ void RunContact(const ContactArgs& args) {
       K.push_back(row);
     }
     j["K_B"] = K;
-    if (q.reduced_force_A != nullptr) {
+    if (q.deformation_A != nullptr) {
       j["reduced_force_A"] = std::vector<double>(reduced_force.data(), reduced_force.data() + reduced_force.size());
     }
-    if (q.reduced_force_B != nullptr) {
+    if (q.deformation_B != nullptr) {
       j["reduced_force_B"] = std::vector<double>(reduced_force_B.data(), reduced_force_B.data() + reduced_force_B.size());
     }
     std::cout << j.dump(2) << "\n";
@@ -95,13 +94,13 @@ void RunContact(const ContactArgs& args) {
   std::printf("points in contact %d, nodes visited %lld, level rendered %d, max penetration %.3g m, %.1f us\n",
               r.stats.points_in_contact, static_cast<long long>(r.stats.nodes_visited), r.stats.level_rendered,
               r.stats.max_penetration, micros);
-  if (q.reduced_force_A != nullptr) {
+  if (q.deformation_A != nullptr) {
     std::printf("reduced contact force on %s (U^T F, r = %d):", scene.pointshell_body.name.c_str(),
                 int(reduced_force.size()));
     for (int j = 0; j < reduced_force.size(); ++j) std::printf(" %+.6g", reduced_force[j]);
     std::printf("\n");
   }
-  if (q.reduced_force_B != nullptr) {
+  if (q.deformation_B != nullptr) {
     std::printf("reduced contact force on %s (U^T F at its proxies, r = %d):", scene.field_body.name.c_str(),
                 int(reduced_force_B.size()));
     for (int j = 0; j < reduced_force_B.size(); ++j) std::printf(" %+.6g", reduced_force_B[j]);

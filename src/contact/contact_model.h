@@ -12,7 +12,7 @@
 #include <span>
 #include <string_view>
 
-#include "deform/reduced_state.h"
+#include "reduced/reduced_state.h"
 #include "geometry/pose.h"
 
 namespace contactlab {
@@ -37,31 +37,19 @@ struct ContactStats {
   std::int32_t nodes_skipped_coherence = 0;
   double max_penetration = 0;          // largest |d| over contributing points, metres
   double stiffness_scale = 1;          // L / l when l >= L points touch, else 1
+  // 1 when the model refused the query and gave no force: a deformation whose size does not
+  // fit its body. The haptic cycle and the runners count it as a fault.
+  std::int32_t faults = 0;
 };
 
 struct ContactQuery {
   Pose X_WA;                            // world pose of body A
   Pose X_WB;                            // world pose of body B
-  const ReducedState* q_A = nullptr;    // deformation of A (r entries), null: at rest
-  const ReducedState* q_B = nullptr;    // deformation of B, null when rigid
-  // Out: the reduced contact force on deformable A, sum_i U_i^T F_i over its points' forces
-  // F_i (A's body frame), r entries. Written by models that deform A; null: not wanted.
-  ReducedVector* reduced_force_A = nullptr;
-  // Out, with reduced_force_A: its derivative -d(reduced force)/dq (r x r, symmetric positive
-  // semidefinite) under the sec. 5 halfspace rule, k sum_i (U_i^T N_i)(U_i^T N_i)^T, for an
-  // integrator that treats the contact force linearly implicitly. Null: not wanted.
-  ReducedMatrix* reduced_stiffness_A = nullptr;
-  // Out, for a deformable B rendered through its deformed distance field (paper sec. 4.2): the
-  // reduced contact force on B, sum of U_p^T F over its contact forces F (B's frame), each
-  // applied at the nearest proxy p (r_B entries), and with reduced_force_B its stiffness
-  // -d(reduced force)/dq_B under the halfspace rule. Null: not wanted.
-  ReducedVector* reduced_force_B = nullptr;
-  ReducedMatrix* reduced_stiffness_B = nullptr;
-  // When both bodies deform and each integrator steps on its own with the other held fixed
-  // (staggered), the gap closes from both sides while each linearly implicit step sees only
-  // its own side: pass each integrator kStaggeredStiffnessFactor times its stiffness, exact for
-  // equal compliances and overdamped otherwise (without it two pressed bodies oscillate).
-  static constexpr double kStaggeredStiffnessFactor = 2.0;
+  // A deformable body's reduced coordinates in, its reduced contact force out (models that
+  // render its deformation: ContactModelNeeds::deformable_A / _B). Null: rigid, or at rest
+  // with nothing wanted.
+  const BodyDeformation* deformation_A = nullptr;
+  const BodyDeformation* deformation_B = nullptr;
   std::int64_t cycle = 0;               // haptic cycle index, for temporal coherence
   std::int64_t node_budget = 0;         // graceful degradation; <= 0 means unlimited
 };

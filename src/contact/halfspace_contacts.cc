@@ -16,15 +16,15 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 // The sums in A's frame (HalfspaceSums' terms with N = n_i and p = p_i + R^T t, which
 // AddHalfspaceContacts rotates into B's frame), N > 0.
-void HalfspaceSumsInAImpl(const Pointshell& s, const float* t_A, const std::int32_t* HWY_RESTRICT index,
+void HalfspaceSumsInAImpl(const ContactPointArrays& s, const float* t_A, const std::int32_t* HWY_RESTRICT index,
                           const float* HWY_RESTRICT d, int n, HalfspaceSums* out) {
   const hn::ScalableTag<float> df;
   const hn::RebindToSigned<decltype(df)> di;
   using VF = hn::Vec<decltype(df)>;
   const int lanes = int(hn::Lanes(df));
   const VF t0 = hn::Set(df, t_A[0]), t1 = hn::Set(df, t_A[1]), t2 = hn::Set(df, t_A[2]);
-  const float *x = s.x.data(), *y = s.y.data(), *z = s.z.data();
-  const float *nx = s.nx.data(), *ny = s.ny.data(), *nz = s.nz.data();
+  const float *x = s.x, *y = s.y, *z = s.z;
+  const float *nx = s.nx, *ny = s.ny, *nz = s.nz;
 
   // Per-lane partial sums: d N (3), p x d N (3), N N^T (6), N G^T (9), G G^T (6).
   VF f[3], t[3], nn[6], ng[9], gg[6];
@@ -143,8 +143,8 @@ HWY_EXPORT(CollectContactsImpl);
 // With p_B = R p_A + t = R (p_A + R^T t) and N_B = R N_A, the B-frame point is R q for
 // q = p_A + R^T t, and G_B = N_B x p_B = R (N_A x q): every sum is the A-frame sum of the
 // same terms, rotated (vectors R v, matrices R S R^T). The kernel then needs no rotation.
-void AddHalfspaceContacts(const Pointshell& s, const BatchTransform& X, const std::int32_t* index, const float* d,
-                          int n, ContactAccumulator* acc) {
+void AddHalfspaceContacts(const ContactPointArrays& s, const BatchTransform& X, const std::int32_t* index,
+                          const float* d, int n, ContactAccumulator* acc) {
   if (n <= 0) return;
   Eigen::Matrix3d R;
   for (int i = 0; i < 3; ++i)

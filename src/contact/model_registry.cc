@@ -3,16 +3,33 @@
 #include <algorithm>
 #include <map>
 
-#include "contact/deformable_pointshell_contact_model.h"
-#include "contact/deformed_field_contact_model.h"
+#include "contact/deformable_contact_models.h"
 #include "contact/pointshell_contact_model.h"
 #include "util/error.h"
 
 namespace contactlab {
 namespace {
 
-ContactModelEntry PaperModel(PointshellContactModel::Variant variant) {
-  const bool linear = variant == PointshellContactModel::Variant::kLinear;
+// What each side of the paper's model is made from (contact/rigid_sides.h, deformable_sides.h).
+RigidShell::Source ShellSource(ContactBody& A, const RigidShell*) { return A.pointshell(); }
+DeformableShell::Source ShellSource(ContactBody& A, const DeformableShell*) { return A.deformable_pointshell(); }
+GridField::Source FieldSource(ContactBody& B, const GridField*) { return B.field(); }
+DeformedField::Source FieldSource(ContactBody& B, const DeformedField*) { return B.deformed_field(); }
+
+// The paper's model for the bodies' sides: the shell side from A, the field side from B.
+template <class Shell, class Field>
+std::unique_ptr<ContactModel> MakePaperModel(PointshellVariant variant, const ContactModelInputs& in) {
+  return std::make_unique<PointshellFieldModel<Shell, Field>>(
+      variant, ShellSource(in.A, static_cast<const Shell*>(nullptr)), FieldSource(in.B, static_cast<const Field*>(nullptr)),
+      in.params);
+}
+template <class Shell>
+std::unique_ptr<ContactModel> MakePaperModelFor(PointshellVariant variant, const ContactModelInputs& in) {
+  return in.B.deformable() ? MakePaperModel<Shell, DeformedField>(variant, in) : MakePaperModel<Shell, GridField>(variant, in);
+}
+
+ContactModelEntry PaperModel(PointshellVariant variant) {
+  const bool linear = variant == PointshellVariant::kLinear;
   ContactModelEntry e;
   e.name = linear ? "pointshell-linear" : "pointshell";
   e.description = linear ? "Barbič & James 2008: every point of one pointshell level against B's field"
@@ -23,16 +40,7 @@ ContactModelEntry PaperModel(PointshellContactModel::Variant variant) {
   e.needs.deformable_A = true;
   e.needs.deformable_B = true;
   e.make = [variant](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
-    if (in.B.deformable()) {
-      return std::make_unique<DeformedFieldContactModel>(variant, in.A.deformable() ? nullptr : in.A.pointshell(),
-                                                         in.A.deformable() ? in.A.deformable_pointshell() : nullptr,
-                                                         in.B.deformed_field(), in.params);
-    }
-    if (in.A.deformable()) {
-      return std::make_unique<DeformablePointshellContactModel>(variant, in.A.deformable_pointshell(), in.B.field(),
-                                                                in.params);
-    }
-    return std::make_unique<PointshellContactModel>(variant, in.A.pointshell(), in.B.field(), in.params);
+    return in.A.deformable() ? MakePaperModelFor<DeformableShell>(variant, in) : MakePaperModelFor<RigidShell>(variant, in);
   };
   return e;
 }
@@ -40,7 +48,7 @@ ContactModelEntry PaperModel(PointshellContactModel::Variant variant) {
 std::map<std::string, ContactModelEntry, std::less<>>& Registry() {
   static std::map<std::string, ContactModelEntry, std::less<>> registry = [] {
     std::map<std::string, ContactModelEntry, std::less<>> r;
-    for (auto v : {PointshellContactModel::Variant::kTree, PointshellContactModel::Variant::kLinear}) {
+    for (auto v : {PointshellVariant::kTree, PointshellVariant::kLinear}) {
       ContactModelEntry e = PaperModel(v);
       r[e.name] = std::move(e);
     }

@@ -7,7 +7,7 @@
 
 #include <algorithm>
 
-#include "deform/reduced_state.h"
+#include "reduced/reduced_state.h"
 
 namespace contactlab {
 

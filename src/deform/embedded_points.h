@@ -21,7 +21,7 @@
 #include <cmath>
 #include <vector>
 
-#include "deform/reduced_state.h"
+#include "reduced/reduced_state.h"
 #include "deform/tet_mesh.h"
 
 namespace contactlab {

@@ -12,7 +12,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "deform/reduced_state.h"
+#include "reduced/reduced_state.h"
 #include "deform/stvk_fem.h"
 
 namespace contactlab {

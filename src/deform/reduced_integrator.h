@@ -9,7 +9,7 @@
 #include <string>
 
 #include "deform/reduced_forces.h"
-#include "deform/reduced_state.h"
+#include "reduced/reduced_state.h"
 
 namespace contactlab {
 

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "deform/reduced_state.h"
+#include "reduced/reduced_state.h"
 
 namespace contactlab {
 

@@ -11,7 +11,7 @@
 #include "experiment/contact_placement.h"
 #include "experiment/metrics.h"
 #include "experiment/runner.h"
-#include "contact/reduced_contact_coupling.h"
+#include "deform/body_dynamics.h"
 #include "deform/reduced_integrator.h"
 #include "util/error.h"
 
@@ -63,18 +63,17 @@ class DeformableCoupling {
   DeformableCoupling(const BodyAssets& body, std::shared_ptr<const ReducedModel> model, double dt, bool is_B)
       : model_(std::move(model)),
         integrator_(model_->forces, DeformableIntegratorOptions(*body.spec().deformable, dt)),
-        coupling_(&integrator_, body.spec().deformable->implicit_contact,
-                  is_B ? ReducedContactCoupling::Body::kB : ReducedContactCoupling::Body::kA),
+        dynamics_(&integrator_, body.spec().deformable->implicit_contact),
         is_B_(is_B) {}
   int r() const { return model_->r(); }
   // Points the query at the current state and at the reduced force it fills.
-  void Prepare(ContactQuery* q) { coupling_.Prepare(q); }
+  void Prepare(ContactQuery* q) { (is_B_ ? q->deformation_B : q->deformation_A) = dynamics_.Prepare(); }
   // Steps with the force of the query just made (STAGGERED: the other body deforms too), and
   // adds the state to ROW: step time and q in the body's own columns, energies summed and the
   // largest displacement over both bodies.
   void Step(CycleRow* row, bool staggered) {
     const auto t0 = std::chrono::steady_clock::now();
-    coupling_.Step(staggered);
+    dynamics_.Step(staggered);
     const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
     (is_B_ ? row->step_B_us : row->step_us) = us;
     row->deformable = true;
@@ -97,7 +96,7 @@ class DeformableCoupling {
  private:
   std::shared_ptr<const ReducedModel> model_;
   ReducedIntegrator integrator_;
-  ReducedContactCoupling coupling_;
+  BodyDynamics dynamics_;
   bool is_B_;
 };
 
@@ -214,12 +213,13 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
           row.reference_force = it->second;
         } else {
           Eigen::Vector3d T;
+          // The reference sees the deformations and writes no reduced force.
           ContactQuery rq = q;
           rq.node_budget = 0;
-          rq.reduced_force_A = nullptr;
-          rq.reduced_stiffness_A = nullptr;
-          rq.reduced_force_B = nullptr;
-          rq.reduced_stiffness_B = nullptr;
+          const BodyDeformation ref_A{q.deformation_A ? q.deformation_A->q : nullptr};
+          const BodyDeformation ref_B{q.deformation_B ? q.deformation_B->q : nullptr};
+          rq.deformation_A = q.deformation_A ? &ref_A : nullptr;
+          rq.deformation_B = q.deformation_B ? &ref_B : nullptr;
           OnMovingBody(moving_is_B, rq, reference->Evaluate(rq).on_B, &row.reference_force, &T);
           if (reuse_reference) reference_at[k] = row.reference_force;
         }

@@ -44,7 +44,7 @@
 #include "deform/anchoring.h"
 #include "deform/deformed_distance_field.h"
 #include "deform/reduced_forces.h"
-#include "deform/reduced_state.h"
+#include "reduced/reduced_state.h"
 #include "deform/stvk_fem.h"
 #include "geometry/pose.h"
 #include "util/config_node.h"

@@ -16,10 +16,10 @@ HapticCycle::HapticCycle(HapticDevice& device, ContactModel* model, const Haptic
       coupling_(config.coupling),
       safety_(ResolveSafetyLimits(config.safety, device.capabilities())) {
   if (config.deformation_A != nullptr) {
-    deformation_A_ = ReducedContactCoupling(config.deformation_A, config.implicit_contact_A, ReducedContactCoupling::Body::kA);
+    deformation_A_ = BodyDynamics(config.deformation_A, config.implicit_contact_A);
   }
   if (config.deformation_B != nullptr) {
-    deformation_B_ = ReducedContactCoupling(config.deformation_B, config.implicit_contact_B, ReducedContactCoupling::Body::kB);
+    deformation_B_ = BodyDynamics(config.deformation_B, config.implicit_contact_B);
   }
   if (!(config.max_point_speed <= 0 || (std::isfinite(config.max_point_speed) && config.cycle_seconds > 0 &&
                                          std::isfinite(config.cycle_seconds) && config.body_radius_H >= 0 &&
@@ -72,8 +72,8 @@ CycleRecord HapticCycle::Step(std::int64_t now_ns) {
     q.X_WB = X_WH;
     q.cycle = cycle_;
     q.node_budget = config_.node_budget;
-    if (deformation_A_.active()) deformation_A_.Prepare(&q);
-    if (deformation_B_.active()) deformation_B_.Prepare(&q);  // H deforms: its field at the current q_B
+    if (deformation_A_.active()) q.deformation_A = deformation_A_.Prepare();
+    if (deformation_B_.active()) q.deformation_B = deformation_B_.Prepare();  // H deforms: its field at its q
     contact = model_->Evaluate(q);
     if (config_.point_marks != nullptr) config_.point_marks->Update(*model_, q, cycle_);
   }

@@ -7,7 +7,7 @@
 #include <cstdint>
 
 #include "contact/contact_model.h"
-#include "contact/reduced_contact_coupling.h"
+#include "deform/body_dynamics.h"
 #include "deform/reduced_integrator.h"
 #include "haptics/contact_point_marks.h"
 #include "haptics/haptic_device.h"
@@ -116,8 +116,8 @@ class HapticCycle {
   std::int64_t cycle_ = 0;
   std::int64_t coherence_resets_ = 0;
   Pose last_query_X_WH_;  // H's pose at the previous contact query
-  ReducedContactCoupling deformation_A_;  // body A's two-way coupling (inactive when rigid)
-  ReducedContactCoupling deformation_B_;  // H's
+  BodyDynamics deformation_A_;  // body A's two-way coupling (inactive when rigid)
+  BodyDynamics deformation_B_;  // H's
 };
 
 }  // namespace contactlab

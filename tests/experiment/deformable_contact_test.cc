@@ -10,8 +10,8 @@
 #include <random>
 #include <sstream>
 
-#include "contact/deformable_pointshell_contact_model.h"
-#include "contact/deformed_field_contact_model.h"
+#include "contact/deformable_contact_models.h"
+#include "contact/pointshell_contact_model.h"
 #include "contact/model_registry.h"
 #include "deform/reduced_integrator.h"
 #include "experiment/experiment_config.h"
@@ -75,10 +75,10 @@ TEST(DeformableContact, TheTreeFindsExactlyTheLinearTraversalsContactsAtDeformed
     ContactQuery q;
     q.X_WA = scene.pointshell_body.pose;
     q.X_WB = scene.field_body.pose;
-    q.q_A = &state;
-    q.reduced_force_A = &f_tree;
+    const BodyDeformation d_tree{&state, &f_tree}, d_linear{&state, &f_linear};
+    q.deformation_A = &d_tree;
     const ContactResult a = tree->Evaluate(q);
-    q.reduced_force_A = &f_linear;
+    q.deformation_A = &d_linear;
     const ContactResult b = linear->Evaluate(q);
     // The BD-tree bound culls only subtrees with no point in contact: same points, same sums.
     EXPECT_EQ(a.stats.points_in_contact, b.stats.points_in_contact) << "trial " << trial;
@@ -107,8 +107,8 @@ TEST(DeformableContact, ReducedForceIsUTransposeOfThePointForcesAndOppositeForce
     ContactQuery q;
     q.X_WA = scene.pointshell_body.pose;
     q.X_WB = scene.field_body.pose;
-    q.q_A = &state;
-    q.reduced_force_A = &f_q;
+    const BodyDeformation d{&state, &f_q};
+    q.deformation_A = &d;
     const ContactResult res = model->Evaluate(q);
     // The reference, in double precision: every point at X + U q, its corrected normal, the
     // penalty force -k d N on A, summed as point forces and as U^T F.
@@ -129,6 +129,41 @@ TEST(DeformableContact, ReducedForceIsUTransposeOfThePointForcesAndOppositeForce
     if (contacts == 0) continue;
     EXPECT_LT((Eigen::VectorXd(f_q) - f_ref).norm(), 1e-3 * f_ref.norm()) << "trial " << trial;
     EXPECT_LT((F_on_A + res.on_B.force).norm(), 1e-3 * F_on_A.norm()) << "trial " << trial;
+  }
+}
+
+// A deformation of another size than the body's is refused where it enters the model: no force,
+// one fault, for each pair of sides and each variant; the right size after it renders again.
+TEST(DeformableContact, ADeformationOfTheWrongSizeIsAFaultNotARestState) {
+  TempDir dir;
+  const Scene scene = ParseBeam(BeamScene(20, "stvk", 0, 0, 0.0195));
+  SceneAssets assets(scene, Assets(dir));
+  const Scene swapped = scene.Swapped();
+  SceneAssets swapped_assets(swapped, Assets(dir));
+  const int r = assets.A.reduced_model()->r();
+  const ReducedState rest(r), wrong(r + 1);
+  for (const char* name : {"pointshell", "pointshell-linear"}) {
+    for (const bool field_side : {false, true}) {
+      const Scene& sc = field_side ? swapped : scene;
+      const auto model = MakeSceneContactModel(name, sc, field_side ? swapped_assets : assets);
+      ContactQuery q;
+      q.X_WA = sc.pointshell_body.pose;
+      q.X_WB = sc.field_body.pose;
+      ReducedVector f;
+      const BodyDeformation at_rest{&rest, &f}, bad{&wrong, &f};
+      (field_side ? q.deformation_B : q.deformation_A) = &at_rest;
+      const ContactResult good = model->Evaluate(q);
+      ASSERT_GT(good.stats.points_in_contact, 0) << name << " field side " << field_side;
+      EXPECT_EQ(good.stats.faults, 0);
+      (field_side ? q.deformation_B : q.deformation_A) = &bad;
+      const ContactResult refused = model->Evaluate(q);
+      EXPECT_EQ(refused.stats.faults, 1) << name << " field side " << field_side;
+      EXPECT_EQ(refused.stats.points_in_contact, 0);
+      EXPECT_EQ(refused.on_B.force.norm(), 0.0);
+      (field_side ? q.deformation_B : q.deformation_A) = &at_rest;
+      const ContactResult again = model->Evaluate(q);
+      EXPECT_EQ(again.stats.points_in_contact, good.stats.points_in_contact);
+    }
   }
 }
 
@@ -176,9 +211,8 @@ CoupledRun RunCoupled(double alpha, double beta, double seconds, bool implicit_c
     q.X_WA = scene.pointshell_body.pose;
     q.X_WB = scene.field_body.pose;
     q.cycle = k;
-    q.q_A = &st;
-    q.reduced_force_A = &f;
-    q.reduced_stiffness_A = implicit_contact ? &K : nullptr;
+    const BodyDeformation d{&st, &f, implicit_contact ? &K : nullptr};
+    q.deformation_A = &d;
     model->Evaluate(q);
     integrator.Step(f, implicit_contact ? &K : nullptr);
   }
@@ -361,7 +395,7 @@ TEST(DeformableContact, ModelsThatTreatTheBodyAsRigidRefuseADeformableBody) {
   // through its deformed field, a rigid-only model refuses it.
   const Scene swapped = scene.Swapped();
   SceneAssets swapped_assets(swapped, Assets(dir));
-  EXPECT_NE(dynamic_cast<DeformedFieldContactModel*>(MakeSceneContactModel("pointshell", swapped, swapped_assets).get()),
+  EXPECT_NE(dynamic_cast<RigidShellDeformedFieldModel*>(MakeSceneContactModel("pointshell", swapped, swapped_assets).get()),
             nullptr);
   ContactModelEntry rigid_B = rigid_only;
   rigid_B.name = "test-rigid-B";

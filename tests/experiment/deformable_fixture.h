@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "deform/reduced_model.h"
-#include "deform/reduced_state.h"
+#include "reduced/reduced_state.h"
 #include "experiment/experiment_config.h"
 #include "experiment/runner.h"
 #include "experiment/scene_assets.h"

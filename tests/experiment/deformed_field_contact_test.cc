@@ -11,9 +11,9 @@
 #include <random>
 #include <sstream>
 
-#include "contact/deformed_field_contact_model.h"
+#include "contact/deformable_contact_models.h"
 #include "contact/model_registry.h"
-#include "contact/reduced_contact_coupling.h"
+#include "deform/body_dynamics.h"
 #include "deform/reduced_integrator.h"
 #include "experiment/experiment_config.h"
 #include "experiment/runner.h"
@@ -66,7 +66,7 @@ TEST(DeformedFieldContact, TheTreeFindsExactlyTheLinearTraversalsContacts) {
   SceneAssets assets(scene, Assets(dir));
   const auto tree = MakeSceneContactModel("pointshell", scene, assets);
   const auto linear = MakeSceneContactModel("pointshell-linear", scene, assets);
-  ASSERT_NE(dynamic_cast<DeformedFieldContactModel*>(tree.get()), nullptr);
+  ASSERT_NE(dynamic_cast<DeformableShellDeformedFieldModel*>(tree.get()), nullptr);
   std::mt19937 rng(5);
   int touching = 0;
   for (int trial = 0; trial < 12; ++trial) {
@@ -78,10 +78,9 @@ TEST(DeformedFieldContact, TheTreeFindsExactlyTheLinearTraversalsContacts) {
       ContactQuery q;
       q.X_WA = scene.pointshell_body.pose;
       q.X_WB = scene.field_body.pose;
-      q.q_A = &qA;
-      q.q_B = &qB;
-      q.reduced_force_A = &fA[m];
-      q.reduced_force_B = &fB[m];
+      const BodyDeformation dA{&qA, &fA[m]}, dB{&qB, &fB[m]};
+      q.deformation_A = &dA;
+      q.deformation_B = &dB;
       res[m] = (m == 0 ? tree : linear)->Evaluate(q);
     }
     EXPECT_EQ(res[0].stats.points_in_contact, res[1].stats.points_in_contact) << "trial " << trial;
@@ -112,10 +111,9 @@ TEST(DeformedFieldContact, ReducedForcesAreUTransposeAtThePointsAndTheNearestPro
     ContactQuery q;
     q.X_WA = scene.pointshell_body.pose;
     q.X_WB = scene.field_body.pose;
-    q.q_A = &qA;
-    q.q_B = &qB;
-    q.reduced_force_A = &fA;
-    q.reduced_force_B = &fB;
+    const BodyDeformation dA{&qA, &fA}, dB{&qB, &fB};
+    q.deformation_A = &dA;
+    q.deformation_B = &dB;
     const ContactResult res = model->Evaluate(q);
     // The reference in double precision: deformed points and normals of A, B's deformed field
     // at q_B, forces -k d N on A (at the point) and +k d N on B (at the brute-force nearest
@@ -190,15 +188,14 @@ void PressTogether(const std::string& force_at) {
   const auto mA = assets.A.reduced_model(), mB = assets.B.reduced_model();
   const IntegratorOptions io = DeformableIntegratorOptions(*scene.field_body.deformable, 1e-3);
   ReducedIntegrator A(mA->forces, io), B(mB->forces, io);
-  ReducedContactCoupling coupling_A(&A, true, ReducedContactCoupling::Body::kA);
-  ReducedContactCoupling coupling_B(&B, true, ReducedContactCoupling::Body::kB);
+  BodyDynamics coupling_A(&A, true), coupling_B(&B, true);
   for (int cycle = 0; cycle < 400; ++cycle) {
     ContactQuery q;
     q.X_WA = scene.pointshell_body.pose;
     q.X_WB = scene.field_body.pose;
     q.cycle = cycle;
-    coupling_A.Prepare(&q);
-    coupling_B.Prepare(&q);
+    q.deformation_A = coupling_A.Prepare();
+    q.deformation_B = coupling_B.Prepare();
     model->Evaluate(q);
     coupling_A.Step(true);  // both step, each with the other held fixed
     coupling_B.Step(true);

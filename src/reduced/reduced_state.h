@@ -1,5 +1,6 @@
 // The reduced deformation state of one deformable body: reduced coordinates q and their rates
-// (Barbič & James 2008, sec. 4: u = U q for every surface point).
+// (Barbič & James 2008, sec. 4: u = U q for every surface point), and what a contact query
+// reads and writes of it. Header only, below contact/ and deform/.
 #pragma once
 
 #include <Eigen/Core>
@@ -21,6 +22,18 @@ struct ReducedState {
   ReducedState() = default;
   explicit ReducedState(int r) : q(ReducedVector::Zero(r)), qdot(ReducedVector::Zero(r)) {}
   int size() const { return int(q.size()); }
+};
+
+// One deformable body's part of a contact query (sec. 4): its reduced coordinates in, its reduced
+// contact force (and that force's stiffness, for a linearly implicit step) out.
+struct BodyDeformation {
+  const ReducedState* q = nullptr;  // r entries; null: at rest
+  // Out: the reduced contact force on the body, sum_i U_i^T F_i over the contact forces F_i
+  // (body frame) at the places they act on it (r entries). Null: not wanted.
+  ReducedVector* force = nullptr;
+  // Out, with FORCE: -d(force)/dq (r x r, symmetric positive semidefinite) under the sec. 5
+  // halfspace rule, k sum_i w_i w_i^T with w_i = U_i^T N_i. Null: not wanted.
+  ReducedMatrix* stiffness = nullptr;
 };
 
 }  // namespace contactlab

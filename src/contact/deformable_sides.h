@@ -1,0 +1,169 @@
+// The deformable sides of the paper's contact model (Barbič & James 2008, sec. 4), answering the
+// calls of the rigid sides (contact/rigid_sides.h) and, in addition, where a point's reaction
+// goes as a reduced force:
+//
+//   DeformableShell (sec. 4.1)  points at x = X + U q with the linear normal correction, node
+//       radii R(q) = R_0 + sum_j |q_j| rho_j (the point-based BD-tree); a change dq moves every
+//       point and grows every radius by at most sum_j c_j |dq_j| (DeformablePointshell::
+//       mode_travel), the side's travel. A point's force F_i (A's frame) enters A's reduced
+//       force through U_i^T.
+//   DeformedField (sec. 4.2)    distances from the proxies at q_B (nearest k, eq. (3), pulled
+//       back through the proxies' deformation gradients, domains combined by minimum); travel
+//       sum_j c_j |dq_Bj| with c_j the largest proxy displacement per unit q_j. A point's force
+//       enters B's reduced force at its nearest proxy (or the query's k proxies, weighted).
+//
+// Both keep the q of the previous query for their travel, and take q as float once a query.
+#pragma once
+
+#include <Eigen/Core>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+
+#include "contact/reduced_force_sum.h"
+#include "deform/deformable_pointshell.h"
+#include "deform/deformed_distance_field.h"
+#include "reduced/reduced_state.h"
+#include "sdf/batch_distance.h"
+
+namespace contactlab {
+
+// Reduced coordinates of one query in float, and the travel since the previous query.
+class ReducedCoordinatesF {
+ public:
+  // Q (null: at rest) for a body of R coordinates whose mode j moves any point by at most
+  // TRAVEL_PER_MODE(j) per unit; adds the travel since the previous Load to *TRAVEL. False when
+  // Q has another size than R (nothing is changed then).
+  template <class TravelPerMode>
+  bool Load(const ReducedState* q, int r, TravelPerMode&& travel_per_mode, double* travel) {
+    if (q != nullptr && q->size() != r) return false;
+    for (int j = 0; j < r; ++j) {
+      const float v = q != nullptr ? float(q->q[j]) : 0.f;
+      if (has_previous_) *travel += double(travel_per_mode(j)) * std::fabs(v - q_[j]);
+      q_[j] = v;
+      abs_q_[j] = std::fabs(v);
+    }
+    has_previous_ = true;
+    return true;
+  }
+  void Reset() { has_previous_ = false; }
+  const float* q() const { return q_; }
+  const float* abs_q() const { return abs_q_; }
+
+ private:
+  float q_[kMaxReducedModes] = {};
+  float abs_q_[kMaxReducedModes] = {};
+  bool has_previous_ = false;
+};
+
+class DeformableShell {
+ public:
+  using Source = std::shared_ptr<const DeformablePointshell>;
+  static constexpr bool kDeforms = true;
+  static constexpr const char* kWhat = "deformable pointshell";
+
+  DeformableShell() = default;
+  explicit DeformableShell(Source shell) : shell_(std::move(shell)) {}
+  const Pointshell* get() const { return shell_ ? &shell_->shell() : nullptr; }
+  const Pointshell& shell() const { return shell_->shell(); }
+  const DeformablePointshell& deformable() const { return *shell_; }
+  int r() const { return shell_->r(); }
+
+  bool Begin(const ReducedState* q, double* travel) {
+    return q_.Load(q, r(), [this](int j) { return shell_->mode_travel(j); }, travel);
+  }
+  float Radius(int node) const { return shell_->RadiusF(node, q_.abs_q()); }
+  void Reset() { q_.Reset(); }
+
+  // Point I at this query's q (A's frame), and its corrected unit normal.
+  void Position(int i, float* p_A) const { shell_->points().PositionF(i, q_.q(), p_A); }
+  void Normal(int i, float* n_A) const { shell_->points().CorrectedNormalF(i, q_.q(), n_A); }
+  // Point I in contact at depth D < 0 with normal N_A: its part of A's reduced force.
+  void AddReduced(int i, const float* n_A, float d, ReducedForceSum* sum) const {
+    float w[kMaxReducedModes];
+    shell_->points().ProjectF(i, n_A, w);
+    sum->Add(d, w);
+  }
+
+ private:
+  Source shell_;
+  ReducedCoordinatesF q_;
+};
+
+class DeformedField {
+ public:
+  using Source = std::shared_ptr<const DeformedDistanceField>;
+  static constexpr bool kDeforms = true;
+  static constexpr const char* kWhat = "deformed distance field";
+
+  DeformedField() = default;
+  explicit DeformedField(Source field) : field_(std::move(field)) {
+    if (field_) state_ = DeformedFieldState(*field_);
+  }
+  const DistanceField* rest_field_ptr() const { return field_ ? &field_->rest_field() : nullptr; }
+  const DistanceField& rest_field() const { return field_->rest_field(); }
+  const DeformedDistanceField& field() const { return *field_; }
+  const DeformedFieldState& state() const { return state_; }
+  int r() const { return field_->r(); }
+
+  // Also moves the proxies to Q, held fixed during the query.
+  bool Begin(const ReducedState* q, double* travel) {
+    if (!q_.Load(q, r(), [this](int j) { return field_->mode_travel(j); }, travel)) return false;
+    state_.Update(*field_, q != nullptr ? q->q.data() : nullptr);
+    return true;
+  }
+  void Distances(const BatchTransform& X, const float* x, const float* y, const float* z, const std::int32_t* index,
+                 int n, float* d, std::int32_t* nearest) const {
+    for (int k = 0; k < n; ++k) {
+      const int i = index ? index[k] : k;
+      const float p_B[3] = {X.r[0] * x[i] + X.r[1] * y[i] + X.r[2] * z[i] + X.t[0],
+                            X.r[3] * x[i] + X.r[4] * y[i] + X.r[5] * z[i] + X.t[1],
+                            X.r[6] * x[i] + X.r[7] * y[i] + X.r[8] * z[i] + X.t[2]};
+      int slot = -1;
+      d[k] = field_->Distance(state_, p_B, &slot);
+      if (nearest != nullptr) nearest[k] = slot;
+    }
+  }
+  // By central differences of the deformed field, half a rest cell apart.
+  Eigen::Vector3d Gradient(const Eigen::Vector3d& p_B) const {
+    const double h = 0.5 * field_->rest_field().spacing();
+    Eigen::Vector3d g;
+    for (int c = 0; c < 3; ++c) {
+      float a[3] = {float(p_B[0]), float(p_B[1]), float(p_B[2])}, b[3] = {a[0], a[1], a[2]};
+      a[c] += float(h);
+      b[c] -= float(h);
+      g[c] = double(field_->Distance(state_, a, nullptr) - field_->Distance(state_, b, nullptr)) / (2.0 * float(h));
+    }
+    return g;
+  }
+  void Reset() { q_.Reset(); }
+
+  // A point in contact at P_B (B's frame) with normal N_B and depth D < 0, whose lookup found
+  // proxy slot NEAREST: its part of B's reduced force.
+  void AddReduced(int nearest, const float* p_B, const float* n_B, float d, ReducedForceSum* sum) const {
+    if (nearest < 0) return;
+    float w[kMaxReducedModes];
+    if (field_->force_at() == DeformedFieldOptions::ForceAt::kNearestProxy) {
+      field_->proxies().ProjectF(nearest, n_B, w);
+    } else {  // sum_i w_i U_i^T N over the query's k proxies
+      int slots[kMaxProxyNeighbours];
+      float weights[kMaxProxyNeighbours], wi[kMaxReducedModes];
+      const int n = field_->Weights(state_, field_->domain_of_slot(nearest), p_B, slots, weights);
+      const int r = field_->r();
+      for (int j = 0; j < r; ++j) w[j] = 0.f;
+      for (int a = 0; a < n; ++a) {
+        if (weights[a] == 0.f) continue;
+        field_->proxies().ProjectF(slots[a], n_B, wi);
+        for (int j = 0; j < r; ++j) w[j] += weights[a] * wi[j];
+      }
+    }
+    sum->Add(d, w);
+  }
+
+ private:
+  Source field_;
+  DeformedFieldState state_;
+  ReducedCoordinatesF q_;
+};
+
+}  // namespace contactlab

@@ -1,0 +1,311 @@
+// The paper's contact model (Barbič & James 2008): a pointshell (body A) against a signed
+// distance field (body B), with per-point penalty forces (sec. 2.1), the breadth-first traversal
+// of the nested point tree with temporal coherence and graceful degradation (sec. 3), the
+// halfspace contact gradient (sec. 5) and, for deformable bodies, reduced contact forces
+// (sec. 4). One class template over two sides:
+//
+//   shell side   RigidShell | DeformableShell         (contact/rigid_sides.h, deformable_sides.h)
+//   field side   GridField  | DeformedField
+//
+// so that no point pays a virtual call or an "is deformable?" branch: the rigid x grid instance
+// is the rigid loop alone. Two variants behind the common interface:
+//   "pointshell-linear"  every point of one tree level, no tree (the tree-less reference);
+//   "pointshell"         breadth-first traversal culling a subtree when d exceeds the node's
+//                        bounding radius, optionally with temporal coherence and a node budget.
+//
+// Temporal coherence, one clock for every combination: the clock reads the distance any point
+// may have closed on B since the first query, lipschitz * (max_point_speed * elapsed time + the
+// sides' deformation travel summed over queries); a culled node whose ball was MARGIN clear of
+// contact sleeps until the clock has advanced by MARGIN. A rigid side has no deformation travel.
+// max_point_speed must bound the rigid motion of A's points relative to B.
+//
+// Forces: every point in contact is added through the vectorised halfspace sums
+// (contact/halfspace_contacts.h), a buffer at a time; for a deformable side the same runs of
+// points also enter its reduced force (and its halfspace stiffness). ContactGradient::kField
+// adds each point on its own, with the field side's gradient.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "contact/contact_accumulator.h"
+#include "contact/contact_model.h"
+#include "contact/float_transform.h"
+#include "contact/halfspace_contacts.h"
+#include "contact/pointshell_contact_params.h"
+#include "contact/pointshell_traversal.h"
+#include "contact/reduced_force_sum.h"
+
+namespace contactlab {
+
+enum class PointshellVariant { kLinear, kTree };
+
+// Checks what the model needs (a non-empty SHELL and FIELD, valid PARAMS) and returns the
+// deepest level it renders. Throws Error naming WHERE.
+int ValidatePointshellModelInputs(const Pointshell* shell, const DistanceField* field,
+                                  const PointshellContactParams& params, const std::string& where);
+
+template <class Shell, class Field>
+class PointshellFieldModel final : public ContactModel {
+ public:
+  using Variant = PointshellVariant;
+  static constexpr bool kDeforms = Shell::kDeforms || Field::kDeforms;
+
+  // SHELL and FIELD are kept alive by the model. Throws Error for a missing or empty shell or
+  // field and invalid parameters (k_C < 0 or not finite, L < 0, level out of range,
+  // non-positive speed or cycle time).
+  PointshellFieldModel(Variant variant, typename Shell::Source shell, typename Field::Source field,
+                       const PointshellContactParams& params)
+      : variant_(variant), shell_(std::move(shell)), field_(std::move(field)), params_(params) {
+    const std::string where = std::string("contact model ") + std::string(name()) + " (" + Shell::kWhat + " against " +
+                              Field::kWhat + ")";
+    max_level_ = ValidatePointshellModelInputs(shell_.get(), field_.rest_field_ptr(), params_, where);
+    const Pointshell& s = shell_.shell();
+    traversal_ = TreeTraversalState(s);
+    wake_.assign(std::size_t(s.num_nodes()), -std::numeric_limits<double>::infinity());
+    if constexpr (Shell::kDeforms) {
+      for (auto* v : {&x_, &y_, &z_, &nx_, &ny_, &nz_}) v->assign(std::size_t(s.num_points()), 0.f);
+    }
+    if constexpr (Field::kDeforms) nearest_.assign(std::size_t(s.num_points()), -1);
+  }
+
+  std::string_view name() const override { return variant_ == Variant::kLinear ? "pointshell-linear" : "pointshell"; }
+  // One haptic cycle: allocation-free, throws nothing. query.node_budget (V_W, warm threshold)
+  // enables graceful degradation in the tree variant. A deformation of the wrong size for its
+  // body gives no force and stats.faults = 1.
+  ContactResult Evaluate(const ContactQuery& query) override;
+  void Reset() override {
+    std::fill(wake_.begin(), wake_.end(), -std::numeric_limits<double>::infinity());
+    traversal_.Reset();
+    shell_.Reset();
+    field_.Reset();
+  }
+  // Tree: from the traversal's list of evaluated points; linear: d evaluated again at QUERY's
+  // pose and A's deformation, in B's field as the latest query left it (kLinearPointStatesPerCall
+  // points per call).
+  int PointStates(const ContactQuery& query, std::span<const std::int32_t> points, PointState* out) override;
+
+  const PointshellContactParams& params() const { return params_; }
+  const Pointshell& shell() const { return shell_.shell(); }
+  const Shell& shell_side() const { return shell_; }
+  const Field& field_side() const { return field_; }
+  // Deepest level rendered in the previous cycle (tree variant), -1 before the first.
+  int last_level_rendered() const { return traversal_.last_level_rendered(); }
+
+ private:
+  struct Pass;
+
+  Variant variant_;
+  Shell shell_;
+  Field field_;
+  PointshellContactParams params_;
+  int max_level_;  // deepest level this model renders
+
+  // Scratch sized once at construction.
+  TreeTraversalState traversal_;
+  std::vector<double> wake_;  // (#N) coherence clock value at which a culled node wakes
+  double travel_ = 0;         // the sides' deformation travel summed over queries, metres
+  // A deformable shell's points in contact this query: deformed position and corrected normal
+  // (A's frame), written at the point's index (#P each).
+  std::vector<float> x_, y_, z_, nx_, ny_, nz_;
+  std::vector<std::int32_t> nearest_;  // (#P) a deformed field's proxy slot of each point in contact
+};
+
+// One query's traversal policy (pointshell_traversal.h): evaluates points a batch at a time and
+// adds the forces of those in contact.
+template <class Shell, class Field>
+struct PointshellFieldModel<Shell, Field>::Pass {
+  PointshellFieldModel& m;
+  const Pointshell& s;
+  const FloatTransform X_BA;
+  const BatchTransform X;
+  ContactAccumulator* acc;
+  HalfspaceContactBuffer* contacts;  // the halfspace rule's buffer, null under kField
+  ReducedForceSum* sum_A;            // A's reduced force, or null
+  ReducedForceSum* sum_B;            // B's, or null
+  double clock;  // the coherence clock of this query, metres
+
+  // Where the points in contact are found: the shell's own arrays, or the deformed ones.
+  ContactPointArrays Points() const {
+    if constexpr (Shell::kDeforms) {
+      return {m.x_.data(), m.y_.data(), m.z_.data(), m.nx_.data(), m.ny_.data(), m.nz_.data()};
+    } else {
+      return ContactPointArrays::Of(s);
+    }
+  }
+
+  void EvaluatePoints(int begin, const std::int32_t* index, int n, float* d) {
+    if constexpr (!kDeforms) {  // the rigid loop: one batch of lookups, then the contacts
+      const int offset = index ? 0 : begin;
+      m.field_.Distances(X, s.x.data() + offset, s.y.data() + offset, s.z.data() + offset, index, n, d, nullptr);
+      if (contacts != nullptr) {
+        contacts->Collect(begin, index, d, n);
+      } else {
+        for (int k = 0; k < n; ++k) {
+          if (d[k] < 0.f) [[unlikely]] AddOnItsOwn(index ? index[k] : begin + k, d[k]);
+        }
+      }
+    } else {
+      constexpr int kChunk = 256;
+      float px[kChunk], py[kChunk], pz[kChunk];
+      std::int32_t nearest[kChunk];
+      for (int c0 = 0; c0 < n; c0 += kChunk) {
+        const int mk = std::min(kChunk, n - c0);
+        const std::int32_t* idx = index ? index + c0 : nullptr;
+        const int first = begin + c0;  // the chunk's first point when IDX is null
+        // 1. Distances of the chunk's points (deformed first when A deforms).
+        if constexpr (Shell::kDeforms) {
+          for (int k = 0; k < mk; ++k) {
+            float p[3];
+            m.shell_.Position(idx ? idx[k] : first + k, p);
+            px[k] = p[0], py[k] = p[1], pz[k] = p[2];
+          }
+          m.field_.Distances(X, px, py, pz, nullptr, mk, d + c0, nearest);
+        } else {
+          const int offset = idx ? 0 : first;
+          m.field_.Distances(X, s.x.data() + offset, s.y.data() + offset, s.z.data() + offset, idx, mk, d + c0,
+                             nearest);
+        }
+        // 2. What the points in contact need later: position, normal, proxy.
+        for (int k = 0; k < mk; ++k) {
+          if (!(d[c0 + k] < 0.f)) [[likely]] continue;
+          const int i = idx ? idx[k] : first + k;
+          if constexpr (Shell::kDeforms) {
+            m.x_[i] = px[k], m.y_[i] = py[k], m.z_[i] = pz[k];
+            float n_A[3];
+            m.shell_.Normal(i, n_A);
+            m.nx_[i] = n_A[0], m.ny_[i] = n_A[1], m.nz_[i] = n_A[2];
+          }
+          if constexpr (Field::kDeforms) m.nearest_[i] = nearest[k];
+          if (contacts == nullptr) AddOnItsOwn(i, d[c0 + k]);
+        }
+        // 3. Their forces, a buffer at a time.
+        if (contacts != nullptr) contacts->Collect(first, idx, d + c0, mk);
+      }
+    }
+  }
+
+  // Point I in contact at depth D under kField: its force, gradient and reduced forces.
+  void AddOnItsOwn(int i, float d) {
+    const ContactPointArrays P = Points();
+    float p_B[3], n_B[3];
+    X_BA.Apply(P.x[i], P.y[i], P.z[i], p_B);
+    const float n_A[3] = {P.nx[i], P.ny[i], P.nz[i]};
+    AddContactPointWith(X_BA, n_A, p_B, d, params().gradient, acc,
+                        [this](const Eigen::Vector3d& p) { return m.field_.Gradient(p); }, n_B);
+    AddReduced(i, d);
+  }
+  // Point I in contact at depth D: its part of each deformable side's reduced force.
+  void AddReduced(int i, float d) {
+    if constexpr (kDeforms) {
+      const ContactPointArrays P = Points();
+      const float n_A[3] = {P.nx[i], P.ny[i], P.nz[i]};
+      if constexpr (Shell::kDeforms) {
+        if (sum_A != nullptr) m.shell_.AddReduced(i, n_A, d, sum_A);
+      }
+      if constexpr (Field::kDeforms) {
+        if (sum_B != nullptr) {
+          float p_B[3], n_B[3];
+          X_BA.Apply(P.x[i], P.y[i], P.z[i], p_B);
+          X_BA.Rotate(n_A[0], n_A[1], n_A[2], n_B);
+          m.field_.AddReduced(m.nearest_[i], p_B, n_B, d, sum_B);
+        }
+      }
+    }
+  }
+  // HalfspaceContactBuffer's flush hook: the reduced forces of a run of points added.
+  static void OnFlush(void* self, const std::int32_t* index, const float* d, int n) {
+    Pass& pass = *static_cast<Pass*>(self);
+    for (int k = 0; k < n; ++k) pass.AddReduced(index[k], d[k]);
+  }
+
+  const PointshellContactParams& params() const { return m.params_; }
+  float Radius(int node) const { return m.shell_.Radius(node); }
+  bool Asleep(int node) const { return clock < m.wake_[node]; }
+  void Sleep(int node, double margin) { m.wake_[node] = clock + margin; }
+};
+
+template <class Shell, class Field>
+ContactResult PointshellFieldModel<Shell, Field>::Evaluate(const ContactQuery& query) {
+  ContactResult result;
+  const BodyDeformation* def_A = query.deformation_A;
+  const BodyDeformation* def_B = query.deformation_B;
+  // This query's deformations (rigid sides take none) and how far they moved since the last.
+  double travel = 0;
+  if (!shell_.Begin(def_A ? def_A->q : nullptr, &travel) || !field_.Begin(def_B ? def_B->q : nullptr, &travel)) {
+    result.stats.faults = 1;
+    return result;
+  }
+  travel_ += travel;
+  const double clock =
+      params_.lipschitz * (double(query.cycle) * params_.max_point_speed * params_.cycle_seconds + travel_);
+
+  // The reduced forces wanted of the deformable sides.
+  ReducedForceSum sum_A, sum_B;
+  ReducedForceSum* want_A = nullptr;
+  ReducedForceSum* want_B = nullptr;
+  if constexpr (Shell::kDeforms) {
+    if (def_A != nullptr && def_A->force != nullptr) {
+      sum_A.Start(shell_.r(), def_A->stiffness != nullptr);
+      want_A = &sum_A;
+    }
+  }
+  if constexpr (Field::kDeforms) {
+    if (def_B != nullptr && def_B->force != nullptr) {
+      sum_B.Start(field_.r(), def_B->stiffness != nullptr);
+      want_B = &sum_B;
+    }
+  }
+
+  ContactAccumulator acc;
+  const FloatTransform X_BA(query.X_WB.Inverse() * query.X_WA);
+  const Pointshell& s = shell_.shell();
+  Pass pass{*this, s, X_BA, X_BA.AsBatch(), &acc, nullptr, want_A, want_B, clock};
+  const bool halfspace = params_.gradient == ContactGradient::kHalfspace;
+  HalfspaceContactBuffer contacts(pass.Points(), pass.X, &acc,
+                                  (want_A != nullptr || want_B != nullptr) ? &Pass::OnFlush : nullptr, &pass);
+  if (halfspace) pass.contacts = &contacts;
+  if (variant_ == Variant::kLinear) {
+    RunLinearTraversal(s, max_level_, pass, &result.stats);
+  } else {
+    traversal_.Run(s, max_level_, params_, query.node_budget, pass, &result.stats);
+  }
+  contacts.Flush();
+  acc.Finish(params_.penalty, query.X_WB, &result);
+
+  // Force on A at a point: -k d N_A; on B: +k d N_B.
+  if (want_A != nullptr || want_B != nullptr) {
+    double scale = 1;
+    const double k = params_.penalty.StiffnessFor(acc.count(), &scale);
+    if (want_A != nullptr) sum_A.Write(k, -1.0, def_A->force, def_A->stiffness);
+    if (want_B != nullptr) sum_B.Write(k, 1.0, def_B->force, def_B->stiffness);
+  }
+  return result;
+}
+
+template <class Shell, class Field>
+int PointshellFieldModel<Shell, Field>::PointStates(const ContactQuery& query, std::span<const std::int32_t> points,
+                                                    PointState* out) {
+  if (variant_ == Variant::kTree) return traversal_.PointStates(points, out);
+  const FloatTransform X_BA(query.X_WB.Inverse() * query.X_WA);  // as Evaluate's
+  const Pointshell& s = shell_.shell();
+  return LinearPointStates(s, max_level_, points, out, [&](const std::int32_t* index, int n, float* d) {
+    if constexpr (Shell::kDeforms) {  // the points at the latest query's q
+      float px[kLinearPointStatesPerCall], py[kLinearPointStatesPerCall], pz[kLinearPointStatesPerCall];
+      for (int k = 0; k < n; ++k) {
+        float p[3];
+        shell_.Position(index[k], p);
+        px[k] = p[0], py[k] = p[1], pz[k] = p[2];
+      }
+      field_.Distances(X_BA.AsBatch(), px, py, pz, nullptr, n, d, nullptr);
+    } else {
+      field_.Distances(X_BA.AsBatch(), s.x.data(), s.y.data(), s.z.data(), index, n, d, nullptr);
+    }
+  });
+}
+
+}  // namespace contactlab
