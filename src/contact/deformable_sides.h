@@ -20,11 +20,11 @@
 #include <cstdint>
 #include <memory>
 
+#include "contact/float_transform.h"
 #include "contact/reduced_force_sum.h"
 #include "deform/deformable_pointshell.h"
 #include "deform/deformed_distance_field.h"
 #include "reduced/reduced_state.h"
-#include "sdf/batch_distance.h"
 
 namespace contactlab {
 
@@ -66,7 +66,6 @@ class DeformableShell {
   explicit DeformableShell(Source shell) : shell_(std::move(shell)) {}
   const Pointshell* get() const { return shell_ ? &shell_->shell() : nullptr; }
   const Pointshell& shell() const { return shell_->shell(); }
-  const DeformablePointshell& deformable() const { return *shell_; }
   int r() const { return shell_->r(); }
 
   bool Begin(const ReducedState* q, double* travel) {
@@ -75,8 +74,15 @@ class DeformableShell {
   float Radius(int node) const { return shell_->RadiusF(node, q_.abs_q()); }
   void Reset() { q_.Reset(); }
 
-  // Point I at this query's q (A's frame), and its corrected unit normal.
-  void Position(int i, float* p_A) const { shell_->points().PositionF(i, q_.q(), p_A); }
+  // Points INDEX[k] (BEGIN + k when INDEX is null), k < N, at this query's q (A's frame) into
+  // X, Y, Z; and point I's corrected unit normal.
+  void Positions(const std::int32_t* index, int begin, int n, float* x, float* y, float* z) const {
+    for (int k = 0; k < n; ++k) {
+      float p[3];
+      shell_->points().PositionF(index ? index[k] : begin + k, q_.q(), p);
+      x[k] = p[0], y[k] = p[1], z[k] = p[2];
+    }
+  }
   void Normal(int i, float* n_A) const { shell_->points().CorrectedNormalF(i, q_.q(), n_A); }
   // Point I in contact at depth D < 0 with normal N_A: its part of A's reduced force.
   void AddReduced(int i, const float* n_A, float d, ReducedForceSum* sum) const {
@@ -102,8 +108,6 @@ class DeformedField {
   }
   const DistanceField* rest_field_ptr() const { return field_ ? &field_->rest_field() : nullptr; }
   const DistanceField& rest_field() const { return field_->rest_field(); }
-  const DeformedDistanceField& field() const { return *field_; }
-  const DeformedFieldState& state() const { return state_; }
   int r() const { return field_->r(); }
 
   // Also moves the proxies to Q, held fixed during the query.
@@ -112,13 +116,12 @@ class DeformedField {
     state_.Update(*field_, q != nullptr ? q->q.data() : nullptr);
     return true;
   }
-  void Distances(const BatchTransform& X, const float* x, const float* y, const float* z, const std::int32_t* index,
-                 int n, float* d, std::int32_t* nearest) const {
+  void Distances(const FloatTransform& X_BA, const float* x, const float* y, const float* z,
+                 const std::int32_t* index, int n, float* d, std::int32_t* nearest) const {
     for (int k = 0; k < n; ++k) {
       const int i = index ? index[k] : k;
-      const float p_B[3] = {X.r[0] * x[i] + X.r[1] * y[i] + X.r[2] * z[i] + X.t[0],
-                            X.r[3] * x[i] + X.r[4] * y[i] + X.r[5] * z[i] + X.t[1],
-                            X.r[6] * x[i] + X.r[7] * y[i] + X.r[8] * z[i] + X.t[2]};
+      float p_B[3];
+      X_BA.Apply(x[i], y[i], z[i], p_B);
       int slot = -1;
       d[k] = field_->Distance(state_, p_B, &slot);
       if (nearest != nullptr) nearest[k] = slot;

@@ -8,9 +8,9 @@
 
 namespace contactlab {
 
-struct FloatTransform {
-  float r[9];  // R_BA, row-major
-  float t[3];  // p_BA
+// The same 12 floats as the batched lookups' BatchTransform (sdf/batch_distance.h), so a
+// FloatTransform is passed to them as it is.
+struct FloatTransform : BatchTransform {
   explicit FloatTransform(const Pose& X_BA) {
     const Eigen::Matrix3d R = X_BA.R();
     for (int i = 0; i < 3; ++i) {
@@ -23,12 +23,6 @@ struct FloatTransform {
     out[0] = r[0] * x + r[1] * y + r[2] * z + t[0];
     out[1] = r[3] * x + r[4] * y + r[5] * z + t[1];
     out[2] = r[6] * x + r[7] * y + r[8] * z + t[2];
-  }
-  BatchTransform AsBatch() const {
-    BatchTransform b;
-    for (int i = 0; i < 9; ++i) b.r[i] = r[i];
-    for (int i = 0; i < 3; ++i) b.t[i] = t[i];
-    return b;
   }
   // v_B = R_BA v_A, for v_A = (x, y, z).
   void Rotate(float x, float y, float z, float* out) const {

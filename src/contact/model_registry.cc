@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <type_traits>
 
 #include "contact/deformable_contact_models.h"
 #include "contact/pointshell_contact_model.h"
@@ -11,17 +12,18 @@ namespace contactlab {
 namespace {
 
 // What each side of the paper's model is made from (contact/rigid_sides.h, deformable_sides.h).
-RigidShell::Source ShellSource(ContactBody& A, const RigidShell*) { return A.pointshell(); }
-DeformableShell::Source ShellSource(ContactBody& A, const DeformableShell*) { return A.deformable_pointshell(); }
-GridField::Source FieldSource(ContactBody& B, const GridField*) { return B.field(); }
-DeformedField::Source FieldSource(ContactBody& B, const DeformedField*) { return B.deformed_field(); }
+RigidShell::Source SideSource(ContactBody& A, std::type_identity<RigidShell>) { return A.pointshell(); }
+DeformableShell::Source SideSource(ContactBody& A, std::type_identity<DeformableShell>) {
+  return A.deformable_pointshell();
+}
+GridField::Source SideSource(ContactBody& B, std::type_identity<GridField>) { return B.field(); }
+DeformedField::Source SideSource(ContactBody& B, std::type_identity<DeformedField>) { return B.deformed_field(); }
 
 // The paper's model for the bodies' sides: the shell side from A, the field side from B.
 template <class Shell, class Field>
 std::unique_ptr<ContactModel> MakePaperModel(PointshellVariant variant, const ContactModelInputs& in) {
-  return std::make_unique<PointshellFieldModel<Shell, Field>>(
-      variant, ShellSource(in.A, static_cast<const Shell*>(nullptr)), FieldSource(in.B, static_cast<const Field*>(nullptr)),
-      in.params);
+  return std::make_unique<PointshellFieldModel<Shell, Field>>(variant, SideSource(in.A, std::type_identity<Shell>{}),
+                                                               SideSource(in.B, std::type_identity<Field>{}), in.params);
 }
 template <class Shell>
 std::unique_ptr<ContactModel> MakePaperModelFor(PointshellVariant variant, const ContactModelInputs& in) {

@@ -30,6 +30,7 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "contact/contact_accumulator.h"
@@ -91,8 +92,6 @@ class PointshellFieldModel final : public ContactModel {
 
   const PointshellContactParams& params() const { return params_; }
   const Pointshell& shell() const { return shell_.shell(); }
-  const Shell& shell_side() const { return shell_; }
-  const Field& field_side() const { return field_; }
   // Deepest level rendered in the previous cycle (tree variant), -1 before the first.
   int last_level_rendered() const { return traversal_.last_level_rendered(); }
 
@@ -122,7 +121,6 @@ struct PointshellFieldModel<Shell, Field>::Pass {
   PointshellFieldModel& m;
   const Pointshell& s;
   const FloatTransform X_BA;
-  const BatchTransform X;
   ContactAccumulator* acc;
   HalfspaceContactBuffer* contacts;  // the halfspace rule's buffer, null under kField
   ReducedForceSum* sum_A;            // A's reduced force, or null
@@ -141,7 +139,7 @@ struct PointshellFieldModel<Shell, Field>::Pass {
   void EvaluatePoints(int begin, const std::int32_t* index, int n, float* d) {
     if constexpr (!kDeforms) {  // the rigid loop: one batch of lookups, then the contacts
       const int offset = index ? 0 : begin;
-      m.field_.Distances(X, s.x.data() + offset, s.y.data() + offset, s.z.data() + offset, index, n, d, nullptr);
+      m.field_.Distances(X_BA, s.x.data() + offset, s.y.data() + offset, s.z.data() + offset, index, n, d, nullptr);
       if (contacts != nullptr) {
         contacts->Collect(begin, index, d, n);
       } else {
@@ -159,15 +157,11 @@ struct PointshellFieldModel<Shell, Field>::Pass {
         const int first = begin + c0;  // the chunk's first point when IDX is null
         // 1. Distances of the chunk's points (deformed first when A deforms).
         if constexpr (Shell::kDeforms) {
-          for (int k = 0; k < mk; ++k) {
-            float p[3];
-            m.shell_.Position(idx ? idx[k] : first + k, p);
-            px[k] = p[0], py[k] = p[1], pz[k] = p[2];
-          }
-          m.field_.Distances(X, px, py, pz, nullptr, mk, d + c0, nearest);
+          m.shell_.Positions(idx, first, mk, px, py, pz);
+          m.field_.Distances(X_BA, px, py, pz, nullptr, mk, d + c0, nearest);
         } else {
           const int offset = idx ? 0 : first;
-          m.field_.Distances(X, s.x.data() + offset, s.y.data() + offset, s.z.data() + offset, idx, mk, d + c0,
+          m.field_.Distances(X_BA, s.x.data() + offset, s.y.data() + offset, s.z.data() + offset, idx, mk, d + c0,
                              nearest);
         }
         // 2. What the points in contact need later: position, normal, proxy.
@@ -235,17 +229,23 @@ ContactResult PointshellFieldModel<Shell, Field>::Evaluate(const ContactQuery& q
   const BodyDeformation* def_A = query.deformation_A;
   const BodyDeformation* def_B = query.deformation_B;
   // This query's deformations (rigid sides take none) and how far they moved since the last.
+  // A side whose deformation fits keeps it even when the other's does not, so its travel is
+  // counted either way and the coherence clock never runs behind a side.
   double travel = 0;
-  if (!shell_.Begin(def_A ? def_A->q : nullptr, &travel) || !field_.Begin(def_B ? def_B->q : nullptr, &travel)) {
+  const bool fits_A = shell_.Begin(def_A ? def_A->q : nullptr, &travel);
+  const bool fits_B = field_.Begin(def_B ? def_B->q : nullptr, &travel);
+  travel_ += travel;
+  if (!fits_A || !fits_B) {
     result.stats.faults = 1;
     return result;
   }
-  travel_ += travel;
   const double clock =
       params_.lipschitz * (double(query.cycle) * params_.max_point_speed * params_.cycle_seconds + travel_);
 
-  // The reduced forces wanted of the deformable sides.
-  ReducedForceSum sum_A, sum_B;
+  // The reduced forces wanted of the deformable sides (an instance with none keeps no sums).
+  struct NoSum {};
+  [[maybe_unused]] std::conditional_t<Shell::kDeforms, ReducedForceSum, NoSum> sum_A;
+  [[maybe_unused]] std::conditional_t<Field::kDeforms, ReducedForceSum, NoSum> sum_B;
   ReducedForceSum* want_A = nullptr;
   ReducedForceSum* want_B = nullptr;
   if constexpr (Shell::kDeforms) {
@@ -262,11 +262,10 @@ ContactResult PointshellFieldModel<Shell, Field>::Evaluate(const ContactQuery& q
   }
 
   ContactAccumulator acc;
-  const FloatTransform X_BA(query.X_WB.Inverse() * query.X_WA);
   const Pointshell& s = shell_.shell();
-  Pass pass{*this, s, X_BA, X_BA.AsBatch(), &acc, nullptr, want_A, want_B, clock};
+  Pass pass{*this, s, FloatTransform(query.X_WB.Inverse() * query.X_WA), &acc, nullptr, want_A, want_B, clock};
   const bool halfspace = params_.gradient == ContactGradient::kHalfspace;
-  HalfspaceContactBuffer contacts(pass.Points(), pass.X, &acc,
+  HalfspaceContactBuffer contacts(pass.Points(), pass.X_BA, &acc,
                                   (want_A != nullptr || want_B != nullptr) ? &Pass::OnFlush : nullptr, &pass);
   if (halfspace) pass.contacts = &contacts;
   if (variant_ == Variant::kLinear) {
@@ -281,8 +280,8 @@ ContactResult PointshellFieldModel<Shell, Field>::Evaluate(const ContactQuery& q
   if (want_A != nullptr || want_B != nullptr) {
     double scale = 1;
     const double k = params_.penalty.StiffnessFor(acc.count(), &scale);
-    if (want_A != nullptr) sum_A.Write(k, -1.0, def_A->force, def_A->stiffness);
-    if (want_B != nullptr) sum_B.Write(k, 1.0, def_B->force, def_B->stiffness);
+    if (want_A != nullptr) want_A->Write(k, -1.0, def_A->force, def_A->stiffness);
+    if (want_B != nullptr) want_B->Write(k, 1.0, def_B->force, def_B->stiffness);
   }
   return result;
 }
@@ -295,15 +294,11 @@ int PointshellFieldModel<Shell, Field>::PointStates(const ContactQuery& query, s
   const Pointshell& s = shell_.shell();
   return LinearPointStates(s, max_level_, points, out, [&](const std::int32_t* index, int n, float* d) {
     if constexpr (Shell::kDeforms) {  // the points at the latest query's q
-      float px[kLinearPointStatesPerCall], py[kLinearPointStatesPerCall], pz[kLinearPointStatesPerCall];
-      for (int k = 0; k < n; ++k) {
-        float p[3];
-        shell_.Position(index[k], p);
-        px[k] = p[0], py[k] = p[1], pz[k] = p[2];
-      }
-      field_.Distances(X_BA.AsBatch(), px, py, pz, nullptr, n, d, nullptr);
+      float px[kLinearPointStatesPerCall] = {}, py[kLinearPointStatesPerCall] = {}, pz[kLinearPointStatesPerCall] = {};
+      shell_.Positions(index, 0, n, px, py, pz);
+      field_.Distances(X_BA, px, py, pz, nullptr, n, d, nullptr);
     } else {
-      field_.Distances(X_BA.AsBatch(), s.x.data(), s.y.data(), s.z.data(), index, n, d, nullptr);
+      field_.Distances(X_BA, s.x.data(), s.y.data(), s.z.data(), index, n, d, nullptr);
     }
   });
 }

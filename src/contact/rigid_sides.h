@@ -14,9 +14,10 @@
 // A field side answers:
 //   kDeforms, rest_field()   the field at rest (checks, gradient step)
 //   Begin(q, &travel)        as the shell side's, for the field body
-//   Distances(X, x, y, z, index, n, d, nearest)
+//   Distances(X_BA, x, y, z, index, n, d, nearest)
 //                            d[k] of point (x, y, z)[i], i = index[k] (k when null), placed in
-//                            B by X; NEAREST[k] the proxy its force acts through (deformed only)
+//                            B by X_BA; NEAREST[k] the proxy its force acts through (deformed
+//                            only)
 //   Gradient(p_B)            the field's gradient at p_B (ContactGradient::kField)
 #pragma once
 
@@ -32,51 +33,49 @@
 
 namespace contactlab {
 
-class RigidShell {
+// What both rigid sides answer about deformation: there is none. Only an empty deformation
+// fits a rigid body.
+struct RigidSide {
+  static constexpr bool kDeforms = false;
+  int r() const { return 0; }
+  bool Begin(const ReducedState* q, double* travel) const { return q == nullptr || q->size() == 0; }
+  void Reset() {}
+};
+
+class RigidShell : public RigidSide {
  public:
   using Source = std::shared_ptr<const Pointshell>;
-  static constexpr bool kDeforms = false;
   static constexpr const char* kWhat = "pointshell";
 
   RigidShell() = default;
   explicit RigidShell(Source shell) : shell_(std::move(shell)) {}
   const Pointshell* get() const { return shell_.get(); }
   const Pointshell& shell() const { return *shell_; }
-  int r() const { return 0; }
-
-  // A rigid body takes no deformation: only an empty one fits.
-  bool Begin(const ReducedState* q, double* travel) { return q == nullptr || q->size() == 0; }
   float Radius(int node) const { return shell_->node_radius[node]; }
-  void Reset() {}
 
  private:
   Source shell_;
 };
 
-class GridField {
+class GridField : public RigidSide {
  public:
   using Source = std::shared_ptr<const DistanceField>;
-  static constexpr bool kDeforms = false;
   static constexpr const char* kWhat = "distance field";
 
   GridField() = default;
   explicit GridField(Source field) : field_(std::move(field)) {}
   const DistanceField* rest_field_ptr() const { return field_.get(); }
   const DistanceField& rest_field() const { return *field_; }
-  const DistanceField& field() const { return *field_; }
-  int r() const { return 0; }
 
-  bool Begin(const ReducedState* q, double* travel) { return q == nullptr || q->size() == 0; }
-  void Distances(const BatchTransform& X, const float* x, const float* y, const float* z, const std::int32_t* index,
-                 int n, float* d, std::int32_t* nearest) const {
-    BatchDistances(*field_, X, x, y, z, index, n, d);
+  void Distances(const FloatTransform& X_BA, const float* x, const float* y, const float* z,
+                 const std::int32_t* index, int n, float* d, std::int32_t* nearest) const {
+    BatchDistances(*field_, X_BA, x, y, z, index, n, d);
   }
   Eigen::Vector3d Gradient(const Eigen::Vector3d& p_B) const {
     Eigen::Vector3d g_B;
     field_->DistanceAndGradient(p_B, &g_B);
     return g_B;
   }
-  void Reset() {}
 
  private:
   Source field_;

@@ -29,9 +29,7 @@ class BodyDynamics {
   }
 
   bool active() const { return integrator_ != nullptr; }
-  int r() const { return integrator_->r(); }
   const ReducedIntegrator& integrator() const { return *integrator_; }
-  const ReducedState& state() const { return integrator_->state(); }
 
   // Back to rest, no force.
   void Reset() {
@@ -52,8 +50,6 @@ class BodyDynamics {
     if (staggered) K_ *= kStaggeredStiffnessFactor;
     integrator_->Step(f_, implicit_ ? &K_ : nullptr);
   }
-  // The reduced contact force of the latest query.
-  const ReducedVector& force() const { return f_; }
 
  private:
   ReducedIntegrator* integrator_ = nullptr;

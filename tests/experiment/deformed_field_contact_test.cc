@@ -214,6 +214,54 @@ TEST(DeformedFieldContact, TwoIdenticalCantileversPressedTogetherDeflectEquallyA
 }
 
 // The runner couples both bodies: the bar (B) comes down onto the beam (A) and both deform.
+// A refused query (one body's deformation of the wrong size) still counts how far the other
+// body's fitting deformation moved: culled nodes must not sleep through it. The beam is bent
+// into the bar during a cycle whose bar deformation is refused; the next cycle, coherent or
+// not, finds the same contacts.
+TEST(DeformedFieldContact, ARefusedQueryStillAdvancesTheCoherenceClock) {
+  TempDir dir;
+  Scene scene = Parse(CrossedBeams(0.002, "linear", 40, 0));
+  scene.model.coherence = true;
+  SceneAssets assets(scene, Assets(dir));
+  const auto coherent = MakeSceneContactModel("pointshell", scene, assets);
+  scene.model.coherence = false;
+  const auto plain = MakeSceneContactModel("pointshell", scene, assets);
+  const auto dps = assets.A.deformable_pointshell();
+  const int rA = dps->r(), rB = assets.B.reduced_model()->r();
+  const ReducedState restA(rA), restB(rB), wrongB(rB + 1);
+  ContactQuery q;
+  q.X_WA = scene.pointshell_body.pose;
+  q.X_WB = scene.field_body.pose;
+  int checked = 0;
+  for (int j = 0; j < rA; ++j) {
+    for (const double sign : {-1.0, 1.0}) {
+      // Mode j moving points by up to 6 mm: into the bar, 2 mm away, for some j and sign.
+      ReducedState bent(rA);
+      bent.q[j] = sign * 0.006 / dps->mode_travel(j);
+      const BodyDeformation at_rest_A{&restA}, bent_A{&bent}, at_rest_B{&restB}, wrong_B{&wrongB};
+      q.deformation_A = &bent_A;
+      q.deformation_B = &at_rest_B;
+      q.cycle = 0;
+      const ContactResult expected = plain->Evaluate(q);
+      if (expected.stats.points_in_contact == 0) continue;
+      coherent->Reset();
+      q.deformation_A = &at_rest_A;  // cycle 0: apart, every node culled and asleep
+      ASSERT_EQ(coherent->Evaluate(q).stats.points_in_contact, 0);
+      q.cycle = 1;  // cycle 1: bent into the bar, the bar's deformation refused
+      q.deformation_A = &bent_A;
+      q.deformation_B = &wrong_B;
+      ASSERT_EQ(coherent->Evaluate(q).stats.faults, 1);
+      q.cycle = 2;  // cycle 2: the same bend, accepted
+      q.deformation_B = &at_rest_B;
+      const ContactResult got = coherent->Evaluate(q);
+      EXPECT_EQ(got.stats.points_in_contact, expected.stats.points_in_contact) << "mode " << j << " sign " << sign;
+      EXPECT_LT((got.on_B.force - expected.on_B.force).norm(), 1e-5 * expected.on_B.force.norm());
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 1);
+}
+
 // Temporal coherence skips nodes yet renders the same contacts every cycle as the run without
 // it: the sleeping clock counts the distance both deformations may have closed.
 TEST(DeformedFieldContact, TheRunnerCouplesBothBodiesAndCoherenceMissesNoContact) {
