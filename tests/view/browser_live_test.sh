@@ -38,8 +38,10 @@ model: {k_C: 1000}
 YAML
 "$cli" contact scene.yaml --cache cache > /dev/null 2>&1 || { echo "FAILED: contactlab contact"; exit 1; }
 
-# The session, in the background; its address is printed on stdout.
-"$cli" session scene.yaml --cache cache --device sim:circle:0.004:1 --touch 0.003 --duration 12 --no-realtime \
+# The session, in the background; its address is printed on stdout. It streams for 20 s: a
+# loaded 2-core machine was seen taking 13 s to start Chromium and draw the page's first frame,
+# and a page that connects after the stream has ended receives nothing.
+"$cli" session scene.yaml --cache cache --device sim:circle:0.004:1 --touch 0.003 --duration 20 --no-realtime \
   --quiet --view > session.out 2>&1 &
 session=$!
 url=""
