@@ -2,8 +2,8 @@
 // 5): each cycle the contact query reads the body's reduced coordinates and writes its reduced
 // contact force (and stiffness, for a linearly implicit step) through the BodyDeformation that
 // Prepare hands out; after the query the body's integrator takes one step with them. The
-// offline runner, the live session's haptic cycle and the closed-loop study all step their
-// deformable bodies through it. Allocation-free.
+// offline runner and the haptic cycle (of a live session, and of the closed-loop study) step
+// their deformable bodies through it. Allocation-free.
 #pragma once
 
 #include "deform/reduced_integrator.h"
