@@ -347,12 +347,13 @@ class Figures:
         table, levels = self.table1_cells("table1-defo-defo")
         if table is None:
             return False
+        # No temporal-coherence column: the model refuses coherence against a deformed field.
         header = ["scene", "points", "r (A / B)", "StVK µs (A / B)", "nodes (tree)", "tree µs (median)",
-                  "tree µs (p99.9)", "tree+TC µs", "level", "tree-less µs", "max jump N"]
+                  "tree µs (p99.9)", "level", "tree-less µs", "max jump N"]
         # p99.9 of the tree's per-cycle time, with the deformation steps (the whole cycle's work).
         cycle_us = defaultdict(list)
         for r in self.load("table1-defo-defo", "cycles") or []:
-            if r["model"] == "pointshell" and r["coherence"] == "false":
+            if r["model"] == "pointshell":
                 cycle_us[os.path.splitext(os.path.basename(r["scene"]))[0]].append(
                     num(r, "time_us") + num(r, "step_us") + num(r, "step_B_us"))
         def p999(values):
@@ -361,12 +362,11 @@ class Figures:
         lines = []
         for scene, cells in sorted(table.items()):
             tree = cells.get(("pointshell", "false"), {})
-            tc = cells.get(("pointshell", "true"), {})
             lin = cells.get(("pointshell-linear", "false"), {})
             lines.append([scene, tree.get("points", ""), f"{tree.get('modes', '')} / {tree.get('modes_B', '')}",
                           f"{num(tree, 'median_step_us'):.1f} / {num(tree, 'median_step_B_us'):.1f}",
                           f"{num(tree, 'mean_nodes'):.0f}", f"{num(tree, 'median_us'):.1f}",
-                          f"{p999(cycle_us[scene]):.1f}", f"{num(tc, 'median_us'):.1f}",
+                          f"{p999(cycle_us[scene]):.1f}",
                           max(levels[scene], key=levels[scene].get) if levels[scene] else "",
                           f"{num(lin, 'median_us'):.1f}", f"{num(tree, 'max_jump_N'):.3g}"])
         self.save_table(header, lines,

@@ -8,9 +8,10 @@
 //       mode_travel), the side's travel. A point's force F_i (A's frame) enters A's reduced
 //       force through U_i^T.
 //   DeformedField (sec. 4.2)    distances from the proxies at q_B (nearest k, eq. (3), pulled
-//       back through the proxies' deformation gradients, domains combined by minimum); travel
-//       sum_j c_j |dq_Bj| with c_j the largest proxy displacement per unit q_j. A point's force
-//       enters B's reduced force at its nearest proxy (or the query's k proxies, weighted).
+//       back through the proxies' deformation gradients, domains combined by minimum). No
+//       travel: nothing cheap bounds how fast its distances drop, so the model refuses temporal
+//       coherence against it. A point's force enters B's reduced force at its nearest proxy (or
+//       the query's k proxies, weighted).
 //
 // Both keep the q of the previous query for their travel, and take q as float once a query.
 #pragma once
@@ -32,14 +33,14 @@ namespace contactlab {
 class ReducedCoordinatesF {
  public:
   // Q (null: at rest) for a body of R coordinates whose mode j moves any point by at most
-  // TRAVEL_PER_MODE(j) per unit; adds the travel since the previous Load to *TRAVEL. False when
-  // Q has another size than R (nothing is changed then).
+  // TRAVEL_PER_MODE(j) per unit; adds the travel since the previous Load to *TRAVEL (when not
+  // null). False when Q has another size than R (nothing is changed then).
   template <class TravelPerMode>
   bool Load(const ReducedState* q, int r, TravelPerMode&& travel_per_mode, double* travel) {
     if (q != nullptr && q->size() != r) return false;
     for (int j = 0; j < r; ++j) {
       const float v = q != nullptr ? float(q->q[j]) : 0.f;
-      if (has_previous_) *travel += double(travel_per_mode(j)) * std::fabs(v - q_[j]);
+      if (travel != nullptr && has_previous_) *travel += double(travel_per_mode(j)) * std::fabs(v - q_[j]);
       q_[j] = v;
       abs_q_[j] = std::fabs(v);
     }
@@ -110,9 +111,9 @@ class DeformedField {
   const DistanceField& rest_field() const { return field_->rest_field(); }
   int r() const { return field_->r(); }
 
-  // Also moves the proxies to Q, held fixed during the query.
-  bool Begin(const ReducedState* q, double* travel) {
-    if (!q_.Load(q, r(), [this](int j) { return field_->mode_travel(j); }, travel)) return false;
+  // Also moves the proxies to Q, held fixed during the query. Adds no travel.
+  bool Begin(const ReducedState* q, double* /*travel*/) {
+    if (!q_.Load(q, r(), [](int) { return 0.f; }, nullptr)) return false;
     state_.Update(*field_, q != nullptr ? q->q.data() : nullptr);
     return true;
   }

@@ -17,7 +17,11 @@
 // may have closed on B since the first query, lipschitz * (max_point_speed * elapsed time + the
 // sides' deformation travel summed over queries); a culled node whose ball was MARGIN clear of
 // contact sleeps until the clock has advanced by MARGIN. A rigid side has no deformation travel.
-// max_point_speed must bound the rigid motion of A's points relative to B.
+// max_point_speed must bound the rigid motion of A's points relative to B. Against a deformed
+// field coherence is refused (an Error at construction): no cheap bound covers how fast its
+// distances can drop (a point pulled back through a proxy's deformation gradient moves with
+// its distance from the proxy, and the eq. (3) weights shift between proxies, so its distances
+// drop by many times the proxies' travel; DeformedFieldContact test).
 //
 // Forces: every point in contact is added through the vectorised halfspace sums
 // (contact/halfspace_contacts.h), a buffer at a time; for a deformable side the same runs of
@@ -40,6 +44,7 @@
 #include "contact/pointshell_contact_params.h"
 #include "contact/pointshell_traversal.h"
 #include "contact/reduced_force_sum.h"
+#include "util/error.h"
 
 namespace contactlab {
 
@@ -65,6 +70,11 @@ class PointshellFieldModel final : public ContactModel {
     const std::string where = std::string("contact model ") + std::string(name()) + " (" + Shell::kWhat + " against " +
                               Field::kWhat + ")";
     max_level_ = ValidatePointshellModelInputs(shell_.get(), field_.rest_field_ptr(), params_, where);
+    if (Field::kDeforms && params_.coherence && variant_ == Variant::kTree) {
+      Fail(where, "temporal coherence is not conservative against a deformed distance field (a point's distance "
+                  "can drop faster than the proxies move, through the pull-backs and the shifting proxy weights); "
+                  "set the model's coherence: false");
+    }
     const Pointshell& s = shell_.shell();
     traversal_ = TreeTraversalState(s);
     wake_.assign(std::size_t(s.num_nodes()), -std::numeric_limits<double>::infinity());

@@ -496,6 +496,17 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
       }
     }
   }
+  for (const Job& job : ExpandJobs(c)) {
+    // The paper's tree model refuses temporal coherence against a deformed field (contact/
+    // pointshell_field_model.h): said here, before any job builds its assets.
+    const bool tree = std::find(job.models.begin(), job.models.end(), "pointshell") != job.models.end();
+    if (tree && job.scene.model.coherence && job.scene.field_body.deformable) {
+      Fail(c.file, "coherence: true" + (c.sweep.empty() ? std::string() : " (job " + job.Label() + ")") +
+                       " with the deformable field body '" + job.scene.field_body.name + "' of " + job.scene.file +
+                       ": the pointshell model refuses temporal coherence against a deformed distance field (not "
+                       "conservative); set coherence: false");
+    }
+  }
   if (!field_study) {
     for (Job& job : ExpandJobs(c)) (void)ParseTrajectory(job.trajectory_node);
     return c;
