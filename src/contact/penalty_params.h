@@ -8,8 +8,6 @@
 
 namespace contactlab {
 
-class ConfigNode;
-
 struct PenaltyParams {
   static constexpr double kDefaultStiffness = 1000;  // k_C, N/m
   static constexpr int kDefaultManyPointThreshold = 10;  // L
@@ -29,10 +27,5 @@ struct PenaltyParams {
 
 // Throws Error("WHERE: ...") unless k_C is finite and positive and L is not negative.
 void CheckPenaltyParams(const PenaltyParams& params, std::string_view where);
-
-// Reads keys "k_C" and "L" of SECTION (a mapping; absent keys keep BASE's values) and checks
-// them; the error names the file, the line and the key ("scene.yaml:14: model.k_C: ...").
-// Other keys of SECTION are left to the caller.
-PenaltyParams ParsePenaltyParams(const ConfigNode& section, PenaltyParams base = {});
 
 }  // namespace contactlab

@@ -1,27 +1,43 @@
 #include "contact/pointshell_contact_params.h"
 
-#include "util/config_node.h"
-
 namespace contactlab {
 
-PointshellContactParams ParsePointshellContactParams(const ConfigNode& n) {
-  PointshellContactParams p;
-  p.penalty = ParsePenaltyParams(n, p.penalty);
-  if (auto c = n.Find("level")) {
-    const long long level = c->AsInt();
-    if (level < -1 || level > 64) c->Fail("must be -1 (deepest) or a level index");
-    p.level = int(level);
-  }
-  p.coherence = n.Bool("coherence", p.coherence);
-  p.max_point_speed = n.Positive("max_point_speed", p.max_point_speed);
-  p.cycle_seconds = n.Positive("cycle_seconds", p.cycle_seconds);
-  p.lipschitz = n.Positive("lipschitz", p.lipschitz);
-  if (p.lipschitz < 1) n.Get("lipschitz").Fail("must be at least 1");
-  p.cold_fraction = n.Positive("cold_fraction", p.cold_fraction);
-  if (p.cold_fraction > 1) n.Get("cold_fraction").Fail("must be at most 1");
-  p.gradient = n.OneOf("gradient", "halfspace", {"halfspace", "field"}) == "field" ? ContactGradient::kField
-                                                                                   : ContactGradient::kHalfspace;
-  return p;
+const ParamTable<PointshellContactParams>& PointshellContactParamTable() {
+  using P = ParamRows<PointshellContactParams>;
+  static const ParamTable<PointshellContactParams> table(
+      "model", "The paper's contact model (Barbič & James 2008), whose penalty law and coherence bound every "
+      "registered model shares.",
+      {
+          P::Number("k_C", PARAM_MEMBER(penalty.k_C), Above(0), NoUpperBound(),
+                    "contact stiffness of one point, N/m (sec. 2.1)")
+              .Unit("N/m").Sweepable().Example("3000"),
+          P::Integer("L", PARAM_MEMBER(penalty.L), 0, 1000000,
+                     "contacts at which the stiffness is scaled by L / l (0: no scaling; sec. 2.1)")
+              .Sweepable().Example("20"),
+          P::Integer("level", PARAM_MEMBER(level), -1, 64,
+                     "linear variant: tree level rendered; tree: deepest level allowed (-1: the deepest)")
+              .Sweepable().Example("2"),
+          P::Boolean("coherence", PARAM_MEMBER(coherence),
+                     "tree variant: temporal coherence (sec. 3); refused against a deformed field")
+              .Sweepable().Example("true"),
+          P::Number("max_point_speed", PARAM_MEMBER(max_point_speed), Above(0), NoUpperBound(),
+                    "largest speed of any pointshell point relative to B, which coherence assumes")
+              .Unit("m/s").Sweepable().Example("0.5"),
+          P::Number("cycle_seconds", PARAM_MEMBER(cycle_seconds), Above(0), NoUpperBound(), "one haptic cycle")
+              .Unit("s").Sweepable().Example("0.002"),
+          P::Number("lipschitz", PARAM_MEMBER(lipschitz), AtLeast(1), NoUpperBound(),
+                    "bound on |grad d| assumed by culling and coherence (paper: 1)")
+              .Sweepable().Example("1.5"),
+          P::Number("cold_fraction", PARAM_MEMBER(cold_fraction), Above(0), AtMost(1),
+                    "graceful degradation: V_C = cold_fraction * V_W (sec. 3)")
+              .Sweepable().Example("0.5"),
+          P::Mapped("gradient", PARAM_MEMBER(gradient),
+                    std::vector<std::pair<std::string, ContactGradient>>{{"halfspace", ContactGradient::kHalfspace},
+                                                                         {"field", ContactGradient::kField}},
+                    "contact gradient: the sec. 5 halfspace rule, or the field's gradient")
+              .Sweepable().Example("field"),
+      });
+  return table;
 }
 
 }  // namespace contactlab

@@ -5,10 +5,9 @@
 
 #include "contact/contact_accumulator.h"
 #include "contact/penalty_params.h"
+#include "util/param_table.h"
 
 namespace contactlab {
-
-class ConfigNode;
 
 struct PointshellContactParams {
   PenaltyParams penalty;         // k_C and L (sec. 2.1)
@@ -21,12 +20,8 @@ struct PointshellContactParams {
   ContactGradient gradient = ContactGradient::kHalfspace;  // sec. 5 halfspace rule, or the field's gradient
 };
 
-// The keys ParsePointshellContactParams reads.
-inline constexpr const char* kPointshellContactParamKeys[] = {
-    "k_C", "L", "level", "coherence", "max_point_speed", "cycle_seconds", "lipschitz", "cold_fraction", "gradient"};
-
-// Reads the keys above from SECTION (a mapping; absent keys keep their defaults) and checks
-// each value, the error naming file, line and key. Other keys are left to the caller.
-PointshellContactParams ParsePointshellContactParams(const ConfigNode& section);
+// The parameters above as a table (util/param_table.h): the scene's model section reads them
+// through it, each value checked, the error naming file, line and key.
+const ParamTable<PointshellContactParams>& PointshellContactParamTable();
 
 }  // namespace contactlab

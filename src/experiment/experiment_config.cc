@@ -17,20 +17,15 @@ namespace {
 const std::map<std::string, std::string>& AxisAliases() {
   static const std::map<std::string, std::string> aliases = [] {
     std::map<std::string, std::string> a;
-    for (const char* k : {"points", "levels", "method", "offset", "seed"}) {
-      a[k] = std::string("scene.bodies[role=pointshell].pointshell.") + k;
-    }
-    a["resolution"] = "scene.bodies[role=field].field.resolution";
-    a["pointshell_resolution"] = "scene.bodies[role=pointshell].field.resolution";
-    for (const char* k : {"modes", "cells"}) a[k] = std::string("scene.bodies[role=pointshell].deformable.") + k;
-    for (const char* k : {"proxies", "neighbours", "domains"}) {
-      a[k] = std::string("scene.bodies[role=field].deformable.field.") + k;
+    // The scene's parameter tables name the keys a sweep may name alone (experiment/scene.h).
+    for (const SceneBlock& block : SceneBlocks()) {
+      for (const std::string& key : block.sweep_keys) {
+        if (!a.emplace(block.alias_prefix + key, block.path + key).second) {
+          Fail("sweep aliases", "'" + block.alias_prefix + key + "' names keys of two scene blocks");
+        }
+      }
     }
     a["max_displacement"] = "deformation.max_displacement";
-    for (const char* k : {"k_C", "L", "node_budget", "coherence", "max_point_speed", "level", "gradient",
-                          "cold_fraction", "lipschitz", "cycle_seconds"}) {
-      a[k] = std::string("scene.model.") + k;
-    }
     a["model"] = "models";
     a["scene"] = "scene";
     a["roles"] = "";

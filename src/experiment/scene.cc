@@ -6,41 +6,10 @@
 
 #include "sdf/sparse_field.h"
 #include "util/error.h"
+#include "util/hasher.h"
 
 namespace contactlab {
 namespace {
-
-FieldSpec ParseField(const ConfigNode& n) {
-  n.ExpectKeys({"resolution", "mode", "padding", "offset", "storage", "band"});
-  FieldSpec f;
-  f.resolution = int(n.IntInRange("resolution", f.resolution, 8, kMaxFieldResolution));
-  f.mode = n.OneOf("mode", f.mode, {"auto", "closed", "soup"});
-  f.storage = n.OneOf("storage", f.storage, {"dense", "sparse"});
-  f.band = int(n.IntInRange("band", f.band, 1, SparseFieldStorage::kMaxBand));
-  if (f.storage == "sparse") {
-    if (f.mode == "soup") n.Get("mode").Fail("a sparse field needs the closed pipeline (mode auto or closed)");
-    if (!SparseFieldStorage::ResolutionFits(f.resolution)) {
-      n.Get("resolution").Fail("a sparse field needs a resolution that is a multiple of 8 and at least " +
-                               std::to_string(SparseFieldStorage::kMinResolution));
-    }
-  } else if (n.Has("band")) {
-    n.Get("band").Fail("band applies to storage: sparse only");
-  }
-  f.padding = n.NonNegative("padding", f.padding);
-  if (n.Has("offset")) f.offset = n.Positive("offset", 0);
-  return f;
-}
-
-PointshellSpec ParsePointshell(const ConfigNode& n) {
-  n.ExpectKeys({"points", "levels", "method", "seed", "offset"});
-  PointshellSpec s;
-  s.points = int(n.IntInRange("points", s.points, 1, kMaxPointshellPoints));
-  s.levels = int(n.IntInRange("levels", s.levels, 1, kMaxPointshellLevels));
-  s.method = n.OneOf("method", s.method, {"repulsion", "voxel", "vertices", "random"});
-  s.seed = std::uint64_t(n.Int("seed", (long long)s.seed));
-  if (n.Has("offset")) s.offset = n.NonNegative("offset", 0);
-  return s;
-}
 
 // anchor: none | {below: [axis, value]} | {box: [x0, y0, z0, x1, y1, z1]} (fixed inside) |
 // {outside: [x0, y0, z0, x1, y1, z1]} (fixed outside, e.g. both ends of a bridge).
@@ -95,100 +64,260 @@ DomainRegion ParseDomain(const ConfigNode& n) {
   return DomainRegion::Halfspace(normal, v[3]);
 }
 
-// The deformed distance field of a deformable field body (paper sec. 4.2).
-DeformedFieldOptions ParseDeformedField(const ConfigNode& n) {
-  n.ExpectKeys({"proxies", "neighbours", "domains", "overlap", "seed", "force_at"});
-  DeformedFieldOptions o;
-  o.proxies = int(n.IntInRange("proxies", o.proxies, 2, 4096));
-  o.neighbours = int(n.IntInRange("neighbours", o.neighbours, 2, kMaxProxyNeighbours));
-  if (o.proxies < o.neighbours) n.Get("proxies").Fail("must be at least neighbours (" + std::to_string(o.neighbours) + ")");
-  if (auto d = n.Find("domains")) {
-    if (d->IsSequence()) {
-      for (const ConfigNode& e : d->Elements()) o.regions.push_back(ParseDomain(e));
-      if (o.regions.empty() || o.regions.size() > 64) d->Fail("needs 1 to 64 domains");
-    } else {
-      o.domains = int(n.IntInRange("domains", 1, 1, 64));
-      if (o.domains > o.proxies / 2 && o.domains > 1) {
-        d->Fail("at most proxies / 2 = " + std::to_string(o.proxies / 2) + " automatic domains");
-      }
-    }
+void HashAnchor(const Anchoring& a, Hasher* h) {
+  h->Value(std::int32_t(a.kind));
+  h->Value(a.normal.x()), h->Value(a.normal.y()), h->Value(a.normal.z());
+  h->Value(a.offset);
+  if (a.kind == Anchoring::Kind::kInBox || a.kind == Anchoring::Kind::kOutsideBox) {
+    for (int i = 0; i < 3; ++i) h->Value(a.box.min[i]), h->Value(a.box.max[i]);
   }
-  o.overlap = n.NonNegative("overlap", -1.0);
-  o.seed = std::uint64_t(n.IntInRange("seed", 1, 0, std::numeric_limits<std::int32_t>::max()));
-  o.force_at = n.OneOf("force_at", "nearest", {"nearest", "weighted"}) == "nearest"
-                   ? DeformedFieldOptions::ForceAt::kNearestProxy
-                   : DeformedFieldOptions::ForceAt::kWeightedProxies;
-  return o;
 }
 
-DeformableSpec ParseDeformable(const ConfigNode& n) {
-  n.ExpectKeys({"model", "modes", "cells", "E", "nu", "rho", "damping", "anchor", "coupling", "field"});
-  DeformableSpec d;
-  d.kind = n.OneOf("model", "stvk", {"stvk", "linear"}) == "linear" ? ReducedModelKind::kLinear
-                                                                    : ReducedModelKind::kStVK;
-  if (auto c = n.Find("modes")) {
-    const long long r = c->AsInt();
-    if (r < 1 || r > kMaxReducedModes) c->Fail("must be between 1 and " + std::to_string(kMaxReducedModes));
-    d.modes = int(r);
+void HashDomains(const DeformedFieldOptions& o, Hasher* h) {
+  h->Value(o.domains);
+  for (const DomainRegion& r : o.regions) {
+    for (const Eigen::Vector4d& p : r.planes) h->Bytes(p.data(), sizeof(double) * 4);
   }
-  if (auto c = n.Find("cells")) {
-    const long long cells = c->AsInt();
-    if (cells < 1 || cells > 256) c->Fail("must be between 1 and 256");
-    d.cells = int(cells);
-  }
-  d.material.youngs_modulus = n.Positive("E", d.material.youngs_modulus);
-  if (auto c = n.Find("nu")) {
-    d.material.poisson_ratio = c->AsDouble();
-    if (!(d.material.poisson_ratio > -1 && d.material.poisson_ratio < 0.5)) c->Fail("must be in (-1, 0.5)");
-  }
-  d.material.density = n.Positive("rho", d.material.density);
-  if (auto c = n.Find("damping")) {
-    c->ExpectKeys({"alpha", "beta"});
-    d.mass_damping = c->NonNegative("alpha", d.mass_damping);
-    d.stiffness_damping = c->NonNegative("beta", d.stiffness_damping);
-  }
-  if (auto c = n.Find("anchor")) d.anchor = ParseAnchor(*c);
-  d.implicit_contact = n.OneOf("coupling", "implicit", {"implicit", "explicit"}) == "implicit";
-  if (auto f = n.Find("field")) d.field = ParseDeformedField(*f);
-  return d;
 }
 
-BodySpec ParseBody(const ConfigNode& n) {
-  n.ExpectKeys({"name", "mesh", "scale", "center", "pose", "role", "field", "pointshell", "deformable"});
-  BodySpec b;
-  b.mesh = n.Get("mesh").AsString();
-  b.mesh_where = n.Get("mesh").Location();
-  b.name = n.String("name", b.mesh);
-  b.scale = n.Positive("scale", 1.0);
-  b.center = n.Bool("center", false);
-  if (auto p = n.Find("pose")) b.pose = ParsePoseNode(*p);
-  b.role = n.Get("role").AsString();
-  if (b.role != "pointshell" && b.role != "field") n.Get("role").Fail("must be 'pointshell' or 'field', got '" + b.role + "'");
-  if (auto f = n.Find("field")) b.field = ParseField(*f);
-  if (auto s = n.Find("pointshell")) b.pointshell = ParsePointshell(*s);
-  if (auto d = n.Find("deformable")) b.deformable = ParseDeformable(*d);
-  if (b.deformable && b.field.storage == "sparse") {
-    n.Get("field").Get("storage").Fail("a deformable body needs a dense field (its reduced model and deformed field read every sample)");
-  }
-  return b;
+// The damping: {alpha, beta} of the deformable block itself.
+const ParamTable<DeformableSpec>& DampingParams() {
+  using P = ParamRows<DeformableSpec>;
+  static const ParamTable<DeformableSpec> table(
+      "bodies[].deformable.damping", "Rayleigh damping of the reduced dynamics: D = alpha M + beta K.",
+      {
+          P::Number("alpha", PARAM_MEMBER(mass_damping), AtLeast(0), NoUpperBound(), "mass-proportional damping")
+              .Unit("1/s").Example("2"),
+          P::Number("beta", PARAM_MEMBER(stiffness_damping), AtLeast(0), NoUpperBound(),
+                    "stiffness-proportional damping")
+              .Unit("s").Example("0.001"),
+      });
+  return table;
 }
 
-// The model section: the paper's model's parameters (checked where they are defined) and the
-// node budget.
-void ParseModel(const ConfigNode& n, Scene* scene) {
-  n.ExpectKeys({"k_C", "L", "level", "coherence", "max_point_speed", "cycle_seconds", "lipschitz", "cold_fraction",
-                "gradient", "node_budget", "warm_threshold"});
-  scene->model = ParsePointshellContactParams(n);
-  if (n.Has("node_budget") && n.Has("warm_threshold")) n.Fail("give node_budget or warm_threshold, not both");
-  for (const char* key : {"node_budget", "warm_threshold"}) {
-    if (auto c = n.Find(key)) {
-      scene->node_budget = c->AsInt();
-      if (scene->node_budget < 0) c->Fail("must not be negative");
-    }
-  }
+const ParamTable<Scene>& ModelSectionParams() {
+  using P = ParamRows<Scene>;
+  static const ParamTable<Scene> table = [] {
+    std::vector<ParamRow<Scene>> rows = P::Lifted(PointshellContactParamTable(), PARAM_MEMBER(model));
+    rows.push_back(P::Integer("node_budget", PARAM_MEMBER(node_budget), 0, P::kNoLimit,
+                              "warm threshold V_W: nodes per cycle before graceful degradation (0: unlimited)")
+                       .Sweepable()
+                       .Example("500"));
+    rows.push_back(P::Integer("warm_threshold", PARAM_MEMBER(node_budget), 0, P::kNoLimit, "node_budget's other name")
+                       .Example("500"));
+    return ParamTable<Scene>(
+        "model", PointshellContactParamTable().doc() + " node_budget is handed to each query.", std::move(rows),
+        [](const ConfigNode& n, Scene*) {
+          if (n.Has("node_budget") && n.Has("warm_threshold")) n.Fail("give node_budget or warm_threshold, not both");
+        });
+  }();
+  return table;
 }
 
 }  // namespace
+
+const ParamTable<FieldSpec>& FieldParams() {
+  using P = ParamRows<FieldSpec>;
+  constexpr unsigned kAll = kShapesField | kShapesPointshell | kShapesReducedModel;  // all are built from the field
+  static const ParamTable<FieldSpec> table(
+      "bodies[].field", "The body's signed distance field (a regular grid over its padded bounding box).",
+      {
+          P::Integer("resolution", PARAM_MEMBER(resolution), 8, kMaxFieldResolution, "cells along the longest side")
+              .Shapes(kAll).Sweepable().Example("24"),
+          P::Choice("mode", PARAM_MEMBER(mode), {"auto", "closed", "soup"},
+                    "closed (inside/outside by winding), soup (an iso-offset of the unsigned distance), or auto")
+              .Shapes(kAll).Example("soup"),
+          P::Number("padding", PARAM_MEMBER(padding), AtLeast(0), NoUpperBound(),
+                    "margin around the bounding box, a fraction of its largest extent")
+              .Shapes(kAll).Example("0.2"),
+          P::Number("offset", PARAM_MEMBER(offset), Above(0), NoUpperBound(), "soup iso-offset")
+              .Unit("m").Shapes(kAll).Default("the builder's").Example("0.002"),
+          P::Choice("storage", PARAM_MEMBER(storage), {"dense", "sparse"},
+                    "dense, or sparse: a fine band over a 1/8-resolution field")
+              .Shapes(kAll).Example("sparse"),
+          P::Integer("band", PARAM_MEMBER(band), 1, SparseFieldStorage::kMaxBand,
+                     "sparse: voxels of fine samples on each side of the surface")
+              .Shapes(kAll).Example("2"),
+      },
+      [](const ConfigNode& n, FieldSpec* f) {
+        if (f->storage == "sparse") {
+          if (f->mode == "soup") n.Get("mode").Fail("a sparse field needs the closed pipeline (mode auto or closed)");
+          if (!SparseFieldStorage::ResolutionFits(f->resolution)) {
+            (n.Has("resolution") ? n.Get("resolution") : n)
+                .Fail("a sparse field needs a resolution that is a multiple of 8 and at least " +
+                      std::to_string(SparseFieldStorage::kMinResolution));
+          }
+        } else if (n.Has("band")) {
+          n.Get("band").Fail("band applies to storage: sparse only");
+        }
+      });
+  return table;
+}
+
+const ParamTable<PointshellSpec>& PointshellParams() {
+  using P = ParamRows<PointshellSpec>;
+  static const ParamTable<PointshellSpec> table(
+      "bodies[].pointshell", "The body's pointshell: points on its offset surface in a nested tree (sec. 3).",
+      {
+          P::Integer("points", PARAM_MEMBER(points), 1, kMaxPointshellPoints, "points on the deepest level")
+              .Shapes(kShapesPointshell).Sweepable().Example("100"),
+          P::Integer("levels", PARAM_MEMBER(levels), 1, kMaxPointshellLevels, "tree levels")
+              .Shapes(kShapesPointshell).Sweepable().Example("3"),
+          P::Choice("method", PARAM_MEMBER(method), {"repulsion", "voxel", "vertices", "random"},
+                    "how the points are placed")
+              .Shapes(kShapesPointshell).Sweepable().Example("random"),
+          P::Integer("seed", PARAM_MEMBER(seed), 0, P::kNoLimit, "random seed of the placement")
+              .Shapes(kShapesPointshell).Sweepable().Example("7"),
+          P::Number("offset", PARAM_MEMBER(offset), AtLeast(0), NoUpperBound(), "level-set offset delta")
+              .Unit("m").Shapes(kShapesPointshell).Sweepable().Default("the builder's").Example("0.0005"),
+      });
+  return table;
+}
+
+const ParamTable<DeformedFieldOptions>& DeformedFieldParams() {
+  using P = ParamRows<DeformedFieldOptions>;
+  static const ParamTable<DeformedFieldOptions> table(
+      "bodies[].deformable.field",
+      "A deformable field body's deformed distance field (sec. 4.2), built in memory from its reduced model.",
+      {
+          P::Integer("proxies", PARAM_MEMBER(proxies), 2, 4096, "proxyshell points fitted to the whole body")
+              .Sweepable().Example("12"),
+          P::Integer("neighbours", PARAM_MEMBER(neighbours), 2, kMaxProxyNeighbours, "k of the k-nearest proxies")
+              .Sweepable().Example("3"),
+          P::Custom(
+               "domains", "integer or list", "1 to 64, or [{box: [...]} | {halfspace: [nx, ny, nz, c]}, ...]",
+               "automatic domains (k-means of the proxies, at most proxies / 2), or explicit convex regions",
+               [](const ConfigNode& d, DeformedFieldOptions* o) {
+                 if (d.IsSequence()) {
+                   o->regions.clear();
+                   for (const ConfigNode& e : d.Elements()) o->regions.push_back(ParseDomain(e));
+                   if (o->regions.empty() || o->regions.size() > 64) d.Fail("needs 1 to 64 domains");
+                 } else {
+                   const long long n = d.AsInt();
+                   if (n < 1 || n > 64) d.Fail("must be between 1 and 64, got " + d.Quoted());
+                   o->domains = int(n);
+                 }
+               },
+               HashDomains, [](const DeformedFieldOptions& o) { return std::to_string(o.domains); })
+              .Sweepable()
+              .Example("2"),
+          P::Number("overlap", PARAM_MEMBER(overlap), AtLeast(0), NoUpperBound(), "by how much domains overlap")
+              .Unit("m").Default("3 rest-field cells").Example("0.001"),
+          P::Integer("seed", PARAM_MEMBER(seed), 0, std::numeric_limits<std::int32_t>::max(),
+                     "seed of the proxy fitting and the clustering")
+              .Example("5"),
+          P::Mapped("force_at", PARAM_MEMBER(force_at),
+                    std::vector<std::pair<std::string, DeformedFieldOptions::ForceAt>>{
+                        {"nearest", DeformedFieldOptions::ForceAt::kNearestProxy},
+                        {"weighted", DeformedFieldOptions::ForceAt::kWeightedProxies}},
+                    "where a contact force acts on the deformation: the nearest proxy (the paper's), or the "
+                    "query's k proxies by their weights")
+              .Example("weighted"),
+      },
+      [](const ConfigNode& n, DeformedFieldOptions* o) {
+        if (o->proxies < o->neighbours) {
+          (n.Has("proxies") ? n.Get("proxies") : n).Fail("must be at least neighbours (" + std::to_string(o->neighbours) + ")");
+        }
+        if (o->regions.empty() && o->domains > 1 && o->domains > o->proxies / 2) {
+          n.Get("domains").Fail("at most proxies / 2 = " + std::to_string(o->proxies / 2) + " automatic domains");
+        }
+      });
+  return table;
+}
+
+const ParamTable<DeformableSpec>& DeformableParams() {
+  using P = ParamRows<DeformableSpec>;
+  static const ParamTable<DeformableSpec> table(
+      "bodies[].deformable",
+      "A reduced deformable model (sec. 4.1): reduced StVK or linear modal dynamics on a voxel tet mesh built from "
+      "the body's field.",
+      {
+          P::Mapped("model", PARAM_MEMBER(kind),
+                    std::vector<std::pair<std::string, ReducedModelKind>>{{"stvk", ReducedModelKind::kStVK},
+                                                                          {"linear", ReducedModelKind::kLinear}},
+                    "reduced StVK, or linear modal dynamics")
+              .Shapes(kShapesReducedModel).Example("linear"),
+          P::Integer("modes", PARAM_MEMBER(modes), 1, kMaxReducedModes, "r, the reduced coordinates")
+              .Shapes(kShapesReducedModel).Sweepable().Example("3"),
+          P::Integer("cells", PARAM_MEMBER(cells), 1, 256, "voxel cells of the tet mesh along the longest side")
+              .Shapes(kShapesReducedModel).Sweepable().Example("5"),
+          P::Number("E", PARAM_MEMBER(material.youngs_modulus), Above(0), NoUpperBound(), "Young's modulus")
+              .Unit("Pa").Shapes(kShapesReducedModel).Example("2e6"),
+          P::Number("nu", PARAM_MEMBER(material.poisson_ratio), Above(-1), Below(0.5), "Poisson's ratio")
+              .Shapes(kShapesReducedModel).Example("0.3"),
+          P::Number("rho", PARAM_MEMBER(material.density), Above(0), NoUpperBound(), "density")
+              .Unit("kg/m^3").Shapes(kShapesReducedModel).Example("500"),
+          P::Block("damping", [](auto& s) -> auto& { return s; }, DampingParams(), "Rayleigh damping {alpha, beta}"),
+          P::Custom(
+               "anchor", "none or block", "none, {below: [axis, value]}, {box: [x0, y0, z0, x1, y1, z1]}, {outside: [...]}",
+               "vertices held fixed (body frame, metres, after scale and centring)",
+               [](const ConfigNode& v, DeformableSpec* d) { d->anchor = ParseAnchor(v); },
+               [](const DeformableSpec& d, Hasher* h) { HashAnchor(d.anchor, h); },
+               [](const DeformableSpec& d) { return d.anchor.anchored() ? d.anchor.Describe() : std::string("none"); })
+              .Shapes(kShapesReducedModel)
+              .Example("{below: [z, -0.001]}"),
+          P::Mapped("coupling", PARAM_MEMBER(implicit_contact),
+                    std::vector<std::pair<std::string, bool>>{{"implicit", true}, {"explicit", false}},
+                    "implicit: the step takes the contact's reduced stiffness; explicit: the force alone (the "
+                    "paper's order)")
+              .Example("explicit"),
+          P::Block("field", PARAM_MEMBER(field), DeformedFieldParams(), "a field body's deformed distance field"),
+      });
+  return table;
+}
+
+const ParamTable<BodySpec>& BodyParams() {
+  using P = ParamRows<BodySpec>;
+  constexpr unsigned kAll = kShapesField | kShapesPointshell | kShapesReducedModel;  // through the mesh's content
+  static const ParamTable<BodySpec> table(
+      "bodies[]", "One of the scene's two bodies: its mesh, placement, role, and the blocks that build its models.",
+      {
+          P::Text("name", PARAM_MEMBER(name), "the body's name (default: its mesh)"),
+          P::Custom("mesh", "text", "a file on the data search path, or a procedural shape \"sphere:0.05\"",
+                    "the body's surface (required)",
+                    [](const ConfigNode& v, BodySpec* b) {
+                      b->mesh = v.AsString();
+                      b->mesh_where = v.Location();
+                    },
+                    [](const BodySpec& b, Hasher* h) { h->Text(b.mesh); }, [](const BodySpec& b) { return b.mesh; })
+              .Shapes(kAll)
+              .Example("\"sphere:0.011,2\""),
+          P::Number("scale", PARAM_MEMBER(scale), Above(0), NoUpperBound(), "file units to metres").Shapes(kAll).Example("1.1"),
+          P::Boolean("center", PARAM_MEMBER(center), "move the bounding-box centre to the body origin")
+              .Shapes(kAll)
+              .Example("true"),
+          P::Custom("pose", "pose", "[x, y, z, qw, qx, qy, qz] or {position, rotation | rotation_vector}",
+                    "the body's pose in the world at the scene's start",
+                    [](const ConfigNode& v, BodySpec* b) { b->pose = ParsePoseNode(v); },
+                    [](const BodySpec& b, Hasher* h) {
+                      h->Bytes(b.pose.translation.data(), 3 * sizeof(double));
+                      h->Bytes(b.pose.rotation.coeffs().data(), 4 * sizeof(double));
+                    },
+                    [](const BodySpec&) { return std::string("identity"); })
+              .Example("[0, 0, 0.1, 1, 0, 0, 0]"),
+          P::Choice("role", PARAM_MEMBER(role), {"pointshell", "field"},
+                    "pointshell (body A) or field (body B); the two bodies take different roles (required)"),
+          P::Block("field", PARAM_MEMBER(field), FieldParams(), "its distance field"),
+          P::Block("pointshell", PARAM_MEMBER(pointshell), PointshellParams(), "its pointshell"),
+          P::Custom("deformable", "block", "see `bodies[].deformable`", "a reduced deformable model (absent: rigid)",
+                    [](const ConfigNode& v, BodySpec* b) { b->deformable = DeformableParams().Parse(v); },
+                    [](const BodySpec& b, Hasher* h) {
+                      if (b.deformable) DeformableParams().Hash(*b.deformable, kShapesReducedModel, h);
+                    },
+                    [](const BodySpec&) { return std::string("absent"); })
+              .Shapes(kShapesReducedModel),
+      },
+      [](const ConfigNode& n, BodySpec* b) {
+        (void)n.Get("mesh");  // required
+        (void)n.Get("role");
+        if (!n.Has("name")) b->name = b->mesh;
+        if (b->deformable && b->field.storage == "sparse") {
+          n.Get("field").Get("storage").Fail(
+              "a deformable body needs a dense field (its reduced model and deformed field read every sample)");
+        }
+      });
+  return table;
+}
 
 Pose ParsePoseNode(const ConfigNode& n) {
   if (n.IsSequence()) {
@@ -228,13 +357,13 @@ Scene ParseScene(const ConfigNode& n) {
   scene.name = n.String("name", std::filesystem::path(n.file()).stem().string());
   const std::vector<ConfigNode> bodies = n.Get("bodies").Elements();
   if (bodies.size() != 2) n.Get("bodies").Fail("a scene needs exactly two bodies, got " + std::to_string(bodies.size()));
-  BodySpec a = ParseBody(bodies[0]);
-  BodySpec b = ParseBody(bodies[1]);
+  BodySpec a = BodyParams().Parse(bodies[0]);
+  BodySpec b = BodyParams().Parse(bodies[1]);
   if (a.role == b.role) bodies[1].Get("role").Fail("the two bodies need different roles (one pointshell, one field)");
   if (a.role == "field") std::swap(a, b);
   scene.pointshell_body = a;
   scene.field_body = b;
-  if (auto m = n.Find("model")) ParseModel(*m, &scene);
+  if (auto m = n.Find("model")) scene = ModelSectionParams().Parse(*m, scene);
   if (auto ms = n.Find("models")) {
     for (const ConfigNode& e : ms->Elements()) scene.models.push_back(e.AsString());
     if (scene.models.empty()) ms->Fail("lists no model");
@@ -252,6 +381,53 @@ Scene Scene::Swapped() const {
   s.pointshell_body.role = "pointshell";
   s.field_body.role = "field";
   s.name = name + " (roles swapped)";
+  return s;
+}
+
+namespace {
+
+// The value of KEY of TABLE's block SPEC, as the reference shows it.
+template <class Spec>
+std::string ShowKey(const ParamTable<Spec>& table, const Spec& spec, const std::string& key) {
+  const ParamRow<Spec>* row = table.Find(key);
+  return row ? row->show(spec) : std::string();
+}
+
+}  // namespace
+
+const std::vector<SceneBlock>& SceneBlocks() {
+  const auto none = [](const Scene&, const std::string&) { return std::string(); };
+  static const std::vector<SceneBlock> blocks = {
+      {"", "", {}, BodyParams().Reference("bodies[]"), none},
+      {"scene.bodies[role=field].field.", "", FieldParams().SweepKeys(), FieldParams().Reference("bodies[].field"),
+       [](const Scene& s, const std::string& k) { return ShowKey(FieldParams(), s.field_body.field, k); }},
+      {"scene.bodies[role=pointshell].field.", "pointshell_", FieldParams().SweepKeys(), "",
+       [](const Scene& s, const std::string& k) { return ShowKey(FieldParams(), s.pointshell_body.field, k); }},
+      {"scene.bodies[role=pointshell].pointshell.", "", PointshellParams().SweepKeys(),
+       PointshellParams().Reference("bodies[].pointshell"),
+       [](const Scene& s, const std::string& k) { return ShowKey(PointshellParams(), s.pointshell_body.pointshell, k); }},
+      {"scene.bodies[role=pointshell].deformable.", "", DeformableParams().SweepKeys(),
+       DeformableParams().Reference("bodies[].deformable"),
+       [](const Scene& s, const std::string& k) {
+         return s.pointshell_body.deformable ? ShowKey(DeformableParams(), *s.pointshell_body.deformable, k)
+                                             : std::string();
+       }},
+      {"", "", {}, DampingParams().Reference("bodies[].deformable.damping"), none},
+      {"scene.bodies[role=field].deformable.field.", "", DeformedFieldParams().SweepKeys(),
+       DeformedFieldParams().Reference("bodies[].deformable.field"),
+       [](const Scene& s, const std::string& k) {
+         return s.field_body.deformable ? ShowKey(DeformedFieldParams(), s.field_body.deformable->field, k)
+                                        : std::string();
+       }},
+      {"scene.model.", "", ModelSectionParams().SweepKeys(), ModelSectionParams().Reference("model"),
+       [](const Scene& s, const std::string& k) { return ShowKey(ModelSectionParams(), s, k); }},
+  };
+  return blocks;
+}
+
+std::string SceneReference() {
+  std::string s;
+  for (const SceneBlock& b : SceneBlocks()) s += b.reference;
   return s;
 }
 

@@ -36,6 +36,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -48,6 +49,7 @@
 #include "deform/stvk_fem.h"
 #include "geometry/pose.h"
 #include "util/config_node.h"
+#include "util/param_table.h"
 
 namespace contactlab {
 
@@ -120,6 +122,31 @@ struct Scene {
   // The same scene with the roles of the two bodies exchanged.
   Scene Swapped() const;
 };
+
+// The parameter tables of a scene's blocks (util/param_table.h): parsing, range checks, cache
+// keys (experiment/scene_assets.cc), sweep aliases (experiment/experiment_config.cc) and the
+// scene reference all come from them.
+const ParamTable<BodySpec>& BodyParams();
+const ParamTable<FieldSpec>& FieldParams();
+const ParamTable<PointshellSpec>& PointshellParams();
+const ParamTable<DeformableSpec>& DeformableParams();
+const ParamTable<DeformedFieldOptions>& DeformedFieldParams();
+
+// A block of a scene as sweeps and the reference see it: the key path a sweep alias stands for
+// (PATH + key; "" for a block no alias reaches), the prefix of the alias names, the keys a
+// sweep may name alone, and the block's section of the reference.
+struct SceneBlock {
+  std::string path;
+  std::string alias_prefix;
+  std::vector<std::string> sweep_keys;
+  std::string reference;
+  // The value of the block's KEY in a scene, as the reference shows it ("" for a block no path
+  // reaches or an unknown key).
+  std::function<std::string(const Scene&, const std::string& key)> value;
+};
+const std::vector<SceneBlock>& SceneBlocks();
+// Every block's table, as Markdown (`contactlab params`, docs/scene-reference.md).
+std::string SceneReference();
 
 // Reads a scene from a YAML node (a whole file, or the "scene" key of an experiment).
 Scene ParseScene(const ConfigNode& node);

@@ -13,6 +13,7 @@
 #include "sdf/build_distance_field.h"
 #include "util/data_path.h"
 #include "util/error.h"
+#include "util/hasher.h"
 #include "util/parse_number.h"
 
 namespace contactlab {
@@ -20,24 +21,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Bumped whenever a builder changes what it produces, so stale cache entries are not reused.
-constexpr const char* kCacheGeneration = "2";
-
-// FNV-1a 64-bit.
-struct Hasher {
-  std::uint64_t h = 1469598103934665603ull;
-  void Bytes(const void* data, std::size_t n) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
-  }
-  void Text(const std::string& s) { Bytes(s.data(), s.size() + 1); }
-  template <typename T>
-  void Value(const T& v) { Bytes(&v, sizeof v); }
-  std::string Hex() const {
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-    return buf;
-  }
-};
+constexpr const char* kCacheGeneration = "3";
 
 TriangleMesh MakeShape(const std::string& spec, const std::string& where) {
   const auto colon = spec.find(':');
@@ -168,19 +152,6 @@ std::shared_ptr<const T> CachedOrBuilt(const fs::path& cached, const AssetOption
   return value;
 }
 
-// The field spec's part of a cache key. Dense fields hash as before sparse storage existed,
-// so their cached files stay valid.
-void HashFieldSpec(const FieldSpec& f, Hasher* h) {
-  h->Value(f.resolution);
-  h->Text(f.mode);
-  h->Value(f.padding);
-  h->Value(f.offset);
-  if (f.storage != "dense") {
-    h->Text(f.storage);
-    h->Value(f.band);
-  }
-}
-
 // A builder's version in a cache key; version 1 adds nothing (AssetOptions::builders).
 void HashBuilderVersion(const char* builder, int version, Hasher* h) {
   if (version == 1) return;
@@ -196,7 +167,7 @@ std::shared_ptr<const DistanceField> BodyAssets::field() {
   Hasher h;
   h.Text(mesh_key());
   h.Text("field");
-  HashFieldSpec(f, &h);
+  FieldParams().Hash(f, kShapesField, &h);
   HashBuilderVersion("field-builder", options_.builders.field, &h);
   field_ = CachedOrBuilt<DistanceField>(
       options_.cache_dir / ("field-" + h.Hex() + ".sdf"), options_,
@@ -221,14 +192,10 @@ std::shared_ptr<const Pointshell> BodyAssets::pointshell() {
   Hasher h;
   h.Text(mesh_key());
   h.Text("pointshell");
-  HashFieldSpec(spec_.field, &h);
+  FieldParams().Hash(spec_.field, kShapesPointshell, &h);
+  PointshellParams().Hash(s, kShapesPointshell, &h);
   HashBuilderVersion("field-builder", options_.builders.field, &h);
   HashBuilderVersion("pointshell-builder", options_.builders.pointshell, &h);
-  h.Value(s.points);
-  h.Value(s.levels);
-  h.Text(s.method);
-  h.Value(s.seed);
-  h.Value(s.offset);
   pointshell_ = CachedOrBuilt<Pointshell>(
       options_.cache_dir / ("pointshell-" + h.Hex() + ".ps"), options_,
       "the " + std::to_string(s.points) + "-point pointshell of " + spec_.name, LoadPointshell, SavePointshell, [&] {
@@ -251,21 +218,10 @@ std::shared_ptr<const ReducedModel> BodyAssets::reduced_model() {
   Hasher h;
   h.Text(mesh_key());
   h.Text("reduced-model");
-  HashFieldSpec(spec_.field, &h);
+  FieldParams().Hash(spec_.field, kShapesReducedModel, &h);
+  DeformableParams().Hash(d, kShapesReducedModel, &h);
   HashBuilderVersion("field-builder", options_.builders.field, &h);
   HashBuilderVersion("reduced-model-builder", options_.builders.reduced_model, &h);
-  h.Value(std::int32_t(d.kind));
-  h.Value(d.modes);
-  h.Value(d.cells);
-  h.Value(d.material.youngs_modulus);
-  h.Value(d.material.poisson_ratio);
-  h.Value(d.material.density);
-  h.Value(std::int32_t(d.anchor.kind));
-  h.Value(d.anchor.normal.x()), h.Value(d.anchor.normal.y()), h.Value(d.anchor.normal.z());
-  h.Value(d.anchor.offset);
-  if (d.anchor.kind == Anchoring::Kind::kInBox || d.anchor.kind == Anchoring::Kind::kOutsideBox) {
-    for (int a = 0; a < 3; ++a) h.Value(d.anchor.box.min[a]), h.Value(d.anchor.box.max[a]);
-  }
   const std::string where = "body '" + spec_.name + "' deformable";
   reduced_model_ = CachedOrBuilt<ReducedModel>(
       options_.cache_dir / ("reduced-" + h.Hex() + ".rm"), options_,

@@ -1,5 +1,6 @@
 #include "util/config_node.h"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -62,19 +63,23 @@ void ConfigNode::RejectDuplicateKeys() const {
 }
 
 void ConfigNode::ExpectKeys(std::initializer_list<const char*> allowed) const {
+  ExpectKeys(std::vector<std::string>(allowed.begin(), allowed.end()));
+}
+
+void ConfigNode::ExpectKeys(const std::vector<std::string>& allowed) const {
   ExpectMap();
   RejectDuplicateKeys();
   for (const auto& kv : node_) {
     const std::string key = kv.first.as<std::string>();
-    bool known = false;
-    for (const char* a : allowed) known = known || key == a;
-    if (!known) {
+    if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
       std::string list;
-      for (const char* a : allowed) list += std::string(list.empty() ? "" : ", ") + a;
+      for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
       ConfigNode(kv.first, file_, ChildPath(key)).Fail("unknown key (known keys here: " + list + ")");
     }
   }
 }
+
+std::string ConfigNode::Quoted() const { return QuoteToken(AsString()); }
 
 bool ConfigNode::Has(const std::string& key) const { return node_.IsMap() && node_[key]; }
 

@@ -33,6 +33,7 @@ class ConfigNode {
 
   // Throws unless this is a map whose keys are all in ALLOWED.
   void ExpectKeys(std::initializer_list<const char*> allowed) const;
+  void ExpectKeys(const std::vector<std::string>& allowed) const;
   void ExpectMap() const;
   bool Has(const std::string& key) const;
   // Child by key (must exist) or nullopt.
@@ -62,6 +63,9 @@ class ConfigNode {
   long long IntInRange(const std::string& key, long long fallback, long long lo, long long hi) const;
   std::string OneOf(const std::string& key, const std::string& fallback,
                     std::initializer_list<const char*> choices) const;
+
+  // This scalar's text as error messages quote it (shortened, control characters escaped).
+  std::string Quoted() const;
 
   // "FILE:LINE: PATH", the place Fail names.
   std::string Location() const;

@@ -56,32 +56,42 @@ TEST(PenaltyParams, CheckRejectsZeroNegativeOrNonFiniteStiffnessAndNegativeL) {
   EXPECT_NE(ErrorOf([] { CheckPenaltyParams({.k_C = 1, .L = -2}, "m"); }).find("m: L"), std::string::npos);
 }
 
+// The model section's table (contact/pointshell_contact_params.h), reading TEXT as FILE with
+// "other" left to the caller.
+PointshellContactParams ParseModel(const std::string& text, const std::string& file,
+                                   PointshellContactParams base = {}) {
+  return PointshellContactParamTable().Parse(ConfigNode::LoadString(text, file), base, {"other"});
+}
+
 TEST(PenaltyParams, ParseNamesTheFileLineAndKey) {
-  const ConfigNode ok = ConfigNode::LoadString("k_C: 1500\nL: 0\nother: 1\n", "model.yaml");
-  const PenaltyParams p = ParsePenaltyParams(ok);
+  const PenaltyParams p = ParseModel("k_C: 1500\nL: 0\nother: 1\n", "model.yaml").penalty;
   EXPECT_EQ(p.k_C, 1500);
   EXPECT_EQ(p.L, 0);
   // Absent keys keep the base.
-  const PenaltyParams kept = ParsePenaltyParams(ConfigNode::LoadString("other: 1\n", "m.yaml"), {.k_C = 7, .L = 3});
+  PointshellContactParams base;
+  base.penalty = {.k_C = 7, .L = 3};
+  const PenaltyParams kept = ParseModel("other: 1\n", "m.yaml", base).penalty;
   EXPECT_EQ(kept.k_C, 7);
   EXPECT_EQ(kept.L, 3);
-  std::string e = ErrorOf([] { ParsePenaltyParams(ConfigNode::LoadString("L: 4\nk_C: -3\n", "model.yaml")); });
+  std::string e = ErrorOf([] { ParseModel("L: 4\nk_C: -3\n", "model.yaml"); });
   EXPECT_NE(e.find("model.yaml:2"), std::string::npos) << e;
   EXPECT_NE(e.find("k_C"), std::string::npos) << e;
-  e = ErrorOf([] { ParsePenaltyParams(ConfigNode::LoadString("L: -1\n", "model.yaml")); });
+  e = ErrorOf([] { ParseModel("L: -1\n", "model.yaml"); });
   EXPECT_NE(e.find("model.yaml:1"), std::string::npos) << e;
   EXPECT_NE(e.find(": L:"), std::string::npos) << e;
-  e = ErrorOf([] { ParsePenaltyParams(ConfigNode::LoadString("L: 4\nk_C: 0\n", "model.yaml")); });
+  e = ErrorOf([] { ParseModel("L: 4\nk_C: 0\n", "model.yaml"); });
   EXPECT_NE(e.find("model.yaml:2: k_C: must be positive"), std::string::npos) << e;
-  e = ErrorOf([] { ParsePenaltyParams(ConfigNode::LoadString("k_C: stiff\n", "model.yaml")); });
+  e = ErrorOf([] { ParseModel("k_C: stiff\n", "model.yaml"); });
   EXPECT_NE(e.find("'stiff'"), std::string::npos) << e;
+  e = ErrorOf([] { ParseModel("k_c: 3\n", "model.yaml"); });
+  EXPECT_NE(e.find("model.yaml:1: k_c: unknown key"), std::string::npos) << e;
 }
 
 TEST(PointshellContactParams, ParseChecksEveryValueWhereItIsDefined) {
-  const PointshellContactParams p = ParsePointshellContactParams(ConfigNode::LoadString(
+  const PointshellContactParams p = ParseModel(
       "k_C: 800\nL: 5\nlevel: 2\ncoherence: true\nmax_point_speed: 0.5\ncycle_seconds: 0.002\nlipschitz: 1.5\n"
       "cold_fraction: 0.5\ngradient: field\n",
-      "m.yaml"));
+      "m.yaml");
   EXPECT_EQ(p.penalty.k_C, 800);
   EXPECT_EQ(p.penalty.L, 5);
   EXPECT_EQ(p.level, 2);
@@ -92,7 +102,7 @@ TEST(PointshellContactParams, ParseChecksEveryValueWhereItIsDefined) {
   EXPECT_EQ(p.cold_fraction, 0.5);
   EXPECT_EQ(p.gradient, ContactGradient::kField);
   for (const char* bad : {"lipschitz: 0.5", "cold_fraction: 1.5", "level: -2", "max_point_speed: 0", "gradient: up"}) {
-    const std::string e = ErrorOf([&] { ParsePointshellContactParams(ConfigNode::LoadString(bad, "m.yaml")); });
+    const std::string e = ErrorOf([&] { ParseModel(bad, "m.yaml"); });
     const std::string key = std::string(bad).substr(0, std::string(bad).find(':'));
     EXPECT_NE(e.find("m.yaml:1: " + key), std::string::npos) << bad << " -> " << e;
   }
