@@ -6,6 +6,11 @@
 // volume gradient (-∇V) for the direction. Records the worst force direction error (degrees)
 // and magnitude error (relative) per model and pair, and fails when a model gets worse than
 // its recorded value (kRecorded below).
+//
+// The paper's model also runs on the same cases with deformable bodies (sec. 4), in all four
+// combinations of (rigid | deformable pointshell A) x (grid | deformed field B): at rest it must
+// render the rigid result to float rounding, and at random deformations it must equal eq. (1)
+// summed in double precision over the deformed points (tests/deformable_references.h).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,14 +20,17 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <random>
 #include <string>
 #include <vector>
 
 #include "baselines/reference/analytic_references.h"
 #include "baselines/register_baselines.h"
+#include "deformable_references.h"
 #include "experiment/scene_assets.h"
 #include "experiment/scene.h"
 #include "geometry/procedural_shapes.h"
+#include "experiment/deformable_fixture.h"
 #include "test_support.h"
 #ifdef CONTACTLAB_HAVE_CGAL
 #include "baselines/reference/penetration_volume.h"
@@ -268,6 +276,234 @@ TEST(Characterization, EveryModelWithinRecordedErrorOfReferences) {
     EXPECT_LE(m.direction_deg, 1.1 * rec->direction_deg + 1.0) << model << " on " << pair;
     EXPECT_LE(m.magnitude_rel, 1.1 * rec->magnitude_rel + 0.02) << model << " on " << pair;
   }
+}
+
+
+// --- The paper's model with deformable bodies, on the same cases -------------------------------
+
+// A small reduced model for either body: linear modal, 5 modes on a 10-cell tet mesh, free.
+// Its deformed field (as B) keeps the default single domain: with several, the minimum over
+// domains equals the rest field only where d > -overlap, and these cases reach deeper.
+DeformableSpec SmallDeformable() {
+  DeformableSpec d;
+  d.kind = ReducedModelKind::kLinear;
+  d.modes = 5;
+  d.cells = 10;
+  return d;
+}
+
+// The case's scene in ORDER with A and/or B deformable.
+Scene CaseScene(const PairCase& c, int order, bool deformable_A, bool deformable_B) {
+  const Body& a = order == 0 ? c.first : c.second;
+  const Body& b = order == 0 ? c.second : c.first;
+  Scene scene;
+  scene.name = c.pair + (order == 0 ? " (A,B)" : " (B,A)");
+  scene.pointshell_body = MakeBodySpec("A", a, "pointshell");
+  scene.field_body = MakeBodySpec("B", b, "field");
+  if (deformable_A) scene.pointshell_body.deformable = SmallDeformable();
+  if (deformable_B) scene.field_body.deformable = SmallDeformable();
+  scene.model.penalty.k_C = kC;
+  scene.model.penalty.L = kL;
+  return scene;
+}
+
+const char* CombinationName(bool deformable_A, bool deformable_B) {
+  static const char* names[2][2] = {{"rigid A x grid B", "rigid A x deformed B"},
+                                    {"deformable A x grid B", "deformable A x deformed B"}};
+  return names[deformable_A][deformable_B];
+}
+
+// At rest a deformable body is its rigid self: the paper's model in every combination of
+// (rigid | deformable pointshell) x (grid | deformed field), at q = 0 and with no deformation
+// given, renders the rigid model's contacts and wrench to float rounding.
+TEST(Characterization, DeformableBodiesAtRestRenderTheRigidResult) {
+  testing::TempDir cache;
+  AssetOptions options;
+  options.cache_dir = cache.path();
+  options.verbose = false;
+  double worst_force = 0, worst_torque = 0;
+  int compared = 0;
+  for (const PairCase& c : Cases()) {
+    for (int order = 0; order < 2; ++order) {
+      const Scene rigid_scene = CaseScene(c, order, false, false);
+      SceneAssets rigid_assets(rigid_scene, options);
+      ContactQuery q;
+      q.X_WA = rigid_scene.pointshell_body.pose;
+      q.X_WB = rigid_scene.field_body.pose;
+      for (const char* name : {"pointshell", "pointshell-linear"}) {
+        const ContactResult rigid = MakeSceneContactModel(name, rigid_scene, rigid_assets)->Evaluate(q);
+        ASSERT_GT(rigid.stats.points_in_contact, 0) << rigid_scene.name;
+        const double F = rigid.on_B.force.norm();
+        const double torque_scale = std::max(rigid.on_B.torque.norm(), 0.01 * F);  // a 1 cm lever at least
+        for (const bool defo_A : {false, true}) {
+          for (const bool defo_B : {false, true}) {
+            if (!defo_A && !defo_B) continue;
+            const Scene scene = CaseScene(c, order, defo_A, defo_B);
+            SceneAssets assets(scene, options);
+            const auto model = MakeSceneContactModel(name, scene, assets);
+            const ReducedState rest_A(defo_A ? assets.A.reduced_model()->r() : 0);
+            const ReducedState rest_B(defo_B ? assets.B.reduced_model()->r() : 0);
+            ReducedVector f_A, f_B;
+            const BodyDeformation d_A{&rest_A, &f_A}, d_B{&rest_B, &f_B};
+            // Once with no deformation given, once with q = 0 and the reduced forces wanted.
+            for (int given = 0; given < 2; ++given) {
+              ContactQuery qd = q;
+              if (given == 1) {
+                if (defo_A) qd.deformation_A = &d_A;
+                if (defo_B) qd.deformation_B = &d_B;
+              }
+              model->Reset();
+              const ContactResult r = model->Evaluate(qd);
+              const double ef = (r.on_B.force - rigid.on_B.force).norm() / F;
+              const double et = (r.on_B.torque - rigid.on_B.torque).norm() / torque_scale;
+              std::printf("at rest %s %s %s (%s): %d vs %d contacts, force %.3g, torque %.3g\n", scene.name.c_str(),
+                          name, CombinationName(defo_A, defo_B), given ? "q = 0" : "no deformation",
+                          r.stats.points_in_contact, rigid.stats.points_in_contact, ef, et);
+              EXPECT_EQ(r.stats.points_in_contact, rigid.stats.points_in_contact)
+                  << scene.name << " " << name << " " << CombinationName(defo_A, defo_B);
+              // Measured (Release, 96 comparisons): the same contact count everywhere, at most
+              // 1.3e-6 in force and 8e-7 in torque (float rounding of the renormalised normals,
+              // the identity pull-back and the weights' sum).
+              EXPECT_LT(ef, 5e-6) << scene.name << " " << name << " " << CombinationName(defo_A, defo_B);
+              EXPECT_LT(et, 5e-6) << scene.name << " " << name << " " << CombinationName(defo_A, defo_B);
+              worst_force = std::max(worst_force, ef);
+              worst_torque = std::max(worst_torque, et);
+              ++compared;
+            }
+          }
+        }
+      }
+    }
+  }
+  std::printf("at rest: %d comparisons, worst relative difference force %.3g, torque %.3g\n", compared, worst_force,
+              worst_torque);
+}
+
+// At q != 0 the model's wrench is eq. (1) summed in double precision over the deformed points
+// (deformable A: positions and corrected normals as body-export writes them) against B's field
+// (deformed B: the sec. 4.2 formula evaluated by brute force, deformable_references.h), with the
+// L / l scaling of the contact count. "pointshell-linear" renders every point of the deepest
+// level; the tree ("pointshell") must find the same. A point whose reference d lies within
+// float rounding of 0 may fall on either side: such points bound the differences.
+TEST(Characterization, DeformableBodiesAtRandomStatesMatchAnIndependentEq1Sum) {
+  testing::TempDir cache;
+  AssetOptions options;
+  options.cache_dir = cache.path();
+  options.verbose = false;
+  std::mt19937 rng(17);
+  // Float rounding of a point's d: positions of a few cm in float (ulp 4e-9 m), the transform,
+  // the trilinear lookup and the pull-back.
+  const double eps_d = 1e-7;
+  double worst_force = 0, worst_torque = 0, worst_fA = 0, worst_fB = 0, worst_flip_d = 0;
+  int checked = 0, flips = 0;
+  for (const PairCase& c : Cases()) {
+    for (int order = 0; order < 2; ++order) {
+      for (const bool defo_A : {false, true}) {
+        for (const bool defo_B : {false, true}) {
+          if (!defo_A && !defo_B) continue;
+          const Scene scene = CaseScene(c, order, defo_A, defo_B);
+          SceneAssets assets(scene, options);
+          const auto linear = MakeSceneContactModel("pointshell-linear", scene, assets);
+          const auto tree = MakeSceneContactModel("pointshell", scene, assets);
+          // Deformations moving a simulation vertex by up to 2 mm (3-10 % of these bodies).
+          const ReducedState q_A = defo_A ? testing::RandomState(*assets.A.reduced_model(), 0.002, &rng) : ReducedState();
+          const ReducedState q_B = defo_B ? testing::RandomState(*assets.B.reduced_model(), 0.002, &rng) : ReducedState();
+          ReducedVector f_A, f_B;
+          const BodyDeformation d_A{&q_A, &f_A}, d_B{&q_B, &f_B};
+          ContactQuery q;
+          q.X_WA = scene.pointshell_body.pose;
+          q.X_WB = scene.field_body.pose;
+          if (defo_A) q.deformation_A = &d_A;
+          if (defo_B) q.deformation_B = &d_B;
+
+          testing::ReferenceBodies bodies;
+          bodies.shell = assets.A.pointshell().get();
+          if (defo_A) {
+            bodies.dps = assets.A.deformable_pointshell().get();
+            bodies.q_A = q_A.q.data();
+          }
+          if (defo_B) {
+            bodies.deformed = assets.B.deformed_field().get();
+            bodies.q_B = q_B.q.data();
+          } else {
+            bodies.field = assets.B.field().get();
+          }
+          const testing::ReferenceSum ref = testing::ReferenceEq1Sum(bodies, q.X_WA, q.X_WB, scene.model.penalty);
+          const std::string what = scene.name + " " + CombinationName(defo_A, defo_B);
+          if (ref.count == 0) {
+            std::printf("eq1 %s: no contact at this q\n", what.c_str());
+            continue;
+          }
+          ++checked;
+
+          for (int m = 0; m < 2; ++m) {
+            ContactModel& model = m == 0 ? *linear : *tree;
+            const ContactResult r = model.Evaluate(q);
+            // The model's contact set (the linear variant's point states) against the
+            // reference's: a point on different sides must lie within float rounding of 0.
+            int mismatched = 0;
+            if (m == 0) {
+              const int n = int(ref.d.size());
+              std::vector<std::int32_t> index(n);
+              for (int i = 0; i < n; ++i) index[i] = i;
+              std::vector<PointState> states(n);
+              for (int begin = 0; begin < n;) {
+                const int got = model.PointStates(q, std::span(index).subspan(begin), states.data() + begin);
+                ASSERT_GT(got, 0);
+                begin += got;
+              }
+              for (int i = 0; i < n; ++i) {
+                if ((states[i] == PointState::kInContact) != (ref.d[i] < 0)) {
+                  ++mismatched;
+                  worst_flip_d = std::max(worst_flip_d, std::abs(ref.d[i]));
+                  EXPECT_LT(std::abs(ref.d[i]), eps_d) << what << ": point " << i << " on the other side";
+                }
+              }
+              flips += mismatched;
+            }
+            const int near_zero = testing::NearZero(ref, eps_d);
+            EXPECT_LE(std::abs(r.stats.points_in_contact - ref.count), near_zero) << what << " " << model.name();
+            // Measured (Release, 24 states, both variants): the same contacts as the reference
+            // everywhere (no point within eps_d of 0), relative differences at most 1.8e-6 in
+            // force, 1.6e-6 in torque, 1.8e-6 in A's and 2.2e-6 in B's reduced force. Bounds:
+            // 1e-5 of the summed point forces (and of the reduced forces), plus what points
+            // near 0 may flip: each carries at most k eps_d and changes k by one count in L / l.
+            const double slack = near_zero * (kC * eps_d + ref.sum_force / ref.count);
+            const double F = ref.on_B.force.norm();
+            const double ef = (r.on_B.force - ref.on_B.force).norm() / F;
+            const double et = (r.on_B.torque - ref.on_B.torque).norm() / std::max(ref.on_B.torque.norm(), 0.01 * F);
+            const double R = 0.2;  // metres: bounds every contact's lever about B's origin here
+            EXPECT_LE((r.on_B.force - ref.on_B.force).norm(), 1e-5 * ref.sum_force + slack) << what << " " << model.name();
+            EXPECT_LE((r.on_B.torque - ref.on_B.torque).norm(), R * (1e-5 * ref.sum_force + slack))
+                << what << " " << model.name();
+            double efA = 0, efB = 0;
+            if (defo_A) {
+              const double scale = ref.f_A.norm();
+              efA = (Eigen::VectorXd(f_A) - ref.f_A).norm() / scale;
+              EXPECT_LT(efA, 1e-5) << what << " " << model.name() << ": A's reduced force";
+              worst_fA = std::max(worst_fA, efA);
+            }
+            if (defo_B) {
+              const double scale = ref.f_B.norm();
+              efB = (Eigen::VectorXd(f_B) - ref.f_B).norm() / scale;
+              EXPECT_LT(efB, 1e-5) << what << " " << model.name() << ": B's reduced force";
+              worst_fB = std::max(worst_fB, efB);
+            }
+            std::printf("eq1 %s %s: %d vs %d contacts (%d near 0, %d on the other side), force %.3g, torque %.3g, "
+                        "f_A %.3g, f_B %.3g\n",
+                        what.c_str(), std::string(model.name()).c_str(), r.stats.points_in_contact, ref.count,
+                        near_zero, mismatched, ef, et, efA, efB);
+            worst_force = std::max(worst_force, ef);
+            worst_torque = std::max(worst_torque, et);
+          }
+        }
+      }
+    }
+  }
+  std::printf("eq1: %d states checked; worst relative difference force %.3g, torque %.3g, f_A %.3g, f_B %.3g; "
+              "%d points on the other side, largest |d_ref| among them %.3g m\n",
+              checked, worst_force, worst_torque, worst_fA, worst_fB, flips, worst_flip_d);
+  EXPECT_GE(checked, 18);  // of 24 (4 cases x 2 orders x 3 combinations)
 }
 
 }  // namespace

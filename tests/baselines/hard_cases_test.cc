@@ -27,7 +27,11 @@
 //    the caller resets on a too-fast motion as the haptic cycle does (haptics/haptic_cycle.h);
 //  * no allocation in Evaluate once a case's path has run once, for models that promise it
 //    (pointshell, pointshell-linear, vps, vps-repulsion, fcl); bullet and reference document
-//    that they allocate: recorded, not checked.
+//    that they allocate: recorded, not checked;
+//  * with a deformable body (the paper's model only; the others refuse it) at a random q every
+//    cycle: the same checks, with A's points and B's surface moved by at most U |q| (U the
+//    largest |U_i|_F of A's points or B's proxies), and the reduced forces and stiffnesses
+//    finite and bounded, |f| <= U k_C L D and |K|_F <= U^2 k_C L.
 //
 // A failing check prints the model, the case, both poses with %.17g and the scene, so it
 // replays with `contactlab contact SCENE.yaml --model M --pose-a ... --pose-b ...`. Failures
@@ -43,6 +47,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <random>
 #include <set>
 #include <sstream>
 #include <string>
@@ -52,6 +57,7 @@
 #include "allocation_counter.h"
 #include "baselines/register_baselines.h"
 #include "contact/model_registry.h"
+#include "experiment/deformable_fixture.h"
 #include "experiment/scene.h"
 #include "experiment/scene_assets.h"
 #include "geometry/procedural_shapes.h"
@@ -90,6 +96,9 @@ struct BodyDef {
   double scale = 1;
   double padding = 0.1;  // field padding, fraction of the largest extent
   bool center = false;   // move the bounding-box centre to the body origin
+  // A small reduced deformable model (linear modal, 4 modes on an 8-cell tet mesh, free; as B
+  // its deformed field of one domain), given a random q every cycle: see HardCase::deformation.
+  bool deformable = false;
 };
 
 // One cycle of a case: poses of body 1 and body 2, and the geometric overlap along the push.
@@ -117,6 +126,9 @@ struct HardCase {
   // When set, the steps of each order are placed from the order's assets (a pointshell point
   // on a grid node of B's field, ...); STEPS then holds the scene's start poses only.
   std::function<std::vector<Step>(SceneAssets& assets, int order)> place;
+  // Metres: each deformable body takes, every cycle, a random q (seeded by the cycle) moving a
+  // vertex of its simulation mesh by up to this much.
+  double deformation = 0;
 };
 
 // The scene text of CASE with body 1 (ORDER 0) or body 2 (ORDER 1) as the pointshell body.
@@ -131,6 +143,7 @@ std::string SceneText(const HardCase& c, int order) {
       << "\n    pose: [" << PoseText(X) << "]\n    role: " << role << "\n    pointshell: {points: " << b.points
       << ", levels: " << b.levels << "}\n    field: {resolution: " << b.field_resolution
       << ", padding: " << Num(b.padding) << "}\n";
+    if (b.deformable) s << "    deformable: {model: linear, modes: 4, cells: 8}\n";
   };
   s << "name: hard-" << c.name << "\nbodies:\n";
   body("one", c.body1, c.steps.front().X_W1, order == 0 ? "pointshell" : "field");
@@ -294,6 +307,29 @@ class HardCaseRunner {
     // The direction the force on B must take: body 1 moves along c.push into body 2, so
     // body 2 is pushed along it and body 1 against it.
     const Eigen::Vector3d push_on_B = order == 0 ? Eigen::Vector3d(c.push) : Eigen::Vector3d(-c.push);
+    // Deformable bodies: each step's q, and U_A (U_B), the largest |U_i|_F over A's points (B's
+    // proxies). A point moves by at most U_A |q_A|, a proxy by U_B |q_B|; a point force F acts
+    // on a reduced force through U^T (a weighted mean of them), so |f| <= U sum |F_i|, and the
+    // halfspace stiffness k sum w w^T has |K|_F <= U^2 sum k.
+    const bool defo_A = scene.pointshell_body.deformable.has_value();
+    const bool defo_B = scene.field_body.deformable.has_value();
+    double U_A = 0, U_B = 0;
+    if (defo_A) {
+      const auto dps = assets.A.deformable_pointshell();
+      for (int i = 0; i < dps->points().size(); ++i) U_A = std::max(U_A, dps->points().Basis(i).norm());
+    }
+    if (defo_B) {
+      const auto field = assets.B.deformed_field();
+      for (int i = 0; i < field->num_slots(); ++i) U_B = std::max(U_B, field->proxies().Basis(i).norm());
+    }
+    std::vector<ReducedState> q_A(steps.size()), q_B(steps.size());
+    for (std::size_t i = 0; i < steps.size(); ++i) {
+      std::mt19937 rng(unsigned(i) + 1);
+      if (defo_A) q_A[i] = testing::RandomState(*assets.A.reduced_model(), c.deformation, &rng);
+      if (defo_B) q_B[i] = testing::RandomState(*assets.B.reduced_model(), c.deformation, &rng);
+    }
+    ReducedVector f_A, f_B;  // fixed-capacity: no allocation in the cycle
+    ReducedMatrix K_A, K_B;
 
     for (const std::string& name : ContactModelNames()) {
       if (name == "reference" && steps.size() > 12) {
@@ -329,6 +365,11 @@ class HardCaseRunner {
           q.X_WA = order == 0 ? s.X_W1 : s.X_W2;
           q.X_WB = order == 0 ? s.X_W2 : s.X_W1;
           q.cycle = std::int64_t(i);
+          const BodyDeformation d_A{&q_A[i], &f_A, &K_A}, d_B{&q_B[i], &f_B, &K_B};
+          if (defo_A) q.deformation_A = &d_A;
+          if (defo_B) q.deformation_B = &d_B;
+          // How far the deformations may have moved A's points and B's surface (metres).
+          const double deformed_by = (defo_A ? U_A * q_A[i].q.norm() : 0.0) + (defo_B ? U_B * q_B[i].q.norm() : 0.0);
           // The haptic cycle's guard: a step faster than max_point_speed resets the model.
           if (c.guard && i > 0) {
             const Step& p = steps[i - 1];
@@ -343,14 +384,27 @@ class HardCaseRunner {
 
           const double F = r.on_B.force.norm();
           if (i == 0) Summary().first_force[{name, c.name, order}] = r.on_B.force;
-          if (!Finite(r)) {
-            Report(name, c, order, "finite", q, "non-finite force, torque or K_B", &failed);
+          if (!Finite(r) || (defo_A && !(f_A.allFinite() && K_A.allFinite())) ||
+              (defo_B && !(f_B.allFinite() && K_B.allFinite()))) {
+            Report(name, c, order, "finite", q, "non-finite force, torque, K_B or reduced force or stiffness", &failed);
             continue;
           }
           if (c.bounds) {
             const Aabb box_A = WorldBox(mesh_A, q.X_WA), box_B = WorldBox(mesh_B, q.X_WB);
-            const double R = std::max(FarthestCorner(box_A, q.X_WB.translation), FarthestCorner(box_B, q.X_WB.translation));
+            // A's deformed points lie within DEFORMED_BY of its rest box.
+            const double R = std::max(FarthestCorner(box_A, q.X_WB.translation), FarthestCorner(box_B, q.X_WB.translation)) +
+                             deformed_by;
             const double kmax = kC * kL * (1 + 1e-6);
+            for (const auto& [deforms, U, f, K, body] :
+                 {std::tuple{defo_A, U_A, &f_A, &K_A, "A"}, std::tuple{defo_B, U_B, &f_B, &K_B, "B"}}) {
+              if (!deforms) continue;
+              if (f->norm() > U * kmax * D || K->norm() > U * U * kmax) {
+                Report(name, c, order, "reduced-bound", q,
+                       std::string("body ") + body + ": |f| " + Num(f->norm()) + ", |K| " + Num(K->norm()) +
+                           " over U k_C L D = " + Num(U * kC * kL * D) + ", U^2 k_C L = " + Num(U * U * kC * kL),
+                       &failed);
+              }
+            }
             if (F > kmax * D) {
               Report(name, c, order, "force-bound", q, "|F| " + Num(F) + " N > k_C L D = " + Num(kC * kL * D), &failed);
             }
@@ -367,19 +421,21 @@ class HardCaseRunner {
                      &failed);
             }
           }
-          if (s.depth < -apart && F > 0) {
+          if (s.depth < -apart - deformed_by && F > 0) {
             Report(name, c, order, "apart", q, "|F| " + Num(F) + " N with the bodies " + Num(-s.depth) + " m apart", &failed);
           }
           // Direction: before the medial axis the force on B points along B's push.
           const double along = push_on_B.norm() > 0 ? r.on_B.force.dot(push_on_B.normalized()) : 0;
-          if (push_on_B.norm() > 0 && s.depth < c.direction_until[order]) {
+          // (With deformable bodies not where the deformation alone may make the contact.)
+          if (push_on_B.norm() > 0 && s.depth < c.direction_until[order] - deformed_by &&
+              (deformed_by == 0 || s.depth > deformed_by)) {
             if (F > 1e-9 && along < 0.5 * F) {
               Report(name, c, order, "direction", q,
                      "force on B " + Num(r.on_B.force.x()) + "," + Num(r.on_B.force.y()) + "," + Num(r.on_B.force.z()) +
                          " at depth " + Num(s.depth) + " is not along the push",
                      &failed);
             }
-            if (s.depth >= voxel_B && F == 0) {
+            if (s.depth >= voxel_B + deformed_by && F == 0) {
               Report(name, c, order, "has-force", q, "no force at depth " + Num(s.depth) + " m (" + Num(s.depth / voxel_B) + " voxels of B)", &failed);
             }
           }
@@ -821,6 +877,28 @@ TEST(HardCases, InputExtremes) {
         }
       }
     }
+  }
+}
+
+// CASE with body WHICH (1 or 2) deformable, a random deformation of up to 0.5 mm every cycle.
+// Run in both orders, the deformable body is once the pointshell and once the field body.
+HardCase Deformable(HardCase c, int which) {
+  (which == 1 ? c.body1 : c.body2).deformable = true;
+  c.name += which == 1 ? "-deformable-1" : "-deformable-2";
+  c.deformation = 5e-4;
+  return c;
+}
+
+// Deep penetration past the medial axis and a wall thinner than a voxel with deformable bodies
+// (paper sec. 4): a deformable pointshell, and a deformed field whose pull-back reads the rest
+// field far inside the body.
+TEST(HardCases, DeformableBodiesThroughAPlateAndOverAPeg) {
+  RegisterBaselineContactModels();
+  testing::TempDir cache;
+  HardCaseRunner runner(cache);
+  for (const int which : {1, 2}) {
+    runner.Run(Deformable(BallThroughPlate(), which));
+    runner.Run(Deformable(TubeOverPeg(), which));
   }
 }
 
