@@ -1,11 +1,14 @@
 #!/usr/bin/python3
 """Tests of scripts/make_figures.py and its figures/ package: discovery, the outputs of a run on
-tiny synthetic results, tables sized to their text, and the per-model style table.
+tiny synthetic results, README.md's example of adding a figure, tables sized to their text,
+and the per-model style table.
 
 Usage: make_figures_test.py [PATH/TO/scripts/make_figures.py]  (exit 77: matplotlib missing)
 """
 import csv
 import os
+import re
+import shutil
 import struct
 import subprocess
 import sys
@@ -106,6 +109,23 @@ class Run(unittest.TestCase):
             # Every other figure is skipped with a note naming its experiments.
             self.assertIn("make_figures: tessellation: no results yet (run tessellation first)", run.stderr)
             self.assertNotIn("table1_statistics: no results", run.stderr)
+
+
+    # README.md's example: adding one file to figures/ adds a figure, with no other change.
+    def test_readme_example_figure_is_found_and_drawn(self):
+        with open(os.path.join(os.path.dirname(SCRIPT), "..", "README.md")) as f:
+            example = re.search(r"```python\n(# scripts/figures/my_figure.py\n.*?)```", f.read(), re.S).group(1)
+        with tempfile.TemporaryDirectory() as root:
+            scripts = os.path.join(root, "scripts")
+            shutil.copytree(os.path.dirname(SCRIPT), scripts, ignore=shutil.ignore_patterns("__pycache__"))
+            with open(os.path.join(scripts, "figures", "my_figure.py"), "w") as f:
+                f.write(example)
+            write_csv(os.path.join(root, "results", "my-experiment", "cycles.csv"),
+                      [dict(model=m, t=0.1 * i, fz=i) for m in ("pointshell", "bullet") for i in range(20)])
+            run = subprocess.run([sys.executable, os.path.join(scripts, os.path.basename(SCRIPT)),
+                                  "--results", os.path.join(root, "results")], capture_output=True, text=True, timeout=120)
+            self.assertEqual(run.returncode, 0, run.stderr)
+            self.assertEqual(os.listdir(os.path.join(root, "results", "figures")), ["my_figure.png"])
 
 
 class Tables(unittest.TestCase):
