@@ -4,7 +4,7 @@
 #   PREFIX/bin/contactlab
 #   PREFIX/share/contactlab/data/{meshes,scenes,trajectories}
 #   PREFIX/share/contactlab/experiments/*.yaml
-#   PREFIX/share/contactlab/scripts/make_figures.py
+#   PREFIX/share/contactlab/scripts/make_figures.py and its figures/ package
 #   PREFIX/share/doc/contactlab/{README.md,LICENSE}
 # `cpack -G DEB` in the build folder makes a .deb of the same files.
 install(TARGETS contactlab-cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
@@ -12,6 +12,8 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/data/ DESTINATION ${CONTACTLAB_INSTALL_S
 file(GLOB _contactlab_configs CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/experiments/*.yaml)
 install(FILES ${_contactlab_configs} DESTINATION ${CONTACTLAB_INSTALL_SHAREDIR}/experiments)
 install(PROGRAMS ${PROJECT_SOURCE_DIR}/scripts/make_figures.py DESTINATION ${CONTACTLAB_INSTALL_SHAREDIR}/scripts)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/scripts/figures DESTINATION ${CONTACTLAB_INSTALL_SHAREDIR}/scripts
+        FILES_MATCHING PATTERN "*.py" PATTERN "__pycache__" EXCLUDE)
 install(FILES ${PROJECT_SOURCE_DIR}/README.md ${PROJECT_SOURCE_DIR}/LICENSE DESTINATION ${CMAKE_INSTALL_DOCDIR})
 
 set(CPACK_PACKAGE_NAME contactlab)

@@ -1,0 +1,188 @@
+#!/usr/bin/python3
+"""Tests of scripts/make_figures.py and its figures/ package: discovery, the outputs of a run on
+tiny synthetic results, README.md's example of adding a figure, tables sized to their text,
+and the per-model style table.
+
+Usage: make_figures_test.py [PATH/TO/scripts/make_figures.py]  (exit 77: matplotlib missing)
+"""
+import csv
+import os
+import re
+import shutil
+import struct
+import subprocess
+import sys
+import tempfile
+import unittest
+
+SCRIPT = os.path.abspath(sys.argv.pop(1) if len(sys.argv) > 1 else
+                         os.path.join(os.path.dirname(__file__), "..", "..", "scripts", "make_figures.py"))
+try:
+    import matplotlib  # noqa: F401
+except ImportError:
+    print("make_figures_test: skipped: no matplotlib (python3-matplotlib, scripts/install-deps.sh)")
+    sys.exit(77)
+sys.path.insert(0, os.path.dirname(SCRIPT))
+import figures  # noqa: E402
+from figures import common  # noqa: E402
+
+
+def write_csv(path, rows):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+
+
+# Tiny results for three experiments: a table, a per-model curve plot and a log-log plot.
+def write_synthetic_results(root):
+    summary, cycles = [], []
+    for scene in ("data/scenes/block-joint.yaml", "data/scenes/dragon-bunny.yaml"):
+        for model, coherence in (("pointshell", "false"), ("pointshell", "true"), ("pointshell-linear", "false")):
+            summary.append(dict(scene=scene, model=model, coherence=coherence, points=4096, mean_nodes=321.0,
+                                median_us=12.5))
+            cycles += [dict(scene=scene, model=model, coherence=coherence, level=lv) for lv in (3, 4, 4)]
+    write_csv(os.path.join(root, "table1-statistics", "summary.csv"), summary)
+    write_csv(os.path.join(root, "table1-statistics", "cycles.csv"), cycles)
+    rows = []
+    for roles in ("normal", "swapped"):
+        for model in ("pointshell", "pointshell-linear", "vps", "some-new-model"):
+            for i in range(40):
+                z = 0.012 - 0.0005 * i
+                rows.append(dict(roles=roles, model=model, cycle=i, z=z, fz=max(0.0, 0.012 - z) * 1000))
+    write_csv(os.path.join(root, "hard-cases-medial-axis", "cycles.csv"), rows)
+    write_csv(os.path.join(root, "fig05b-convergence", "summary.csv"),
+              [dict(model="pointshell-linear", points=n, rms_rel_error=1.0 / n) for n in (256, 1024, 4096)])
+    write_csv(os.path.join(root, "fig05b-convergence", "convergence.csv"), [dict(group="all", fitted_order=1.0)])
+    return {"table1_statistics", "hard_cases_medial_axis", "fig05b_convergence"}
+
+
+def png_size(path):
+    with open(path, "rb") as f:
+        head = f.read(24)
+    if head[:8] != b"\x89PNG\r\n\x1a\n":
+        raise ValueError(f"{path} is not a PNG")
+    return struct.unpack(">II", head[16:24])
+
+
+class Discovery(unittest.TestCase):
+    def test_every_figure_module_declares_an_experiment(self):
+        modules = figures.figure_modules()
+        self.assertGreater(len(modules), 10)
+        for module in modules:
+            declared = figures.figures_of(module)
+            self.assertTrue(declared, f"{module.__name__} declares no @figure")
+            for draw in declared:
+                self.assertTrue(draw.experiments and all(isinstance(e, str) and e for e in draw.experiments),
+                                f"{module.__name__}.{draw.__name__} names no experiment")
+                self.assertTrue(draw.outputs, f"{module.__name__}.{draw.__name__} names no output")
+
+    def test_no_two_figures_write_the_same_file(self):
+        writer = {}
+        for module, draw in figures.all_figures():
+            for out in draw.outputs:
+                self.assertNotIn(out, writer, f"{out} is written by {writer.get(out)} and {module.__name__}")
+                writer[out] = module.__name__
+        names = [draw.__name__ for _, draw in figures.all_figures()]
+        self.assertEqual(len(names), len(set(names)), "two figures share a name")
+
+
+class Run(unittest.TestCase):
+    def test_synthetic_results_make_exactly_their_figures(self):
+        with tempfile.TemporaryDirectory() as root:
+            present = write_synthetic_results(root)
+            run = subprocess.run([sys.executable, SCRIPT, "--results", root], capture_output=True, text=True,
+                                 timeout=120)
+            self.assertEqual(run.returncode, 0, run.stderr)
+            expected = {out for _, draw in figures.all_figures() if draw.__name__ in present for out in draw.outputs}
+            made = set(os.listdir(os.path.join(root, "figures")))
+            self.assertEqual(made, expected)
+            for name in made:
+                path = os.path.join(root, "figures", name)
+                self.assertGreater(os.path.getsize(path), 0, name)
+                self.assertIn(path, run.stdout.splitlines())
+                if name.endswith(".png"):
+                    png_size(path)
+            with open(os.path.join(root, "figures", "table1_statistics.md")) as f:
+                self.assertIn("| block-joint | 4096 |", f.read())
+            # Every other figure is skipped with a note naming its experiments.
+            self.assertIn("make_figures: tessellation: no results yet (run tessellation first)", run.stderr)
+            self.assertNotIn("table1_statistics: no results", run.stderr)
+
+
+    # README.md's example: adding one file to figures/ adds a figure, with no other change.
+    def test_readme_example_figure_is_found_and_drawn(self):
+        with open(os.path.join(os.path.dirname(SCRIPT), "..", "README.md")) as f:
+            example = re.search(r"```python\n(# scripts/figures/my_figure.py\n.*?)```", f.read(), re.S).group(1)
+        with tempfile.TemporaryDirectory() as root:
+            scripts = os.path.join(root, "scripts")
+            shutil.copytree(os.path.dirname(SCRIPT), scripts, ignore=shutil.ignore_patterns("__pycache__"))
+            with open(os.path.join(scripts, "figures", "my_figure.py"), "w") as f:
+                f.write(example)
+            write_csv(os.path.join(root, "results", "my-experiment", "cycles.csv"),
+                      [dict(model=m, t=0.1 * i, fz=i) for m in ("pointshell", "bullet") for i in range(20)])
+            run = subprocess.run([sys.executable, os.path.join(scripts, os.path.basename(SCRIPT)),
+                                  "--results", os.path.join(root, "results")], capture_output=True, text=True, timeout=120)
+            self.assertEqual(run.returncode, 0, run.stderr)
+            self.assertEqual(os.listdir(os.path.join(root, "results", "figures")), ["my_figure.png"])
+
+
+class Tables(unittest.TestCase):
+    header = ["scene", "points", "tree µs (median)", "StVK µs (A / B)", "max jump N"]
+
+    def line(self, scene):
+        return [scene, "65536", "355.8", "11.8 / 5.1", "0.532"]
+
+    def test_table_png_width_grows_with_its_longest_cell(self):
+        widths = []
+        with tempfile.TemporaryDirectory() as root:
+            results = common.Results(root)
+            for i, scene in enumerate(["a", "armadillo-dragon", "armadillo-dragon-with-a-much-longer-scene-name"]):
+                results.save_table(self.header, [self.line(scene)], "T", f"t{i}")
+                widths.append(png_size(os.path.join(root, "figures", f"t{i}.png"))[0])
+        self.assertLess(widths[1], widths[2])
+        self.assertLessEqual(widths[0], widths[1])
+
+    def test_table_text_stays_inside_its_cell_and_never_overlaps(self):
+        lines = [self.line("armadillo-dragon-rooted-deep"), self.line("x")]
+        fig = common.table_figure(self.header + ["a header much wider than its numbers"],
+                                  [line + ["1.0"] for line in lines], "A title")
+        renderer = fig.canvas.get_renderer()
+        frame = fig.bbox
+        boxes = [t.get_window_extent(renderer) for t in fig.texts if t.get_text()]
+        for box in boxes:
+            self.assertTrue(frame.x0 <= box.x0 and box.x1 <= frame.x1 and frame.y0 <= box.y0 and box.y1 <= frame.y1,
+                            f"text at {box} leaves the figure {frame}")
+        for i, a in enumerate(boxes):
+            for b in boxes[i + 1:]:
+                self.assertFalse(a.overlaps(b), f"texts at {a} and {b} overlap")
+        # Every text but the title (the first) inside one cell.
+        cells = [p.get_window_extent(renderer) for p in fig.artists]
+        self.assertEqual(len(cells), (len(lines) + 1) * (len(self.header) + 1))
+        for box in boxes[1:]:
+            self.assertTrue(any(c.x0 <= box.x0 and box.x1 <= c.x1 and c.y0 <= box.y0 and box.y1 <= c.y1 for c in cells),
+                            f"text at {box} crosses its cell's border")
+        common.plt.close(fig)
+
+
+class ModelStyles(unittest.TestCase):
+    def test_named_models_have_distinct_colours(self):
+        colours = [s["color"] for s in common.MODEL_STYLES.values()]
+        self.assertEqual(len(colours), len(set(colours)))
+
+    def test_coinciding_pairs_differ_in_colour_line_and_marker(self):
+        for a, b in (("pointshell", "pointshell-linear"), ("vps", "vps-repulsion"), ("fcl", "bullet")):
+            sa, sb = common.model_style(a), common.model_style(b)
+            for key in ("color", "marker"):
+                self.assertNotEqual(sa[key], sb[key], f"{a} and {b} share {key}")
+            self.assertTrue(sa["ls"] != sb["ls"] or sa["lw"] != sb["lw"], f"{a} and {b} share their line")
+
+    def test_unknown_model_gets_the_same_fallback_every_time(self):
+        self.assertEqual(common.model_style("some-new-model"), common.model_style("some-new-model"))
+        self.assertNotIn(common.model_style("some-new-model")["color"],
+                         [s["color"] for s in common.MODEL_STYLES.values()])
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)
