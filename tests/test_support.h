@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -14,6 +15,16 @@
 #include "util/error.h"
 
 namespace contactlab::testing {
+
+// The message of the Error F throws, or "(no error)" when it throws none.
+inline std::string ErrorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
 
 // Path of a mesh the repository ships in data/meshes (SOURCES.md), found as the program
 // finds it: in the data folder beside the test executable (build/share/contactlab/data is the

@@ -8,19 +8,13 @@
 
 #include "contact/pointshell_contact_params.h"
 #include "util/config_node.h"
+#include "test_support.h"
 #include "util/error.h"
 
 namespace contactlab {
 namespace {
 
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::ErrorOf;
 
 TEST(PenaltyParams, StiffnessIsKcUntilLPointsTouchThenScaledByLOverL) {
   const PenaltyParams p{.k_C = 600, .L = 10};

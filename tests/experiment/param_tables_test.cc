@@ -26,14 +26,7 @@ namespace {
 namespace fs = std::filesystem;
 using testing::TempDir;
 
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::ErrorOf;
 
 struct Widget {
   int teeth = 12;

@@ -13,6 +13,7 @@
 #include "pointshell/level_set_sampling.h"
 #include "pointshell/pointshell_io.h"
 #include "pointshell/pointshell_quality.h"
+#include "test_support.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -45,14 +46,7 @@ const Pointshell& RepulsionShell() {
   return shell;
 }
 
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using testing::ErrorOf;
 
 bool Identical(const Pointshell& a, const Pointshell& b) {
   return a.x == b.x && a.y == b.y && a.z == b.z && a.nx == b.nx && a.ny == b.ny && a.nz == b.nz &&

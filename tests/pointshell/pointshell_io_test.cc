@@ -34,14 +34,7 @@ const Pointshell& Shell() {
   return shell;
 }
 
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using testing::ErrorOf;
 
 // Writes SHELL's payload with the file layout but without validation (to make broken files).
 void SaveUnchecked(const Pointshell& s, const std::filesystem::path& path) {

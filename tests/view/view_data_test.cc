@@ -50,14 +50,7 @@ void RunTiny(const TempDir& dir, const std::vector<std::string>& overrides = {})
   RunExperiment(LoadExperimentConfig(dir / "config.yaml", overrides), Options(dir));
 }
 
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using testing::ErrorOf;
 
 TEST(Replay, ReadsEveryModelsPosesAndWrenchesFromTheResultsFolder) {
   TempDir dir;
