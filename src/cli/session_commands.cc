@@ -79,13 +79,6 @@ void WriteRecord(std::ostream& out, const CycleRecord& r, std::int64_t t0_ns) {
   out << line;
 }
 
-// Largest distance of a vertex of MESH from its body's origin, metres.
-double BoundingRadius(const TriangleMesh& mesh) {
-  double r = 0;
-  for (const Eigen::Vector3d& v : mesh.vertices) r = std::max(r, v.norm());
-  return r;
-}
-
 void RunSession(const SessionArgs& args) {
   if (!args.log.empty()) CheckOutputTarget(args.log, "--log");  // before the session, not after it
   // --view: its port and three.js, before anything is built.
@@ -120,7 +113,7 @@ void RunSession(const SessionArgs& args) {
   // The coherence guard: the haptic body's real motion against the scene's max_point_speed.
   config.max_point_speed = scene.model.max_point_speed;
   config.cycle_seconds = scene.model.cycle_seconds;
-  config.body_radius_H = BoundingRadius(*assets.B.mesh());
+  config.body_radius_H = assets.B.mesh()->MaxVertexRadius();
   if (args.k_vc > 0) config.coupling.k_vc = args.k_vc;
   // Deformable bodies: their reduced models step at the haptic rate, A's and the haptic body's.
   std::unique_ptr<ReducedIntegrator> deformation, deformation_H;

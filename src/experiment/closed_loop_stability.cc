@@ -32,12 +32,6 @@ double Smooth(double t, double t0, double t1) {
   return 0.5 - 0.5 * std::cos(M_PI * (t - t0) / (t1 - t0));
 }
 
-double MaxVertexRadius(const TriangleMesh& mesh) {
-  double r = 0;
-  for (const Eigen::Vector3d& v : mesh.vertices) r = std::max(r, v.norm());
-  return r;
-}
-
 // RMS deviation of equally spaced 3-vector samples from their least-squares line: the
 // oscillation about a slow drift (H creeping along a surface while the handle settles is not
 // an oscillation).
@@ -91,7 +85,7 @@ ClosedLoopScene MakeClosedLoopScene(const Scene& scene, SceneAssets& assets) {
   // Start back along the tilted approach so the line of motion still passes near A's origin.
   tilted.translation = w.X_WA.translation - (X_WH0.translation - w.X_WA.translation).norm() * w.corner_approach;
   w.X_WH_touch_tilted = TouchAlong(scene, assets, true, w.X_WA, tilted, w.corner_approach, kTouchDepth, where);
-  w.body_radius_H = MaxVertexRadius(*assets.B.mesh());
+  w.body_radius_H = assets.B.mesh()->MaxVertexRadius();
   w.max_point_speed = scene.model.max_point_speed;
   w.cycle_seconds = scene.model.cycle_seconds;
   return w;
