@@ -161,15 +161,17 @@ int main(int argc, char** argv) {
         const Job& job = jobs_list[tasks[i].first];
         const double k = k_values[tasks[i].second];
         std::unique_ptr<ContactModel> instance;
+        SceneDynamics dynamics;  // the deformable bodies' own, stepped by this worker's loop
         {
           std::lock_guard<std::mutex> lock(make);
           instance = MakeSceneContactModel(job.model, *job.spec, *job.assets);
+          dynamics = MakeSceneDynamics(*job.assets, job.where->cycle_seconds);
         }
         for (LoopMotion motion : {LoopMotion::kPush, LoopMotion::kSlide, LoopMotion::kCorner}) {
           ClosedLoopCase c;
           c.k_vc = k;
           c.motion = motion;
-          Row row{job.scene, job.model, k, motion, RunClosedLoop(*instance, *job.where, c)};
+          Row row{job.scene, job.model, k, motion, RunClosedLoop(*instance, *job.where, c, &dynamics)};
           {
             std::lock_guard<std::mutex> lock(print);
             std::fprintf(stderr, "%-18s %-17s k_VC %6.0f %-6s energy %+.2e J (peak %.2e) late rms %.1e m %.1e N -> %s (%.1f s)\n",

@@ -115,22 +115,10 @@ void RunSession(const SessionArgs& args) {
   config.cycle_seconds = scene.model.cycle_seconds;
   config.body_radius_H = assets.B.mesh()->MaxVertexRadius();
   if (args.k_vc > 0) config.coupling.k_vc = args.k_vc;
-  // Deformable bodies: their reduced models step at the haptic rate, A's and the haptic body's.
-  std::unique_ptr<ReducedIntegrator> deformation, deformation_H;
-  if (assets.A.deformable()) {
-    const DeformableSpec& d = *scene.pointshell_body.deformable;
-    deformation = std::make_unique<ReducedIntegrator>(assets.A.reduced_model()->forces,
-                                                      DeformableIntegratorOptions(d, scene.model.cycle_seconds));
-    config.deformation_A = deformation.get();
-    config.implicit_contact_A = d.implicit_contact;
-  }
-  if (assets.B.deformable()) {
-    const DeformableSpec& d = *scene.field_body.deformable;
-    deformation_H = std::make_unique<ReducedIntegrator>(assets.B.reduced_model()->forces,
-                                                        DeformableIntegratorOptions(d, scene.model.cycle_seconds));
-    config.deformation_B = deformation_H.get();
-    config.implicit_contact_B = d.implicit_contact;
-  }
+  // Deformable bodies: their dynamics step at the haptic rate, A's and the haptic body's.
+  SceneDynamics dynamics = MakeSceneDynamics(assets, scene.model.cycle_seconds);
+  config.dynamics_A = dynamics.A.get();
+  config.dynamics_B = dynamics.B.get();
   // --view: the displayed pointshell points (the page's, same decimation) are marked with
   // their contact state by the haptic thread, a chunk per cycle.
   std::unique_ptr<ContactPointMarks> marks;
@@ -170,11 +158,11 @@ void RunSession(const SessionArgs& args) {
     server = std::make_unique<LiveViewServer>(ViewerPage(data), *live, view_port, 50, marks.get());
   }
 
+  std::string deformable;
+  if (dynamics.A) deformable += ", " + scene.pointshell_body.name + " deformable, r = " + std::to_string(dynamics.A->r());
+  if (dynamics.B) deformable += ", " + scene.field_body.name + " deformable, r = " + std::to_string(dynamics.B->r());
   std::printf("session: scene %s, model %s, device %s, %.1f s (Ctrl-C stops)%s\n", scene.name.c_str(),
-              model_name.c_str(), args.device.c_str(), args.duration,
-              deformation ? (", " + scene.pointshell_body.name + " deformable, r = " +
-                             std::to_string(deformation->r())).c_str()
-                          : "");
+              model_name.c_str(), args.device.c_str(), args.duration, deformable.c_str());
   // Where the device is (a udp device's bound port, also when udp:0 picked it).
   std::printf("device: %s\n", device->description().c_str());
   if (server) std::printf("view: %s\n", server->url().c_str());

@@ -99,7 +99,8 @@ bool ClosedLoopMetrics::stable() const {
   return finite && non_finite_cycles == 0 && solve_failures == 0 && passive() && settled();
 }
 
-ClosedLoopMetrics RunClosedLoop(ContactModel& model, const ClosedLoopScene& w, const ClosedLoopCase& c) {
+ClosedLoopMetrics RunClosedLoop(ContactModel& model, const ClosedLoopScene& w, const ClosedLoopCase& c,
+                                SceneDynamics* dynamics) {
   const auto wall0 = std::chrono::steady_clock::now();
   const bool corner = c.motion == LoopMotion::kCorner;
   const bool slide = c.motion == LoopMotion::kSlide;
@@ -129,6 +130,10 @@ ClosedLoopMetrics RunClosedLoop(ContactModel& model, const ClosedLoopScene& w, c
   config.max_point_speed = w.max_point_speed;
   config.cycle_seconds = w.cycle_seconds;
   config.body_radius_H = w.body_radius_H;
+  if (dynamics != nullptr) {
+    config.dynamics_A = dynamics->A.get();
+    config.dynamics_B = dynamics->B.get();
+  }
   HapticCycle cycle(device, &model, config);
   cycle.Start(0);
 

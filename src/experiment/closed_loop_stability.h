@@ -85,7 +85,10 @@ struct ClosedLoopMetrics {
   bool stable() const;
 };
 
-// Runs one closed-loop case: MODEL's body B is H. The model is reset at the start.
-ClosedLoopMetrics RunClosedLoop(ContactModel& model, const ClosedLoopScene& where, const ClosedLoopCase& c);
+// Runs one closed-loop case: MODEL's body B is H. The model is reset at the start. DYNAMICS
+// (MakeSceneDynamics of the scene at where.cycle_seconds; null or empty: both bodies rigid)
+// steps the deformable bodies at the end of each cycle; they start at rest.
+ClosedLoopMetrics RunClosedLoop(ContactModel& model, const ClosedLoopScene& where, const ClosedLoopCase& c,
+                                SceneDynamics* dynamics = nullptr);
 
 }  // namespace contactlab

@@ -46,8 +46,8 @@ const Column<CycleRow> kCycleColumns[] = {
     {"elastic_energy_J", [](const CycleRow& r, CsvLine& l) { r.deformable ? l.Num("%.9g", r.elastic_energy) : l.Empty(); }},
     {"kinetic_energy_J", [](const CycleRow& r, CsvLine& l) { r.deformable ? l.Num("%.9g", r.kinetic_energy) : l.Empty(); }},
     {"max_displacement", [](const CycleRow& r, CsvLine& l) { r.deformable ? l.Num("%.9g", r.max_displacement) : l.Empty(); }},
-    {"q", [](const CycleRow& r, CsvLine& l) { l.Text(r.q); }},
-    {"q_B", [](const CycleRow& r, CsvLine& l) { l.Text(r.q_B); }},
+    {"q", [](const CycleRow& r, CsvLine& l) { l.Numbers("%.9g", r.q); }},
+    {"q_B", [](const CycleRow& r, CsvLine& l) { l.Numbers("%.9g", r.q_B); }},
 };
 
 // summary.csv: per model and job, continuity, timing, error against the reference and force

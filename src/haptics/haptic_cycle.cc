@@ -15,12 +15,6 @@ HapticCycle::HapticCycle(HapticDevice& device, ContactModel* model, const Haptic
       config_(config),
       coupling_(config.coupling),
       safety_(ResolveSafetyLimits(config.safety, device.capabilities())) {
-  if (config.deformation_A != nullptr) {
-    deformation_A_ = BodyDynamics(config.deformation_A, config.implicit_contact_A);
-  }
-  if (config.deformation_B != nullptr) {
-    deformation_B_ = BodyDynamics(config.deformation_B, config.implicit_contact_B);
-  }
   if (!(config.max_point_speed <= 0 || (std::isfinite(config.max_point_speed) && config.cycle_seconds > 0 &&
                                          std::isfinite(config.cycle_seconds) && config.body_radius_H >= 0 &&
                                          std::isfinite(config.body_radius_H))))
@@ -36,8 +30,8 @@ void HapticCycle::Start(std::int64_t now_ns) {
   if (model_ != nullptr) model_->Reset();
   last_query_X_WH_ = coupling_.X_WH();
   coherence_resets_ = 0;
-  if (deformation_A_.active()) deformation_A_.Reset();
-  if (deformation_B_.active()) deformation_B_.Reset();
+  if (config_.dynamics_A != nullptr) config_.dynamics_A->Reset();
+  if (config_.dynamics_B != nullptr) config_.dynamics_B->Reset();
   cycle_ = 0;
 }
 
@@ -72,8 +66,8 @@ CycleRecord HapticCycle::Step(std::int64_t now_ns) {
     q.X_WB = X_WH;
     q.cycle = cycle_;
     q.node_budget = config_.node_budget;
-    if (deformation_A_.active()) q.deformation_A = deformation_A_.Prepare();
-    if (deformation_B_.active()) q.deformation_B = deformation_B_.Prepare();  // H deforms: its field at its q
+    if (config_.dynamics_A != nullptr) q.deformation_A = config_.dynamics_A->Prepare();
+    if (config_.dynamics_B != nullptr) q.deformation_B = config_.dynamics_B->Prepare();  // H deforms: its field at its q
     contact = model_->Evaluate(q);
     if (config_.point_marks != nullptr) config_.point_marks->Update(*model_, q, cycle_);
   }
@@ -114,16 +108,15 @@ CycleRecord HapticCycle::Step(std::int64_t now_ns) {
   rec.q_WH[0] = qh.w(), rec.q_WH[1] = qh.x(), rec.q_WH[2] = qh.y(), rec.q_WH[3] = qh.z();
   // The deformations advance at the end of the cycle with the contact forces as external
   // loads (paper sec. 4.1 and 5): A's, and H's own, decoupled from H's rigid motion.
-  if (model_ != nullptr && (deformation_A_.active() || deformation_B_.active())) {
-    const bool staggered = deformation_A_.active() && deformation_B_.active();
+  if (model_ != nullptr && (config_.dynamics_A != nullptr || config_.dynamics_B != nullptr)) {
     const auto t0 = std::chrono::steady_clock::now();
-    if (deformation_A_.active()) {
-      deformation_A_.Step(staggered);
-      rec.q_norm = deformation_A_.integrator().state().q.norm();
+    if (config_.dynamics_A != nullptr) {
+      config_.dynamics_A->Step();
+      rec.q_norm = config_.dynamics_A->state().q.norm();
     }
-    if (deformation_B_.active()) {
-      deformation_B_.Step(staggered);
-      rec.q_norm_B = deformation_B_.integrator().state().q.norm();
+    if (config_.dynamics_B != nullptr) {
+      config_.dynamics_B->Step();
+      rec.q_norm_B = config_.dynamics_B->state().q.norm();
     }
     rec.step_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0).count();
   }

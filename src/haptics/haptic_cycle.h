@@ -8,7 +8,6 @@
 
 #include "contact/contact_model.h"
 #include "deform/body_dynamics.h"
-#include "deform/reduced_integrator.h"
 #include "haptics/contact_point_marks.h"
 #include "haptics/haptic_device.h"
 #include "haptics/safety_filter.h"
@@ -22,21 +21,18 @@ struct HapticCycleConfig {
   SafetyParams safety{.max_force = 0, .max_torque = 0};
   Pose X_WA;                       // pose of the static contact body A (world)
   std::int64_t node_budget = 0;    // passed to the contact model; <= 0 means unlimited
-  // Body A's reduced deformation when A is a deformable pointshell (paper sec. 4): held fixed
-  // during the contact query, then stepped once at the end of the cycle with the reduced
-  // contact force (and stiffness). Null: A is rigid. Must outlive the cycle.
-  ReducedIntegrator* deformation_A = nullptr;
-  // With deformation_A: the step also takes the contact's reduced stiffness (linearly
-  // implicit contact); false applies the contact force alone (the paper's explicit order).
-  bool implicit_contact_A = true;
-  // The haptic body H's own deformation when H is a deformable field body (paper sec. 4.2 and
-  // 5, "the deformable haptic object"): three configurations — the manipulandum, H's rigid
+  // Body A's dynamics when A is a deformable pointshell (paper sec. 4): its deformation is held
+  // fixed during the contact query, then stepped once at the end of the cycle with the reduced
+  // contact force (and stiffness), as the object's coupling mode and staggering say. Null: A is
+  // rigid. Must outlive the cycle (experiment/scene_assets.h MakeSceneDynamics builds it).
+  BodyDynamics* dynamics_A = nullptr;
+  // The haptic body H's own dynamics when H is a deformable field body (paper sec. 4.2 and 5,
+  // "the deformable haptic object"): three configurations — the manipulandum, H's rigid
   // simulation pose (the virtual coupling acts on it alone) and that pose plus the
   // deformation, which the contact query sees. Held fixed during the query, stepped at the end
   // of the cycle with the reduced contact force on H, decoupled from H's rigid motion. Null:
   // H is rigid. Must outlive the cycle.
-  ReducedIntegrator* deformation_B = nullptr;
-  bool implicit_contact_B = true;  // as implicit_contact_A, for H
+  BodyDynamics* dynamics_B = nullptr;
   // Guard of the contact model's temporal coherence (paper sec. 3.4): the coherence assumes
   // no point of A moves faster than max_point_speed relative to B, i.e. no more than
   // max_point_speed * cycle_seconds per cycle. Each cycle measures the motion of H between
@@ -116,8 +112,6 @@ class HapticCycle {
   std::int64_t cycle_ = 0;
   std::int64_t coherence_resets_ = 0;
   Pose last_query_X_WH_;  // H's pose at the previous contact query
-  BodyDynamics deformation_A_;  // body A's two-way coupling (inactive when rigid)
-  BodyDynamics deformation_B_;  // H's
 };
 
 }  // namespace contactlab

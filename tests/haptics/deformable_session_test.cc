@@ -60,7 +60,7 @@ PressResult RunCycles(HapticDevice& device, ContactModel* model, const HapticCyc
     const CycleRecord rec = cycle.Step(i * kMs);
     r.max_contact_force = std::max(
         r.max_contact_force, Eigen::Vector3d(rec.contact_force[0], rec.contact_force[1], rec.contact_force[2]).norm());
-    const double q = config.deformation_B != nullptr ? rec.q_norm_B : rec.q_norm;
+    const double q = config.dynamics_B != nullptr ? rec.q_norm_B : rec.q_norm;
     r.max_q = std::max(r.max_q, q);
     r.final_q = q;
   }
@@ -80,14 +80,11 @@ PressResult RunPress(bool deformable) {
   SceneAssets rigid_assets(rigid_scene, options);
   auto model = deformable ? MakeSceneContactModel("pointshell", scene, assets)
                           : MakeSceneContactModel("pointshell", rigid_scene, rigid_assets);
-  IntegratorOptions io;
-  io.mass_damping = 8.0;
-  io.stiffness_damping = 5e-4;
-  ReducedIntegrator integrator(assets.A.reduced_model()->forces, io);
+  SceneDynamics dynamics = MakeSceneDynamics(assets, 1e-3);  // the beam's, rate 1 kHz
   SimDevice device(SimDeviceParams{}, kPress);
   HapticCycleConfig config;
   config.X_WA = scene.pointshell_body.pose;
-  if (deformable) config.deformation_A = &integrator;
+  if (deformable) config.dynamics_A = dynamics.A.get();
   return RunCycles(device, model.get(), config, 3000);
 }
 
@@ -139,15 +136,11 @@ PressResult RunHeldBar(bool deformable) {
   options.verbose = false;
   SceneAssets assets(scene, options);
   auto model = MakeSceneContactModel("pointshell", scene, assets);
-  std::unique_ptr<ReducedIntegrator> integrator;
-  if (deformable) {
-    integrator = std::make_unique<ReducedIntegrator>(assets.B.reduced_model()->forces,
-                                                     DeformableIntegratorOptions(*scene.field_body.deformable, 1e-3));
-  }
+  SceneDynamics dynamics = MakeSceneDynamics(assets, 1e-3);  // null when rigid
   SimDevice device(SimDeviceParams{}, kPressBar);
   HapticCycleConfig config;
   config.X_WA = scene.pointshell_body.pose;
-  config.deformation_B = integrator.get();
+  config.dynamics_B = dynamics.B.get();
   return RunCycles(device, model.get(), config, 3000);
 }
 
