@@ -2,12 +2,13 @@
 // session (Barbič & James 2008, sec. 5). The scene's field body is the haptic body: the device
 // workspace is centred on its start pose; the pointshell body stays where the scene puts it.
 // A one-line status shows rate, 99th-percentile cycle time, points in contact, level
-// rendered, clamps, coherence resets and, for a device that rejects samples (udp), its
-// rejection counters; the start names the device (a udp device's bound port); the log (CSV)
-// replays as a recorded trajectory. A deformable pointshell body (a bridge or a hose the user
-// pushes with the rigid haptic body) is two-way coupled: its reduced deformation takes one
-// step at the end of every cycle (paper sec. 4.1). --view [PORT] serves a live 3D view of the
-// session on the loopback address (view/live_view_server.h, docs/viewer.md).
+// rendered, clamps, coherence resets, contact faults (when any) and, for a device that rejects
+// samples (udp), its rejection counters; the start names the device (a udp device's bound
+// port); the log (CSV) replays as a recorded trajectory. A deformable body is two-way coupled
+// (a bridge or a hose the user pushes with the haptic body, or the haptic body itself): its
+// reduced deformation takes one step at the end of every cycle (paper sec. 4.1 and 5).
+// --view [PORT] serves a live 3D view of the session on the loopback address
+// (view/live_view_server.h, docs/viewer.md).
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -175,7 +176,7 @@ void RunSession(const SessionArgs& args) {
     work_us.reserve(4096);
     int points = 0, level = -1;
     std::uint64_t clamps = 0;
-    std::int64_t coherence_resets = 0;
+    std::int64_t coherence_resets = 0, contact_faults = 0;
     DeviceInputStats input;
     auto status = [&](std::int64_t now) {
       if (args.quiet || work_us.empty()) return;
@@ -185,6 +186,7 @@ void RunSession(const SessionArgs& args) {
       std::fprintf(stderr, "\r%7.0f Hz  p99 %7.1f us  contacts %5d  level %2d  clamps %6llu  coherence resets %lld", rate,
                    p99, points, level, static_cast<unsigned long long>(clamps),
                    static_cast<long long>(coherence_resets));
+      if (contact_faults > 0) std::fprintf(stderr, "  contact faults %lld", static_cast<long long>(contact_faults));
       // A device that rejects samples (udp): what it rejected, so zero force has a reason.
       if (input.received > 0 || input.rejected() > 0)
         std::fprintf(stderr, "  rejected %lld (malformed %lld, dup %lld, order %lld, stale %lld, future %lld) resyncs %lld",
@@ -207,6 +209,7 @@ void RunSession(const SessionArgs& args) {
         points = rec.points_in_contact;
         level = rec.level_rendered;
         coherence_resets = rec.coherence_resets;
+        contact_faults = rec.contact_faults;
         input = rec.device_input;
         if (rec.safety_flags & (kSafetyForceClamped | kSafetyTorqueClamped)) ++clamps;
         if (rec.now_ns - window_start > 500'000'000) {

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <optional>
 
+#include "contact/coherence_guard.h"
 #include "experiment/contact_placement.h"
 #include "experiment/metrics.h"
 #include "experiment/runner.h"
@@ -139,6 +140,11 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
 
   // The deformable bodies' dynamics (paper sec. 4 and 5), from rest for each model.
   SceneDynamics dynamics = MakeSceneDynamics(assets, dt);
+  // The guard of the models' temporal coherence, as in the haptic cycle: the moving body's
+  // motion per cycle against the scene's max_point_speed.
+  CoherenceGuard coherence(scene.model.max_point_speed, scene.model.cycle_seconds,
+                           (moving_is_B ? assets.B : assets.A).mesh()->MaxVertexRadius(),
+                           config.file + ": model.max_point_speed");
   const int r_A = dynamics.A ? dynamics.A->r() : 0;
   const int r_B = dynamics.B ? dynamics.B->r() : 0;
   // Everything the cycle rows hold, allocated here: the loop below records without allocating.
@@ -169,10 +175,17 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
     double nodes_sum = 0, max_depth = 0;
     dynamics.Reset();
     double max_displacement = 0;
-    for (std::int64_t k = 0; k < cycles; ++k) {
-      // The moving body follows the trajectory from its start pose; the other stays put.
+    std::int64_t contact_faults = 0;
+    // The moving body follows the trajectory from its start pose; the other stays put.
+    auto moving_pose = [&](std::int64_t k) {
       const Pose d = trajectory.At(trajectory.start_time() + double(k) * dt);
-      const Pose X_moving{(d.rotation * start.rotation).normalized(), start.translation + d.translation};
+      return Pose{(d.rotation * start.rotation).normalized(), start.translation + d.translation};
+    };
+    coherence.Start(moving_pose(0));
+    for (std::int64_t k = 0; k < cycles; ++k) {
+      const Pose X_moving = moving_pose(k);
+      // Faster than the coherence assumes: this cycle traverses in full, coherence restarts.
+      if (coherence.Check(X_moving)) model->Reset();
       ContactQuery q;
       q.X_WA = moving_is_B ? X_WA0 : X_moving;
       q.X_WB = moving_is_B ? X_moving : X_WB0;
@@ -197,6 +210,7 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
       row.max_penetration = r.stats.max_penetration;
       row.depth_voxels = spacing > 0 ? r.stats.max_penetration / spacing : 0.0;
       row.time_us = us;
+      contact_faults += r.stats.faults > 0 ? 1 : 0;  // the model refused the query: no force
       if (reference && k % config.reference_every == 0) {
         if (reuse_reference && have_reference_at[std::size_t(k)]) {
           row.reference_force = reference_at[std::size_t(k)];
@@ -285,6 +299,8 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
       s.mean_force += f.norm() / double(cycles);
     }
     s.max_depth_voxels = max_depth;
+    s.coherence_resets = coherence.resets();
+    s.contact_faults = contact_faults;
     if (dynamics.A) {
       s.modes = r_A;
       s.median_step_us = Median(&step_times);

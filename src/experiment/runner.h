@@ -74,6 +74,10 @@ struct SummaryRow {
   double max_jump_rel = 0, lipschitz_rel = 0;
   double max_force = 0, mean_force = 0;
   double max_depth_voxels = 0;
+  // Cycles where the moving body outran the scene's max_point_speed, each resetting the model
+  // (as the haptic cycle's coherence guard does); cycles whose query the model refused (no
+  // force: ContactStats::faults, a deformation of the wrong size).
+  std::int64_t coherence_resets = 0, contact_faults = 0;
   int modes = 0;                // r of a deformable pointshell body A, 0 when rigid
   double median_step_us = 0;    // A's reduced integrator step
   int modes_B = 0;              // r of a deformable field body B, 0 when rigid

@@ -14,13 +14,8 @@ HapticCycle::HapticCycle(HapticDevice& device, ContactModel* model, const Haptic
       model_(model),
       config_(config),
       coupling_(config.coupling),
-      safety_(ResolveSafetyLimits(config.safety, device.capabilities())) {
-  if (!(config.max_point_speed <= 0 || (std::isfinite(config.max_point_speed) && config.cycle_seconds > 0 &&
-                                         std::isfinite(config.cycle_seconds) && config.body_radius_H >= 0 &&
-                                         std::isfinite(config.body_radius_H))))
-    Fail("haptic cycle", "max_point_speed, cycle_seconds and body_radius_H must be finite, cycle_seconds > 0 and "
-                         "body_radius_H >= 0");
-}
+      safety_(ResolveSafetyLimits(config.safety, device.capabilities())),
+      coherence_(config.max_point_speed, config.cycle_seconds, config.body_radius_H, "haptic cycle (body_radius_H)") {}
 
 void HapticCycle::Start(std::int64_t now_ns) {
   device_.Read(now_ns, &state_);
@@ -28,8 +23,8 @@ void HapticCycle::Start(std::int64_t now_ns) {
   coupling_.Reset(state_.X_WD);
   safety_.Start(now_ns);
   if (model_ != nullptr) model_->Reset();
-  last_query_X_WH_ = coupling_.X_WH();
-  coherence_resets_ = 0;
+  coherence_.Start(coupling_.X_WH());
+  contact_faults_ = 0;
   if (config_.dynamics_A != nullptr) config_.dynamics_A->Reset();
   if (config_.dynamics_B != nullptr) config_.dynamics_B->Reset();
   cycle_ = 0;
@@ -50,17 +45,10 @@ CycleRecord HapticCycle::Step(std::int64_t now_ns) {
     // Temporal-coherence guard: H's motion since the previous query, as a bound on the speed
     // of its points (A is static), against the speed the model's coherence assumes.
     const Pose& X_WH = coupling_.X_WH();
-    if (config_.max_point_speed > 0) {
-      const double moved = (X_WH.translation - last_query_X_WH_.translation).norm() +
-                           X_WH.rotation.angularDistance(last_query_X_WH_.rotation) * config_.body_radius_H;
-      rec.point_speed = moved / config_.cycle_seconds;
-      if (!(rec.point_speed <= config_.max_point_speed)) {
-        model_->Reset();  // this cycle traverses in full; coherence restarts from it
-        rec.coherence_reset = true;
-        ++coherence_resets_;
-      }
+    if (coherence_.Check(X_WH, &rec.point_speed)) {
+      model_->Reset();  // this cycle traverses in full; coherence restarts from it
+      rec.coherence_reset = true;
     }
-    last_query_X_WH_ = X_WH;
     ContactQuery q;
     q.X_WA = config_.X_WA;
     q.X_WB = X_WH;
@@ -93,7 +81,10 @@ CycleRecord HapticCycle::Step(std::int64_t now_ns) {
   rec.points_in_contact = contact.stats.points_in_contact;
   rec.level_rendered = contact.stats.level_rendered;
   rec.nodes_visited = contact.stats.nodes_visited;
-  rec.coherence_resets = coherence_resets_;
+  rec.coherence_resets = coherence_.resets();
+  rec.contact_fault = contact.stats.faults > 0;
+  contact_faults_ += rec.contact_fault ? 1 : 0;
+  rec.contact_faults = contact_faults_;
   rec.device_input = device_.input_stats();
   for (int i = 0; i < 3; ++i) {
     rec.p_WD[i] = state_.X_WD.translation[i];

@@ -12,6 +12,7 @@
 #include "experiment/scene.h"
 #include "experiment/scene_assets.h"
 #include "haptics/haptic_cycle.h"
+#include "haptics/haptic_loop.h"
 #include "haptics/sim_device.h"
 #include "scene_fixtures.h"
 #include "test_support.h"
@@ -157,6 +158,58 @@ TEST(DeformableSession, AHeldDeformableBodyBendsOnContactAndTheCycleAllocatesNot
   EXPECT_LT(soft.final_q, 0.05 * soft.max_q);  // released and damped: back near rest
   std::printf("held bar: max contact force rigid %.3f N, deformable %.3f N; |q| peak %.4g, final %.4g\n",
               rigid.max_contact_force, soft.max_contact_force, soft.max_q, soft.final_q);
+}
+
+// A deformation of the wrong size reaching the cycle (here: dynamics of a beam with fewer modes
+// than the one the model was built for) makes the model refuse every query; the cycle applies no
+// force, counts each refused query in its record and the session summary, and allocates nothing.
+TEST(DeformableSession, ADeformationOfTheWrongSizeIsACountedFaultNotAForce) {
+  testing::TempDir dir;
+  const Scene scene = ParseScene(ConfigNode::LoadString(kBeam, "beam.yaml"));
+  Scene fewer = scene;
+  fewer.pointshell_body.deformable->modes = 4;
+  AssetOptions options;
+  options.cache_dir = dir / "cache";
+  options.verbose = false;
+  SceneAssets assets(scene, options), fewer_assets(fewer, options);
+  auto model = MakeSceneContactModel("pointshell", scene, assets);
+  SceneDynamics wrong = MakeSceneDynamics(fewer_assets, 1e-3);
+  ASSERT_EQ(wrong.A->r(), 4);
+  ASSERT_EQ(assets.A.reduced_model()->r(), 8);
+  SimDevice device(SimDeviceParams{}, kPress);
+  HapticCycleConfig config;
+  config.X_WA = scene.pointshell_body.pose;
+  config.dynamics_A = wrong.A.get();
+  HapticCycle cycle(device, model.get(), config);
+  cycle.Start(0);
+  const int cycles = 1000;  // through the deepest press
+  double max_force = 0;
+  const long before = testing::AllocationCount();
+  CycleRecord rec;
+  for (int i = 1; i <= cycles; ++i) {
+    rec = cycle.Step(i * kMs);
+    ASSERT_TRUE(rec.contact_fault) << "cycle " << i;
+    max_force = std::max(max_force, std::abs(rec.contact_force[0]) + std::abs(rec.contact_force[1]) +
+                                        std::abs(rec.contact_force[2]));
+  }
+  EXPECT_EQ(testing::AllocationCount() - before, 0);
+  EXPECT_EQ(rec.contact_faults, cycles);
+  EXPECT_EQ(cycle.contact_faults(), cycles);
+  EXPECT_EQ(max_force, 0.0);
+  // The session summary reports them.
+  HapticLoopReport report;
+  report.contact_faults = cycle.contact_faults();
+  const std::string text = FormatLoopReport(report);
+  EXPECT_NE(text.find("contact faults"), std::string::npos) << text;
+  EXPECT_NE(text.find(": 1000\n"), std::string::npos) << text;
+  // The same press with the dynamics the model was built for: no fault.
+  SceneDynamics right = MakeSceneDynamics(assets, 1e-3);
+  config.dynamics_A = right.A.get();
+  SimDevice device2(SimDeviceParams{}, kPress);
+  HapticCycle good(device2, model.get(), config);
+  good.Start(0);
+  for (int i = 1; i <= cycles; ++i) good.Step(i * kMs);
+  EXPECT_EQ(good.contact_faults(), 0);
 }
 
 }  // namespace
