@@ -96,7 +96,7 @@ bool ClosedLoopMetrics::passive() const {
 }
 bool ClosedLoopMetrics::settled() const { return late_position_rms < 20e-6 && late_force_rms < 0.05; }
 bool ClosedLoopMetrics::stable() const {
-  return finite && non_finite_cycles == 0 && solve_failures == 0 && passive() && settled();
+  return finite && non_finite_cycles == 0 && solve_failures == 0 && contact_faults == 0 && passive() && settled();
 }
 
 ClosedLoopMetrics RunClosedLoop(ContactModel& model, const ClosedLoopScene& w, const ClosedLoopCase& c,
@@ -152,6 +152,8 @@ ClosedLoopMetrics RunClosedLoop(ContactModel& model, const ClosedLoopScene& w, c
     if (rec.safety_flags & kSafetyNonFinite) ++m.non_finite_cycles;
     if (!rec.solve_ok) ++m.solve_failures;
     m.max_points_in_contact = std::max(m.max_points_in_contact, rec.points_in_contact);
+    m.max_q_norm = std::max({m.max_q_norm, rec.q_norm, rec.q_norm_B});
+    m.contact_faults = rec.contact_faults;
     if (fc.allFinite()) m.max_contact_force = std::max(m.max_contact_force, fc.norm());
     if (f.allFinite()) m.max_device_force = std::max(m.max_device_force, f.norm());
     if (f.allFinite() && tq.allFinite()) {
