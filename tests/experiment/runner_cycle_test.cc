@@ -15,6 +15,7 @@
 #include "experiment/result_csv.h"
 #include "experiment/runner.h"
 #include "experiment/trajectory.h"
+#include "scene_fixtures.h"
 #include "test_support.h"
 
 namespace contactlab {
@@ -34,25 +35,12 @@ RunOptions Quiet(const TempDir& dir) {
 // (the linear one's name is too long for a string's inline buffer) and a reference; CYCLE is
 // the scene's haptic cycle in seconds.
 std::string BeamConfig(const std::string& cycle) {
+  testing::BeamUnderProbe scene{.box_subdivisions = 2, .points = 256, .levels = 2, .beam_resolution = 24, .modes = 4,
+                                .cells = 8, .E = 5.0e6, .probe_z = 0.0205, .probe_resolution = 24};
+  scene.model = "{k_C: 1000, L: 10, cycle_seconds: " + cycle + "}";
   return "name: beam-alloc\n"
-         "scene:\n"
-         "  name: beam-probe\n"
-         "  bodies:\n"
-         "    - name: beam\n"
-         "      mesh: \"box:0.1,0.01,0.01,2\"\n"
-         "      role: pointshell\n"
-         "      pointshell: {points: 256, levels: 2, seed: 1}\n"
-         "      field: {resolution: 24}\n"
-         "      deformable: {model: stvk, modes: 4, cells: 8, E: 5.0e6, nu: 0.3, rho: 1100,\n"
-         "                   damping: {alpha: 8.0, beta: 0.0005}, anchor: {below: [x, -0.09]}}\n"
-         "    - name: probe\n"
-         "      mesh: \"sphere:0.01,2\"\n"
-         "      pose: [0.07, 0, 0.0205, 1, 0, 0, 0]\n"
-         "      role: field\n"
-         "      field: {resolution: 24}\n"
-         "  model: {k_C: 1000, L: 10, cycle_seconds: " +
-         cycle +
-         "}\n"
+         "scene:\n" +
+         scene.Yaml(2) +
          "models: [pointshell, pointshell-linear]\n"
          "moving_body: probe\n"
          "trajectory: {type: slide, direction: [0, 0, -1], depth: 0.003, length: 0.005, tangent: [1, 0, 0], "

@@ -18,8 +18,9 @@
 #include "experiment/closed_loop_stability.h"
 #include "experiment/scene.h"
 #include "experiment/scene_assets.h"
-#include "util/data_path.h"
+#include "scene_fixtures.h"
 #include "test_support.h"
+#include "util/data_path.h"
 
 namespace contactlab {
 namespace {
@@ -130,22 +131,8 @@ TEST(ClosedLoopScene, TheObserverFlagsAModelThatPumpsEnergy) {
 // run unstable.
 TEST(ClosedLoopScene, TheStudyStepsADeformableBodyAndCountsRefusedQueries) {
   testing::TempDir cache;
-  const char* kBeam = R"(name: beam-probe
-bodies:
-  - name: beam
-    mesh: "box:0.1,0.01,0.01,4"
-    role: pointshell
-    pointshell: {points: 1024, levels: 3, seed: 1}
-    field: {resolution: 48}
-    deformable: {model: stvk, modes: 6, cells: 16, E: 2.0e6, nu: 0.3, rho: 1100,
-                 damping: {alpha: 8.0, beta: 0.0005}, anchor: {below: [x, -0.09]}}
-  - name: probe
-    mesh: "sphere:0.01,2"
-    pose: [0.07, 0, 0.04, 1, 0, 0, 0]
-    role: field
-    field: {resolution: 32}
-model: {k_C: 1000, L: 10}
-)";
+  const std::string kBeam = testing::BeamUnderProbe{
+      .points = 1024, .beam_resolution = 48, .modes = 6, .cells = 16, .E = 2.0e6, .probe_z = 0.04}.Yaml();
   const Scene scene = ParseScene(ConfigNode::LoadString(kBeam, "beam.yaml"));
   SceneAssets assets(scene, KnightScrewdriver::Options(cache));
   const ClosedLoopScene where = MakeClosedLoopScene(scene, assets);

@@ -22,22 +22,7 @@ namespace {
 
 constexpr std::int64_t kMs = 1000000;
 
-const char* kBeam = R"(name: beam-probe
-bodies:
-  - name: beam
-    mesh: "box:0.1,0.01,0.01,4"
-    role: pointshell
-    pointshell: {points: 1024, levels: 3, seed: 1}
-    field: {resolution: 64}
-    deformable: {model: stvk, modes: 8, cells: 24, E: 2.0e7, nu: 0.3, rho: 1100,
-                 damping: {alpha: 8.0, beta: 0.0005}, anchor: {below: [x, -0.09]}}
-  - name: probe
-    mesh: "sphere:0.01,2"
-    pose: [0.07, 0, 0.03, 1, 0, 0, 0]
-    role: field
-    field: {resolution: 32}
-model: {k_C: 1000, L: 10}
-)";
+const std::string kBeam = testing::BeamUnderProbe{}.Yaml();
 
 using testing::CosineRamp;
 
