@@ -51,6 +51,46 @@ struct BallOnPlate {
   }
 };
 
+// A clamped beam pressed by a probe: the beam (10 x 1 x 1 cm half-extents 0.1, 0.01, 0.01 along
+// x, clamped at its x < -0.09 end) is a deformable pointshell body (reduced StVK), the probe (a
+// sphere of radius 1 cm) a rigid field body above its free end. The defaults are the haptic
+// session's beam; suites that need it softer, coarser or elsewhere change a field. SI units.
+struct BeamUnderProbe {
+  int box_subdivisions = 4;       // of the procedural box mesh
+  int points = 1024;              // pointshell points on the beam
+  int levels = 3;                 // pointshell tree levels
+  int beam_resolution = 64;       // the beam's distance-field cells
+  int modes = 8;                  // r of the reduced model
+  int cells = 24;                 // simulation-mesh voxels along the beam
+  double E = 2.0e7;               // Young's modulus, Pa
+  double probe_z = 0.03;          // the probe's centre, above the beam's axis at x = 0.07
+  int probe_resolution = 32;      // the probe's distance-field cells
+  std::string model = "{k_C: 1000, L: 10}";  // the scene's model block
+
+  // The scene as YAML, every line indented by INDENT spaces (to nest it under "scene:").
+  std::string Yaml(int indent = 0) const {
+    std::ostringstream os;
+    const std::string pad(indent, ' ');
+    os << pad << "name: beam-probe\n"
+       << pad << "bodies:\n"
+       << pad << "  - name: beam\n"
+       << pad << "    mesh: \"box:0.1,0.01,0.01," << box_subdivisions << "\"\n"
+       << pad << "    role: pointshell\n"
+       << pad << "    pointshell: {points: " << points << ", levels: " << levels << ", seed: 1}\n"
+       << pad << "    field: {resolution: " << beam_resolution << "}\n"
+       << pad << "    deformable: {model: stvk, modes: " << modes << ", cells: " << cells << ", E: " << E
+       << ", nu: 0.3, rho: 1100,\n"
+       << pad << "                 damping: {alpha: 8.0, beta: 0.0005}, anchor: {below: [x, -0.09]}}\n"
+       << pad << "  - name: probe\n"
+       << pad << "    mesh: \"sphere:0.01,2\"\n"
+       << pad << "    pose: [0.07, 0, " << probe_z << ", 1, 0, 0, 0]\n"
+       << pad << "    role: field\n"
+       << pad << "    field: {resolution: " << probe_resolution << "}\n"
+       << pad << "model: " << model << "\n";
+    return os.str();
+  }
+};
+
 // The "trajectory:" line of an experiment config pressing the moving body straight down:
 // from APPROACH above its start pose to DEPTH below it and back in DURATION seconds (the
 // approach-press defaults are approach 5 mm, depth 2 mm).

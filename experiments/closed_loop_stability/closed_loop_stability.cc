@@ -47,6 +47,7 @@ struct Row {
 std::string Reason(const ClosedLoopMetrics& m) {
   if (!m.finite || m.non_finite_cycles > 0) return "non-finite";
   if (m.solve_failures > 0) return "solve failed";
+  if (m.contact_faults > 0) return "contact faults";
   std::string r;
   if (!m.passive()) r = "active";
   if (!m.settled()) r += r.empty() ? "oscillates" : "+oscillates";
@@ -161,15 +162,17 @@ int main(int argc, char** argv) {
         const Job& job = jobs_list[tasks[i].first];
         const double k = k_values[tasks[i].second];
         std::unique_ptr<ContactModel> instance;
+        SceneDynamics dynamics;  // the deformable bodies' own, stepped by this worker's loop
         {
           std::lock_guard<std::mutex> lock(make);
           instance = MakeSceneContactModel(job.model, *job.spec, *job.assets);
+          dynamics = MakeSceneDynamics(*job.assets, job.where->cycle_seconds);
         }
         for (LoopMotion motion : {LoopMotion::kPush, LoopMotion::kSlide, LoopMotion::kCorner}) {
           ClosedLoopCase c;
           c.k_vc = k;
           c.motion = motion;
-          Row row{job.scene, job.model, k, motion, RunClosedLoop(*instance, *job.where, c)};
+          Row row{job.scene, job.model, k, motion, RunClosedLoop(*instance, *job.where, c, &dynamics)};
           {
             std::lock_guard<std::mutex> lock(print);
             std::fprintf(stderr, "%-18s %-17s k_VC %6.0f %-6s energy %+.2e J (peak %.2e) late rms %.1e m %.1e N -> %s (%.1f s)\n",
@@ -196,19 +199,20 @@ int main(int argc, char** argv) {
     WriteFileAtomically(out, [&](std::ostream& os) {
       os << "scene,model,k_vc,motion,energy_into_hand_J,peak_stored_energy_J,passive,early_position_rms_m,"
             "late_position_rms_m,early_force_rms_N,late_force_rms_N,hold_force_mean_N,settled,max_contact_force_N,"
-            "max_device_force_N,clamped_cycles,non_finite_cycles,solve_failures,coherence_resets,"
+            "max_device_force_N,clamped_cycles,non_finite_cycles,solve_failures,coherence_resets,contact_faults,"
             "max_points_in_contact,cycles,stable,reason,wall_s\n";
       char line[1024];
       for (const auto& rows : results) {
         for (const Row& r : rows) {
           const ClosedLoopMetrics& m = r.m;
           std::snprintf(line, sizeof line,
-                        "%s,%s,%.0f,%s,%.6e,%.6e,%d,%.6e,%.6e,%.6e,%.6e,%.6e,%d,%.6g,%.6g,%lld,%lld,%lld,%lld,%d,%d,%d,%s,%.3f\n",
+                        "%s,%s,%.0f,%s,%.6e,%.6e,%d,%.6e,%.6e,%.6e,%.6e,%.6e,%d,%.6g,%.6g,%lld,%lld,%lld,%lld,%lld,%d,%d,%d,%s,%.3f\n",
                         r.scene.c_str(), r.model.c_str(), r.k_vc, LoopMotionName(r.motion), m.energy_into_hand,
                         m.peak_stored_energy, int(m.passive()), m.early_position_rms, m.late_position_rms,
                         m.early_force_rms, m.late_force_rms, m.hold_force_mean, int(m.settled()), m.max_contact_force,
                         m.max_device_force, (long long)m.clamped_cycles, (long long)m.non_finite_cycles,
-                        (long long)m.solve_failures, (long long)m.coherence_resets, m.max_points_in_contact, m.cycles,
+                        (long long)m.solve_failures, (long long)m.coherence_resets, (long long)m.contact_faults,
+                        m.max_points_in_contact, m.cycles,
                         int(m.stable()), Reason(m).c_str(), m.wall_seconds);
           os << line;
         }

@@ -2,12 +2,13 @@
 // session (Barbič & James 2008, sec. 5). The scene's field body is the haptic body: the device
 // workspace is centred on its start pose; the pointshell body stays where the scene puts it.
 // A one-line status shows rate, 99th-percentile cycle time, points in contact, level
-// rendered, clamps, coherence resets and, for a device that rejects samples (udp), its
-// rejection counters; the start names the device (a udp device's bound port); the log (CSV)
-// replays as a recorded trajectory. A deformable pointshell body (a bridge or a hose the user
-// pushes with the rigid haptic body) is two-way coupled: its reduced deformation takes one
-// step at the end of every cycle (paper sec. 4.1). --view [PORT] serves a live 3D view of the
-// session on the loopback address (view/live_view_server.h, docs/viewer.md).
+// rendered, clamps, coherence resets, contact faults (when any) and, for a device that rejects
+// samples (udp), its rejection counters; the start names the device (a udp device's bound
+// port); the log (CSV) replays as a recorded trajectory. A deformable body is two-way coupled
+// (a bridge or a hose the user pushes with the haptic body, or the haptic body itself): its
+// reduced deformation takes one step at the end of every cycle (paper sec. 4.1 and 5).
+// --view [PORT] serves a live 3D view of the session on the loopback address
+// (view/live_view_server.h, docs/viewer.md).
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -79,13 +80,6 @@ void WriteRecord(std::ostream& out, const CycleRecord& r, std::int64_t t0_ns) {
   out << line;
 }
 
-// Largest distance of a vertex of MESH from its body's origin, metres.
-double BoundingRadius(const TriangleMesh& mesh) {
-  double r = 0;
-  for (const Eigen::Vector3d& v : mesh.vertices) r = std::max(r, v.norm());
-  return r;
-}
-
 void RunSession(const SessionArgs& args) {
   if (!args.log.empty()) CheckOutputTarget(args.log, "--log");  // before the session, not after it
   // --view: its port and three.js, before anything is built.
@@ -120,24 +114,12 @@ void RunSession(const SessionArgs& args) {
   // The coherence guard: the haptic body's real motion against the scene's max_point_speed.
   config.max_point_speed = scene.model.max_point_speed;
   config.cycle_seconds = scene.model.cycle_seconds;
-  config.body_radius_H = BoundingRadius(*assets.B.mesh());
+  config.body_radius_H = assets.B.mesh()->MaxVertexRadius();
   if (args.k_vc > 0) config.coupling.k_vc = args.k_vc;
-  // Deformable bodies: their reduced models step at the haptic rate, A's and the haptic body's.
-  std::unique_ptr<ReducedIntegrator> deformation, deformation_H;
-  if (assets.A.deformable()) {
-    const DeformableSpec& d = *scene.pointshell_body.deformable;
-    deformation = std::make_unique<ReducedIntegrator>(assets.A.reduced_model()->forces,
-                                                      DeformableIntegratorOptions(d, scene.model.cycle_seconds));
-    config.deformation_A = deformation.get();
-    config.implicit_contact_A = d.implicit_contact;
-  }
-  if (assets.B.deformable()) {
-    const DeformableSpec& d = *scene.field_body.deformable;
-    deformation_H = std::make_unique<ReducedIntegrator>(assets.B.reduced_model()->forces,
-                                                        DeformableIntegratorOptions(d, scene.model.cycle_seconds));
-    config.deformation_B = deformation_H.get();
-    config.implicit_contact_B = d.implicit_contact;
-  }
+  // Deformable bodies: their dynamics step at the haptic rate, A's and the haptic body's.
+  SceneDynamics dynamics = MakeSceneDynamics(assets, scene.model.cycle_seconds);
+  config.dynamics_A = dynamics.A.get();
+  config.dynamics_B = dynamics.B.get();
   // --view: the displayed pointshell points (the page's, same decimation) are marked with
   // their contact state by the haptic thread, a chunk per cycle.
   std::unique_ptr<ContactPointMarks> marks;
@@ -177,11 +159,11 @@ void RunSession(const SessionArgs& args) {
     server = std::make_unique<LiveViewServer>(ViewerPage(data), *live, view_port, 50, marks.get());
   }
 
+  std::string deformable;
+  if (dynamics.A) deformable += ", " + scene.pointshell_body.name + " deformable, r = " + std::to_string(dynamics.A->r());
+  if (dynamics.B) deformable += ", " + scene.field_body.name + " deformable, r = " + std::to_string(dynamics.B->r());
   std::printf("session: scene %s, model %s, device %s, %.1f s (Ctrl-C stops)%s\n", scene.name.c_str(),
-              model_name.c_str(), args.device.c_str(), args.duration,
-              deformation ? (", " + scene.pointshell_body.name + " deformable, r = " +
-                             std::to_string(deformation->r())).c_str()
-                          : "");
+              model_name.c_str(), args.device.c_str(), args.duration, deformable.c_str());
   // Where the device is (a udp device's bound port, also when udp:0 picked it).
   std::printf("device: %s\n", device->description().c_str());
   if (server) std::printf("view: %s\n", server->url().c_str());
@@ -194,7 +176,7 @@ void RunSession(const SessionArgs& args) {
     work_us.reserve(4096);
     int points = 0, level = -1;
     std::uint64_t clamps = 0;
-    std::int64_t coherence_resets = 0;
+    std::int64_t coherence_resets = 0, contact_faults = 0;
     DeviceInputStats input;
     auto status = [&](std::int64_t now) {
       if (args.quiet || work_us.empty()) return;
@@ -204,6 +186,7 @@ void RunSession(const SessionArgs& args) {
       std::fprintf(stderr, "\r%7.0f Hz  p99 %7.1f us  contacts %5d  level %2d  clamps %6llu  coherence resets %lld", rate,
                    p99, points, level, static_cast<unsigned long long>(clamps),
                    static_cast<long long>(coherence_resets));
+      if (contact_faults > 0) std::fprintf(stderr, "  contact faults %lld", static_cast<long long>(contact_faults));
       // A device that rejects samples (udp): what it rejected, so zero force has a reason.
       if (input.received > 0 || input.rejected() > 0)
         std::fprintf(stderr, "  rejected %lld (malformed %lld, dup %lld, order %lld, stale %lld, future %lld) resyncs %lld",
@@ -226,6 +209,7 @@ void RunSession(const SessionArgs& args) {
         points = rec.points_in_contact;
         level = rec.level_rendered;
         coherence_resets = rec.coherence_resets;
+        contact_faults = rec.contact_faults;
         input = rec.device_input;
         if (rec.safety_flags & (kSafetyForceClamped | kSafetyTorqueClamped)) ++clamps;
         if (rec.now_ns - window_start > 500'000'000) {

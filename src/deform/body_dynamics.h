@@ -1,12 +1,20 @@
-// One deformable body's side of the two-way contact coupling (Barbič & James 2008, sec. 4 and
-// 5): each cycle the contact query reads the body's reduced coordinates and writes its reduced
-// contact force (and stiffness, for a linearly implicit step) through the BodyDeformation that
-// Prepare hands out; after the query the body's integrator takes one step with them. The
-// offline runner and the haptic cycle (of a live session, and of the closed-loop study) step
-// their deformable bodies through it. Allocation-free.
+// One deformable body's dynamics under contact (Barbič & James 2008, sec. 4 and 5): its reduced
+// model, the integrator that steps it at the haptic cycle, how the contact enters the step
+// (coupling mode) and whether the other body steps separately (staggering). Each cycle the
+// contact query reads the body's reduced coordinates and writes its reduced contact force (and
+// stiffness, for a linearly implicit step) through the BodyDeformation that Prepare hands out;
+// after the query Step advances the body with them. The offline runner, the live session and
+// the closed-loop study all step their deformable bodies through it (built from a scene body by
+// MakeBodyDynamics, experiment/scene_assets.h). Allocation-free after construction.
 #pragma once
 
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
 #include "deform/reduced_integrator.h"
+#include "deform/reduced_model.h"
 #include "reduced/reduced_state.h"
 
 namespace contactlab {
@@ -19,43 +27,84 @@ class BodyDynamics {
   // equal compliances and overdamped otherwise (without it two pressed bodies oscillate).
   static constexpr double kStaggeredStiffnessFactor = 2.0;
 
-  BodyDynamics() = default;  // inactive: a rigid body
-  // INTEGRATOR (must outlive this) steps the body. IMPLICIT_CONTACT: the step also takes the
-  // contact's reduced stiffness; false applies the force alone.
-  BodyDynamics(ReducedIntegrator* integrator, bool implicit_contact)
-      : integrator_(integrator), implicit_(implicit_contact) {
-    f_.setZero(integrator->r());
-    K_.setZero(integrator->r(), integrator->r());
+  // MODEL (kept) steps with OPTIONS (time step = the haptic cycle) by an integrator this object
+  // owns. IMPLICIT_CONTACT: the step also takes the contact's reduced stiffness; false applies
+  // the force alone (the paper's explicit order). STAGGERED: the other body of the contact
+  // deforms too and steps separately. Throws Error for invalid options (IntegratorOptions).
+  BodyDynamics(std::shared_ptr<const ReducedModel> model, const IntegratorOptions& options, bool implicit_contact,
+               bool staggered)
+      : model_(std::move(model)),
+        owned_(std::make_unique<ReducedIntegrator>(model_->forces, options)),
+        integrator_(owned_.get()),
+        implicit_(implicit_contact),
+        staggered_(staggered) {
+    u_.setZero(model_->basis.rows());
+    ZeroForce();
   }
+  // Steps INTEGRATOR, owned by the caller (it must outlive this), not staggered; without a
+  // model there is no MaxDisplacement. For code that drives its own integrator.
+  BodyDynamics(ReducedIntegrator* integrator, bool implicit_contact)
+      : integrator_(integrator), implicit_(implicit_contact), staggered_(false) {
+    ZeroForce();
+  }
+  BodyDynamics(const BodyDynamics&) = delete;
+  BodyDynamics& operator=(const BodyDynamics&) = delete;
 
-  bool active() const { return integrator_ != nullptr; }
+  int r() const { return integrator_->r(); }
   const ReducedIntegrator& integrator() const { return *integrator_; }
+  const ReducedState& state() const { return integrator_->state(); }
+  bool implicit_contact() const { return implicit_; }
+  bool staggered() const { return staggered_; }
 
   // Back to rest, no force.
   void Reset() {
     integrator_->Reset();
-    f_.setZero();
-    K_.setZero();
+    ZeroForce();
   }
   // This cycle's deformation for the contact query: the body's state in, its reduced force (and
   // stiffness) out, zeroed now. Valid until the next Prepare or Step.
   const BodyDeformation* Prepare() {
     f_.setZero();
+    if (implicit_) K_.setZero();
     deformation_ = {&integrator_->state(), &f_, implicit_ ? &K_ : nullptr};
     return &deformation_;
   }
-  // One step with the force of the query just made. STAGGERED: the other body deforms too and
-  // steps separately (kStaggeredStiffnessFactor).
+  // One step with the force (and stiffness) of the query just made, staggered as constructed.
+  void Step() { Step(staggered_); }
+  // The same, STAGGERED saying whether the other body deforms and steps separately
+  // (kStaggeredStiffnessFactor).
   void Step(bool staggered) {
     if (staggered) K_ *= kStaggeredStiffnessFactor;
     integrator_->Step(f_, implicit_ ? &K_ : nullptr);
   }
 
+  // Elastic and kinetic energy of the current state, J (mass-normalised coordinates).
+  double PotentialEnergy() { return integrator_->PotentialEnergy(); }
+  double KineticEnergy() const { return integrator_->KineticEnergy(); }
+  // Largest displacement |U_v q| of a simulation-mesh vertex at the current state, metres.
+  // Needs the model (the first constructor); 0 without one.
+  double MaxDisplacement() {
+    if (model_ == nullptr) return 0;
+    u_.noalias() = model_->basis * integrator_->state().q;
+    double max2 = 0;
+    for (Eigen::Index v = 0; v + 2 < u_.size(); v += 3) max2 = std::max(max2, u_.segment<3>(v).squaredNorm());
+    return std::sqrt(max2);
+  }
+
  private:
-  ReducedIntegrator* integrator_ = nullptr;
-  bool implicit_ = true;
+  void ZeroForce() {
+    f_.setZero(integrator_->r());
+    K_.setZero(integrator_->r(), integrator_->r());
+  }
+
+  std::shared_ptr<const ReducedModel> model_;     // null: stepping a caller's integrator
+  std::unique_ptr<ReducedIntegrator> owned_;      // the integrator, unless the caller's
+  ReducedIntegrator* integrator_;
+  bool implicit_;
+  bool staggered_;
   ReducedVector f_;
   ReducedMatrix K_;
+  Eigen::VectorXd u_;  // 3#V scratch: U q
   BodyDeformation deformation_;
 };
 

@@ -32,12 +32,6 @@ double Smooth(double t, double t0, double t1) {
   return 0.5 - 0.5 * std::cos(M_PI * (t - t0) / (t1 - t0));
 }
 
-double MaxVertexRadius(const TriangleMesh& mesh) {
-  double r = 0;
-  for (const Eigen::Vector3d& v : mesh.vertices) r = std::max(r, v.norm());
-  return r;
-}
-
 // RMS deviation of equally spaced 3-vector samples from their least-squares line: the
 // oscillation about a slow drift (H creeping along a surface while the handle settles is not
 // an oscillation).
@@ -91,7 +85,7 @@ ClosedLoopScene MakeClosedLoopScene(const Scene& scene, SceneAssets& assets) {
   // Start back along the tilted approach so the line of motion still passes near A's origin.
   tilted.translation = w.X_WA.translation - (X_WH0.translation - w.X_WA.translation).norm() * w.corner_approach;
   w.X_WH_touch_tilted = TouchAlong(scene, assets, true, w.X_WA, tilted, w.corner_approach, kTouchDepth, where);
-  w.body_radius_H = MaxVertexRadius(*assets.B.mesh());
+  w.body_radius_H = assets.B.mesh()->MaxVertexRadius();
   w.max_point_speed = scene.model.max_point_speed;
   w.cycle_seconds = scene.model.cycle_seconds;
   return w;
@@ -102,10 +96,11 @@ bool ClosedLoopMetrics::passive() const {
 }
 bool ClosedLoopMetrics::settled() const { return late_position_rms < 20e-6 && late_force_rms < 0.05; }
 bool ClosedLoopMetrics::stable() const {
-  return finite && non_finite_cycles == 0 && solve_failures == 0 && passive() && settled();
+  return finite && non_finite_cycles == 0 && solve_failures == 0 && contact_faults == 0 && passive() && settled();
 }
 
-ClosedLoopMetrics RunClosedLoop(ContactModel& model, const ClosedLoopScene& w, const ClosedLoopCase& c) {
+ClosedLoopMetrics RunClosedLoop(ContactModel& model, const ClosedLoopScene& w, const ClosedLoopCase& c,
+                                SceneDynamics* dynamics) {
   const auto wall0 = std::chrono::steady_clock::now();
   const bool corner = c.motion == LoopMotion::kCorner;
   const bool slide = c.motion == LoopMotion::kSlide;
@@ -135,6 +130,10 @@ ClosedLoopMetrics RunClosedLoop(ContactModel& model, const ClosedLoopScene& w, c
   config.max_point_speed = w.max_point_speed;
   config.cycle_seconds = w.cycle_seconds;
   config.body_radius_H = w.body_radius_H;
+  if (dynamics != nullptr) {
+    config.dynamics_A = dynamics->A.get();
+    config.dynamics_B = dynamics->B.get();
+  }
   HapticCycle cycle(device, &model, config);
   cycle.Start(0);
 
@@ -153,6 +152,8 @@ ClosedLoopMetrics RunClosedLoop(ContactModel& model, const ClosedLoopScene& w, c
     if (rec.safety_flags & kSafetyNonFinite) ++m.non_finite_cycles;
     if (!rec.solve_ok) ++m.solve_failures;
     m.max_points_in_contact = std::max(m.max_points_in_contact, rec.points_in_contact);
+    m.max_q_norm = std::max({m.max_q_norm, rec.q_norm, rec.q_norm_B});
+    m.contact_faults = rec.contact_faults;
     if (fc.allFinite()) m.max_contact_force = std::max(m.max_contact_force, fc.norm());
     if (f.allFinite()) m.max_device_force = std::max(m.max_device_force, f.norm());
     if (f.allFinite() && tq.allFinite()) {

@@ -72,6 +72,8 @@ struct ClosedLoopMetrics {
   std::int64_t non_finite_cycles = 0;  // non-finite wrench zeroed by the safety filter
   std::int64_t solve_failures = 0;
   std::int64_t coherence_resets = 0;
+  std::int64_t contact_faults = 0;     // queries the model refused (a deformation of the wrong size)
+  double max_q_norm = 0;               // largest |q| of a deformable body (0: both rigid)
   int max_points_in_contact = 0;
   int cycles = 0;
   bool finite = true;   // every recorded pose and force finite
@@ -79,13 +81,17 @@ struct ClosedLoopMetrics {
 
   // The criteria (see closed_loop_stability.cc): passive within max(1e-5 J, 1 % of the peak
   // stored energy); settled when the last 200 ms of the hold move H by < 20 µm RMS and the force
-  // by < 0.05 N RMS; stable when finite, without faults, passive and settled.
+  // by < 0.05 N RMS; stable when finite, without faults (non-finite wrenches, failed solves,
+  // refused queries), passive and settled.
   bool passive() const;
   bool settled() const;
   bool stable() const;
 };
 
-// Runs one closed-loop case: MODEL's body B is H. The model is reset at the start.
-ClosedLoopMetrics RunClosedLoop(ContactModel& model, const ClosedLoopScene& where, const ClosedLoopCase& c);
+// Runs one closed-loop case: MODEL's body B is H. The model is reset at the start. DYNAMICS
+// (MakeSceneDynamics of the scene at where.cycle_seconds; null or empty: both bodies rigid)
+// steps the deformable bodies at the end of each cycle; they start at rest.
+ClosedLoopMetrics RunClosedLoop(ContactModel& model, const ClosedLoopScene& where, const ClosedLoopCase& c,
+                                SceneDynamics* dynamics = nullptr);
 
 }  // namespace contactlab

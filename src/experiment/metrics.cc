@@ -124,6 +124,7 @@ ErrorMetrics ErrorAgainstReference(const std::vector<Eigen::Vector3d>& force,
   ErrorMetrics e;
   double num = 0, den = 0, max_ref = 0, ff = 0, fr = 0;
   std::vector<double> angles;
+  angles.reserve(force.size());
   for (std::size_t k = 0; k < force.size(); ++k)
     if (has_reference[k]) max_ref = std::max(max_ref, reference[k].norm());
   for (std::size_t k = 0; k < force.size(); ++k) {
@@ -163,6 +164,7 @@ ErrorMetrics ErrorAgainstReference(const std::vector<Eigen::Vector3d>& force,
 
 double MedianForceInContact(const std::vector<Eigen::Vector3d>& force) {
   std::vector<double> magnitudes;
+  magnitudes.reserve(force.size());
   for (const Eigen::Vector3d& f : force) {
     if (f.norm() > 0) magnitudes.push_back(f.norm());
   }

@@ -46,8 +46,8 @@ const Column<CycleRow> kCycleColumns[] = {
     {"elastic_energy_J", [](const CycleRow& r, CsvLine& l) { r.deformable ? l.Num("%.9g", r.elastic_energy) : l.Empty(); }},
     {"kinetic_energy_J", [](const CycleRow& r, CsvLine& l) { r.deformable ? l.Num("%.9g", r.kinetic_energy) : l.Empty(); }},
     {"max_displacement", [](const CycleRow& r, CsvLine& l) { r.deformable ? l.Num("%.9g", r.max_displacement) : l.Empty(); }},
-    {"q", [](const CycleRow& r, CsvLine& l) { l.Text(r.q); }},
-    {"q_B", [](const CycleRow& r, CsvLine& l) { l.Text(r.q_B); }},
+    {"q", [](const CycleRow& r, CsvLine& l) { l.Numbers("%.9g", r.q); }},
+    {"q_B", [](const CycleRow& r, CsvLine& l) { l.Numbers("%.9g", r.q_B); }},
 };
 
 // summary.csv: per model and job, continuity, timing, error against the reference and force
@@ -76,6 +76,8 @@ const Column<SummaryRow> kSummaryColumns[] = {
     {"max_force_N", [](const SummaryRow& r, CsvLine& l) { l.Num("%.6g", r.max_force); }},
     {"mean_force_N", [](const SummaryRow& r, CsvLine& l) { l.Num("%.6g", r.mean_force); }},
     {"max_depth_voxels", [](const SummaryRow& r, CsvLine& l) { l.Num("%.4g", r.max_depth_voxels); }},
+    {"coherence_resets", [](const SummaryRow& r, CsvLine& l) { l.Int(r.coherence_resets); }},
+    {"contact_faults", [](const SummaryRow& r, CsvLine& l) { l.Int(r.contact_faults); }},
     {"modes", [](const SummaryRow& r, CsvLine& l) { l.Int(r.modes); }},
     {"median_step_us", [](const SummaryRow& r, CsvLine& l) { r.modes > 0 ? l.Num("%.3f", r.median_step_us) : l.Empty(); }},
     {"modes_B", [](const SummaryRow& r, CsvLine& l) { l.Int(r.modes_B); }},

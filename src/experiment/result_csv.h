@@ -6,7 +6,9 @@
 #pragma once
 
 #include <cstdio>
+#include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "experiment/runner.h"
@@ -25,10 +27,21 @@ void AppendSummaryCsv(const ExperimentConfig& config, const JobResult& r, std::s
 class CsvLine {
  public:
   explicit CsvLine(std::string* out) : out_(out) {}
-  void Text(const std::string& s) { Cell(s.data(), s.size()); }
+  void Text(std::string_view s) { Cell(s.data(), s.size()); }
   void Num(const char* format, double v) { Format(format, v); }
   void Int(long long v) { Format("%lld", v); }
   void Empty() { Cell("", 0); }
+  // One cell of VALUES each printed with FORMAT, separated by spaces (empty cell for none).
+  void Numbers(const char* format, std::span<const double> values) {
+    if (!first_) *out_ += ',';
+    first_ = false;
+    char buf[64];
+    for (std::size_t j = 0; j < values.size(); ++j) {
+      if (j > 0) *out_ += ' ';
+      const int n = std::snprintf(buf, sizeof buf, format, values[j]);
+      out_->append(buf, std::size_t(n));
+    }
+  }
 
  private:
   template <class T>

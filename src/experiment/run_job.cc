@@ -5,14 +5,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <optional>
 
+#include "contact/coherence_guard.h"
 #include "experiment/contact_placement.h"
 #include "experiment/metrics.h"
 #include "experiment/runner.h"
 #include "deform/body_dynamics.h"
-#include "deform/reduced_integrator.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -55,50 +54,20 @@ void OnMovingBody(bool moving_is_B, const ContactQuery& q, const Wrench& on_B, E
   }
 }
 
-// The two-way coupling of a deformable body (paper sec. 4 and 5): the contact query reads its
-// q, writes its reduced contact force, and its integrator then takes one step. Body A is a
-// deformable pointshell (sec. 4.1), body B a deformed distance field (sec. 4.2).
-class DeformableCoupling {
- public:
-  DeformableCoupling(const BodyAssets& body, std::shared_ptr<const ReducedModel> model, double dt, bool is_B)
-      : model_(std::move(model)),
-        integrator_(model_->forces, DeformableIntegratorOptions(*body.spec().deformable, dt)),
-        dynamics_(&integrator_, body.spec().deformable->implicit_contact),
-        is_B_(is_B) {}
-  int r() const { return model_->r(); }
-  // Points the query at the current state and at the reduced force it fills.
-  void Prepare(ContactQuery* q) { (is_B_ ? q->deformation_B : q->deformation_A) = dynamics_.Prepare(); }
-  // Steps with the force of the query just made (STAGGERED: the other body deforms too), and
-  // adds the state to ROW: step time and q in the body's own columns, energies summed and the
-  // largest displacement over both bodies.
-  void Step(CycleRow* row, bool staggered) {
-    const auto t0 = std::chrono::steady_clock::now();
-    dynamics_.Step(staggered);
-    const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
-    (is_B_ ? row->step_B_us : row->step_us) = us;
-    row->deformable = true;
-    row->elastic_energy += integrator_.PotentialEnergy();
-    row->kinetic_energy += integrator_.KineticEnergy();
-    const ReducedVector& q = integrator_.state().q;
-    const Eigen::VectorXd u = model_->basis * Eigen::VectorXd(q);
-    double max2 = 0;
-    for (Eigen::Index v = 0; v + 2 < u.size(); v += 3) max2 = std::max(max2, u.segment<3>(v).squaredNorm());
-    row->max_displacement = std::max(row->max_displacement, std::sqrt(max2));
-    std::string& text = is_B_ ? row->q_B : row->q;
-    text.clear();
-    char buf[32];
-    for (int j = 0; j < q.size(); ++j) {
-      std::snprintf(buf, sizeof buf, j == 0 ? "%.9g" : " %.9g", q[j]);
-      text += buf;
-    }
-  }
+// Adds the state of DYNAMICS after this cycle's step to ROW: the step time (US) in the body's own
+// column (IS_B), energies summed and the largest displacement over both bodies.
+void RecordDeformation(BodyDynamics& dynamics, bool is_B, double us, CycleRow* row) {
+  (is_B ? row->step_B_us : row->step_us) = us;
+  row->deformable = true;
+  row->elastic_energy += dynamics.PotentialEnergy();
+  row->kinetic_energy += dynamics.KineticEnergy();
+  row->max_displacement = std::max(row->max_displacement, dynamics.MaxDisplacement());
+}
 
- private:
-  std::shared_ptr<const ReducedModel> model_;
-  ReducedIntegrator integrator_;
-  BodyDynamics dynamics_;
-  bool is_B_;
-};
+// Microseconds since T0.
+double MicrosecondsSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+}
 
 // The median of V (reordered).
 double Median(std::vector<double>* v) {
@@ -162,9 +131,32 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
   // deformable pointshell reference) is evaluated once per cycle and reused by each model.
   const ContactModelNeeds* reference_needs = reference ? &FindContactModel(config.reference_model)->needs : nullptr;
   const bool reuse_reference = reference_needs && !reference_needs->deformable_A && !reference_needs->deformable_B;
-  std::map<std::int64_t, Eigen::Vector3d> reference_at;
+  std::vector<Eigen::Vector3d> reference_at;  // by cycle, when reused: filled by the first model
+  std::vector<char> have_reference_at;
+  if (reuse_reference) {
+    reference_at.resize(std::size_t(cycles));
+    have_reference_at.assign(std::size_t(cycles), 0);
+  }
 
-  for (const std::string& name : job.models) {
+  // The deformable bodies' dynamics (paper sec. 4 and 5), from rest for each model.
+  SceneDynamics dynamics = MakeSceneDynamics(assets, dt);
+  // The guard of the models' temporal coherence, as in the haptic cycle: the moving body's
+  // motion per cycle against the scene's max_point_speed.
+  CoherenceGuard coherence(scene.model.max_point_speed, scene.model.cycle_seconds,
+                           (moving_is_B ? assets.B : assets.A).mesh()->MaxVertexRadius(),
+                           config.file + ": model.max_point_speed");
+  const int r_A = dynamics.A ? dynamics.A->r() : 0;
+  const int r_B = dynamics.B ? dynamics.B->r() : 0;
+  // Everything the cycle rows hold, allocated here: the loop below records without allocating.
+  const std::size_t total_rows = job.models.size() * std::size_t(cycles);
+  auto storage = std::make_shared<CycleStorage>();
+  storage->models = job.models;
+  storage->q.resize(total_rows * std::size_t(r_A + r_B));
+  result.storage = storage;
+  result.cycles.reserve(total_rows);
+
+  for (std::size_t m = 0; m < job.models.size(); ++m) {
+    const std::string& name = storage->models[m];
     std::unique_ptr<ContactModel> model = MakeSceneContactModel(name, scene, assets);
     // Depths in voxels only for models whose depth is measured on B's field grid.
     const bool in_voxels = FindContactModel(name)->needs.depth_in_field_voxels;
@@ -174,26 +166,36 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
     std::vector<bool> has_ref;
     std::vector<double> times;
     std::vector<int> levels;
-    double nodes_sum = 0, max_depth = 0;
-    std::unique_ptr<DeformableCoupling> coupling, coupling_B;
-    if (assets.A.deformable()) coupling = std::make_unique<DeformableCoupling>(assets.A, assets.A.reduced_model(), dt, false);
-    if (assets.B.deformable()) coupling_B = std::make_unique<DeformableCoupling>(assets.B, assets.B.reduced_model(), dt, true);
     std::vector<double> step_times, step_times_B;
+    for (auto* v : {&forces, &refs}) v->reserve(std::size_t(cycles));
+    for (auto* v : {&times, &step_times, &step_times_B}) v->reserve(std::size_t(cycles));
+    poses.reserve(std::size_t(cycles));
+    has_ref.reserve(std::size_t(cycles));
+    levels.reserve(std::size_t(cycles));
+    double nodes_sum = 0, max_depth = 0;
+    dynamics.Reset();
     double max_displacement = 0;
-    for (std::int64_t k = 0; k < cycles; ++k) {
-      // The moving body follows the trajectory from its start pose; the other stays put.
+    std::int64_t contact_faults = 0;
+    // The moving body follows the trajectory from its start pose; the other stays put.
+    auto moving_pose = [&](std::int64_t k) {
       const Pose d = trajectory.At(trajectory.start_time() + double(k) * dt);
-      const Pose X_moving{(d.rotation * start.rotation).normalized(), start.translation + d.translation};
+      return Pose{(d.rotation * start.rotation).normalized(), start.translation + d.translation};
+    };
+    coherence.Start(moving_pose(0));
+    for (std::int64_t k = 0; k < cycles; ++k) {
+      const Pose X_moving = moving_pose(k);
+      // Faster than the coherence assumes: this cycle traverses in full, coherence restarts.
+      if (coherence.Check(X_moving)) model->Reset();
       ContactQuery q;
       q.X_WA = moving_is_B ? X_WA0 : X_moving;
       q.X_WB = moving_is_B ? X_moving : X_WB0;
       q.cycle = k;
       q.node_budget = scene.node_budget;
-      if (coupling) coupling->Prepare(&q);
-      if (coupling_B) coupling_B->Prepare(&q);
+      if (dynamics.A) q.deformation_A = dynamics.A->Prepare();
+      if (dynamics.B) q.deformation_B = dynamics.B->Prepare();
       const auto t0 = std::chrono::steady_clock::now();
       const ContactResult r = model->Evaluate(q);
-      const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+      const double us = MicrosecondsSince(t0);
       CycleRow row;
       row.job = job.index;
       row.model = name;
@@ -208,9 +210,10 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
       row.max_penetration = r.stats.max_penetration;
       row.depth_voxels = spacing > 0 ? r.stats.max_penetration / spacing : 0.0;
       row.time_us = us;
+      contact_faults += r.stats.faults > 0 ? 1 : 0;  // the model refused the query: no force
       if (reference && k % config.reference_every == 0) {
-        if (const auto it = reference_at.find(k); reuse_reference && it != reference_at.end()) {
-          row.reference_force = it->second;
+        if (reuse_reference && have_reference_at[std::size_t(k)]) {
+          row.reference_force = reference_at[std::size_t(k)];
         } else {
           Eigen::Vector3d T;
           // The reference sees the deformations and writes no reduced force.
@@ -221,18 +224,31 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
           rq.deformation_A = q.deformation_A ? &ref_A : nullptr;
           rq.deformation_B = q.deformation_B ? &ref_B : nullptr;
           OnMovingBody(moving_is_B, rq, reference->Evaluate(rq).on_B, &row.reference_force, &T);
-          if (reuse_reference) reference_at[k] = row.reference_force;
+          if (reuse_reference) {
+            reference_at[std::size_t(k)] = row.reference_force;
+            have_reference_at[std::size_t(k)] = 1;
+          }
         }
         row.has_reference = true;
       }
-      // The deformations advance after the query, held fixed during it.
-      if (coupling) {
-        coupling->Step(&row, coupling_B != nullptr);
+      // The deformations advance after the query, held fixed during it; the row keeps the
+      // states after the steps in its slot of the storage.
+      double* q_row = storage->q.data() + result.cycles.size() * std::size_t(r_A + r_B);
+      if (dynamics.A) {
+        const auto ts = std::chrono::steady_clock::now();
+        dynamics.A->Step();
+        RecordDeformation(*dynamics.A, false, MicrosecondsSince(ts), &row);
         step_times.push_back(row.step_us);
+        std::copy_n(dynamics.A->state().q.data(), r_A, q_row);
+        row.q = {q_row, std::size_t(r_A)};
       }
-      if (coupling_B) {
-        coupling_B->Step(&row, coupling != nullptr);
+      if (dynamics.B) {
+        const auto ts = std::chrono::steady_clock::now();
+        dynamics.B->Step();
+        RecordDeformation(*dynamics.B, true, MicrosecondsSince(ts), &row);
         step_times_B.push_back(row.step_B_us);
+        std::copy_n(dynamics.B->state().q.data(), r_B, q_row + r_A);
+        row.q_B = {q_row + r_A, std::size_t(r_B)};
       }
       max_displacement = std::max(max_displacement, row.max_displacement);
       forces.push_back(row.force);
@@ -283,15 +299,17 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
       s.mean_force += f.norm() / double(cycles);
     }
     s.max_depth_voxels = max_depth;
-    if (coupling) {
-      s.modes = coupling->r();
+    s.coherence_resets = coherence.resets();
+    s.contact_faults = contact_faults;
+    if (dynamics.A) {
+      s.modes = r_A;
       s.median_step_us = Median(&step_times);
     }
-    if (coupling_B) {
-      s.modes_B = coupling_B->r();
+    if (dynamics.B) {
+      s.modes_B = r_B;
       s.median_step_B_us = Median(&step_times_B);
     }
-    if (coupling || coupling_B) s.max_displacement = max_displacement;
+    if (dynamics.any()) s.max_displacement = max_displacement;
     // The memory of the body data this model reads, from the loaded arrays.
     const ContactModelNeeds& needs = FindContactModel(name)->needs;
     if (needs.field_B) s.field_B_bytes = assets.B.field()->memory_bytes();

@@ -7,7 +7,10 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <memory>
+#include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "experiment/experiment_config.h"
@@ -22,10 +25,12 @@ struct RunOptions {
   bool progress = true;
 };
 
-// One row per cycle per model.
+// One row per cycle per model. Its model name and reduced coordinates view the storage of the
+// JobResult that holds it (JobResult::storage, shared by the result's copies), so recording a
+// row allocates nothing: a row is valid while that result, or a copy of it, lives.
 struct CycleRow {
   int job = 0;
-  std::string model;
+  std::string_view model;
   std::int64_t cycle = 0;
   double t = 0;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  // moving body origin, world
@@ -47,8 +52,8 @@ struct CycleRow {
   double elastic_energy = 0;     // J, both bodies (mass-normalised coordinates: kg m^2 / s^2)
   double kinetic_energy = 0;     // J, both bodies
   double max_displacement = 0;   // m, largest |U q| over the simulation meshes' vertices
-  std::string q;                 // A's q_1 .. q_r separated by spaces
-  std::string q_B;               // B's
+  std::span<const double> q;     // A's q_1 .. q_r after this cycle's step (empty: A is rigid)
+  std::span<const double> q_B;   // B's
 };
 
 // Metrics of one model over one job's trajectory.
@@ -69,6 +74,10 @@ struct SummaryRow {
   double max_jump_rel = 0, lipschitz_rel = 0;
   double max_force = 0, mean_force = 0;
   double max_depth_voxels = 0;
+  // Cycles where the moving body outran the scene's max_point_speed, each resetting the model
+  // (as the haptic cycle's coherence guard does); cycles whose query the model refused (no
+  // force: ContactStats::faults, a deformation of the wrong size).
+  std::int64_t coherence_resets = 0, contact_faults = 0;
   int modes = 0;                // r of a deformable pointshell body A, 0 when rigid
   double median_step_us = 0;    // A's reduced integrator step
   int modes_B = 0;              // r of a deformable field body B, 0 when rigid
@@ -79,10 +88,17 @@ struct SummaryRow {
   std::int64_t field_B_bytes = -1, pointshell_A_bytes = -1;
 };
 
+// What the cycle rows of a job view, allocated once before its first cycle.
+struct CycleStorage {
+  std::vector<std::string> models;  // the job's model names
+  std::vector<double> q;            // #rows x (r_A + r_B): each row's q, then its q_B
+};
+
 struct JobResult {
   Job job;
   std::vector<CycleRow> cycles;
   std::vector<SummaryRow> summary;
+  std::shared_ptr<const CycleStorage> storage;  // what the rows of `cycles` view
 };
 
 // Runs JOB of CONFIG (assets built or reused through OPTIONS.assets).

@@ -266,6 +266,22 @@ IntegratorOptions DeformableIntegratorOptions(const DeformableSpec& deformable, 
   return o;
 }
 
+std::unique_ptr<BodyDynamics> MakeBodyDynamics(BodyAssets& body, double dt, bool staggered) {
+  if (!body.deformable()) return nullptr;
+  const DeformableSpec& d = *body.spec().deformable;
+  IntegratorOptions options = DeformableIntegratorOptions(d, dt);
+  options.Validate("body '" + body.spec().name + "' dynamics");
+  return std::make_unique<BodyDynamics>(body.reduced_model(), options, d.implicit_contact, staggered);
+}
+
+SceneDynamics MakeSceneDynamics(SceneAssets& assets, double dt) {
+  const bool both = assets.A.deformable() && assets.B.deformable();
+  SceneDynamics d;
+  d.A = MakeBodyDynamics(assets.A, dt, both);
+  d.B = MakeBodyDynamics(assets.B, dt, both);
+  return d;
+}
+
 std::unique_ptr<ContactModel> MakeSceneContactModel(std::string_view name, const Scene& scene, SceneAssets& assets) {
   return MakeContactModel(name, ContactModelInputs{assets.A, assets.B, scene.model},
                           scene.file.empty() ? std::string_view("scene") : std::string_view(scene.file));

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "contact/model_registry.h"
+#include "deform/body_dynamics.h"
 #include "deform/deformable_pointshell.h"
 #include "deform/deformed_distance_field.h"
 #include "deform/reduced_integrator.h"
@@ -106,6 +107,26 @@ struct SceneAssets {
 
 // The time stepping of a deformable body at the haptic cycle DT (seconds): its Rayleigh damping.
 IntegratorOptions DeformableIntegratorOptions(const DeformableSpec& deformable, double dt);
+
+// The dynamics of BODY at the haptic cycle DT (seconds): its reduced model (built or read from
+// the cache), stepped as its deformable block says (DeformableIntegratorOptions, its coupling
+// mode); STAGGERED: the other body deforms too. Null for a rigid body. Throws Error naming the
+// body for a non-positive DT.
+std::unique_ptr<BodyDynamics> MakeBodyDynamics(BodyAssets& body, double dt, bool staggered);
+
+// The dynamics of a scene's two bodies: null for a rigid one; when both deform, both step
+// staggered. What the runner, the live session and the closed-loop study step.
+struct SceneDynamics {
+  std::unique_ptr<BodyDynamics> A;  // the pointshell body's
+  std::unique_ptr<BodyDynamics> B;  // the field body's (in a haptic loop: the haptic body H)
+  bool any() const { return A != nullptr || B != nullptr; }
+  // Both back to rest.
+  void Reset() {
+    if (A) A->Reset();
+    if (B) B->Reset();
+  }
+};
+SceneDynamics MakeSceneDynamics(SceneAssets& assets, double dt);
 
 // Makes the registered contact model NAME between SCENE's bodies, with the scene's model
 // parameters; only what the model needs is built. Throws Error naming the scene file when NAME

@@ -1,6 +1,8 @@
 #include "geometry/triangle_mesh.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
 
 namespace contactlab {
 
@@ -14,6 +16,12 @@ Aabb TriangleMesh::Bounds() const {
     for (int k = 0; k < 3; ++k) box.Extend(vertices[t[k]]);
   }
   return box;
+}
+
+double TriangleMesh::MaxVertexRadius() const {
+  double r2 = 0;
+  for (const Eigen::Vector3d& v : vertices) r2 = std::max(r2, v.squaredNorm());
+  return std::sqrt(r2);
 }
 
 double TriangleMesh::SurfaceArea() const {

@@ -26,6 +26,10 @@ struct TriangleMesh {
 
   // Bounding box of the vertices referenced by triangles (all vertices if none).
   Aabb Bounds() const;
+  // Largest distance of a vertex from the origin of the mesh's frame (a body's origin once
+  // loaded), metres; 0 without vertices. Every point of the mesh lies within it, however the
+  // body turns about its origin: the bound a motion of the body puts on its points' speed.
+  double MaxVertexRadius() const;
   // Sum of triangle areas.
   double SurfaceArea() const;
   // Signed volume by the divergence theorem; meaningful only for closed, oriented meshes.

@@ -14,19 +14,8 @@ HapticCycle::HapticCycle(HapticDevice& device, ContactModel* model, const Haptic
       model_(model),
       config_(config),
       coupling_(config.coupling),
-      safety_(ResolveSafetyLimits(config.safety, device.capabilities())) {
-  if (config.deformation_A != nullptr) {
-    deformation_A_ = BodyDynamics(config.deformation_A, config.implicit_contact_A);
-  }
-  if (config.deformation_B != nullptr) {
-    deformation_B_ = BodyDynamics(config.deformation_B, config.implicit_contact_B);
-  }
-  if (!(config.max_point_speed <= 0 || (std::isfinite(config.max_point_speed) && config.cycle_seconds > 0 &&
-                                         std::isfinite(config.cycle_seconds) && config.body_radius_H >= 0 &&
-                                         std::isfinite(config.body_radius_H))))
-    Fail("haptic cycle", "max_point_speed, cycle_seconds and body_radius_H must be finite, cycle_seconds > 0 and "
-                         "body_radius_H >= 0");
-}
+      safety_(ResolveSafetyLimits(config.safety, device.capabilities())),
+      coherence_(config.max_point_speed, config.cycle_seconds, config.body_radius_H, "haptic cycle (body_radius_H)") {}
 
 void HapticCycle::Start(std::int64_t now_ns) {
   device_.Read(now_ns, &state_);
@@ -34,10 +23,10 @@ void HapticCycle::Start(std::int64_t now_ns) {
   coupling_.Reset(state_.X_WD);
   safety_.Start(now_ns);
   if (model_ != nullptr) model_->Reset();
-  last_query_X_WH_ = coupling_.X_WH();
-  coherence_resets_ = 0;
-  if (deformation_A_.active()) deformation_A_.Reset();
-  if (deformation_B_.active()) deformation_B_.Reset();
+  coherence_.Start(coupling_.X_WH());
+  contact_faults_ = 0;
+  if (config_.dynamics_A != nullptr) config_.dynamics_A->Reset();
+  if (config_.dynamics_B != nullptr) config_.dynamics_B->Reset();
   cycle_ = 0;
 }
 
@@ -56,24 +45,17 @@ CycleRecord HapticCycle::Step(std::int64_t now_ns) {
     // Temporal-coherence guard: H's motion since the previous query, as a bound on the speed
     // of its points (A is static), against the speed the model's coherence assumes.
     const Pose& X_WH = coupling_.X_WH();
-    if (config_.max_point_speed > 0) {
-      const double moved = (X_WH.translation - last_query_X_WH_.translation).norm() +
-                           X_WH.rotation.angularDistance(last_query_X_WH_.rotation) * config_.body_radius_H;
-      rec.point_speed = moved / config_.cycle_seconds;
-      if (!(rec.point_speed <= config_.max_point_speed)) {
-        model_->Reset();  // this cycle traverses in full; coherence restarts from it
-        rec.coherence_reset = true;
-        ++coherence_resets_;
-      }
+    if (coherence_.Check(X_WH, &rec.point_speed)) {
+      model_->Reset();  // this cycle traverses in full; coherence restarts from it
+      rec.coherence_reset = true;
     }
-    last_query_X_WH_ = X_WH;
     ContactQuery q;
     q.X_WA = config_.X_WA;
     q.X_WB = X_WH;
     q.cycle = cycle_;
     q.node_budget = config_.node_budget;
-    if (deformation_A_.active()) q.deformation_A = deformation_A_.Prepare();
-    if (deformation_B_.active()) q.deformation_B = deformation_B_.Prepare();  // H deforms: its field at its q
+    if (config_.dynamics_A != nullptr) q.deformation_A = config_.dynamics_A->Prepare();
+    if (config_.dynamics_B != nullptr) q.deformation_B = config_.dynamics_B->Prepare();  // H deforms: its field at its q
     contact = model_->Evaluate(q);
     if (config_.point_marks != nullptr) config_.point_marks->Update(*model_, q, cycle_);
   }
@@ -99,7 +81,10 @@ CycleRecord HapticCycle::Step(std::int64_t now_ns) {
   rec.points_in_contact = contact.stats.points_in_contact;
   rec.level_rendered = contact.stats.level_rendered;
   rec.nodes_visited = contact.stats.nodes_visited;
-  rec.coherence_resets = coherence_resets_;
+  rec.coherence_resets = coherence_.resets();
+  rec.contact_fault = contact.stats.faults > 0;
+  contact_faults_ += rec.contact_fault ? 1 : 0;
+  rec.contact_faults = contact_faults_;
   rec.device_input = device_.input_stats();
   for (int i = 0; i < 3; ++i) {
     rec.p_WD[i] = state_.X_WD.translation[i];
@@ -114,16 +99,15 @@ CycleRecord HapticCycle::Step(std::int64_t now_ns) {
   rec.q_WH[0] = qh.w(), rec.q_WH[1] = qh.x(), rec.q_WH[2] = qh.y(), rec.q_WH[3] = qh.z();
   // The deformations advance at the end of the cycle with the contact forces as external
   // loads (paper sec. 4.1 and 5): A's, and H's own, decoupled from H's rigid motion.
-  if (model_ != nullptr && (deformation_A_.active() || deformation_B_.active())) {
-    const bool staggered = deformation_A_.active() && deformation_B_.active();
+  if (model_ != nullptr && (config_.dynamics_A != nullptr || config_.dynamics_B != nullptr)) {
     const auto t0 = std::chrono::steady_clock::now();
-    if (deformation_A_.active()) {
-      deformation_A_.Step(staggered);
-      rec.q_norm = deformation_A_.integrator().state().q.norm();
+    if (config_.dynamics_A != nullptr) {
+      config_.dynamics_A->Step();
+      rec.q_norm = config_.dynamics_A->state().q.norm();
     }
-    if (deformation_B_.active()) {
-      deformation_B_.Step(staggered);
-      rec.q_norm_B = deformation_B_.integrator().state().q.norm();
+    if (config_.dynamics_B != nullptr) {
+      config_.dynamics_B->Step();
+      rec.q_norm_B = config_.dynamics_B->state().q.norm();
     }
     rec.step_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0).count();
   }

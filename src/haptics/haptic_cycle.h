@@ -6,9 +6,9 @@
 
 #include <cstdint>
 
+#include "contact/coherence_guard.h"
 #include "contact/contact_model.h"
 #include "deform/body_dynamics.h"
-#include "deform/reduced_integrator.h"
 #include "haptics/contact_point_marks.h"
 #include "haptics/haptic_device.h"
 #include "haptics/safety_filter.h"
@@ -22,30 +22,29 @@ struct HapticCycleConfig {
   SafetyParams safety{.max_force = 0, .max_torque = 0};
   Pose X_WA;                       // pose of the static contact body A (world)
   std::int64_t node_budget = 0;    // passed to the contact model; <= 0 means unlimited
-  // Body A's reduced deformation when A is a deformable pointshell (paper sec. 4): held fixed
-  // during the contact query, then stepped once at the end of the cycle with the reduced
-  // contact force (and stiffness). Null: A is rigid. Must outlive the cycle.
-  ReducedIntegrator* deformation_A = nullptr;
-  // With deformation_A: the step also takes the contact's reduced stiffness (linearly
-  // implicit contact); false applies the contact force alone (the paper's explicit order).
-  bool implicit_contact_A = true;
-  // The haptic body H's own deformation when H is a deformable field body (paper sec. 4.2 and
-  // 5, "the deformable haptic object"): three configurations — the manipulandum, H's rigid
+  // Body A's dynamics when A is a deformable pointshell (paper sec. 4): its deformation is held
+  // fixed during the contact query, then stepped once at the end of the cycle with the reduced
+  // contact force (and stiffness), as the object's coupling mode and staggering say. Null: A is
+  // rigid. Must outlive the cycle (experiment/scene_assets.h MakeSceneDynamics builds it).
+  BodyDynamics* dynamics_A = nullptr;
+  // The haptic body H's own dynamics when H is a deformable field body (paper sec. 4.2 and 5,
+  // "the deformable haptic object"): three configurations — the manipulandum, H's rigid
   // simulation pose (the virtual coupling acts on it alone) and that pose plus the
   // deformation, which the contact query sees. Held fixed during the query, stepped at the end
   // of the cycle with the reduced contact force on H, decoupled from H's rigid motion. Null:
   // H is rigid. Must outlive the cycle.
-  ReducedIntegrator* deformation_B = nullptr;
-  bool implicit_contact_B = true;  // as implicit_contact_A, for H
+  BodyDynamics* dynamics_B = nullptr;
   // Guard of the contact model's temporal coherence (paper sec. 3.4): the coherence assumes
   // no point of A moves faster than max_point_speed relative to B, i.e. no more than
   // max_point_speed * cycle_seconds per cycle. Each cycle measures the motion of H between
   // consecutive contact queries, |dp| + |dtheta| * body_radius_H over cycle_seconds, and when it
   // exceeds max_point_speed resets the model (a full traversal this cycle) and counts the
-  // cycle. max_point_speed <= 0 disables the guard.
+  // cycle (contact/coherence_guard.h, which the experiment runner uses too). max_point_speed
+  // <= 0 disables the guard.
   double max_point_speed = 0;      // m/s (the scene's model.max_point_speed)
   double cycle_seconds = 1e-3;     // s, the cycle the coherence counts in (model.cycle_seconds)
   double body_radius_H = 0;        // m, bounding radius of H's geometry about its origin
+                                   // (TriangleMesh::MaxVertexRadius of H's mesh)
   // The live view's per-point contact marks (contact_point_marks.h), updated after each
   // contact query; null (no view): nothing is done. Must outlive the cycle.
   ContactPointMarks* point_marks = nullptr;
@@ -78,6 +77,10 @@ struct CycleRecord {
   double device_force[3] = {0, 0, 0};     // force written to the device (after safety), N
   double device_torque[3] = {0, 0, 0};    // torque written, N m
   std::int64_t coherence_resets = 0;      // such resets so far this session
+  // The contact model refused this cycle's query and gave no force (ContactStats::faults: a
+  // deformation whose size does not fit its body), and such cycles so far this session.
+  bool contact_fault = false;
+  std::int64_t contact_faults = 0;
   DeviceInputStats device_input;          // the device's input counters after this cycle
 };
 
@@ -102,7 +105,9 @@ class HapticCycle {
   const StaticVirtualCoupling& coupling() const { return coupling_; }
   const DeviceState& device_state() const { return state_; }
   // Cycles whose measured speed of H exceeded max_point_speed (each reset the model).
-  std::int64_t coherence_resets() const { return coherence_resets_; }
+  std::int64_t coherence_resets() const { return coherence_.resets(); }
+  // Cycles whose contact query the model refused (CycleRecord::contact_fault).
+  std::int64_t contact_faults() const { return contact_faults_; }
   HapticDevice& device() { return device_; }
 
  private:
@@ -114,10 +119,8 @@ class HapticCycle {
   DeviceState state_;
   std::int64_t last_sample_ns_ = 0;
   std::int64_t cycle_ = 0;
-  std::int64_t coherence_resets_ = 0;
-  Pose last_query_X_WH_;  // H's pose at the previous contact query
-  BodyDynamics deformation_A_;  // body A's two-way coupling (inactive when rigid)
-  BodyDynamics deformation_B_;  // H's
+  CoherenceGuard coherence_;  // H's motion against the model's max_point_speed
+  std::int64_t contact_faults_ = 0;
 };
 
 }  // namespace contactlab

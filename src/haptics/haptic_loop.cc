@@ -110,6 +110,7 @@ HapticLoopReport HapticLoop::Join() {
   report_.watchdog_zeroes = watchdog_zeroes_.load();
   report_.safety = cycle_.safety().stats();
   report_.coherence_resets = cycle_.coherence_resets();
+  report_.contact_faults = cycle_.contact_faults();
   report_.device_input = cycle_.device().input_stats();
   return report_;
 }
@@ -229,6 +230,8 @@ std::string FormatLoopReport(const HapticLoopReport& r) {
      << ", torque clamped " << r.safety.torque_clamped << ", device silent " << r.safety.device_silent
      << ", loop stalls " << r.safety.loop_stalls << ", faults " << r.safety.faults << "\n";
   os << "  coherence resets (haptic body faster than max_point_speed): " << r.coherence_resets << "\n";
+  os << "  contact faults (queries the model refused, e.g. a deformation of the wrong size): " << r.contact_faults
+     << "\n";
   if (r.device_input.received > 0 || r.device_input.rejected() > 0)
     os << "  device input: " << FormatDeviceInputStats(r.device_input) << "\n";
   return os.str();

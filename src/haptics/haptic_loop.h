@@ -40,6 +40,7 @@ struct HapticLoopReport {
   TimingHistogram period;             // time between consecutive cycle starts
   SafetyStats safety;                 // the cycle's safety counters at the end
   std::int64_t coherence_resets = 0;  // cycles where H outran max_point_speed (model reset)
+  std::int64_t contact_faults = 0;    // cycles whose contact query the model refused (no force)
   DeviceInputStats device_input;      // the device's input counters at the end (udp rejections)
 };
 

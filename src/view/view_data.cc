@@ -333,14 +333,23 @@ nlohmann::json ReplayViewData(const Replay& replay, SceneAssets& assets, const S
   // Deformable bodies with recorded coordinates: the reduced basis at their mesh vertices.
   for (int b = 0; b < 2; ++b) {
     BodyAssets& body = b == 0 ? assets.A : assets.B;
+    // Every model's recorded coordinates must fit the body: r of its reduced model, none when
+    // it is rigid.
     int r = 0;
-    for (const ReplayTrack& t : replay.tracks) r = std::max(r, b == 0 ? t.r : t.r_B);
-    if (r == 0 || !body.deformable()) continue;
-    const auto model = body.reduced_model();
-    if (model->r() != r) {
-      Fail((replay.dir / "cycles.csv").string(), "holds " + std::to_string(r) + " reduced coordinates of " +
-                                                     body.spec().name + ", whose model has " + std::to_string(model->r()));
+    for (const ReplayTrack& t : replay.tracks) {
+      const int track_r = b == 0 ? t.r : t.r_B;
+      if (track_r == 0) continue;
+      const int body_r = body.deformable() ? body.reduced_model()->r() : 0;
+      if (track_r != body_r) {
+        Fail((replay.dir / "cycles.csv").string(),
+             "model " + t.model + " holds " + std::to_string(track_r) + " reduced coordinates (column " +
+                 (b == 0 ? "q" : "q_B") + ") of body '" + body.spec().name + "', " +
+                 (body.deformable() ? "whose model has r = " + std::to_string(body_r) : "which is rigid"));
+      }
+      r = track_r;
     }
+    if (r == 0) continue;
+    const auto model = body.reduced_model();
     const TriangleMesh& mesh = meshes[b];  // the basis at the vertices drawn
     if (double(mesh.num_vertices()) * 3 * r > 16e6) {
       j["bodies"][b]["basis_omitted"] = true;

@@ -169,5 +169,47 @@ TEST(DeformableBody, DeformableParametersAreSweepableByKeyPath) {
   }
 }
 
+// A scene body's dynamics come from its own assets and deformable block: none for a rigid body,
+// the block's damping and coupling mode at the cycle asked for, staggered only when both deform;
+// a bad cycle is an error naming the body.
+TEST(DeformableBody, ItsDynamicsFollowItsBlockAndTheCycle) {
+  TempDir dir;
+  AssetOptions options;
+  options.cache_dir = dir / "cache";
+  options.verbose = false;
+  std::string text = kBeamScene;
+  text.replace(text.find("cells: 40"), 9, "cells: 12");
+  text.replace(text.find("anchor:"), 0, "coupling: explicit, ");
+  Scene scene = Parse(text);
+  SceneAssets assets(scene, options);
+  const SceneDynamics one = MakeSceneDynamics(assets, 5e-4);
+  EXPECT_EQ(one.A, nullptr);  // the probe is rigid
+  ASSERT_NE(one.B, nullptr);
+  EXPECT_EQ(one.B->r(), 6);
+  EXPECT_EQ(one.B->integrator().options().time_step, 5e-4);
+  EXPECT_EQ(one.B->integrator().options().mass_damping, 0.5);
+  EXPECT_EQ(one.B->integrator().options().stiffness_damping, 0.001);
+  EXPECT_FALSE(one.B->implicit_contact());
+  EXPECT_FALSE(one.B->staggered());
+  // Both deformable: both staggered.
+  Scene both = scene;
+  both.pointshell_body = scene.field_body;  // a second beam
+  both.pointshell_body.name = "beam2";
+  both.pointshell_body.role = "pointshell";
+  SceneAssets both_assets(both, options);
+  const SceneDynamics two = MakeSceneDynamics(both_assets, 1e-3);
+  ASSERT_NE(two.A, nullptr);
+  ASSERT_NE(two.B, nullptr);
+  EXPECT_TRUE(two.A->staggered());
+  EXPECT_TRUE(two.B->staggered());
+  try {
+    MakeSceneDynamics(assets, 0.0);
+    ADD_FAILURE() << "a zero cycle was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("body 'beam'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("time step must be positive"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace contactlab

@@ -45,6 +45,19 @@ TEST(ProceduralShapes, BoxVolumeIsExact) {
   }
 }
 
+// The bounding radius about the body origin is reached at the corner farthest from it: for a box
+// of half-extents h shifted by t, |(|t_x| + h_x, |t_y| + h_y, |t_z| + h_z)|.
+TEST(ProceduralShapes, MaxVertexRadiusIsTheFarthestCornerFromTheOrigin) {
+  const Eigen::Vector3d half(0.1, 1.0 / 3.0, 0.3);
+  TriangleMesh m = MakeBox(half, 3);
+  EXPECT_NEAR(m.MaxVertexRadius(), half.norm(), 1e-15);
+  const Eigen::Vector3d t(-0.25, 0.05, 0.7);
+  m.Transform(1.0, Eigen::Matrix3d::Identity(), t);
+  EXPECT_NEAR(m.MaxVertexRadius(), (t.cwiseAbs() + half).norm(), 1e-12);
+  EXPECT_NEAR(MakeSphere(0.02, 3).MaxVertexRadius(), 0.02, 1e-15);
+  EXPECT_EQ(TriangleMesh{}.MaxVertexRadius(), 0.0);
+}
+
 TEST(ProceduralShapes, TorusVolumeConverges) {
   const TriangleMesh m = MakeTorus(0.3, 0.1, 128, 64);
   ExpectClosedOriented(m);

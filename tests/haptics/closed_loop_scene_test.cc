@@ -18,8 +18,9 @@
 #include "experiment/closed_loop_stability.h"
 #include "experiment/scene.h"
 #include "experiment/scene_assets.h"
-#include "util/data_path.h"
+#include "scene_fixtures.h"
 #include "test_support.h"
+#include "util/data_path.h"
 
 namespace contactlab {
 namespace {
@@ -122,6 +123,43 @@ TEST(ClosedLoopScene, TheObserverFlagsAModelThatPumpsEnergy) {
   EXPECT_FALSE(m.passive());
   EXPECT_FALSE(m.settled());
   EXPECT_FALSE(m.stable());
+}
+
+// The study steps a deformable body through the scene's own dynamics: the hand pushes a rigid
+// probe onto a clamped beam that bends (its coordinates move off rest) and pushes back less than
+// the same beam held rigid; dynamics of the wrong size make every query a counted fault and the
+// run unstable.
+TEST(ClosedLoopScene, TheStudyStepsADeformableBodyAndCountsRefusedQueries) {
+  testing::TempDir cache;
+  const std::string kBeam = testing::BeamUnderProbe{
+      .points = 1024, .beam_resolution = 48, .modes = 6, .cells = 16, .E = 2.0e6, .probe_z = 0.04}.Yaml();
+  const Scene scene = ParseScene(ConfigNode::LoadString(kBeam, "beam.yaml"));
+  SceneAssets assets(scene, KnightScrewdriver::Options(cache));
+  const ClosedLoopScene where = MakeClosedLoopScene(scene, assets);
+  auto model = MakeSceneContactModel("pointshell", scene, assets);
+  ClosedLoopCase c;
+  c.push_depth = 0.004;
+  SceneDynamics dynamics = MakeSceneDynamics(assets, where.cycle_seconds);
+  ASSERT_NE(dynamics.A, nullptr);
+  const ClosedLoopMetrics soft = RunClosedLoop(*model, where, c, &dynamics);
+  const ClosedLoopMetrics held = RunClosedLoop(*model, where, c);  // no dynamics: the beam stays at rest
+  Print("soft", soft);
+  Print("held", held);
+  EXPECT_GT(soft.max_q_norm, 0);
+  EXPECT_EQ(held.max_q_norm, 0);
+  EXPECT_EQ(soft.contact_faults, 0);
+  EXPECT_TRUE(soft.finite);
+  EXPECT_GT(held.max_contact_force, 0.3);
+  EXPECT_LT(soft.max_contact_force, held.max_contact_force);
+  // Dynamics of a beam with fewer modes than the model's: every query refused.
+  Scene fewer = scene;
+  fewer.pointshell_body.deformable->modes = 4;
+  SceneAssets fewer_assets(fewer, KnightScrewdriver::Options(cache));
+  SceneDynamics wrong = MakeSceneDynamics(fewer_assets, where.cycle_seconds);
+  const ClosedLoopMetrics refused = RunClosedLoop(*model, where, c, &wrong);
+  EXPECT_EQ(refused.contact_faults, refused.cycles);
+  EXPECT_EQ(refused.max_contact_force, 0.0);
+  EXPECT_FALSE(refused.stable());
 }
 
 }  // namespace

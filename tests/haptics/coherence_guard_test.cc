@@ -57,12 +57,6 @@ struct SweepRun {
   std::int64_t resets = 0;
 };
 
-double BoundingRadius(const TriangleMesh& mesh) {
-  double r = 0;
-  for (const Eigen::Vector3d& v : mesh.vertices) r = std::max(r, v.norm());
-  return r;
-}
-
 // COHERENCE: the model's temporal coherence; GUARD: the cycle's speed guard.
 // MARKS_CHUNK > 0: the cycle also marks every point of the slab's pointshell, that many a
 // cycle, into *MARKS.
@@ -81,7 +75,7 @@ SweepRun RunSweep(bool coherence, bool guard, int marks_chunk = 0, std::unique_p
   if (guard) {
     config.max_point_speed = scene.model.max_point_speed;
     config.cycle_seconds = scene.model.cycle_seconds;
-    config.body_radius_H = BoundingRadius(*assets.B.mesh());
+    config.body_radius_H = assets.B.mesh()->MaxVertexRadius();
   }
   if (marks_chunk > 0) {
     std::vector<std::int32_t> all(std::size_t(assets.A.pointshell()->num_points()));

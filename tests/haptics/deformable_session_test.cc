@@ -12,6 +12,7 @@
 #include "experiment/scene.h"
 #include "experiment/scene_assets.h"
 #include "haptics/haptic_cycle.h"
+#include "haptics/haptic_loop.h"
 #include "haptics/sim_device.h"
 #include "scene_fixtures.h"
 #include "test_support.h"
@@ -21,22 +22,7 @@ namespace {
 
 constexpr std::int64_t kMs = 1000000;
 
-const char* kBeam = R"(name: beam-probe
-bodies:
-  - name: beam
-    mesh: "box:0.1,0.01,0.01,4"
-    role: pointshell
-    pointshell: {points: 1024, levels: 3, seed: 1}
-    field: {resolution: 64}
-    deformable: {model: stvk, modes: 8, cells: 24, E: 2.0e7, nu: 0.3, rho: 1100,
-                 damping: {alpha: 8.0, beta: 0.0005}, anchor: {below: [x, -0.09]}}
-  - name: probe
-    mesh: "sphere:0.01,2"
-    pose: [0.07, 0, 0.03, 1, 0, 0, 0]
-    role: field
-    field: {resolution: 32}
-model: {k_C: 1000, L: 10}
-)";
+const std::string kBeam = testing::BeamUnderProbe{}.Yaml();
 
 using testing::CosineRamp;
 
@@ -60,7 +46,7 @@ PressResult RunCycles(HapticDevice& device, ContactModel* model, const HapticCyc
     const CycleRecord rec = cycle.Step(i * kMs);
     r.max_contact_force = std::max(
         r.max_contact_force, Eigen::Vector3d(rec.contact_force[0], rec.contact_force[1], rec.contact_force[2]).norm());
-    const double q = config.deformation_B != nullptr ? rec.q_norm_B : rec.q_norm;
+    const double q = config.dynamics_B != nullptr ? rec.q_norm_B : rec.q_norm;
     r.max_q = std::max(r.max_q, q);
     r.final_q = q;
   }
@@ -80,14 +66,11 @@ PressResult RunPress(bool deformable) {
   SceneAssets rigid_assets(rigid_scene, options);
   auto model = deformable ? MakeSceneContactModel("pointshell", scene, assets)
                           : MakeSceneContactModel("pointshell", rigid_scene, rigid_assets);
-  IntegratorOptions io;
-  io.mass_damping = 8.0;
-  io.stiffness_damping = 5e-4;
-  ReducedIntegrator integrator(assets.A.reduced_model()->forces, io);
+  SceneDynamics dynamics = MakeSceneDynamics(assets, 1e-3);  // the beam's, rate 1 kHz
   SimDevice device(SimDeviceParams{}, kPress);
   HapticCycleConfig config;
   config.X_WA = scene.pointshell_body.pose;
-  if (deformable) config.deformation_A = &integrator;
+  if (deformable) config.dynamics_A = dynamics.A.get();
   return RunCycles(device, model.get(), config, 3000);
 }
 
@@ -139,15 +122,11 @@ PressResult RunHeldBar(bool deformable) {
   options.verbose = false;
   SceneAssets assets(scene, options);
   auto model = MakeSceneContactModel("pointshell", scene, assets);
-  std::unique_ptr<ReducedIntegrator> integrator;
-  if (deformable) {
-    integrator = std::make_unique<ReducedIntegrator>(assets.B.reduced_model()->forces,
-                                                     DeformableIntegratorOptions(*scene.field_body.deformable, 1e-3));
-  }
+  SceneDynamics dynamics = MakeSceneDynamics(assets, 1e-3);  // null when rigid
   SimDevice device(SimDeviceParams{}, kPressBar);
   HapticCycleConfig config;
   config.X_WA = scene.pointshell_body.pose;
-  config.deformation_B = integrator.get();
+  config.dynamics_B = dynamics.B.get();
   return RunCycles(device, model.get(), config, 3000);
 }
 
@@ -164,6 +143,58 @@ TEST(DeformableSession, AHeldDeformableBodyBendsOnContactAndTheCycleAllocatesNot
   EXPECT_LT(soft.final_q, 0.05 * soft.max_q);  // released and damped: back near rest
   std::printf("held bar: max contact force rigid %.3f N, deformable %.3f N; |q| peak %.4g, final %.4g\n",
               rigid.max_contact_force, soft.max_contact_force, soft.max_q, soft.final_q);
+}
+
+// A deformation of the wrong size reaching the cycle (here: dynamics of a beam with fewer modes
+// than the one the model was built for) makes the model refuse every query; the cycle applies no
+// force, counts each refused query in its record and the session summary, and allocates nothing.
+TEST(DeformableSession, ADeformationOfTheWrongSizeIsACountedFaultNotAForce) {
+  testing::TempDir dir;
+  const Scene scene = ParseScene(ConfigNode::LoadString(kBeam, "beam.yaml"));
+  Scene fewer = scene;
+  fewer.pointshell_body.deformable->modes = 4;
+  AssetOptions options;
+  options.cache_dir = dir / "cache";
+  options.verbose = false;
+  SceneAssets assets(scene, options), fewer_assets(fewer, options);
+  auto model = MakeSceneContactModel("pointshell", scene, assets);
+  SceneDynamics wrong = MakeSceneDynamics(fewer_assets, 1e-3);
+  ASSERT_EQ(wrong.A->r(), 4);
+  ASSERT_EQ(assets.A.reduced_model()->r(), 8);
+  SimDevice device(SimDeviceParams{}, kPress);
+  HapticCycleConfig config;
+  config.X_WA = scene.pointshell_body.pose;
+  config.dynamics_A = wrong.A.get();
+  HapticCycle cycle(device, model.get(), config);
+  cycle.Start(0);
+  const int cycles = 1000;  // through the deepest press
+  double max_force = 0;
+  const long before = testing::AllocationCount();
+  CycleRecord rec;
+  for (int i = 1; i <= cycles; ++i) {
+    rec = cycle.Step(i * kMs);
+    ASSERT_TRUE(rec.contact_fault) << "cycle " << i;
+    max_force = std::max(max_force, std::abs(rec.contact_force[0]) + std::abs(rec.contact_force[1]) +
+                                        std::abs(rec.contact_force[2]));
+  }
+  EXPECT_EQ(testing::AllocationCount() - before, 0);
+  EXPECT_EQ(rec.contact_faults, cycles);
+  EXPECT_EQ(cycle.contact_faults(), cycles);
+  EXPECT_EQ(max_force, 0.0);
+  // The session summary reports them.
+  HapticLoopReport report;
+  report.contact_faults = cycle.contact_faults();
+  const std::string text = FormatLoopReport(report);
+  EXPECT_NE(text.find("contact faults"), std::string::npos) << text;
+  EXPECT_NE(text.find(": 1000\n"), std::string::npos) << text;
+  // The same press with the dynamics the model was built for: no fault.
+  SceneDynamics right = MakeSceneDynamics(assets, 1e-3);
+  config.dynamics_A = right.A.get();
+  SimDevice device2(SimDeviceParams{}, kPress);
+  HapticCycle good(device2, model.get(), config);
+  good.Start(0);
+  for (int i = 1; i <= cycles; ++i) good.Step(i * kMs);
+  EXPECT_EQ(good.contact_faults(), 0);
 }
 
 }  // namespace

@@ -223,6 +223,19 @@ model: {k_C: 1000, L: 10}
   EXPECT_GT(largest_recorded, 1e-5);  // it did deform
   EXPECT_GT(largest_u, 0.5 * largest_recorded);
   EXPECT_LT(largest_u, 1.05 * largest_recorded);
+  // Coordinates that do not fit a body are an error naming the file, the model and the body: a
+  // count other than the ball's r, and any for the rigid plate.
+  Replay wrong = r;
+  wrong.tracks[0].r = 5;
+  std::string e = ErrorOf([&] { ReplayViewData(wrong, assets, SceneViewOptions{}); });
+  EXPECT_NE(e.find("cycles.csv"), std::string::npos) << e;
+  EXPECT_NE(e.find("model pointshell holds 5 reduced coordinates (column q) of body 'ball', whose model has r = 6"),
+            std::string::npos) << e;
+  Replay rigid = r;
+  rigid.tracks[0].r_B = 2;
+  rigid.tracks[0].q_B.assign(2 * t.t.size(), 0.f);
+  e = ErrorOf([&] { ReplayViewData(rigid, assets, SceneViewOptions{}); });
+  EXPECT_NE(e.find("holds 2 reduced coordinates (column q_B) of body 'plate', which is rigid"), std::string::npos) << e;
 }
 
 TEST(Replay, SeveralJobsNeedAJobNumber) {
