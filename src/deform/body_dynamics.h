@@ -34,17 +34,10 @@ class BodyDynamics {
   BodyDynamics(std::shared_ptr<const ReducedModel> model, const IntegratorOptions& options, bool implicit_contact,
                bool staggered)
       : model_(std::move(model)),
-        owned_(std::make_unique<ReducedIntegrator>(model_->forces, options)),
-        integrator_(owned_.get()),
+        integrator_(std::make_unique<ReducedIntegrator>(model_->forces, options)),
         implicit_(implicit_contact),
         staggered_(staggered) {
     u_.setZero(model_->basis.rows());
-    ZeroForce();
-  }
-  // Steps INTEGRATOR, owned by the caller (it must outlive this), not staggered; without a
-  // model there is no MaxDisplacement. For code that drives its own integrator.
-  BodyDynamics(ReducedIntegrator* integrator, bool implicit_contact)
-      : integrator_(integrator), implicit_(implicit_contact), staggered_(false) {
     ZeroForce();
   }
   BodyDynamics(const BodyDynamics&) = delete;
@@ -69,12 +62,10 @@ class BodyDynamics {
     deformation_ = {&integrator_->state(), &f_, implicit_ ? &K_ : nullptr};
     return &deformation_;
   }
-  // One step with the force (and stiffness) of the query just made, staggered as constructed.
-  void Step() { Step(staggered_); }
-  // The same, STAGGERED saying whether the other body deforms and steps separately
-  // (kStaggeredStiffnessFactor).
-  void Step(bool staggered) {
-    if (staggered) K_ *= kStaggeredStiffnessFactor;
+  // One step with the force (and stiffness) of the query just made; staggered (as constructed):
+  // with kStaggeredStiffnessFactor times the stiffness.
+  void Step() {
+    if (staggered_) K_ *= kStaggeredStiffnessFactor;
     integrator_->Step(f_, implicit_ ? &K_ : nullptr);
   }
 
@@ -82,9 +73,7 @@ class BodyDynamics {
   double PotentialEnergy() { return integrator_->PotentialEnergy(); }
   double KineticEnergy() const { return integrator_->KineticEnergy(); }
   // Largest displacement |U_v q| of a simulation-mesh vertex at the current state, metres.
-  // Needs the model (the first constructor); 0 without one.
   double MaxDisplacement() {
-    if (model_ == nullptr) return 0;
     u_.noalias() = model_->basis * integrator_->state().q;
     double max2 = 0;
     for (Eigen::Index v = 0; v + 2 < u_.size(); v += 3) max2 = std::max(max2, u_.segment<3>(v).squaredNorm());
@@ -97,9 +86,8 @@ class BodyDynamics {
     K_.setZero(integrator_->r(), integrator_->r());
   }
 
-  std::shared_ptr<const ReducedModel> model_;     // null: stepping a caller's integrator
-  std::unique_ptr<ReducedIntegrator> owned_;      // the integrator, unless the caller's
-  ReducedIntegrator* integrator_;
+  std::shared_ptr<const ReducedModel> model_;
+  std::unique_ptr<ReducedIntegrator> integrator_;
   bool implicit_;
   bool staggered_;
   ReducedVector f_;

@@ -172,19 +172,20 @@ void PressTogether(const std::string& force_at) {
   SceneAssets assets(scene, Assets(dir));
   const auto model = MakeSceneContactModel("pointshell-linear", scene, assets);
   const auto mA = assets.A.reduced_model(), mB = assets.B.reduced_model();
-  const IntegratorOptions io = DeformableIntegratorOptions(*scene.field_body.deformable, 1e-3);
-  ReducedIntegrator A(mA->forces, io), B(mB->forces, io);
-  BodyDynamics coupling_A(&A, true), coupling_B(&B, true);
+  const SceneDynamics dynamics = MakeSceneDynamics(assets, 1e-3);  // both deform: staggered
+  ASSERT_TRUE(dynamics.A && dynamics.B && dynamics.A->staggered() && dynamics.B->staggered());
+  BodyDynamics& A = *dynamics.A;
+  BodyDynamics& B = *dynamics.B;
   for (int cycle = 0; cycle < 400; ++cycle) {
     ContactQuery q;
     q.X_WA = scene.pointshell_body.pose;
     q.X_WB = scene.field_body.pose;
     q.cycle = cycle;
-    q.deformation_A = coupling_A.Prepare();
-    q.deformation_B = coupling_B.Prepare();
+    q.deformation_A = A.Prepare();
+    q.deformation_B = B.Prepare();
     model->Evaluate(q);
-    coupling_A.Step(true);  // both step, each with the other held fixed
-    coupling_B.Step(true);
+    A.Step();  // both step, each with the other held fixed
+    B.Step();
   }
   const double dA = DeflectionAt(*mA, A.state()), dB = DeflectionAt(*mB, B.state());
   std::printf("deflections at the crossing: beam %.4g mm, bar %.4g mm\n", 1e3 * dA, 1e3 * dB);
