@@ -41,6 +41,9 @@ ContactModelEntry PaperModel(PointshellVariant variant) {
   e.needs.depth_in_field_voxels = true;
   e.needs.deformable_A = true;
   e.needs.deformable_B = true;
+  e.check = [variant](const PointshellContactParams& params, bool, bool deformable_B, std::string_view where) {
+    CheckPointshellCoherence(params, variant, deformable_B, where);
+  };
   e.make = [variant](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
     return in.A.deformable() ? MakePaperModelFor<DeformableShell>(variant, in) : MakePaperModelFor<RigidShell>(variant, in);
   };
@@ -73,8 +76,8 @@ const ContactModelEntry* FindContactModel(std::string_view name) {
   return it == registry.end() ? nullptr : &it->second;
 }
 
-std::unique_ptr<ContactModel> MakeContactModel(std::string_view name, const ContactModelInputs& inputs,
-                                               std::string_view where) {
+void CheckContactModel(std::string_view name, const PointshellContactParams& params, std::string_view body_A,
+                       bool deformable_A, std::string_view body_B, bool deformable_B, std::string_view where) {
   const ContactModelEntry* entry = FindContactModel(name);
   if (entry == nullptr) {
     std::string known;
@@ -82,17 +85,22 @@ std::unique_ptr<ContactModel> MakeContactModel(std::string_view name, const Cont
     for (const std::string& n : ReferenceModelNames()) known += (known.empty() ? "" : ", ") + n + " (reference)";
     Fail(where, "unknown contact model '" + std::string(name) + "' (known: " + known + ")");
   }
-  if (inputs.A.deformable() && !entry->needs.deformable_A) {
-    Fail(where, "contact model '" + std::string(name) + "' treats body A as rigid, but '" +
-                    std::string(inputs.A.body_name()) + "' is deformable (models that deform it: pointshell, "
-                    "pointshell-linear)");
+  if (deformable_A && !entry->needs.deformable_A) {
+    Fail(where, "contact model '" + std::string(name) + "' treats body A as rigid, but '" + std::string(body_A) +
+                    "' is deformable (models that deform it: pointshell, pointshell-linear)");
   }
-  if (inputs.B.deformable() && !entry->needs.deformable_B) {
-    Fail(where, "contact model '" + std::string(name) + "' treats body B as rigid, but '" +
-                    std::string(inputs.B.body_name()) + "' is deformable (models that deform it: pointshell, "
-                    "pointshell-linear)");
+  if (deformable_B && !entry->needs.deformable_B) {
+    Fail(where, "contact model '" + std::string(name) + "' treats body B as rigid, but '" + std::string(body_B) +
+                    "' is deformable (models that deform it: pointshell, pointshell-linear)");
   }
-  return entry->make(inputs);
+  if (entry->check) entry->check(params, deformable_A, deformable_B, where);
+}
+
+std::unique_ptr<ContactModel> MakeContactModel(std::string_view name, const ContactModelInputs& inputs,
+                                               std::string_view where) {
+  CheckContactModel(name, inputs.params, inputs.A.body_name(), inputs.A.deformable(), inputs.B.body_name(),
+                    inputs.B.deformable(), where);
+  return FindContactModel(name)->make(inputs);
 }
 
 std::vector<std::string> ContactModelNames() {

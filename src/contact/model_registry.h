@@ -77,6 +77,10 @@ struct ContactModelEntry {
   // A reference for comparisons (an experiment's `reference:`), not a model to compare: made by
   // name like any other, but left out of ContactModelNames().
   bool reference_only = false;
+  // What the model refuses of the scene's parameters given which bodies deform, checked before
+  // any body data is built: throws Error naming WHERE. Null: nothing beyond `needs`.
+  std::function<void(const PointshellContactParams&, bool deformable_A, bool deformable_B, std::string_view where)>
+      check;
 };
 
 // Adds (or replaces) the entry of ENTRY.name.
@@ -85,9 +89,13 @@ void RegisterContactModel(ContactModelEntry entry);
 // The entry registered as NAME, or null.
 const ContactModelEntry* FindContactModel(std::string_view name);
 
-// Makes model NAME from INPUTS. Throws Error("WHERE: unknown contact model 'x' (known: ...)")
-// when NAME is unknown, Error when A or B is deformable and the model does not render it, and
-// the factory's errors otherwise.
+// Checks that model NAME can render bodies BODY_A and BODY_B (names, for messages) that deform
+// as DEFORMABLE_A and DEFORMABLE_B with PARAMS, without building anything: throws
+// Error("WHERE: unknown contact model 'x' (known: ...)") when NAME is unknown, Error when a body
+// deforms and the model does not render it, and the entry's check's errors.
+void CheckContactModel(std::string_view name, const PointshellContactParams& params, std::string_view body_A,
+                       bool deformable_A, std::string_view body_B, bool deformable_B, std::string_view where);
+// Makes model NAME from INPUTS, after CheckContactModel; the factory's errors otherwise.
 std::unique_ptr<ContactModel> MakeContactModel(std::string_view name, const ContactModelInputs& inputs,
                                                std::string_view where);
 

@@ -26,6 +26,15 @@ int ValidatePointshellModelInputs(const Pointshell* shell, const DistanceField* 
   return params.level < 0 ? shell->num_levels() - 1 : params.level;
 }
 
+void CheckPointshellCoherence(const PointshellContactParams& params, PointshellVariant variant, bool field_deforms,
+                              std::string_view where) {
+  if (field_deforms && params.coherence && variant == PointshellVariant::kTree) {
+    Fail(where, "temporal coherence is not conservative against a deformed distance field (a point's distance "
+                "can drop faster than the proxies move, through the pull-backs and the shifting proxy weights); "
+                "set the model's coherence: false");
+  }
+}
+
 template class PointshellFieldModel<RigidShell, GridField>;
 
 }  // namespace contactlab

@@ -44,7 +44,6 @@
 #include "contact/pointshell_contact_params.h"
 #include "contact/pointshell_traversal.h"
 #include "contact/reduced_force_sum.h"
-#include "util/error.h"
 
 namespace contactlab {
 
@@ -54,6 +53,12 @@ enum class PointshellVariant { kLinear, kTree };
 // deepest level it renders. Throws Error naming WHERE.
 int ValidatePointshellModelInputs(const Pointshell* shell, const DistanceField* field,
                                   const PointshellContactParams& params, const std::string& where);
+// Throws Error naming WHERE when PARAMS ask the VARIANT for temporal coherence against a field
+// side that deforms (FIELD_DEFORMS): not conservative there (see above). The model's
+// constructor and its registry entry's check (what an experiment config is checked by before
+// anything is built) both apply it.
+void CheckPointshellCoherence(const PointshellContactParams& params, PointshellVariant variant, bool field_deforms,
+                              std::string_view where);
 
 template <class Shell, class Field>
 class PointshellFieldModel final : public ContactModel {
@@ -70,11 +75,7 @@ class PointshellFieldModel final : public ContactModel {
     const std::string where = std::string("contact model ") + std::string(name()) + " (" + Shell::kWhat + " against " +
                               Field::kWhat + ")";
     max_level_ = ValidatePointshellModelInputs(shell_.get(), field_.rest_field_ptr(), params_, where);
-    if (Field::kDeforms && params_.coherence && variant_ == Variant::kTree) {
-      Fail(where, "temporal coherence is not conservative against a deformed distance field (a point's distance "
-                  "can drop faster than the proxies move, through the pull-backs and the shifting proxy weights); "
-                  "set the model's coherence: false");
-    }
+    CheckPointshellCoherence(params_, variant_, Field::kDeforms, where);
     const Pointshell& s = shell_.shell();
     traversal_ = TreeTraversalState(s);
     wake_.assign(std::size_t(s.num_nodes()), -std::numeric_limits<double>::infinity());

@@ -5,6 +5,7 @@
 #include <optional>
 #include <sstream>
 
+#include "contact/model_registry.h"
 #include "experiment/deformed_field_study.h"
 #include "util/atomic_file.h"
 #include "util/data_path.h"
@@ -491,15 +492,16 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
       }
     }
   }
+  // What each job's registered models refuse of its scene (a deformable body a model treats as
+  // rigid, coherence against a deformed field, ...), said here before any job builds its assets.
+  // Models not registered in this program are left to the run.
   for (const Job& job : ExpandJobs(c)) {
-    // The paper's tree model refuses temporal coherence against a deformed field (contact/
-    // pointshell_field_model.h): said here, before any job builds its assets.
-    const bool tree = std::find(job.models.begin(), job.models.end(), "pointshell") != job.models.end();
-    if (tree && job.scene.model.coherence && job.scene.field_body.deformable) {
-      Fail(c.file, "coherence: true" + (c.sweep.empty() ? std::string() : " (job " + job.Label() + ")") +
-                       " with the deformable field body '" + job.scene.field_body.name + "' of " + job.scene.file +
-                       ": the pointshell model refuses temporal coherence against a deformed distance field (not "
-                       "conservative); set coherence: false");
+    const Scene& s = job.scene;
+    const std::string where = c.file + (c.sweep.empty() ? std::string() : " (job " + job.Label() + ")");
+    for (const std::string& name : job.models) {
+      if (FindContactModel(name) == nullptr) continue;
+      CheckContactModel(name, s.model, s.pointshell_body.name, s.pointshell_body.deformable.has_value(),
+                        s.field_body.name, s.field_body.deformable.has_value(), where);
     }
   }
   if (!field_study) {

@@ -131,12 +131,8 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
   // deformable pointshell reference) is evaluated once per cycle and reused by each model.
   const ContactModelNeeds* reference_needs = reference ? &FindContactModel(config.reference_model)->needs : nullptr;
   const bool reuse_reference = reference_needs && !reference_needs->deformable_A && !reference_needs->deformable_B;
-  std::vector<Eigen::Vector3d> reference_at;  // by cycle, when reused: filled by the first model
-  std::vector<char> have_reference_at;
-  if (reuse_reference) {
-    reference_at.resize(std::size_t(cycles));
-    have_reference_at.assign(std::size_t(cycles), 0);
-  }
+  // By cycle, when reused: filled by the first model.
+  std::vector<std::optional<Eigen::Vector3d>> reference_at(reuse_reference ? std::size_t(cycles) : 0);
 
   // The deformable bodies' dynamics (paper sec. 4 and 5), from rest for each model.
   SceneDynamics dynamics = MakeSceneDynamics(assets, dt);
@@ -212,8 +208,8 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
       row.time_us = us;
       contact_faults += r.stats.faults > 0 ? 1 : 0;  // the model refused the query: no force
       if (reference && k % config.reference_every == 0) {
-        if (reuse_reference && have_reference_at[std::size_t(k)]) {
-          row.reference_force = reference_at[std::size_t(k)];
+        if (reuse_reference && reference_at[std::size_t(k)]) {
+          row.reference_force = *reference_at[std::size_t(k)];
         } else {
           Eigen::Vector3d T;
           // The reference sees the deformations and writes no reduced force.
@@ -224,10 +220,7 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
           rq.deformation_A = q.deformation_A ? &ref_A : nullptr;
           rq.deformation_B = q.deformation_B ? &ref_B : nullptr;
           OnMovingBody(moving_is_B, rq, reference->Evaluate(rq).on_B, &row.reference_force, &T);
-          if (reuse_reference) {
-            reference_at[std::size_t(k)] = row.reference_force;
-            have_reference_at[std::size_t(k)] = 1;
-          }
+          if (reuse_reference) reference_at[std::size_t(k)] = row.reference_force;
         }
         row.has_reference = true;
       }

@@ -288,11 +288,7 @@ const ParamTable<BodySpec>& BodyParams() {
               .Example("true"),
           P::Custom("pose", "pose", "[x, y, z, qw, qx, qy, qz] or {position, rotation | rotation_vector}",
                     "the body's pose in the world at the scene's start",
-                    [](const ConfigNode& v, BodySpec* b) { b->pose = ParsePoseNode(v); },
-                    [](const BodySpec& b, Hasher* h) {
-                      h->Bytes(b.pose.translation.data(), 3 * sizeof(double));
-                      h->Bytes(b.pose.rotation.coeffs().data(), 4 * sizeof(double));
-                    },
+                    [](const ConfigNode& v, BodySpec* b) { b->pose = ParsePoseNode(v); }, nullptr,
                     [](const BodySpec&) { return std::string("identity"); })
               .Example("[0, 0, 0.1, 1, 0, 0, 0]"),
           P::Choice("role", PARAM_MEMBER(role), {"pointshell", "field"},

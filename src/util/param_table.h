@@ -143,7 +143,7 @@ class ParamTable {
   // SPEC's part of ARTEFACT's cache key: every row that shapes it, key and value.
   void Hash(const Spec& spec, unsigned artefact, Hasher* h) const {
     for (const auto& r : rows_) {
-      if (!(r.shapes & artefact)) continue;
+      if (!(r.shapes & artefact) || !r.hash) continue;
       h->Text(r.key);
       r.hash(spec, artefact, h);
     }
@@ -308,7 +308,8 @@ struct ParamRows {
     return r;
   }
 
-  // A row with its own reading (a value with structure of its own), hashing and showing.
+  // A row with its own reading (a value with structure of its own), hashing (null: a value no
+  // cache key holds) and showing.
   static Row Custom(std::string key, std::string type, std::string range, std::string doc,
                     std::function<void(const ConfigNode&, Spec*)> read,
                     std::function<void(const Spec&, Hasher*)> hash_value, std::function<std::string(const Spec&)> show) {
@@ -318,7 +319,7 @@ struct ParamRows {
     r.range = std::move(range);
     r.doc = std::move(doc);
     r.read = std::move(read);
-    r.hash = [hash_value](const Spec& s, unsigned, Hasher* h) { hash_value(s, h); };
+    if (hash_value) r.hash = [hash_value](const Spec& s, unsigned, Hasher* h) { hash_value(s, h); };
     r.show = std::move(show);
     return r;
   }

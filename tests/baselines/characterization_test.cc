@@ -190,24 +190,43 @@ double AngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0)) * 180 / M_PI;
 }
 
+// A small reduced model for either body: linear modal, 5 modes on a 10-cell tet mesh, free.
+// Its deformed field (as B) keeps the default single domain: with several, the minimum over
+// domains equals the rest field only where d > -overlap, and these cases reach deeper.
+DeformableSpec SmallDeformable() {
+  DeformableSpec d;
+  d.kind = ReducedModelKind::kLinear;
+  d.modes = 5;
+  d.cells = 10;
+  return d;
+}
+
+// The case's scene in ORDER with A and/or B deformable.
+Scene CaseScene(const PairCase& c, int order, bool deformable_A, bool deformable_B) {
+  const Body& a = order == 0 ? c.first : c.second;
+  const Body& b = order == 0 ? c.second : c.first;
+  Scene scene;
+  scene.name = c.pair + (order == 0 ? " (A,B)" : " (B,A)");
+  scene.pointshell_body = MakeBodySpec("A", a, "pointshell");
+  scene.field_body = MakeBodySpec("B", b, "field");
+  if (deformable_A) scene.pointshell_body.deformable = SmallDeformable();
+  if (deformable_B) scene.field_body.deformable = SmallDeformable();
+  scene.model.penalty.k_C = kC;
+  scene.model.penalty.L = kL;
+  return scene;
+}
+
 TEST(Characterization, EveryModelWithinRecordedErrorOfReferences) {
   RegisterBaselineContactModels();
   testing::TempDir cache;
-  AssetOptions options;
-  options.cache_dir = cache.path();
-  options.verbose = false;
+  const AssetOptions options = testing::Assets(cache);
 
   std::map<std::pair<std::string, std::string>, Measured> worst;  // (model, pair)
   for (const PairCase& c : Cases()) {
     for (int order = 0; order < 2; ++order) {
       const Body& a = order == 0 ? c.first : c.second;
       const Body& b = order == 0 ? c.second : c.first;
-      Scene scene;
-      scene.name = c.pair + (order == 0 ? " (A,B)" : " (B,A)");
-      scene.pointshell_body = MakeBodySpec("A", a, "pointshell");
-      scene.field_body = MakeBodySpec("B", b, "field");
-      scene.model.penalty.k_C = kC;
-      scene.model.penalty.L = kL;
+      const Scene scene = CaseScene(c, order, false, false);
       SceneAssets assets(scene, options);
       const Pose X_WA = scene.pointshell_body.pose, X_WB = scene.field_body.pose;
 
@@ -281,32 +300,6 @@ TEST(Characterization, EveryModelWithinRecordedErrorOfReferences) {
 
 // --- The paper's model with deformable bodies, on the same cases -------------------------------
 
-// A small reduced model for either body: linear modal, 5 modes on a 10-cell tet mesh, free.
-// Its deformed field (as B) keeps the default single domain: with several, the minimum over
-// domains equals the rest field only where d > -overlap, and these cases reach deeper.
-DeformableSpec SmallDeformable() {
-  DeformableSpec d;
-  d.kind = ReducedModelKind::kLinear;
-  d.modes = 5;
-  d.cells = 10;
-  return d;
-}
-
-// The case's scene in ORDER with A and/or B deformable.
-Scene CaseScene(const PairCase& c, int order, bool deformable_A, bool deformable_B) {
-  const Body& a = order == 0 ? c.first : c.second;
-  const Body& b = order == 0 ? c.second : c.first;
-  Scene scene;
-  scene.name = c.pair + (order == 0 ? " (A,B)" : " (B,A)");
-  scene.pointshell_body = MakeBodySpec("A", a, "pointshell");
-  scene.field_body = MakeBodySpec("B", b, "field");
-  if (deformable_A) scene.pointshell_body.deformable = SmallDeformable();
-  if (deformable_B) scene.field_body.deformable = SmallDeformable();
-  scene.model.penalty.k_C = kC;
-  scene.model.penalty.L = kL;
-  return scene;
-}
-
 const char* CombinationName(bool deformable_A, bool deformable_B) {
   static const char* names[2][2] = {{"rigid A x grid B", "rigid A x deformed B"},
                                     {"deformable A x grid B", "deformable A x deformed B"}};
@@ -318,9 +311,7 @@ const char* CombinationName(bool deformable_A, bool deformable_B) {
 // given, renders the rigid model's contacts and wrench to float rounding.
 TEST(Characterization, DeformableBodiesAtRestRenderTheRigidResult) {
   testing::TempDir cache;
-  AssetOptions options;
-  options.cache_dir = cache.path();
-  options.verbose = false;
+  const AssetOptions options = testing::Assets(cache);
   double worst_force = 0, worst_torque = 0;
   int compared = 0;
   for (const PairCase& c : Cases()) {
@@ -387,9 +378,7 @@ TEST(Characterization, DeformableBodiesAtRestRenderTheRigidResult) {
 // float rounding of 0 may fall on either side: such points bound the differences.
 TEST(Characterization, DeformableBodiesAtRandomStatesMatchAnIndependentEq1Sum) {
   testing::TempDir cache;
-  AssetOptions options;
-  options.cache_dir = cache.path();
-  options.verbose = false;
+  const AssetOptions options = testing::Assets(cache);
   std::mt19937 rng(17);
   // Float rounding of a point's d: positions of a few cm in float (ulp 4e-9 m), the transform,
   // the trilinear lookup and the pull-back.

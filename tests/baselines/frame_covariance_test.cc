@@ -69,9 +69,7 @@ const std::vector<Pose>& Motions() {
 TEST(FrameCovariance, EveryModelTurnsItsWrenchWithTheScene) {
   RegisterBaselineContactModels();
   testing::TempDir cache;
-  AssetOptions options;
-  options.cache_dir = cache.path();
-  options.verbose = false;
+  const AssetOptions options = testing::Assets(cache);
   const std::vector<Pose>& motions = Motions();
   for (const Contact& c : Contacts()) {
     for (int order = 0; order < 2; ++order) {
@@ -123,9 +121,7 @@ TEST(FrameCovariance, EveryModelTurnsItsWrenchWithTheScene) {
 // the wrench turns with the scene.
 TEST(FrameCovariance, DeformableBodiesTurnTheirWrenchAndKeepTheirReducedForces) {
   testing::TempDir cache;
-  AssetOptions options;
-  options.cache_dir = cache.path();
-  options.verbose = false;
+  const AssetOptions options = testing::Assets(cache);
   std::mt19937 rng(3);
   double worst_wrench = 0, worst_reduced = 0;
   for (const Contact& c : Contacts()) {
