@@ -44,15 +44,7 @@ struct Row {
   ClosedLoopMetrics m;
 };
 
-std::string Reason(const ClosedLoopMetrics& m) {
-  if (!m.finite || m.non_finite_cycles > 0) return "non-finite";
-  if (m.solve_failures > 0) return "solve failed";
-  if (m.contact_faults > 0) return "contact faults";
-  std::string r;
-  if (!m.passive()) r = "active";
-  if (!m.settled()) r += r.empty() ? "oscillates" : "+oscillates";
-  return r.empty() ? "ok" : r;
-}
+std::string Reason(const ClosedLoopMetrics& m) { return StabilityVerdict(m); }
 
 std::string Fmt(const char* f, double v) {
   char b[64];

@@ -12,11 +12,11 @@
 #include <vector>
 
 #include "cli/command_registry.h"
-#include "experiment/deformed_field_study.h"
 #include "experiment/experiment_config.h"
 #include "experiment/runner.h"
 #include "experiment/scene.h"
 #include "experiment/slurm_script.h"
+#include "experiment/study.h"
 #include "util/atomic_file.h"
 #include "util/data_path.h"
 #include "util/error.h"
@@ -92,25 +92,6 @@ auto RunRemovingNewEmptyFolders(const std::filesystem::path& out_dir, Work&& wor
   }
 }
 
-// study: deformed-field: runs the jobs and prints the error table.
-void RunFieldStudy(const ExperimentConfig& config, const RunOptions& options, const std::vector<int>& only,
-                   std::size_t total) {
-  std::fprintf(stderr, "experiment %s (deformed-field study): %zu of %zu jobs\n", config.name.c_str(),
-               only.empty() ? total : only.size(), total);
-  const std::vector<FieldErrorRow> rows = RunRemovingNewEmptyFolders(options.out_dir, [&] {
-    return RunDeformedFieldStudy(config, options, only);
-  });
-  std::printf("%-8s %-10s %-8s %10s %10s %11s %10s\n", "proxies", "neighbours", "domains", "rms cells", "max cells",
-              "false cm^3", "query ns");
-  for (const FieldErrorRow& r : rows) {
-    std::printf("%-8d %-10d %-8d %10.3f %10.3f %11.4g %10.1f\n", r.proxies, r.neighbours, r.domains, r.rms / r.cell,
-                r.max / r.cell, r.false_inside_volume * 1e6, r.query_ns);
-  }
-  std::string list;
-  for (const std::string& f : FieldStudyFiles()) list += (list.empty() ? "" : ", ") + f;
-  std::printf("results: %s (%s)\n", options.out_dir.string().c_str(), list.c_str());
-}
-
 void RunRun(const RunArgs& args) {
   const ExperimentConfig config = LoadExperimentConfig(RequireDataFile(args.config), args.overrides, args.profile);
   const std::vector<Job> jobs = ExpandJobs(config);
@@ -127,34 +108,17 @@ void RunRun(const RunArgs& args) {
   options.out_dir = args.out.empty() ? std::filesystem::path("results") / config.name : std::filesystem::path(args.out);
   if (args.jobs.size() == 1 && args.out.empty()) options.out_dir /= "job-" + std::to_string(args.jobs.front());
   // The results folder and its files are checked before any job runs.
-  const bool field_study = config.study == "deformed-field";
+  const Study& study = StudyOf(config);
   CheckOutputFolder(options.out_dir, "--out");
-  const std::vector<std::string> files = field_study ? FieldStudyFiles()
-                                                     : std::vector<std::string>{"cycles.csv", "summary.csv",
-                                                                                "convergence.csv", "meta.json"};
-  for (const std::string& file : files) CheckOutputTarget(options.out_dir / file, "--out");
+  for (const std::string& file : study.Files()) CheckOutputTarget(options.out_dir / file, "--out");
   options.assets.cache_dir = args.cache;
   options.assets.use_cache = !args.no_cache;
   options.assets.verbose = false;
   options.parallel_jobs = args.parallel;
-  if (field_study) {
-    RunFieldStudy(config, options, args.jobs, jobs.size());
-    return;
-  }
-  std::fprintf(stderr, "experiment %s: %zu of %zu jobs, models:", config.name.c_str(),
-               args.jobs.empty() ? jobs.size() : args.jobs.size(), jobs.size());
-  for (const auto& m : config.models) std::fprintf(stderr, " %s", m.c_str());
-  std::fprintf(stderr, "\n");
-  const std::vector<SummaryRow> rows = RunRemovingNewEmptyFolders(options.out_dir, [&] {
-    return RunExperiment(config, options, args.jobs);
-  });
-  std::printf("%-6s %-24s %-9s %10s %10s %10s %12s\n", "job", "model", "points", "max|F| N", "jump N", "p99 us",
-              "rel.err");
-  for (const SummaryRow& r : rows) {
-    std::printf("%-6d %-24s %-9d %10.4g %10.4g %10.1f %12.4g\n", r.job, r.model.c_str(), r.points, r.max_force,
-                r.max_jump, r.p99_us, r.rms_rel_error);
-  }
-  std::printf("results: %s (cycles.csv, summary.csv, convergence.csv, meta.json)\n", options.out_dir.string().c_str());
+  RunRemovingNewEmptyFolders(options.out_dir, [&] { study.run(config, options, args.jobs); });
+  std::string list;
+  for (const std::string& f : study.Files()) list += (list.empty() ? "" : ", ") + f;
+  std::printf("results: %s (%s)\n", options.out_dir.string().c_str(), list.c_str());
 }
 
 const CommandRegistration kRunCommands([](CLI::App& app) {
@@ -213,6 +177,15 @@ const CommandRegistration kRunCommands([](CLI::App& app) {
 
 // `contactlab params [--out FILE]`: every scene parameter, block by block, from the tables that
 // parse them (experiment/scene.h), as Markdown; docs/scene-reference.md is its output.
+// The sections of the studies that declare their keys in tables, one heading per study.
+std::string StudyReference() {
+  std::string s;
+  for (const Study& study : Studies()) {
+    if (study.reference) s += "## Study `" + study.name + "`\n\n" + study.description + ".\n\n" + study.reference();
+  }
+  return s;
+}
+
 const CommandRegistration kParams([](CLI::App& app) {
   auto out = std::make_shared<std::string>();
   CLI::App* cmd = app.add_subcommand(
@@ -224,8 +197,8 @@ const CommandRegistration kParams([](CLI::App& app) {
                              "(`src/experiment/scene.cc`, `src/contact/pointshell_contact_params.cc`); a sweep axis "
                              "may name a key in its column alone (`sweep: {points: [...]}`), any other key by its "
                              "path (`scene.bodies[role=field].field.mode`). \"cached in\" lists the cached artefacts "
-                             "whose cache key holds the value.\n\n" +
-                             SceneReference();
+                             "whose cache key holds the value. The studies' own sections follow the scene's.\n\n" +
+                             SceneReference() + StudyReference();
     if (out->empty()) {
       std::cout << text;
     } else {

@@ -99,6 +99,16 @@ bool ClosedLoopMetrics::stable() const {
   return finite && non_finite_cycles == 0 && solve_failures == 0 && contact_faults == 0 && passive() && settled();
 }
 
+std::string StabilityVerdict(const ClosedLoopMetrics& m) {
+  if (!m.finite || m.non_finite_cycles > 0) return "non-finite";
+  if (m.solve_failures > 0) return "solve failed";
+  if (m.contact_faults > 0) return "contact faults";
+  std::string r;
+  if (!m.passive()) r = "active";
+  if (!m.settled()) r += r.empty() ? "oscillates" : "+oscillates";
+  return r.empty() ? "ok" : r;
+}
+
 ClosedLoopMetrics RunClosedLoop(ContactModel& model, const ClosedLoopScene& w, const ClosedLoopCase& c,
                                 SceneDynamics* dynamics) {
   const auto wall0 = std::chrono::steady_clock::now();

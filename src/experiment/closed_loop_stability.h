@@ -88,6 +88,10 @@ struct ClosedLoopMetrics {
   bool stable() const;
 };
 
+// Why a run is not stable ("non-finite", "solve failed", "contact faults", "active",
+// "oscillates", "active+oscillates"), or "ok".
+std::string StabilityVerdict(const ClosedLoopMetrics& m);
+
 // Runs one closed-loop case: MODEL's body B is H. The model is reset at the start. DYNAMICS
 // (MakeSceneDynamics of the scene at where.cycle_seconds; null or empty: both bodies rigid)
 // steps the deformable bodies at the end of each cycle; they start at rest.

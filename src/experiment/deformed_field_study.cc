@@ -7,11 +7,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 
 #include "experiment/result_csv.h"
 #include "experiment/run_metadata.h"
+#include "experiment/study.h"
 #include "experiment/scene_assets.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
@@ -333,11 +335,6 @@ FieldJobResult RunDeformedFieldJob(const ExperimentConfig& config, const Job& jo
   return result;
 }
 
-const std::vector<std::string>& FieldStudyFiles() {
-  static const std::vector<std::string> files = {"field_error.csv", "field_slice.csv", "meta.json"};
-  return files;
-}
-
 std::vector<FieldErrorRow> RunDeformedFieldStudy(const ExperimentConfig& config, const RunOptions& options,
                                                  const std::vector<int>& job_indices) {
   const std::vector<Job> all = ExpandJobs(config);
@@ -345,13 +342,67 @@ std::vector<FieldErrorRow> RunDeformedFieldStudy(const ExperimentConfig& config,
   const JobsRun jobs = RunJobs(config, all, job_indices, options, [&](std::size_t i, const Job& job) {
     results[i] = RunDeformedFieldJob(config, job, options);
   });
-  std::filesystem::create_directories(options.out_dir);
-  WriteFileAtomically(options.out_dir / "field_error.csv", ErrorCsv(config, results));
-  WriteFileAtomically(options.out_dir / "field_slice.csv", SliceCsv(config, results));
-  WriteFileAtomically(options.out_dir / "meta.json", RunMetadata(config, jobs.indices, jobs.wall_seconds, jobs.parallel).dump(2) + "\n");
+  WriteStudyResults(StudyOf(config), options.out_dir, {ErrorCsv(config, results), SliceCsv(config, results)},
+                    RunMetadata(config, jobs.indices, jobs.wall_seconds, jobs.parallel));
   std::vector<FieldErrorRow> rows;
   for (const FieldJobResult& r : results) rows.push_back(r.error);
   return rows;
+}
+
+namespace {
+
+// Every job's sections parse, its field body is deformable, and the slice's job filter names
+// sweep axes and their values.
+void CheckFieldStudy(const ExperimentConfig& c, const ConfigNode& root) {
+  for (Job& job : ExpandJobs(c)) {
+    const FieldStudySpec spec = ParseFieldStudySpec(job.config);
+    if (!job.scene.field_body.deformable) {
+      Fail(c.file, "study: deformed-field needs a deformable field body, but body '" + job.scene.field_body.name +
+                       "' of " + job.scene.file + (c.sweep.empty() ? "" : " (job " + job.Label() + ")") +
+                       " has no deformable block");
+    }
+    for (const auto& [axis, values] : spec.slice_jobs) {
+      const ConfigNode where = root.Get("measure").Get("slice").Get("jobs").Get(axis);
+      const std::string& name = axis;  // a structured binding cannot be captured by clang 14
+      const auto a = std::find_if(c.sweep.begin(), c.sweep.end(), [&name](const SweepAxis& s) { return s.name == name; });
+      if (a == c.sweep.end()) where.Fail("is not a sweep axis of this config");
+      for (const std::string& v : values) {
+        if (std::find(a->values.begin(), a->values.end(), v) == a->values.end()) {
+          where.Fail("'" + v + "' is not a value (or label) of sweep." + axis);
+        }
+      }
+    }
+  }
+}
+
+// Runs the jobs and prints the error table.
+void RunFieldStudy(const ExperimentConfig& config, const RunOptions& options, const std::vector<int>& only) {
+  const std::size_t total = ExpandJobs(config).size();
+  std::fprintf(stderr, "experiment %s (deformed-field study): %zu of %zu jobs\n", config.name.c_str(),
+               only.empty() ? total : only.size(), total);
+  const std::vector<FieldErrorRow> rows = RunDeformedFieldStudy(config, options, only);
+  std::printf("%-8s %-10s %-8s %10s %10s %11s %10s\n", "proxies", "neighbours", "domains", "rms cells", "max cells",
+              "false cm^3", "query ns");
+  for (const FieldErrorRow& r : rows) {
+    std::printf("%-8d %-10d %-8d %10.3f %10.3f %11.4g %10.1f\n", r.proxies, r.neighbours, r.domains, r.rms / r.cell,
+                r.max / r.cell, r.false_inside_volume * 1e6, r.query_ns);
+  }
+}
+
+}  // namespace
+
+void RegisterDeformedFieldStudy() {
+  Study s;
+  s.name = "deformed-field";
+  s.description = "the field body's deformed distance field against the exact distance (sec. 4.2, Fig. 10)";
+  s.sections = {"deformation", "measure"};
+  s.required = {"deformation"};
+  s.aliases = {{"max_displacement", "deformation.max_displacement"}};
+  s.tables = {"field_error.csv", "field_slice.csv"};
+  s.timing = true;  // it measures query times: one job at a time
+  s.check = CheckFieldStudy;
+  s.run = RunFieldStudy;
+  RegisterStudy(std::move(s));
 }
 
 }  // namespace contactlab

@@ -92,11 +92,9 @@ struct FieldJobResult {
 FieldJobResult RunDeformedFieldJob(const ExperimentConfig& config, const Job& job, const RunOptions& options);
 
 // Runs JOBS (all when empty), one at a time unless OPTIONS says otherwise, and writes
-// field_error.csv, field_slice.csv and meta.json into OPTIONS.out_dir.
+// field_error.csv, field_slice.csv and meta.json into OPTIONS.out_dir. The study registers as
+// `deformed-field` (experiment/study.h).
 std::vector<FieldErrorRow> RunDeformedFieldStudy(const ExperimentConfig& config, const RunOptions& options,
                                                  const std::vector<int>& jobs = {});
-
-// The study's result files, in the order they are written.
-const std::vector<std::string>& FieldStudyFiles();
 
 }  // namespace contactlab

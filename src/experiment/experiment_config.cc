@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "contact/model_registry.h"
-#include "experiment/deformed_field_study.h"
+#include "experiment/study.h"
 #include "util/atomic_file.h"
 #include "util/data_path.h"
 #include "util/error.h"
@@ -15,10 +15,11 @@ namespace contactlab {
 namespace {
 
 // Short sweep-axis names and the key paths they stand for.
-const std::map<std::string, std::string>& AxisAliases() {
-  static const std::map<std::string, std::string> aliases = [] {
+// The sweep aliases of a config of STUDY: the scene's (its parameter tables name the keys a sweep
+// may name alone, experiment/scene.h), the harness's own, and the study's.
+std::map<std::string, std::string> AxisAliases(const Study& study) {
+  static const std::map<std::string, std::string> common = [] {
     std::map<std::string, std::string> a;
-    // The scene's parameter tables name the keys a sweep may name alone (experiment/scene.h).
     for (const SceneBlock& block : SceneBlocks()) {
       for (const std::string& key : block.sweep_keys) {
         if (!a.emplace(block.alias_prefix + key, block.path + key).second) {
@@ -26,18 +27,23 @@ const std::map<std::string, std::string>& AxisAliases() {
         }
       }
     }
-    a["max_displacement"] = "deformation.max_displacement";
     a["model"] = "models";
     a["scene"] = "scene";
     a["roles"] = "";
     return a;
   }();
-  return aliases;
+  std::map<std::string, std::string> a = common;
+  for (const auto& [alias, path] : study.aliases) {
+    if (!a.emplace(alias, path).second) {
+      Fail("sweep aliases", "study " + study.name + "'s alias '" + alias + "' is already a scene or harness alias");
+    }
+  }
+  return a;
 }
 
-std::string AliasList() {
+std::string AliasList(const std::map<std::string, std::string>& aliases) {
   std::string list;
-  for (const auto& [name, path] : AxisAliases()) list += (list.empty() ? "" : ", ") + name;
+  for (const auto& [name, path] : aliases) list += (list.empty() ? "" : ", ") + name;
   return list;
 }
 
@@ -371,20 +377,29 @@ ExperimentConfig LoadExperimentConfig(const std::filesystem::path& config_file, 
 }
 
 ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resolved_yaml) {
-  root.ExpectKeys({"name", "description", "study", "scene", "models", "moving_body", "trajectory", "reference",
-                   "reference_every", "metrics", "sweep", "profiles", "deformation", "measure"});
+  // The keys every study reads, then those of the config's study; a key only other studies read
+  // is a mistake, not ignored.
+  std::vector<std::string> keys = {"name", "description", "study", "scene", "metrics", "sweep", "profiles"};
   ExperimentConfig c;
-  c.study = root.OneOf("study", c.study, {"contact", "deformed-field"});
-  const bool field_study = c.study == "deformed-field";
-  // Each study reads its own sections; a section of the other kind is a mistake, not ignored.
-  for (const char* key : {"models", "moving_body", "trajectory", "reference", "reference_every"}) {
-    if (field_study && root.Has(key)) root.Get(key).Fail("is not used by study: deformed-field (remove it)");
+  c.study = root.OneOf("study", c.study, StudyNames());
+  const Study& study = *FindStudy(c.study);
+  keys.insert(keys.end(), study.sections.begin(), study.sections.end());
+  for (const Study& other : Studies()) {
+    for (const std::string& key : other.sections) {
+      if (std::find(keys.begin(), keys.end(), key) != keys.end() || !root.Has(key)) continue;
+      std::string readers;
+      for (const Study& s : Studies()) {
+        if (std::find(s.sections.begin(), s.sections.end(), key) != s.sections.end()) {
+          readers += (readers.empty() ? "" : ", ") + s.name;
+        }
+      }
+      root.Get(key).Fail("is not read by study: " + c.study + " (it belongs to study: " + readers + ")");
+    }
   }
-  for (const char* key : {"deformation", "measure"}) {
-    if (!field_study && root.Has(key)) root.Get(key).Fail("belongs to study: deformed-field (this config is a contact study)");
-  }
-  if (!field_study) c.trajectory_node = root.Get("trajectory");
-  c.timing = field_study;  // a field study measures query times: one job at a time
+  root.ExpectKeys(keys);
+  for (const std::string& key : study.required) (void)root.Get(key);
+  if (auto t = root.Find("trajectory")) c.trajectory_node = *t;
+  c.timing = study.timing;
   c.file = root.file();
   c.resolved_yaml = std::move(resolved_yaml);
   c.document = YAML::Clone(root.yaml());
@@ -419,10 +434,6 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
   if (c.moving_body != c.scene.field_body.name && c.moving_body != c.scene.pointshell_body.name) {
     root.Get("moving_body").Fail("'" + c.moving_body + "' is not a body of the scene");
   }
-  if (!field_study) {
-    c.trajectory_node.ExpectMap();
-    if (!c.trajectory_node.Has("type")) c.trajectory_node.Fail("missing required key 'type'");
-  }
   if (auto r = root.Find("reference"); r && r->IsMap()) {
     r->ExpectKeys({"model", "points", "levels", "resolution"});
     c.reference_model = r->Get("model").AsString();
@@ -439,14 +450,15 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
     c.timing = m->Bool("timing", c.timing);
   }
   if (auto s = root.Find("sweep")) {
+    const std::map<std::string, std::string> aliases = AxisAliases(study);
     for (const std::string& key : s->Keys()) {
       const ConfigNode axis = s->Get(key);
       SweepAxis a{key, key, {}, {}};
-      if (auto alias = AxisAliases().find(key); alias != AxisAliases().end()) {
+      if (auto alias = aliases.find(key); alias != aliases.end()) {
         a.path = alias->second;
       } else if (key.find_first_of(".[") == std::string::npos) {
         axis.Fail("unknown sweep axis: give a key path (e.g. scene.model.k_C, trajectory.depth) or one of " +
-                  AliasList());
+                  AliasList(aliases));
       }
       // A value: a scalar, or {label: NAME, value: ANY}.
       auto add = [&](const ConfigNode& v) {
@@ -504,31 +516,7 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
                         s.field_body.name, s.field_body.deformable.has_value(), where);
     }
   }
-  if (!field_study) {
-    for (Job& job : ExpandJobs(c)) (void)ParseTrajectory(job.trajectory_node);
-    return c;
-  }
-  // A deformed-field study: every job's sections parse, its field body is deformable, and the
-  // slice's job filter names sweep axes.
-  for (Job& job : ExpandJobs(c)) {
-    const FieldStudySpec spec = ParseFieldStudySpec(job.config);
-    if (!job.scene.field_body.deformable) {
-      Fail(c.file, "study: deformed-field needs a deformable field body, but body '" + job.scene.field_body.name +
-                       "' of " + job.scene.file + (c.sweep.empty() ? "" : " (job " + job.Label() + ")") +
-                       " has no deformable block");
-    }
-    for (const auto& [axis, values] : spec.slice_jobs) {
-      const ConfigNode where = root.Get("measure").Get("slice").Get("jobs").Get(axis);
-      const std::string& name = axis;  // a structured binding cannot be captured by clang 14
-      const auto a = std::find_if(c.sweep.begin(), c.sweep.end(), [&name](const SweepAxis& s) { return s.name == name; });
-      if (a == c.sweep.end()) where.Fail("is not a sweep axis of this config");
-      for (const std::string& v : values) {
-        if (std::find(a->values.begin(), a->values.end(), v) == a->values.end()) {
-          where.Fail("'" + v + "' is not a value (or label) of sweep." + axis);
-        }
-      }
-    }
-  }
+  if (study.check) study.check(c, root);
   return c;
 }
 

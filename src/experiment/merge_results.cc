@@ -1,11 +1,11 @@
-// Joins the results of single-job runs (a cluster array's tasks) into one results folder:
-// the rows of cycles.csv and summary.csv concatenated under one header, convergence.csv
-// recomputed, meta.json listing every job and folder; for a deformed-field study the rows of
-// field_error.csv and field_slice.csv.
+// Joins the results of single-job runs (a cluster array's tasks) into one results folder: the
+// rows of each of the study's tables concatenated under one header (experiment/study.h), its
+// derived files recomputed (a contact study's convergence.csv), meta.json listing every job and
+// folder.
 #include <nlohmann/json.hpp>
 
-#include "experiment/convergence_table.h"
 #include "experiment/runner.h"
+#include "experiment/study.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
 
@@ -14,19 +14,21 @@ namespace fs = std::filesystem;
 
 void MergeResults(const std::vector<fs::path>& job_dirs, const fs::path& out_dir) {
   if (job_dirs.empty()) Fail(out_dir.string(), "nothing to merge");
-  // A contact study's tables, or a deformed-field study's (the first folder says which).
-  const bool field_study = fs::exists(job_dirs.front() / "field_error.csv");
-  const std::vector<std::string> tables = field_study ? std::vector<std::string>{"field_error.csv", "field_slice.csv"}
-                                                      : std::vector<std::string>{"cycles.csv", "summary.csv"};
+  // The study that wrote the first folder (its meta.json says); every folder must be of it.
+  const Study& study = StudyOfResults(job_dirs.front());
+  const std::vector<std::string>& tables = study.tables;
   std::vector<std::string> headers(tables.size()), bodies(tables.size());
   nlohmann::json meta;
   std::vector<int> jobs;
   double wall = 0;
   for (const fs::path& dir : job_dirs) {
+    if (!fs::exists(dir / "meta.json")) Fail(dir.string(), "is missing meta.json (an unfinished job?)");
+    if (const Study& s = StudyOfResults(dir); &s != &study) {
+      Fail((dir / "meta.json").string(), "holds a " + s.name + " study, the first folder a " + study.name + " study");
+    }
     for (const std::string& name : tables) {
       if (!fs::exists(dir / name)) Fail(dir.string(), "is missing " + name + " (an unfinished job?)");
     }
-    if (!fs::exists(dir / "meta.json")) Fail(dir.string(), "is missing meta.json (an unfinished job?)");
     // Every folder's table must have the first folder's columns.
     for (std::size_t t = 0; t < tables.size(); ++t) {
       const std::string text = ReadWholeFile(dir / tables[t]);
@@ -56,10 +58,9 @@ void MergeResults(const std::vector<fs::path>& job_dirs, const fs::path& out_dir
   meta["wall_seconds"] = wall;
   meta["merged_from"] = nlohmann::json::array();
   for (const fs::path& d : job_dirs) meta["merged_from"].push_back(d.string());
-  fs::create_directories(out_dir);
-  for (std::size_t t = 0; t < tables.size(); ++t) WriteFileAtomically(out_dir / tables[t], headers[t] + bodies[t]);
-  if (!field_study) WriteFileAtomically(out_dir / "convergence.csv", ConvergenceCsv(headers[1] + bodies[1]));
-  WriteFileAtomically(out_dir / "meta.json", meta.dump(2) + "\n");
+  std::vector<std::string> merged(tables.size());
+  for (std::size_t t = 0; t < tables.size(); ++t) merged[t] = headers[t] + bodies[t];
+  WriteStudyResults(study, out_dir, merged, meta);
 }
 
 }  // namespace contactlab

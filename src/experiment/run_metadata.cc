@@ -27,6 +27,7 @@ nlohmann::json RunMetadata(const ExperimentConfig& config, const std::vector<int
                            int parallel) {
   nlohmann::json j;
   j["experiment"] = config.name;
+  j["study"] = config.study;
   j["description"] = config.description;
   j["config_file"] = config.file;
   j["resolved_config"] = config.resolved_yaml;

@@ -1,8 +1,8 @@
-// Runs an experiment's jobs (in parallel unless the config measures timing) and writes its
-// results folder: cycles.csv and summary.csv (result_csv.h), convergence.csv
+// Runs an experiment's jobs (in parallel unless the config measures timing) and writes a contact
+// study's results folder: cycles.csv and summary.csv (result_csv.h), convergence.csv
 // (convergence_table.h) and meta.json (run_metadata.h), each file atomically after every job
-// has finished. One job's work is in run_job.cc, merging of single-job runs in
-// merge_results.cc.
+// has finished (experiment/study.h). One job's work is in run_job.cc, the study's registration
+// in contact_study.cc, merging of single-job runs in merge_results.cc.
 #include "experiment/runner.h"
 
 #include <tbb/parallel_for.h>
@@ -13,10 +13,9 @@
 #include <exception>
 #include <thread>
 
-#include "experiment/convergence_table.h"
 #include "experiment/result_csv.h"
 #include "experiment/run_metadata.h"
-#include "util/atomic_file.h"
+#include "experiment/study.h"
 #include "util/error.h"
 #include "util/progress.h"
 
@@ -67,8 +66,9 @@ JobsRun RunJobs(const ExperimentConfig& config, const std::vector<Job>& all, con
 
 std::vector<SummaryRow> RunExperiment(const ExperimentConfig& config, const RunOptions& options,
                                       const std::vector<int>& job_indices) {
-  if (config.study != "contact") {
-    Fail(config.file, "is a " + config.study + " study, not a contact study (experiment/deformed_field_study.h runs it)");
+  const Study& study = StudyOf(config);
+  if (study.name != kContactStudy) {
+    Fail(config.file, "is a " + config.study + " study (" + study.description + "), not a contact study");
   }
   const std::vector<Job> all = ExpandJobs(config);
   std::vector<JobResult> results(job_indices.empty() ? all.size() : job_indices.size());
@@ -87,11 +87,7 @@ std::vector<SummaryRow> RunExperiment(const ExperimentConfig& config, const RunO
     AppendSummaryCsv(config, r, &summary);
     rows.insert(rows.end(), r.summary.begin(), r.summary.end());
   }
-  fs::create_directories(options.out_dir);
-  WriteFileAtomically(options.out_dir / "cycles.csv", cycles);
-  WriteFileAtomically(options.out_dir / "summary.csv", summary);
-  WriteFileAtomically(options.out_dir / "convergence.csv", ConvergenceCsv(summary));
-  WriteFileAtomically(options.out_dir / "meta.json", RunMetadata(config, indices, wall, parallel).dump(2) + "\n");
+  WriteStudyResults(study, options.out_dir, {cycles, summary}, RunMetadata(config, indices, wall, parallel));
   return rows;
 }
 

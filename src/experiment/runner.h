@@ -18,6 +18,9 @@
 
 namespace contactlab {
 
+// The study this runner runs (experiment/study.h; registered in contact_study.cc).
+inline constexpr char kContactStudy[] = "contact";
+
 struct RunOptions {
   std::filesystem::path out_dir;  // results folder (created)
   AssetOptions assets;

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "experiment/study.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
 #include "util/shell_quote.h"
@@ -186,14 +187,9 @@ std::vector<fs::path> SweepTaskFolders(const fs::path& out_dir, int jobs) {
     dirs.push_back(dir);
     std::string why;
     std::error_code ec;
-    // A contact study's tables, or a deformed-field study's.
-    const bool field_study = fs::is_regular_file(dir / "field_error.csv", ec);
-    const std::vector<std::string> names = field_study
-                                               ? std::vector<std::string>{"field_error.csv", "field_slice.csv", "meta.json"}
-                                               : std::vector<std::string>{"cycles.csv", "summary.csv", "meta.json"};
-    for (const std::string& name : names) {
-      if (why.empty() && !fs::is_regular_file(dir / name, ec)) why = "no " + name;
-    }
+    // meta.json last (a task writes it after its tables): the study it names says which tables
+    // the task must have left.
+    if (!fs::is_regular_file(dir / "meta.json", ec)) why = "no meta.json";
     if (why.empty()) {
       try {
         const nlohmann::json meta = nlohmann::json::parse(ReadWholeFile(dir / "meta.json"));
@@ -203,6 +199,15 @@ std::vector<fs::path> SweepTaskFolders(const fs::path& out_dir, int jobs) {
         }
       } catch (const nlohmann::json::exception& e) {
         why = std::string("meta.json is not valid JSON: ") + e.what();
+      }
+    }
+    if (why.empty()) {
+      try {
+        for (const std::string& name : StudyOfResults(dir).tables) {
+          if (why.empty() && !fs::is_regular_file(dir / name, ec)) why = "no " + name;
+        }
+      } catch (const Error& e) {
+        why = e.what();
       }
     }
     if (!why.empty()) {

@@ -208,13 +208,18 @@ long long ConfigNode::IntInRange(const std::string& key, long long fallback, lon
 
 std::string ConfigNode::OneOf(const std::string& key, const std::string& fallback,
                               std::initializer_list<const char*> choices) const {
+  return OneOf(key, fallback, std::vector<std::string>(choices.begin(), choices.end()));
+}
+
+std::string ConfigNode::OneOf(const std::string& key, const std::string& fallback,
+                              const std::vector<std::string>& choices) const {
   auto c = Find(key);
   if (!c) return fallback;
   const std::string v = c->AsString();
   std::string list;
-  for (const char* ch : choices) {
+  for (const std::string& ch : choices) {
     if (v == ch) return v;
-    list += std::string(list.empty() ? "" : ", ") + ch;
+    list += (list.empty() ? "" : ", ") + ch;
   }
   c->Fail("'" + QuoteToken(v) + "' is not one of: " + list);
 }

@@ -63,6 +63,7 @@ class ConfigNode {
   long long IntInRange(const std::string& key, long long fallback, long long lo, long long hi) const;
   std::string OneOf(const std::string& key, const std::string& fallback,
                     std::initializer_list<const char*> choices) const;
+  std::string OneOf(const std::string& key, const std::string& fallback, const std::vector<std::string>& choices) const;
 
   // This scalar's text as error messages quote it (shortened, control characters escaped).
   std::string Quoted() const;

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "experiment/result_csv.h"
+#include "experiment/study.h"
 #include "test_support.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
@@ -88,7 +89,7 @@ TEST(DeformedFieldStudy, SmallSweepWritesSaneErrorAndSliceTables) {
   o.progress = false;
   const std::vector<FieldErrorRow> rows = RunDeformedFieldStudy(config, o);
   ASSERT_EQ(rows.size(), 2u);
-  for (const std::string& f : FieldStudyFiles()) EXPECT_TRUE(std::filesystem::is_regular_file(dir / "out" / f)) << f;
+  for (const std::string& f : FindStudy("deformed-field")->Files()) EXPECT_TRUE(std::filesystem::is_regular_file(dir / "out" / f)) << f;
 
   const auto error = ReadCsv(dir / "out" / "field_error.csv");
   ASSERT_EQ(error.size(), 2u);

@@ -2,6 +2,7 @@
 // with a stand-in program that records its arguments, submission through a stand-in sbatch on
 // $PATH, and the merge's check that names every task without complete results.
 #include "experiment/slurm_script.h"
+#include "experiment/study.h"
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -155,13 +156,14 @@ TEST_F(FakeSbatch, FailedSubmissionsReportSbatchAndCancelTheArray) {
   EXPECT_NE(Log().find("scancel 12"), std::string::npos) << Log();
 }
 
-// Writes the complete results of task I into OUT/job-I (as `contactlab run --job I` does).
-void WriteTask(const fs::path& out, int i, const std::string& jobs_json) {
+// Writes the complete results of task I of a STUDY into OUT/job-I (as `contactlab run --job I`
+// does): its tables, then meta.json naming the study.
+void WriteTask(const fs::path& out, int i, const std::string& jobs_json, const std::string& study = "contact") {
   const fs::path d = out / ("job-" + std::to_string(i));
   fs::create_directories(d);
-  std::ofstream(d / "cycles.csv") << "job\n" << i << "\n";
-  std::ofstream(d / "summary.csv") << "job\n" << i << "\n";
-  std::ofstream(d / "meta.json") << "{\"experiment\": \"e\", \"jobs\": " << jobs_json << "}\n";
+  for (const std::string& table : FindStudy(study)->tables) std::ofstream(d / table) << "job\n" << i << "\n";
+  std::ofstream(d / "meta.json") << "{\"experiment\": \"e\", \"study\": \"" << study << "\", \"jobs\": " << jobs_json
+                                 << "}\n";
 }
 
 TEST(SlurmScript, SweepTaskFoldersAreInJobOrderAndEveryIncompleteTaskIsNamed) {
@@ -174,9 +176,21 @@ TEST(SlurmScript, SweepTaskFoldersAreInJobOrderAndEveryIncompleteTaskIsNamed) {
   fs::remove(out / "job-3" / "summary.csv");
   fs::remove_all(out / "job-11");
   WriteTask(out.path(), 7, "[0]");
+  std::ofstream(out / "job-5" / "meta.json") << "{\"experiment\": \"e\", \"study\": \"nope\", \"jobs\": [5]}\n";
   ExpectError([&] { SweepTaskFolders(out.path(), 12); },
-              {"3 of 12 sweep tasks", "task 3: ", "no summary.csv", (out / "slurm" / "job-3.log").string(), "task 11: ",
-               "no cycles.csv", "task 7: ", "holds jobs [0], not [7]"});
+              {"4 of 12 sweep tasks", "task 3: ", "no summary.csv", (out / "slurm" / "job-3.log").string(), "task 11: ",
+               "no meta.json", "task 7: ", "holds jobs [0], not [7]", "task 5: ", "names study 'nope'"});
+}
+
+// A task's files are those of the study its meta.json names: a deformed-field task needs its two
+// tables, and no cycles.csv.
+TEST(SlurmScript, SweepTaskFoldersAskTheStudyForItsFiles) {
+  testing::TempDir out;
+  for (int i = 0; i < 3; ++i) WriteTask(out.path(), i, "[" + std::to_string(i) + "]", "deformed-field");
+  EXPECT_EQ(SweepTaskFolders(out.path(), 3).size(), 3u);
+  EXPECT_FALSE(fs::exists(out / "job-0" / "cycles.csv"));
+  fs::remove(out / "job-1" / "field_slice.csv");
+  ExpectError([&] { SweepTaskFolders(out.path(), 3); }, {"1 of 3 sweep tasks", "task 1: ", "no field_slice.csv"});
 }
 
 }  // namespace

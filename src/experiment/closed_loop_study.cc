@@ -1,0 +1,212 @@
+// The closed-loop study (experiment/closed_loop_study.h): one job builds the scene's assets, finds
+// where the hand touches, and runs the simulated loop per model and motion.
+#include "experiment/closed_loop_study.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "contact/model_registry.h"
+#include "experiment/result_csv.h"
+#include "experiment/run_metadata.h"
+#include "experiment/runner.h"
+#include "experiment/scene_assets.h"
+#include "experiment/study.h"
+#include "util/error.h"
+
+namespace contactlab {
+
+const ParamTable<LoopSpec>& LoopParams() {
+  using P = ParamRows<LoopSpec>;
+  static const std::vector<std::pair<std::string, LoopMotion>> kMotions = {
+      {"push", LoopMotion::kPush}, {"slide", LoopMotion::kSlide}, {"corner", LoopMotion::kCorner}};
+  static const ParamTable<LoopSpec> table(
+      "loop",
+      "The simulated haptic loop of a closed-loop study (experiment/closed_loop_study.h): the coupling, the "
+      "damping and the hand's motions.",
+      {
+          P::Number("k_vc", PARAM_MEMBER(loop.k_vc), Above(0), NoUpperBound(), "linear coupling stiffness")
+              .Unit("N/m").Sweepable().Example("5000"),
+          P::Number("k_vc_rot", PARAM_MEMBER(loop.k_vc_rot), Above(0), NoUpperBound(), "rotational coupling stiffness")
+              .Unit("N m/rad").Example("0.5"),
+          P::Number("alpha", PARAM_MEMBER(loop.alpha), AtLeast(0), AtMost(1), "quasi-static damping (paper sec. 5)")
+              .Example("0.3"),
+          P::Number("push_depth", PARAM_MEMBER(loop.push_depth), Above(0), AtMost(1),
+                    "how far past first touch the hand's target goes (push, slide)")
+              .Unit("m").Example("0.004"),
+          P::Number("corner_depth", PARAM_MEMBER(loop.corner_depth), Above(0), AtMost(1),
+                    "the same for the tilted corner push")
+              .Unit("m").Example("0.02"),
+          P::Number("slide_distance", PARAM_MEMBER(loop.slide_distance), Above(0), AtMost(1),
+                    "how far the slide motion moves along the surface")
+              .Unit("m").Example("0.01"),
+          P::Custom(
+               "motions", "list", "push, slide, corner", "the motions run, each from rest in free space",
+               [](const ConfigNode& v, LoopSpec* s) {
+                 s->motions.clear();
+                 for (const ConfigNode& e : v.Elements()) {
+                   const std::string name = e.AsString();
+                   const auto m = std::find_if(kMotions.begin(), kMotions.end(),
+                                               [&](const auto& c) { return c.first == name; });
+                   if (m == kMotions.end()) e.Fail("'" + e.Quoted() + "' is not one of: push, slide, corner");
+                   s->motions.push_back(m->second);
+                 }
+                 if (s->motions.empty()) v.Fail("lists no motion");
+               },
+               nullptr,
+               [](const LoopSpec& s) {
+                 std::string t;
+                 for (LoopMotion m : s.motions) t += (t.empty() ? "" : ", ") + std::string(LoopMotionName(m));
+                 return "[" + t + "]";
+               })
+              .Example("[push]"),
+      });
+  return table;
+}
+
+LoopSpec ParseLoopSpec(const ConfigNode& root) {
+  if (auto l = root.Find("loop")) return LoopParams().Parse(*l);
+  return LoopSpec();
+}
+
+LoopJobResult RunClosedLoopJob(const ExperimentConfig& config, const Job& job, const RunOptions& options) {
+  (void)config;
+  const LoopSpec spec = ParseLoopSpec(job.config);
+  SceneAssets assets(job.scene, options.assets);
+  const ClosedLoopScene where = MakeClosedLoopScene(job.scene, assets);
+  LoopJobResult result;
+  result.job = job;
+  for (const std::string& name : job.models) {
+    const std::unique_ptr<ContactModel> model = MakeSceneContactModel(name, job.scene, assets);
+    SceneDynamics dynamics = MakeSceneDynamics(assets, where.cycle_seconds);
+    for (LoopMotion motion : spec.motions) {
+      LoopRow row{name, motion, spec.loop, {}};
+      row.loop.motion = motion;
+      row.metrics = RunClosedLoop(*model, where, row.loop, &dynamics);
+      result.rows.push_back(std::move(row));
+    }
+  }
+  return result;
+}
+
+namespace {
+
+// stability.csv's declared columns (after experiment, job and the sweep axes not named here).
+struct LoopColumn {
+  const char* name;
+  void (*write)(const LoopRow&, CsvLine&);
+};
+const LoopColumn kLoopColumns[] = {
+    {"model", [](const LoopRow& r, CsvLine& l) { l.Text(r.model); }},
+    {"motion", [](const LoopRow& r, CsvLine& l) { l.Text(LoopMotionName(r.motion)); }},
+    {"k_vc", [](const LoopRow& r, CsvLine& l) { l.Num("%.6g", r.loop.k_vc); }},
+    {"k_vc_rot", [](const LoopRow& r, CsvLine& l) { l.Num("%.6g", r.loop.k_vc_rot); }},
+    {"energy_into_hand_J", [](const LoopRow& r, CsvLine& l) { l.Num("%.6e", r.metrics.energy_into_hand); }},
+    {"peak_stored_energy_J", [](const LoopRow& r, CsvLine& l) { l.Num("%.6e", r.metrics.peak_stored_energy); }},
+    {"passive", [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.passive()); }},
+    {"early_position_rms_m", [](const LoopRow& r, CsvLine& l) { l.Num("%.6e", r.metrics.early_position_rms); }},
+    {"late_position_rms_m", [](const LoopRow& r, CsvLine& l) { l.Num("%.6e", r.metrics.late_position_rms); }},
+    {"early_force_rms_N", [](const LoopRow& r, CsvLine& l) { l.Num("%.6e", r.metrics.early_force_rms); }},
+    {"late_force_rms_N", [](const LoopRow& r, CsvLine& l) { l.Num("%.6e", r.metrics.late_force_rms); }},
+    {"hold_force_mean_N", [](const LoopRow& r, CsvLine& l) { l.Num("%.6e", r.metrics.hold_force_mean); }},
+    {"settled", [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.settled()); }},
+    {"max_contact_force_N", [](const LoopRow& r, CsvLine& l) { l.Num("%.6g", r.metrics.max_contact_force); }},
+    {"max_device_force_N", [](const LoopRow& r, CsvLine& l) { l.Num("%.6g", r.metrics.max_device_force); }},
+    {"clamped_cycles", [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.clamped_cycles); }},
+    {"non_finite_cycles", [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.non_finite_cycles); }},
+    {"solve_failures", [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.solve_failures); }},
+    {"coherence_resets", [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.coherence_resets); }},
+    {"contact_faults", [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.contact_faults); }},
+    {"max_q_norm", [](const LoopRow& r, CsvLine& l) { l.Num("%.6g", r.metrics.max_q_norm); }},
+    {"max_points_in_contact", [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.max_points_in_contact); }},
+    {"cycles", [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.cycles); }},
+    {"stable", [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.stable()); }},
+    {"verdict", [](const LoopRow& r, CsvLine& l) { l.Text(StabilityVerdict(r.metrics)); }},
+    {"wall_s", [](const LoopRow& r, CsvLine& l) { l.Num("%.3f", r.metrics.wall_seconds); }},
+};
+
+bool IsLoopColumn(const std::string& name) {
+  for (const LoopColumn& c : kLoopColumns) {
+    if (name == c.name) return true;
+  }
+  return false;
+}
+
+// Every job's loop section parses (an error names the job's sweep values).
+void CheckClosedLoopStudy(const ExperimentConfig& config, const ConfigNode&) {
+  for (const Job& job : ExpandJobs(config)) {
+    try {
+      (void)ParseLoopSpec(job.config);
+    } catch (const Error& e) {
+      if (config.sweep.empty()) throw;
+      Fail(config.file + " (job " + job.Label() + ")", e.what());
+    }
+  }
+}
+
+// Runs the jobs, writes stability.csv and meta.json, prints one line per run.
+void RunClosedLoopStudy(const ExperimentConfig& config, const RunOptions& options, const std::vector<int>& only) {
+  const std::vector<Job> all = ExpandJobs(config);
+  std::fprintf(stderr, "experiment %s (closed-loop study): %zu of %zu jobs, models:", config.name.c_str(),
+               only.empty() ? all.size() : only.size(), all.size());
+  for (const auto& m : config.models) std::fprintf(stderr, " %s", m.c_str());
+  std::fprintf(stderr, "\n");
+  std::vector<LoopJobResult> results(only.empty() ? all.size() : only.size());
+  const JobsRun jobs = RunJobs(config, all, only, options, [&](std::size_t i, const Job& job) {
+    results[i] = RunClosedLoopJob(config, job, options);
+  });
+  WriteStudyResults(StudyOf(config), options.out_dir, {StabilityCsv(config, results)},
+                    RunMetadata(config, jobs.indices, jobs.wall_seconds, jobs.parallel));
+  std::printf("%-6s %-24s %-7s %9s %12s %12s %12s  %s\n", "job", "model", "motion", "k_vc", "energy J", "late H m",
+              "late F N", "verdict");
+  for (const LoopJobResult& r : results) {
+    for (const LoopRow& row : r.rows) {
+      std::printf("%-6d %-24s %-7s %9.4g %+12.3e %12.3e %12.3e  %s\n", r.job.index, row.model.c_str(),
+                  LoopMotionName(row.motion), row.loop.k_vc, row.metrics.energy_into_hand,
+                  row.metrics.late_position_rms, row.metrics.late_force_rms, StabilityVerdict(row.metrics).c_str());
+    }
+  }
+}
+
+}  // namespace
+
+std::string StabilityCsv(const ExperimentConfig& config, const std::vector<LoopJobResult>& results) {
+  std::string out;
+  {
+    CsvLine h(&out);
+    h.Text("experiment");
+    h.Text("job");
+    for (const SweepAxis& a : config.sweep) {
+      if (!IsLoopColumn(a.name)) h.Text(a.name);
+    }
+    for (const LoopColumn& c : kLoopColumns) h.Text(c.name);
+  }
+  out += '\n';
+  for (const LoopJobResult& r : results) {
+    for (const LoopRow& row : r.rows) {
+      CsvLine line(&out);
+      line.Text(config.name);
+      line.Int(r.job.index);
+      for (const auto& [axis, value] : r.job.axis_values) {
+        if (!IsLoopColumn(axis)) line.Text(value);
+      }
+      for (const LoopColumn& c : kLoopColumns) c.write(row, line);
+      out += '\n';
+    }
+  }
+  return out;
+}
+
+void RegisterClosedLoopStudy() {
+  Study s;
+  s.name = "closed-loop";
+  s.description = "passivity and settling of the simulated haptic loop per model and motion (sec. 5)";
+  s.sections = {"models", "loop"};
+  for (const std::string& key : LoopParams().SweepKeys()) s.aliases.push_back({key, "loop." + key});
+  s.tables = {"stability.csv"};
+  s.check = CheckClosedLoopStudy;
+  s.run = RunClosedLoopStudy;
+  s.reference = [] { return LoopParams().Reference("loop"); };
+  RegisterStudy(std::move(s));
+}
+
+}  // namespace contactlab

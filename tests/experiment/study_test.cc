@@ -1,0 +1,221 @@
+// Studies registered like models (experiment/study.h): the registry, config sections a study does
+// not read refused naming the study that does, meta.json recording the study so that merge asks
+// it instead of sniffing files, and the closed-loop study run from a config: the swept coupling
+// stiffness reaches the loop, a soft coupling is passive and settles, and single-job runs merge
+// into the whole sweep.
+#include "experiment/study.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "experiment/closed_loop_study.h"
+#include "experiment/result_csv.h"
+#include "experiment/runner.h"
+#include "scene_fixtures.h"
+#include "test_support.h"
+#include "util/atomic_file.h"
+#include "util/error.h"
+
+namespace contactlab {
+namespace {
+
+using testing::TempDir;
+namespace fs = std::filesystem;
+
+ExperimentConfig Load(const TempDir& dir, const std::string& text) {
+  std::ofstream(dir / "config.yaml") << text;
+  return LoadExperimentConfig(dir / "config.yaml");
+}
+
+// The rows of a CSV file as column -> cell maps.
+std::vector<std::map<std::string, std::string>> ReadCsv(const fs::path& file) {
+  std::istringstream in(ReadWholeFile(file));
+  std::string line;
+  std::getline(in, line);
+  const std::vector<std::string> header = SplitCsvLine(line);
+  std::vector<std::map<std::string, std::string>> rows;
+  while (std::getline(in, line)) {
+    const std::vector<std::string> cells = SplitCsvLine(line);
+    EXPECT_EQ(cells.size(), header.size()) << line;
+    std::map<std::string, std::string> row;
+    for (std::size_t i = 0; i < header.size() && i < cells.size(); ++i) row[header[i]] = cells[i];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// The ball-on-plate scene with the plate as the haptic body pushed up into the ball.
+std::string LoopConfig(const std::string& loop = "{motions: [push, slide]}",
+                       const std::string& sweep = "sweep: {k_vc: [500, 2000]}\n") {
+  testing::BallOnPlate scene;
+  return "name: tiny-loop\nstudy: closed-loop\nmodels: [pointshell]\nscene:\n" + scene.Yaml(2) + "loop: " + loop +
+         "\n" + sweep;
+}
+
+TEST(Study, EveryRegisteredStudyDeclaresItsFilesOnce) {
+  const std::vector<std::string> names = StudyNames();
+  for (const char* expected : {"contact", "deformed-field", "closed-loop"}) {
+    EXPECT_NE(std::find(names.begin(), names.end(), expected), names.end()) << expected;
+  }
+  EXPECT_EQ(std::set<std::string>(names.begin(), names.end()).size(), names.size());
+  for (const Study& s : Studies()) {
+    SCOPED_TRACE(s.name);
+    EXPECT_FALSE(s.description.empty());
+    EXPECT_TRUE(s.run);
+    const std::vector<std::string> files = s.Files();
+    ASSERT_FALSE(files.empty());
+    EXPECT_EQ(files.back(), "meta.json");
+    EXPECT_EQ(std::set<std::string>(files.begin(), files.end()).size(), files.size());
+    for (const std::string& t : s.tables) EXPECT_EQ(fs::path(t).extension(), ".csv") << t;
+    for (const std::string& r : s.required) {
+      EXPECT_NE(std::find(s.sections.begin(), s.sections.end(), r), s.sections.end()) << r;
+    }
+  }
+  // Only the contact study's cycles are trajectories a viewer replays.
+  EXPECT_TRUE(FindStudy("contact")->replayable);
+  EXPECT_FALSE(FindStudy("deformed-field")->replayable);
+  EXPECT_FALSE(FindStudy("closed-loop")->replayable);
+  EXPECT_EQ(FindStudy("no-such-study"), nullptr);
+}
+
+TEST(Study, ASectionOnlyAnotherStudyReadsIsRefusedNamingThatStudy) {
+  TempDir dir;
+  auto expect_error = [&](const std::string& text, std::vector<std::string> parts) {
+    try {
+      (void)Load(dir, text);
+      ADD_FAILURE() << "no error for " << text;
+    } catch (const Error& e) {
+      const std::string msg = e.what();
+      parts.push_back("config.yaml");
+      for (const std::string& p : parts) EXPECT_NE(msg.find(p), std::string::npos) << p << " not in: " << msg;
+    }
+  };
+  const std::string scene = "scene:\n" + testing::BallOnPlate().Yaml(2);
+  // A contact config given the closed-loop study's section, and the other way round.
+  expect_error("name: x\n" + scene + "trajectory: {type: approach-press}\nloop: {k_vc: 100}\n",
+               {"loop", "is not read by study: contact", "closed-loop"});
+  expect_error(LoopConfig() + "trajectory: {type: approach-press}\n", {"trajectory", "closed-loop", "contact"});
+  expect_error(LoopConfig() + "measure: {points: 10}\n", {"measure", "deformed-field"});
+  // A key no study reads, an unknown study, a bad loop key, and a contact config without its
+  // required trajectory.
+  expect_error(LoopConfig() + "loops: {}\n", {"loops"});
+  expect_error("name: x\nstudy: closed-loops\n" + scene, {"closed-loops", "contact", "deformed-field", "closed-loop"});
+  expect_error(LoopConfig("{k_vc: -3}", ""), {"loop.k_vc", "-3"});
+  expect_error(LoopConfig("{motions: [push, wiggle]}"), {"wiggle", "push, slide, corner"});
+  expect_error(LoopConfig("{k_vc: 1000}", "sweep: {k_vc: [1000, 0]}\n"), {"job k_vc=0", "loop.k_vc", "got 0"});
+  expect_error("name: x\n" + scene, {"trajectory"});
+  // The closed-loop study's alias is not an alias of a contact config.
+  expect_error("name: x\n" + scene + "trajectory: {type: approach-press}\nsweep: {k_vc: [1, 2]}\n",
+               {"unknown sweep axis"});
+}
+
+TEST(Study, TheStudyOfAResultsFolderComesFromItsMetaJson) {
+  TempDir dir;
+  auto meta = [&](const std::string& text) {
+    std::ofstream(dir / "meta.json") << text;
+    return dir.path();
+  };
+  EXPECT_EQ(StudyOfResults(meta(R"({"study": "closed-loop", "resolved_config": "study: contact"})")).name, "closed-loop");
+  // Runs recorded before meta.json named the study: their resolved config says it.
+  EXPECT_EQ(StudyOfResults(meta(R"({"resolved_config": "name: a\nstudy: deformed-field\n"})")).name, "deformed-field");
+  EXPECT_EQ(StudyOfResults(meta(R"({"resolved_config": "name: a\n"})")).name, "contact");
+  auto expect_error = [&](const std::string& text, const std::string& part) {
+    try {
+      (void)StudyOfResults(meta(text));
+      ADD_FAILURE() << "no error for " << text;
+    } catch (const Error& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find((dir / "meta.json").string()), std::string::npos) << msg;
+      EXPECT_NE(msg.find(part), std::string::npos) << msg;
+    }
+  };
+  expect_error(R"({"study": "sideways"})", "'sideways'");
+  expect_error(R"({"jobs": [0]})", "names no study");
+  expect_error("{\"study\": ", "not valid JSON");
+  fs::remove(dir / "meta.json");
+  try {
+    (void)StudyOfResults(dir.path());
+    ADD_FAILURE() << "no error without meta.json";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("meta.json: not found"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ClosedLoopStudy, TheSweptStiffnessReachesTheLoopAndSingleJobsMergeIntoTheSweep) {
+  TempDir dir;
+  const ExperimentConfig config = Load(dir, LoopConfig());
+  const Study& study = StudyOf(config);
+  ASSERT_EQ(study.name, "closed-loop");
+  RunOptions o;
+  o.assets.cache_dir = dir / "cache";
+  o.assets.verbose = false;
+  o.progress = false;
+  o.out_dir = dir / "all";
+  study.run(config, o, {});
+  for (const std::string& f : study.Files()) EXPECT_TRUE(fs::is_regular_file(dir / "all" / f)) << f;
+  EXPECT_EQ(StudyOfResults(dir / "all").name, "closed-loop");
+
+  const auto rows = ReadCsv(dir / "all" / "stability.csv");
+  ASSERT_EQ(rows.size(), 4u);  // 2 jobs x 1 model x 2 motions
+  const char* motions[] = {"push", "slide"};
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const auto& r = rows[i];
+    SCOPED_TRACE(i);
+    EXPECT_EQ(r.at("experiment"), "tiny-loop");
+    EXPECT_EQ(r.at("job"), std::to_string(i / 2));
+    EXPECT_EQ(r.at("model"), "pointshell");
+    EXPECT_EQ(r.at("motion"), motions[i % 2]);
+    EXPECT_DOUBLE_EQ(std::stod(r.at("k_vc")), i < 2 ? 500.0 : 2000.0);
+    // It really pressed: contact force during the run, and a force held in contact.
+    EXPECT_GT(std::stod(r.at("max_contact_force_N")), 0.5);
+    EXPECT_GT(std::stod(r.at("hold_force_mean_N")), 0.3);
+    // Passive (at most 1 % of the peak stored coupling energy, or 1 µJ, generated) and settled,
+    // recomputed here from the columns.
+    const double energy = std::stod(r.at("energy_into_hand_J")), peak = std::stod(r.at("peak_stored_energy_J"));
+    EXPECT_GT(peak, 0);
+    EXPECT_LE(energy, std::max(1e-6, 0.01 * peak));
+    EXPECT_LT(std::stod(r.at("late_position_rms_m")), 20e-6);
+    EXPECT_LT(std::stod(r.at("late_force_rms_N")), 0.05);
+    EXPECT_EQ(r.at("stable"), "1");
+    EXPECT_EQ(r.at("verdict"), "ok");
+  }
+  // A stiffer coupling stores the same hold force in a shorter spring: less peak energy.
+  EXPECT_LT(std::stod(rows[2].at("peak_stored_energy_J")), std::stod(rows[0].at("peak_stored_energy_J")));
+
+  for (int j : {0, 1}) {
+    o.out_dir = dir / ("job-" + std::to_string(j));
+    study.run(config, o, {j});
+  }
+  MergeResults({dir / "job-0", dir / "job-1"}, dir / "merged");
+  const auto merged = ReadCsv(dir / "merged" / "stability.csv");
+  ASSERT_EQ(merged.size(), rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    for (const auto& [column, value] : rows[i]) {
+      if (column != "wall_s") EXPECT_EQ(merged[i].at(column), value) << column << " row " << i;
+    }
+  }
+  EXPECT_EQ(StudyOfResults(dir / "merged").name, "closed-loop");
+  EXPECT_FALSE(fs::exists(dir / "merged" / "cycles.csv"));
+
+  // Folders of two studies do not merge.
+  const ExperimentConfig contact = Load(dir, "name: tiny-loop\nscene:\n" + testing::BallOnPlate().Yaml(2) +
+                                                 "trajectory: {type: approach-press, depth: 0.001, duration: 0.01}\n");
+  o.out_dir = dir / "contact";
+  StudyOf(contact).run(contact, o, {});
+  try {
+    MergeResults({dir / "job-0", dir / "contact"}, dir / "mixed");
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find((dir / "contact" / "meta.json").string()), std::string::npos) << msg;
+    EXPECT_NE(msg.find("holds a contact study"), std::string::npos) << msg;
+  }
+  EXPECT_FALSE(fs::exists(dir / "mixed"));
+}
+
+}  // namespace
+}  // namespace contactlab
