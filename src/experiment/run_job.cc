@@ -75,20 +75,37 @@ double Median(std::vector<double>* v) {
   return (*v)[v->size() / 2];
 }
 
-}  // namespace
+// How the job's moving body moves: the bodies' start poses (the moving one placed touching when
+// the trajectory says touch: true), the trajectory and the cycles it takes.
+struct JobMotion {
+  explicit JobMotion(Trajectory t) : trajectory(std::move(t)) {}
+  bool moving_is_B = false;
+  Pose X_WA0, X_WB0;  // the bodies at the start (the moving one placed)
+  Pose start;         // the moving body's start pose
+  Trajectory trajectory;
+  double dt = 1e-3;
+  std::int64_t cycles = 0;
 
-JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOptions& options) {
-  JobResult result;
-  result.job = job;
+  // The moving body at cycle K: the trajectory applied to its start pose.
+  Pose At(std::int64_t k) const {
+    const Pose d = trajectory.At(trajectory.start_time() + double(k) * dt);
+    return Pose{(d.rotation * start.rotation).normalized(), start.translation + d.translation};
+  }
+};
+
+// The trajectory of JOB, and with touch: true the moving body moved along its direction until
+// the deepest point of the paper's model (linear, deepest level) is touch_depth deep. Throws
+// Error naming the config when the trajectory needs more cycles than the limit.
+JobMotion PlanMotion(const ExperimentConfig& config, const Job& job, SceneAssets& assets, const RunOptions& options) {
   const Scene& scene = job.scene;
-  SceneAssets assets(scene, options.assets);
   const bool moving_is_B = scene.field_body.name == job.moving_body;
-  Pose X_WA0 = scene.pointshell_body.pose, X_WB0 = scene.field_body.pose;
-
-  // The trajectory, and with touch: true the moving body moved along its direction until the
-  // deepest point of the paper's model (linear, deepest level) is touch_depth deep.
-  const ConfigNode tn = ResolvedTrajectoryNode(job.trajectory_node, moving_is_B ? X_WB0 : X_WA0, moving_is_B ? X_WA0 : X_WB0);
-  const Trajectory trajectory = ParseTrajectory(tn);
+  const Pose& X_moving0 = moving_is_B ? scene.field_body.pose : scene.pointshell_body.pose;
+  const Pose& X_other0 = moving_is_B ? scene.pointshell_body.pose : scene.field_body.pose;
+  const ConfigNode tn = ResolvedTrajectoryNode(job.trajectory_node, X_moving0, X_other0);
+  JobMotion m(ParseTrajectory(tn));
+  m.moving_is_B = moving_is_B;
+  m.X_WA0 = scene.pointshell_body.pose;
+  m.X_WB0 = scene.field_body.pose;
   if (tn.Bool("touch", false)) {
     Eigen::Vector3d dir(0, 0, -1);
     if (auto d = tn.Find("direction")) {
@@ -103,7 +120,7 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
     const std::optional<Job> placement = job.roles_swapped ? ConfigRoleOrderJob(config, job) : std::nullopt;
     Pose moved;
     if (!placement) {
-      moved = TouchAlong(scene, assets, moving_is_B, X_WA0, X_WB0, dir, depth, where);
+      moved = TouchAlong(scene, assets, m.moving_is_B, m.X_WA0, m.X_WB0, dir, depth, where);
     } else {
       const Scene& normal = placement->scene;
       SceneAssets normal_assets(normal, options.assets);
@@ -111,203 +128,270 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
       moved = TouchAlong(normal, normal_assets, normal_moving_is_B, normal.pointshell_body.pose, normal.field_body.pose,
                          dir, depth, where + " (placed as job " + std::to_string(placement->index) + ")");
     }
-    (moving_is_B ? X_WB0 : X_WA0) = moved;
+    (m.moving_is_B ? m.X_WB0 : m.X_WA0) = moved;
   }
-  const Pose start = moving_is_B ? X_WB0 : X_WA0;
-  const double dt = scene.model.cycle_seconds;
+  m.start = m.moving_is_B ? m.X_WB0 : m.X_WA0;
+  m.dt = scene.model.cycle_seconds;
   // Bounded before the per-cycle records are allocated.
-  if (!(trajectory.duration() / dt <= kMaxTrajectorySamples)) {
+  if (!(m.trajectory.duration() / m.dt <= kMaxTrajectorySamples)) {
     char buf[200];
     std::snprintf(buf, sizeof buf,
                   "trajectory.duration: %.3g s at a cycle of %.3g s is %.3g cycles, more than the limit of %.0e",
-                  trajectory.duration(), dt, trajectory.duration() / dt, kMaxTrajectorySamples);
+                  m.trajectory.duration(), m.dt, m.trajectory.duration() / m.dt, kMaxTrajectorySamples);
     Fail(config.file, buf);
   }
-  const std::int64_t cycles = std::int64_t(std::floor(trajectory.duration() / dt + 1e-9)) + 1;
+  m.cycles = std::int64_t(std::floor(m.trajectory.duration() / m.dt + 1e-9)) + 1;
+  return m;
+}
 
-  std::unique_ptr<SceneAssets> reference_assets;
-  const std::unique_ptr<ContactModel> reference = MakeReference(config, scene, options, &reference_assets);
-  // Every model follows the same poses: a reference that ignores deformation (all but a
-  // deformable pointshell reference) is evaluated once per cycle and reused by each model.
-  const ContactModelNeeds* reference_needs = reference ? &FindContactModel(config.reference_model)->needs : nullptr;
-  const bool reuse_reference = reference_needs && !reference_needs->deformable_A && !reference_needs->deformable_B;
-  // By cycle, when reused: filled by the first model.
-  std::vector<std::optional<Eigen::Vector3d>> reference_at(reuse_reference ? std::size_t(cycles) : 0);
+// The config's reference model on the job's scene (or a denser version of it), evaluated every
+// reference_every cycles. Every model follows the same poses: a reference that ignores
+// deformation (all but a deformable pointshell reference) is evaluated once per cycle, by the
+// first model's run, and reused by the others.
+class JobReference {
+ public:
+  JobReference(const ExperimentConfig& config, const Scene& scene, const RunOptions& options, std::int64_t cycles)
+      : every_(config.reference_every), model_(MakeReference(config, scene, options, &assets_)) {
+    if (!model_) return;
+    const ContactModelNeeds& needs = FindContactModel(config.reference_model)->needs;
+    if (!needs.deformable_A && !needs.deformable_B) at_.resize(std::size_t(cycles));
+  }
+  explicit operator bool() const { return model_ != nullptr; }
+  bool Due(std::int64_t k) const { return model_ && k % every_ == 0; }
 
+  // The reference force on the moving body at cycle K, where the model's query was Q.
+  Eigen::Vector3d Force(std::int64_t k, const ContactQuery& q, bool moving_is_B) {
+    const bool reuse = !at_.empty();
+    if (reuse && at_[std::size_t(k)]) return *at_[std::size_t(k)];
+    // The reference sees the deformations and writes no reduced force.
+    ContactQuery rq = q;
+    rq.node_budget = 0;
+    const BodyDeformation ref_A{q.deformation_A ? q.deformation_A->q : nullptr};
+    const BodyDeformation ref_B{q.deformation_B ? q.deformation_B->q : nullptr};
+    rq.deformation_A = q.deformation_A ? &ref_A : nullptr;
+    rq.deformation_B = q.deformation_B ? &ref_B : nullptr;
+    Eigen::Vector3d F, T;
+    OnMovingBody(moving_is_B, rq, model_->Evaluate(rq).on_B, &F, &T);
+    if (reuse) at_[std::size_t(k)] = F;
+    return F;
+  }
+
+ private:
+  std::int64_t every_;
+  std::unique_ptr<SceneAssets> assets_;
+  std::unique_ptr<ContactModel> model_;
+  std::vector<std::optional<Eigen::Vector3d>> at_;  // by cycle, when reused
+};
+
+// What one model's run keeps beyond its rows, for its summary; sized before the first cycle.
+struct ModelTrace {
+  std::vector<Eigen::Vector3d> forces, refs;
+  std::vector<Pose> poses;
+  std::vector<bool> has_ref;
+  std::vector<double> times, step_times, step_times_B;
+  std::vector<int> levels;
+  double nodes_sum = 0, max_depth = 0, max_displacement = 0;
+  std::int64_t contact_faults = 0;
+
+  explicit ModelTrace(std::int64_t cycles) {
+    const std::size_t n = std::size_t(cycles);
+    for (auto* v : {&forces, &refs}) v->reserve(n);
+    for (auto* v : {&times, &step_times, &step_times_B}) v->reserve(n);
+    poses.reserve(n);
+    has_ref.reserve(n);
+    levels.reserve(n);
+  }
+  void Add(const CycleRow& row, const Pose& X_moving) {
+    max_displacement = std::max(max_displacement, row.max_displacement);
+    forces.push_back(row.force);
+    refs.push_back(row.reference_force);
+    has_ref.push_back(row.has_reference);
+    poses.push_back(X_moving);
+    times.push_back(row.time_us);
+    levels.push_back(row.level);
+    nodes_sum += double(row.nodes);
+    max_depth = std::max(max_depth, row.depth_voxels);
+  }
+};
+
+// The job's fixed parts every model's run reads.
+struct JobSetup {
+  const ExperimentConfig& config;
+  const Job& job;
+  SceneAssets& assets;
+  const JobMotion& motion;
+  JobReference& reference;
+  SceneDynamics& dynamics;
+  CoherenceGuard& coherence;
+};
+
+// Steps the deformable bodies after cycle K's query (held fixed during it) into ROW, their q in
+// Q_ROW (the row's slot of the storage).
+void StepBodies(SceneDynamics& dynamics, double* q_row, CycleRow* row, ModelTrace* trace) {
+  const int r_A = dynamics.A ? dynamics.A->r() : 0;
+  const int r_B = dynamics.B ? dynamics.B->r() : 0;
+  if (dynamics.A) {
+    const auto ts = std::chrono::steady_clock::now();
+    dynamics.A->Step();
+    RecordDeformation(*dynamics.A, false, MicrosecondsSince(ts), row);
+    trace->step_times.push_back(row->step_us);
+    std::copy_n(dynamics.A->state().q.data(), r_A, q_row);
+    row->q = {q_row, std::size_t(r_A)};
+  }
+  if (dynamics.B) {
+    const auto ts = std::chrono::steady_clock::now();
+    dynamics.B->Step();
+    RecordDeformation(*dynamics.B, true, MicrosecondsSince(ts), row);
+    trace->step_times_B.push_back(row->step_B_us);
+    std::copy_n(dynamics.B->state().q.data(), r_B, q_row + r_A);
+    row->q_B = {q_row + r_A, std::size_t(r_B)};
+  }
+}
+
+// Model NAME along the job's motion, cycle by cycle: its rows appended to RESULT (viewing
+// STORAGE, allocated before: recording allocates nothing), what its summary needs in TRACE.
+void RunModel(const JobSetup& setup, const std::string& name, CycleStorage& storage, JobResult* result,
+              ModelTrace* trace) {
+  const Scene& scene = setup.job.scene;
+  const JobMotion& motion = setup.motion;
+  SceneDynamics& dynamics = setup.dynamics;
+  std::unique_ptr<ContactModel> model = MakeSceneContactModel(name, scene, setup.assets);
+  // Depths in voxels only for models whose depth is measured on B's field grid.
+  const double spacing =
+      FindContactModel(name)->needs.depth_in_field_voxels ? setup.assets.B.field()->spacing() : 0.0;
+  const std::size_t q_stride = std::size_t((dynamics.A ? dynamics.A->r() : 0) + (dynamics.B ? dynamics.B->r() : 0));
+  dynamics.Reset();
+  setup.coherence.Start(motion.At(0));
+  for (std::int64_t k = 0; k < motion.cycles; ++k) {
+    const Pose X_moving = motion.At(k);
+    // Faster than the coherence assumes: this cycle traverses in full, coherence restarts.
+    if (setup.coherence.Check(X_moving)) model->Reset();
+    ContactQuery q;
+    q.X_WA = motion.moving_is_B ? motion.X_WA0 : X_moving;
+    q.X_WB = motion.moving_is_B ? X_moving : motion.X_WB0;
+    q.cycle = k;
+    q.node_budget = scene.node_budget;
+    if (dynamics.A) q.deformation_A = dynamics.A->Prepare();
+    if (dynamics.B) q.deformation_B = dynamics.B->Prepare();
+    const auto t0 = std::chrono::steady_clock::now();
+    const ContactResult r = model->Evaluate(q);
+    const double us = MicrosecondsSince(t0);
+    CycleRow row;
+    row.job = setup.job.index;
+    row.model = name;
+    row.cycle = k;
+    row.t = double(k) * motion.dt;
+    row.position = X_moving.translation;
+    row.rotation = X_moving.rotation;
+    OnMovingBody(motion.moving_is_B, q, r.on_B, &row.force, &row.torque);
+    row.contacts = r.stats.points_in_contact;
+    row.nodes = r.stats.nodes_visited;
+    row.level = r.stats.level_rendered;
+    row.max_penetration = r.stats.max_penetration;
+    row.depth_voxels = spacing > 0 ? r.stats.max_penetration / spacing : 0.0;
+    row.time_us = us;
+    trace->contact_faults += r.stats.faults > 0 ? 1 : 0;  // the model refused the query: no force
+    if (setup.reference.Due(k)) {
+      row.reference_force = setup.reference.Force(k, q, motion.moving_is_B);
+      row.has_reference = true;
+    }
+    StepBodies(dynamics, storage.q.data() + result->cycles.size() * q_stride, &row, trace);
+    trace->Add(row, X_moving);
+    result->cycles.push_back(row);
+  }
+}
+
+// Model NAME's metrics over the job's trajectory, from its TRACE.
+SummaryRow Summarize(const JobSetup& setup, const std::string& name, ModelTrace& trace) {
+  const Scene& scene = setup.job.scene;
+  const std::int64_t cycles = setup.motion.cycles;
+  SceneDynamics& dynamics = setup.dynamics;
+  SummaryRow s;
+  s.job = setup.job.index;
+  s.model = name;
+  s.points = scene.pointshell_body.pointshell.points;
+  s.cycles = cycles;
+  const double radius = setup.assets.A.mesh()->Bounds().size().norm() / 2;
+  const ContinuityMetrics c =
+      ForceContinuity(trace.forces, trace.poses, setup.motion.dt, radius, setup.config.cutoff_hz);
+  s.max_jump = c.max_jump;
+  s.lipschitz = c.lipschitz;
+  s.hf_share = c.high_frequency_share;
+  const TimingMetrics t = Timing(trace.times, trace.levels, setup.motion.dt);
+  s.median_us = t.median_us;
+  s.p99_us = t.p99_us;
+  s.max_us = t.max_us;
+  s.level_switches_per_s = t.level_switches_per_second;
+  s.mean_nodes = trace.nodes_sum / double(cycles);
+  const double force_scale = MedianForceInContact(trace.forces);
+  if (force_scale > 0) {
+    s.max_jump_rel = c.max_jump / force_scale;
+    s.lipschitz_rel = c.lipschitz / force_scale;
+  }
+  if (setup.reference) {
+    const ErrorMetrics e = ErrorAgainstReference(trace.forces, trace.refs, trace.has_ref);
+    s.rms_rel_error = e.rms_relative;
+    s.max_dir_error_deg = e.max_direction_deg;
+    s.median_dir_error_deg = e.median_direction_deg;
+    s.p95_dir_error_deg = e.p95_direction_deg;
+    if (std::isfinite(e.scale)) {
+      s.ref_scale = e.scale;
+      s.rms_rel_error_calibrated = e.rms_relative_calibrated;
+    }
+  }
+  for (const Eigen::Vector3d& f : trace.forces) {
+    s.max_force = std::max(s.max_force, f.norm());
+    s.mean_force += f.norm() / double(cycles);
+  }
+  s.max_depth_voxels = trace.max_depth;
+  s.coherence_resets = setup.coherence.resets();
+  s.contact_faults = trace.contact_faults;
+  if (dynamics.A) {
+    s.modes = dynamics.A->r();
+    s.median_step_us = Median(&trace.step_times);
+  }
+  if (dynamics.B) {
+    s.modes_B = dynamics.B->r();
+    s.median_step_B_us = Median(&trace.step_times_B);
+  }
+  if (dynamics.any()) s.max_displacement = trace.max_displacement;
+  // The memory of the body data this model reads, from the loaded arrays.
+  const ContactModelNeeds& needs = FindContactModel(name)->needs;
+  if (needs.field_B) s.field_B_bytes = setup.assets.B.field()->memory_bytes();
+  if (needs.pointshell_A) s.pointshell_A_bytes = setup.assets.A.pointshell()->memory_bytes();
+  return s;
+}
+
+}  // namespace
+
+JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOptions& options) {
+  const Scene& scene = job.scene;
+  SceneAssets assets(scene, options.assets);
+  const JobMotion motion = PlanMotion(config, job, assets, options);
+  JobReference reference(config, scene, options, motion.cycles);
   // The deformable bodies' dynamics (paper sec. 4 and 5), from rest for each model.
-  SceneDynamics dynamics = MakeSceneDynamics(assets, dt);
+  SceneDynamics dynamics = MakeSceneDynamics(assets, motion.dt);
   // The guard of the models' temporal coherence, as in the haptic cycle: the moving body's
   // motion per cycle against the scene's max_point_speed.
   CoherenceGuard coherence(scene.model.max_point_speed, scene.model.cycle_seconds,
-                           (moving_is_B ? assets.B : assets.A).mesh()->MaxVertexRadius(),
+                           (motion.moving_is_B ? assets.B : assets.A).mesh()->MaxVertexRadius(),
                            config.file + ": model.max_point_speed");
-  const int r_A = dynamics.A ? dynamics.A->r() : 0;
-  const int r_B = dynamics.B ? dynamics.B->r() : 0;
-  // Everything the cycle rows hold, allocated here: the loop below records without allocating.
-  const std::size_t total_rows = job.models.size() * std::size_t(cycles);
+  const JobSetup setup{config, job, assets, motion, reference, dynamics, coherence};
+
+  // Everything the cycle rows hold, allocated here: the runs below record without allocating.
+  JobResult result;
+  result.job = job;
+  const std::size_t total_rows = job.models.size() * std::size_t(motion.cycles);
+  const int r = (dynamics.A ? dynamics.A->r() : 0) + (dynamics.B ? dynamics.B->r() : 0);
   auto storage = std::make_shared<CycleStorage>();
   storage->models = job.models;
-  storage->q.resize(total_rows * std::size_t(r_A + r_B));
+  storage->q.resize(total_rows * std::size_t(r));
   result.storage = storage;
   result.cycles.reserve(total_rows);
-
-  for (std::size_t m = 0; m < job.models.size(); ++m) {
-    const std::string& name = storage->models[m];
-    std::unique_ptr<ContactModel> model = MakeSceneContactModel(name, scene, assets);
-    // Depths in voxels only for models whose depth is measured on B's field grid.
-    const bool in_voxels = FindContactModel(name)->needs.depth_in_field_voxels;
-    const double spacing = in_voxels ? assets.B.field()->spacing() : 0.0;
-    std::vector<Eigen::Vector3d> forces, refs;
-    std::vector<Pose> poses;
-    std::vector<bool> has_ref;
-    std::vector<double> times;
-    std::vector<int> levels;
-    std::vector<double> step_times, step_times_B;
-    for (auto* v : {&forces, &refs}) v->reserve(std::size_t(cycles));
-    for (auto* v : {&times, &step_times, &step_times_B}) v->reserve(std::size_t(cycles));
-    poses.reserve(std::size_t(cycles));
-    has_ref.reserve(std::size_t(cycles));
-    levels.reserve(std::size_t(cycles));
-    double nodes_sum = 0, max_depth = 0;
-    dynamics.Reset();
-    double max_displacement = 0;
-    std::int64_t contact_faults = 0;
-    // The moving body follows the trajectory from its start pose; the other stays put.
-    auto moving_pose = [&](std::int64_t k) {
-      const Pose d = trajectory.At(trajectory.start_time() + double(k) * dt);
-      return Pose{(d.rotation * start.rotation).normalized(), start.translation + d.translation};
-    };
-    coherence.Start(moving_pose(0));
-    for (std::int64_t k = 0; k < cycles; ++k) {
-      const Pose X_moving = moving_pose(k);
-      // Faster than the coherence assumes: this cycle traverses in full, coherence restarts.
-      if (coherence.Check(X_moving)) model->Reset();
-      ContactQuery q;
-      q.X_WA = moving_is_B ? X_WA0 : X_moving;
-      q.X_WB = moving_is_B ? X_moving : X_WB0;
-      q.cycle = k;
-      q.node_budget = scene.node_budget;
-      if (dynamics.A) q.deformation_A = dynamics.A->Prepare();
-      if (dynamics.B) q.deformation_B = dynamics.B->Prepare();
-      const auto t0 = std::chrono::steady_clock::now();
-      const ContactResult r = model->Evaluate(q);
-      const double us = MicrosecondsSince(t0);
-      CycleRow row;
-      row.job = job.index;
-      row.model = name;
-      row.cycle = k;
-      row.t = double(k) * dt;
-      row.position = X_moving.translation;
-      row.rotation = X_moving.rotation;
-      OnMovingBody(moving_is_B, q, r.on_B, &row.force, &row.torque);
-      row.contacts = r.stats.points_in_contact;
-      row.nodes = r.stats.nodes_visited;
-      row.level = r.stats.level_rendered;
-      row.max_penetration = r.stats.max_penetration;
-      row.depth_voxels = spacing > 0 ? r.stats.max_penetration / spacing : 0.0;
-      row.time_us = us;
-      contact_faults += r.stats.faults > 0 ? 1 : 0;  // the model refused the query: no force
-      if (reference && k % config.reference_every == 0) {
-        if (reuse_reference && reference_at[std::size_t(k)]) {
-          row.reference_force = *reference_at[std::size_t(k)];
-        } else {
-          Eigen::Vector3d T;
-          // The reference sees the deformations and writes no reduced force.
-          ContactQuery rq = q;
-          rq.node_budget = 0;
-          const BodyDeformation ref_A{q.deformation_A ? q.deformation_A->q : nullptr};
-          const BodyDeformation ref_B{q.deformation_B ? q.deformation_B->q : nullptr};
-          rq.deformation_A = q.deformation_A ? &ref_A : nullptr;
-          rq.deformation_B = q.deformation_B ? &ref_B : nullptr;
-          OnMovingBody(moving_is_B, rq, reference->Evaluate(rq).on_B, &row.reference_force, &T);
-          if (reuse_reference) reference_at[std::size_t(k)] = row.reference_force;
-        }
-        row.has_reference = true;
-      }
-      // The deformations advance after the query, held fixed during it; the row keeps the
-      // states after the steps in its slot of the storage.
-      double* q_row = storage->q.data() + result.cycles.size() * std::size_t(r_A + r_B);
-      if (dynamics.A) {
-        const auto ts = std::chrono::steady_clock::now();
-        dynamics.A->Step();
-        RecordDeformation(*dynamics.A, false, MicrosecondsSince(ts), &row);
-        step_times.push_back(row.step_us);
-        std::copy_n(dynamics.A->state().q.data(), r_A, q_row);
-        row.q = {q_row, std::size_t(r_A)};
-      }
-      if (dynamics.B) {
-        const auto ts = std::chrono::steady_clock::now();
-        dynamics.B->Step();
-        RecordDeformation(*dynamics.B, true, MicrosecondsSince(ts), &row);
-        step_times_B.push_back(row.step_B_us);
-        std::copy_n(dynamics.B->state().q.data(), r_B, q_row + r_A);
-        row.q_B = {q_row + r_A, std::size_t(r_B)};
-      }
-      max_displacement = std::max(max_displacement, row.max_displacement);
-      forces.push_back(row.force);
-      refs.push_back(row.reference_force);
-      has_ref.push_back(row.has_reference);
-      poses.push_back(X_moving);
-      times.push_back(us);
-      levels.push_back(row.level);
-      nodes_sum += double(row.nodes);
-      max_depth = std::max(max_depth, row.depth_voxels);
-      result.cycles.push_back(row);
-    }
-    // Per-model metrics over the trajectory.
-    SummaryRow s;
-    s.job = job.index;
-    s.model = name;
-    s.points = scene.pointshell_body.pointshell.points;
-    s.cycles = cycles;
-    const double radius = assets.A.mesh()->Bounds().size().norm() / 2;
-    const ContinuityMetrics c = ForceContinuity(forces, poses, dt, radius, config.cutoff_hz);
-    s.max_jump = c.max_jump;
-    s.lipschitz = c.lipschitz;
-    s.hf_share = c.high_frequency_share;
-    const TimingMetrics t = Timing(times, levels, dt);
-    s.median_us = t.median_us;
-    s.p99_us = t.p99_us;
-    s.max_us = t.max_us;
-    s.level_switches_per_s = t.level_switches_per_second;
-    s.mean_nodes = nodes_sum / double(cycles);
-    const double force_scale = MedianForceInContact(forces);
-    if (force_scale > 0) {
-      s.max_jump_rel = c.max_jump / force_scale;
-      s.lipschitz_rel = c.lipschitz / force_scale;
-    }
-    if (reference) {
-      const ErrorMetrics e = ErrorAgainstReference(forces, refs, has_ref);
-      s.rms_rel_error = e.rms_relative;
-      s.max_dir_error_deg = e.max_direction_deg;
-      s.median_dir_error_deg = e.median_direction_deg;
-      s.p95_dir_error_deg = e.p95_direction_deg;
-      if (std::isfinite(e.scale)) {
-        s.ref_scale = e.scale;
-        s.rms_rel_error_calibrated = e.rms_relative_calibrated;
-      }
-    }
-    for (const Eigen::Vector3d& f : forces) {
-      s.max_force = std::max(s.max_force, f.norm());
-      s.mean_force += f.norm() / double(cycles);
-    }
-    s.max_depth_voxels = max_depth;
-    s.coherence_resets = coherence.resets();
-    s.contact_faults = contact_faults;
-    if (dynamics.A) {
-      s.modes = r_A;
-      s.median_step_us = Median(&step_times);
-    }
-    if (dynamics.B) {
-      s.modes_B = r_B;
-      s.median_step_B_us = Median(&step_times_B);
-    }
-    if (dynamics.any()) s.max_displacement = max_displacement;
-    // The memory of the body data this model reads, from the loaded arrays.
-    const ContactModelNeeds& needs = FindContactModel(name)->needs;
-    if (needs.field_B) s.field_B_bytes = assets.B.field()->memory_bytes();
-    if (needs.pointshell_A) s.pointshell_A_bytes = assets.A.pointshell()->memory_bytes();
-    result.summary.push_back(s);
+  for (const std::string& name : storage->models) {
+    ModelTrace trace(motion.cycles);
+    RunModel(setup, name, *storage, &result, &trace);
+    result.summary.push_back(Summarize(setup, name, trace));
   }
   return result;
 }
