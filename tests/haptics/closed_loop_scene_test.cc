@@ -6,7 +6,7 @@
 // spring stored) and the still hold in contact must settle (H still to 20 µm RMS, force ripple
 // below 0.05 N RMS, and no larger at the end of the hold than at its start). A control shows
 // the observer catches a model that pumps energy. The sweep over models and k_VC is
-// experiments/closed_loop_stability.
+// experiments/closed-loop-stability.yaml (study: closed-loop).
 //
 // The scene's pointshell is cut to 4096 points and its fields to 64^3 so the assets build in
 // a few seconds in a fresh cache; the closed loop is the same.
