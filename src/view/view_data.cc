@@ -5,9 +5,6 @@
 #include <cmath>
 #include <map>
 #include <set>
-#include <sstream>
-#include <string_view>
-#include <tuple>
 
 #ifdef CONTACTLAB_HAVE_CGAL
 #include "baselines/reference/simplify_mesh.h"
@@ -15,11 +12,9 @@
 #include "deform/embedded_points.h"
 #include "experiment/experiment_config.h"
 #include "experiment/result_csv.h"
-#include "geometry/line_scanner.h"
 #include "util/atomic_file.h"
 #include "util/config_node.h"
 #include "util/error.h"
-#include "util/parse_number.h"
 #include "view/display_points.h"
 #include "view/field_slice.h"
 #include "view/page_encoding.h"
@@ -168,87 +163,33 @@ Replay ReadReplay(const fs::path& dir, std::optional<int> job, int max_frames) {
   }
   const std::string config_file = meta.value("config_file", meta_file.string());
 
-  // cycles.csv: the columns by name.
-  const std::string text = ReadWholeFile(cycles_file);
-  internal::LineScanner scan(text, cycles_file.string());
-  if (!scan.NextLine() || scan.line().empty()) Fail(cycles_file.string(), "is empty");
-  const std::vector<std::string> header = SplitCsvLine(std::string(scan.line()));
-  std::map<std::string, int> column;
-  for (int c = 0; c < int(header.size()); ++c) column.emplace(header[c], c);
-  auto col = [&](const char* name) {
-    const auto it = column.find(name);
-    if (it == column.end()) {
-      const std::string n(name);
-      if (n.size() == 2 && n[0] == 'q') {
-        Fail(cycles_file.string(), "has no orientation column " + n +
-                                       " (written by an older contactlab before cycles.csv held qw,qx,qy,qz; run the "
-                                       "experiment again)");
-      }
-      Fail(cycles_file.string(), "has no column '" + n + "'");
-    }
-    return it->second;
-  };
-  const int c_job = col("job"), c_model = col("model"), c_t = col("t"), c_level = col("level"),
-            c_contacts = col("contacts");
-  const int c_pose[7] = {col("x"), col("y"), col("z"), col("qw"), col("qx"), col("qy"), col("qz")};
-  const int c_force[3] = {col("fx"), col("fy"), col("fz")};
-  const int c_torque[3] = {col("tx"), col("ty"), col("tz")};
-  const int c_experiment = column.count("experiment") ? column["experiment"] : -1;
-
-  // Rows of the chosen job (of every job when none is chosen: then the file must hold one), and
-  // the jobs the file holds.
+  // cycles.csv (result_csv.h): the rows of the chosen job (of every job when none is chosen:
+  // then the file must hold one), and the jobs the file holds.
   struct Row {
     std::string model;
     double v[16];  // t, pose x,y,z,qw,qx,qy,qz, force (3), torque (3), level, contacts
     std::vector<float> q, q_B;  // deformable bodies' reduced coordinates (empty when rigid)
   };
-  const int c_q = column.count("q") ? column["q"] : -1, c_q_B = column.count("q_B") ? column["q_B"] : -1;
-  // Space-separated reduced coordinates of cell C (empty: none).
-  auto coordinates = [&](const std::vector<std::string>& cells, int c, const char* what) {
-    std::vector<float> q;
-    if (c < 0) return q;
-    std::istringstream in(cells[c]);
-    for (std::string item; in >> item;) {
-      const std::optional<double> v = ParseDouble(item);
-      if (!v) FailAtLine(cycles_file.string(), scan.line_number(), std::string("column ") + what + ": " + QuoteToken(item) + " is not a number");
-      q.push_back(float(*v));
-    }
-    return q;
-  };
   std::set<int> jobs;
   std::vector<Row> rows;
-  auto number = [&](const std::vector<std::string>& cells, int c, const char* what) {
-    const std::optional<double> v = c < int(cells.size()) ? ParseDouble(cells[c]) : std::nullopt;
-    if (!v) {
-      FailAtLine(cycles_file.string(), scan.line_number(),
-                 std::string("column ") + what + ": " + (c < int(cells.size()) ? QuoteToken(cells[c]) : "(missing)") +
-                     " is not a number");
-    }
-    return *v;
-  };
-  while (scan.NextLine()) {
-    if (scan.line().empty()) continue;
-    const std::vector<std::string> cells = SplitCsvLine(std::string(scan.line()));
-    if (cells.size() != header.size()) {
-      FailAtLine(cycles_file.string(), scan.line_number(),
-                 std::to_string(cells.size()) + " cells, the header has " + std::to_string(header.size()));
-    }
-    const int row_job = int(number(cells, c_job, "job"));
-    jobs.insert(row_job);
-    if (job && row_job != *job) continue;
-    if (replay.experiment.empty() && c_experiment >= 0) replay.experiment = cells[c_experiment];
+  ReadCyclesCsv(cycles_file, [&](const CyclesCsvRow& c) {
+    jobs.insert(c.job);
+    if (job && c.job != *job) return;
+    if (replay.experiment.empty()) replay.experiment = c.experiment;
+    const CycleRow& x = c.values;
     Row r;
-    r.model = cells[c_model];
-    r.v[0] = number(cells, c_t, "t");
-    for (int k = 0; k < 7; ++k) r.v[1 + k] = number(cells, c_pose[k], header[c_pose[k]].c_str());
-    for (int k = 0; k < 3; ++k) r.v[8 + k] = number(cells, c_force[k], header[c_force[k]].c_str());
-    for (int k = 0; k < 3; ++k) r.v[11 + k] = number(cells, c_torque[k], header[c_torque[k]].c_str());
-    r.v[14] = number(cells, c_level, "level");
-    r.v[15] = number(cells, c_contacts, "contacts");
-    r.q = coordinates(cells, c_q, "q");
-    r.q_B = coordinates(cells, c_q_B, "q_B");
+    r.model = c.model;
+    r.v[0] = x.t;
+    for (int k = 0; k < 3; ++k) r.v[1 + k] = x.position[k];
+    r.v[4] = x.rotation.w(), r.v[5] = x.rotation.x(), r.v[6] = x.rotation.y(), r.v[7] = x.rotation.z();
+    for (int k = 0; k < 3; ++k) r.v[8 + k] = x.force[k];
+    for (int k = 0; k < 3; ++k) r.v[11 + k] = x.torque[k];
+    r.v[14] = x.level;
+    r.v[15] = x.contacts;
+    r.q.assign(c.q.begin(), c.q.end());
+    r.q_B.assign(c.q_B.begin(), c.q_B.end());
     rows.push_back(std::move(r));
-  }
+  });
   auto job_list = [&] {
     std::string s;
     for (int j : jobs) s += (s.empty() ? "" : ", ") + std::to_string(j);
@@ -280,6 +221,8 @@ Replay ReadReplay(const fs::path& dir, std::optional<int> job, int max_frames) {
     ReplayTrack track;
     track.model = name;
     track.cycles = std::int64_t(v.size());
+    track.r = int(v.front()->q.size());
+    track.r_B = int(v.front()->q_B.size());
     for (std::size_t i = 0; i < v.size(); i += std::size_t(replay.stride)) {
       const double* x = v[i]->v;
       track.t.push_back(float(x[0]));
@@ -288,15 +231,10 @@ Replay ReadReplay(const fs::path& dir, std::optional<int> job, int max_frames) {
       for (int k = 0; k < 3; ++k) track.torque.push_back(float(x[11 + k]));
       track.level.push_back(std::int32_t(x[14]));
       track.contacts.push_back(std::int32_t(x[15]));
-      // Reduced coordinates: as many in every row of the model as in its first.
-      for (auto [from, to, r] : {std::tuple{&v[i]->q, &track.q, &track.r}, std::tuple{&v[i]->q_B, &track.q_B, &track.r_B}}) {
-        if (i == 0) *r = int(from->size());
-        if (int(from->size()) != *r) {
-          Fail(cycles_file.string(), "model " + name + ": a row holds " + std::to_string(from->size()) +
-                                         " reduced coordinates, the first " + std::to_string(*r));
-        }
-        to->insert(to->end(), from->begin(), from->end());
-      }
+      // Reduced coordinates: as many in every row of the model as in its first (ReadCyclesCsv
+      // checks it).
+      track.q.insert(track.q.end(), v[i]->q.begin(), v[i]->q.end());
+      track.q_B.insert(track.q_B.end(), v[i]->q_B.begin(), v[i]->q_B.end());
     }
     replay.tracks.push_back(std::move(track));
   }
