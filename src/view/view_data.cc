@@ -135,9 +135,16 @@ nlohmann::json SceneViewData(const Scene& scene, SceneAssets& assets, const Scen
   return SceneViewDataAndMeshes(scene, assets, options, poses, &meshes);
 }
 
-Replay ReadReplay(const fs::path& dir, std::optional<int> job, int max_frames) {
-  Replay replay;
-  replay.dir = dir;
+namespace {
+
+// ReadReplay's steps, in the order it takes them.
+
+// The two files of results folder DIR: cycles.csv and meta.json. Throws Error naming the
+// folder or the file that is missing, or the folder when it holds a deformed-field study.
+struct ResultsFiles {
+  fs::path cycles, meta;
+};
+ResultsFiles CheckResultsFolder(const fs::path& dir) {
   if (!fs::is_directory(dir)) {
     Fail(dir.string(), fs::exists(dir) ? "is not a results folder (expected a folder holding cycles.csv and meta.json)"
                                        : "results folder not found");
@@ -149,9 +156,16 @@ Replay ReadReplay(const fs::path& dir, std::optional<int> job, int max_frames) {
   for (const fs::path& f : {cycles_file, meta_file}) {
     if (!fs::exists(f)) Fail(f.string(), "not found (a results folder holds cycles.csv and meta.json)");
   }
-  if (max_frames < 2) Fail("--max-frames", "must be at least 2, got " + std::to_string(max_frames));
+  return {cycles_file, meta_file};
+}
 
-  // meta.json: the resolved config, from which the job's scene is expanded again.
+// What meta.json says of the run: its resolved config (YAML text) and the config file it was
+// read from (meta.json itself when it does not say).
+struct ResolvedConfig {
+  std::string yaml;
+  std::string file;
+};
+ResolvedConfig ReadResolvedConfig(const fs::path& meta_file) {
   nlohmann::json meta;
   try {
     meta = nlohmann::json::parse(ReadWholeFile(meta_file));
@@ -161,23 +175,31 @@ Replay ReadReplay(const fs::path& dir, std::optional<int> job, int max_frames) {
   if (!meta.is_object() || !meta.contains("resolved_config") || !meta["resolved_config"].is_string()) {
     Fail(meta_file.string(), "has no resolved_config (not written by contactlab run)");
   }
-  const std::string config_file = meta.value("config_file", meta_file.string());
+  return {meta["resolved_config"].get<std::string>(), meta.value("config_file", meta_file.string())};
+}
 
-  // cycles.csv (result_csv.h): the rows of the chosen job (of every job when none is chosen:
-  // then the file must hold one), and the jobs the file holds.
-  struct Row {
-    std::string model;
-    double v[16];  // t, pose x,y,z,qw,qx,qy,qz, force (3), torque (3), level, contacts
-    std::vector<float> q, q_B;  // deformable bodies' reduced coordinates (empty when rigid)
-  };
+// One cycle of one model, as the replay keeps it.
+struct ReplayRow {
+  std::string model;
+  double v[16];  // t, pose x,y,z,qw,qx,qy,qz, force (3), torque (3), level, contacts
+  std::vector<float> q, q_B;  // deformable bodies' reduced coordinates (empty when rigid)
+};
+
+// The rows of cycles.csv kept for the replay: those of JOB (of every job when none is asked
+// for), with the jobs the file holds and the experiment's name (of the first row kept).
+struct CycleRows {
+  std::vector<ReplayRow> rows;
   std::set<int> jobs;
-  std::vector<Row> rows;
+  std::string experiment;
+};
+CycleRows ReadCycleRows(const fs::path& cycles_file, std::optional<int> job) {
+  CycleRows out;
   ReadCyclesCsv(cycles_file, [&](const CyclesCsvRow& c) {
-    jobs.insert(c.job);
+    out.jobs.insert(c.job);
     if (job && c.job != *job) return;
-    if (replay.experiment.empty()) replay.experiment = c.experiment;
+    if (out.experiment.empty()) out.experiment = c.experiment;
     const CycleRow& x = c.values;
-    Row r;
+    ReplayRow r;
     r.model = c.model;
     r.v[0] = x.t;
     for (int k = 0; k < 3; ++k) r.v[1 + k] = x.position[k];
@@ -188,8 +210,15 @@ Replay ReadReplay(const fs::path& dir, std::optional<int> job, int max_frames) {
     r.v[15] = x.contacts;
     r.q.assign(c.q.begin(), c.q.end());
     r.q_B.assign(c.q_B.begin(), c.q_B.end());
-    rows.push_back(std::move(r));
+    out.rows.push_back(std::move(r));
   });
+  return out;
+}
+
+// The job to replay among JOBS (those of CYCLES_FILE): the one asked for, or with none asked
+// for the only one. Throws Error naming the file when there is none, or several and none was
+// asked for, or the one asked for is absent.
+int PickJob(const std::set<int>& jobs, std::optional<int> job, const fs::path& cycles_file) {
   auto job_list = [&] {
     std::string s;
     for (int j : jobs) s += (s.empty() ? "" : ", ") + std::to_string(j);
@@ -198,61 +227,91 @@ Replay ReadReplay(const fs::path& dir, std::optional<int> job, int max_frames) {
   if (jobs.empty()) Fail(cycles_file.string(), "has no rows");
   if (!job) {
     if (jobs.size() > 1) Fail(cycles_file.string(), "holds jobs " + job_list() + ": choose one with --job");
-    replay.job = *jobs.begin();
-  } else {
-    if (!jobs.count(*job)) Fail(cycles_file.string(), "has no job " + std::to_string(*job) + " (it holds " + job_list() + ")");
-    replay.job = *job;
+    return *jobs.begin();
   }
+  if (!jobs.count(*job)) Fail(cycles_file.string(), "has no job " + std::to_string(*job) + " (it holds " + job_list() + ")");
+  return *job;
+}
 
-  // Tracks per model in order of appearance, thinned to MAX_FRAMES.
-  std::map<std::string, std::vector<const Row*>> by_model;
-  std::vector<std::string> model_order;
-  for (const Row& r : rows) {
-    auto& v = by_model[r.model];
-    if (v.empty()) model_order.push_back(r.model);
-    v.push_back(&r);
+// ROWS by model, the models in order of first appearance.
+std::vector<std::pair<std::string, std::vector<const ReplayRow*>>> RowsByModel(const std::vector<ReplayRow>& rows) {
+  std::vector<std::pair<std::string, std::vector<const ReplayRow*>>> models;
+  std::map<std::string, std::size_t> index;
+  for (const ReplayRow& r : rows) {
+    const auto [it, added] = index.try_emplace(r.model, models.size());
+    if (added) models.emplace_back(r.model, std::vector<const ReplayRow*>{});
+    models[it->second].second.push_back(&r);
   }
+  return models;
+}
+
+// The stride that leaves no model with more than MAX_FRAMES of its cycles (every STRIDE-th
+// kept, the first always).
+int StrideFor(const std::vector<std::pair<std::string, std::vector<const ReplayRow*>>>& models, int max_frames) {
   std::size_t longest = 0;
-  for (const auto& [name, v] : by_model) longest = std::max(longest, v.size());
-  replay.stride = int((longest + std::size_t(max_frames) - 1) / std::size_t(max_frames));
-  replay.stride = std::max(1, replay.stride);
-  for (const std::string& name : model_order) {
-    const auto& v = by_model[name];
-    ReplayTrack track;
-    track.model = name;
-    track.cycles = std::int64_t(v.size());
-    track.r = int(v.front()->q.size());
-    track.r_B = int(v.front()->q_B.size());
-    for (std::size_t i = 0; i < v.size(); i += std::size_t(replay.stride)) {
-      const double* x = v[i]->v;
-      track.t.push_back(float(x[0]));
-      for (int k = 0; k < 7; ++k) track.pose.push_back(float(x[1 + k]));
-      for (int k = 0; k < 3; ++k) track.force.push_back(float(x[8 + k]));
-      for (int k = 0; k < 3; ++k) track.torque.push_back(float(x[11 + k]));
-      track.level.push_back(std::int32_t(x[14]));
-      track.contacts.push_back(std::int32_t(x[15]));
-      // Reduced coordinates: as many in every row of the model as in its first (ReadCyclesCsv
-      // checks it).
-      track.q.insert(track.q.end(), v[i]->q.begin(), v[i]->q.end());
-      track.q_B.insert(track.q_B.end(), v[i]->q_B.begin(), v[i]->q_B.end());
-    }
-    replay.tracks.push_back(std::move(track));
-  }
+  for (const auto& [name, rows] : models) longest = std::max(longest, rows.size());
+  return std::max(1, int((longest + std::size_t(max_frames) - 1) / std::size_t(max_frames)));
+}
 
-  // The job's scene and moving body, from the resolved config expanded again.
-  const ConfigNode root = ConfigNode::LoadString(meta["resolved_config"].get<std::string>(), config_file);
-  const ExperimentConfig config = ParseExperimentConfig(root, meta["resolved_config"].get<std::string>());
+// The track of model NAME from its ROWS (one per cycle, at least one), every STRIDE-th kept.
+ReplayTrack MakeTrack(const std::string& name, const std::vector<const ReplayRow*>& rows, int stride) {
+  ReplayTrack track;
+  track.model = name;
+  track.cycles = std::int64_t(rows.size());
+  // Reduced coordinates: as many in every row of the model as in its first (ReadCyclesCsv
+  // checks it).
+  track.r = int(rows.front()->q.size());
+  track.r_B = int(rows.front()->q_B.size());
+  for (std::size_t i = 0; i < rows.size(); i += std::size_t(stride)) {
+    const double* x = rows[i]->v;
+    track.t.push_back(float(x[0]));
+    for (int k = 0; k < 7; ++k) track.pose.push_back(float(x[1 + k]));
+    for (int k = 0; k < 3; ++k) track.force.push_back(float(x[8 + k]));
+    for (int k = 0; k < 3; ++k) track.torque.push_back(float(x[11 + k]));
+    track.level.push_back(std::int32_t(x[14]));
+    track.contacts.push_back(std::int32_t(x[15]));
+    track.q.insert(track.q.end(), rows[i]->q.begin(), rows[i]->q.end());
+    track.q_B.insert(track.q_B.end(), rows[i]->q_B.begin(), rows[i]->q_B.end());
+  }
+  return track;
+}
+
+// REPLAY's scene, moving body and job label (and its experiment's name when cycles.csv gave
+// none), from the RESOLVED config expanded again to the job REPLAY->job. Throws Error naming
+// META_FILE when the config is not a contact study or has no such job.
+void SetJobScene(const ResolvedConfig& resolved, const fs::path& meta_file, Replay* replay) {
+  const ConfigNode root = ConfigNode::LoadString(resolved.yaml, resolved.file);
+  const ExperimentConfig config = ParseExperimentConfig(root, resolved.yaml);
   if (config.study != "contact") Fail(meta_file.string(), "is a " + config.study + " study, which has no trajectory to replay");
   const std::vector<Job> all = ExpandJobs(config);
-  const auto it = std::find_if(all.begin(), all.end(), [&](const Job& j) { return j.index == replay.job; });
+  const auto it = std::find_if(all.begin(), all.end(), [&](const Job& j) { return j.index == replay->job; });
   if (it == all.end()) {
     Fail(meta_file.string(), "its config has " + std::to_string(all.size()) + " jobs, cycles.csv names job " +
-                                 std::to_string(replay.job));
+                                 std::to_string(replay->job));
   }
-  replay.scene = it->scene;
-  replay.moving_body = it->moving_body;
-  replay.job_label = it->axis_values.empty() ? "" : it->Label();
-  if (replay.experiment.empty()) replay.experiment = config.name;
+  replay->scene = it->scene;
+  replay->moving_body = it->moving_body;
+  replay->job_label = it->axis_values.empty() ? "" : it->Label();
+  if (replay->experiment.empty()) replay->experiment = config.name;
+}
+
+}  // namespace
+
+Replay ReadReplay(const fs::path& dir, std::optional<int> job, int max_frames) {
+  const ResultsFiles files = CheckResultsFolder(dir);
+  if (max_frames < 2) Fail("--max-frames", "must be at least 2, got " + std::to_string(max_frames));
+  const ResolvedConfig config = ReadResolvedConfig(files.meta);
+  const CycleRows cycles = ReadCycleRows(files.cycles, job);
+
+  Replay replay;
+  replay.dir = dir;
+  replay.experiment = cycles.experiment;
+  replay.job = PickJob(cycles.jobs, job, files.cycles);
+  // One track per model, thinned to MAX_FRAMES.
+  const auto models = RowsByModel(cycles.rows);
+  replay.stride = StrideFor(models, max_frames);
+  for (const auto& [name, rows] : models) replay.tracks.push_back(MakeTrack(name, rows, replay.stride));
+  SetJobScene(config, files.meta, &replay);
   return replay;
 }
 
