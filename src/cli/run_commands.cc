@@ -225,7 +225,7 @@ const CommandRegistration kParams([](CLI::App& app) {
                              "may name a key in its column alone (`sweep: {points: [...]}`), any other key by its "
                              "path (`scene.bodies[role=field].field.mode`). \"cached in\" lists the cached artefacts "
                              "whose cache key holds the value.\n\n" +
-                             SceneReference();
+                             SceneReference() + TrajectoryReference();
     if (out->empty()) {
       std::cout << text;
     } else {
