@@ -87,15 +87,12 @@ JobResult RunJob(const ExperimentConfig& config, const Job& job, const RunOption
 
   // The trajectory, and with touch: true the moving body moved along its direction until the
   // deepest point of the paper's model (linear, deepest level) is touch_depth deep.
-  const ConfigNode tn = ResolvedTrajectoryNode(job.trajectory_node, moving_is_B ? X_WB0 : X_WA0, moving_is_B ? X_WA0 : X_WB0);
-  const Trajectory trajectory = ParseTrajectory(tn);
-  if (tn.Bool("touch", false)) {
-    Eigen::Vector3d dir(0, 0, -1);
-    if (auto d = tn.Find("direction")) {
-      const std::vector<double> v = d->AsDoubles();
-      dir = Eigen::Vector3d(v[0], v[1], v[2]).normalized();
-    }
-    const double depth = tn.Positive("touch_depth", 1e-4);
+  const TrajectorySpec spec = ParseTrajectorySpec(
+      ResolvedTrajectoryNode(job.trajectory_node, moving_is_B ? X_WB0 : X_WA0, moving_is_B ? X_WA0 : X_WB0));
+  const Trajectory trajectory = MakeTrajectory(spec);
+  if (spec.touch) {
+    const Eigen::Vector3d dir = spec.shape.direction.normalized();
+    const double depth = spec.touch_depth;
     const std::string where = config.file + ": job " + std::to_string(job.index);
     // Both role orders follow one motion: a job whose roles were swapped takes the placement of
     // the job with the same sweep values in the config's role order (the same poses, the same
