@@ -48,6 +48,7 @@ void RegisterContactStudy() {
   s.replayable = true;
   s.check = CheckContactStudy;
   s.run = RunContactStudy;
+  s.reference = TrajectoryReference;
   RegisterStudy(std::move(s));
 }
 

@@ -1,7 +1,19 @@
 #include "experiment/result_csv.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <iterator>
+#include <limits>
+#include <map>
+#include <optional>
 #include <sstream>
+#include <tuple>
+#include <utility>
+
+#include "geometry/line_scanner.h"
+#include "util/atomic_file.h"
+#include "util/error.h"
+#include "util/parse_number.h"
 
 namespace contactlab {
 namespace {
@@ -12,42 +24,141 @@ struct Column {
   void (*write)(const Row&, CsvLine&);
 };
 
+// One cell of a table being read: its text, and where it is for the errors.
+class CsvCell {
+ public:
+  CsvCell(std::string_view text, const std::string& file, long line, const char* column)
+      : text_(text), file_(file), line_(line), column_(column) {}
+
+  std::string_view text() const { return text_; }
+  bool empty() const { return text_.empty(); }
+  double Number() const {
+    if (text_.empty()) Fail("empty cell, expected a number");
+    const std::optional<double> v = ParseDouble(text_);
+    if (!v) Fail(QuoteToken(text_) + " is not a number");
+    return *v;
+  }
+  // An integer that fits T.
+  template <class T>
+  T Integer() const {
+    if (text_.empty()) Fail("empty cell, expected an integer");
+    const std::optional<long long> v = ParseInteger(text_);
+    if (!v) Fail(QuoteToken(text_) + " is not an integer");
+    if (*v < std::numeric_limits<T>::min() || *v > std::numeric_limits<T>::max()) {
+      Fail(QuoteToken(text_) + " is out of range");
+    }
+    return T(*v);
+  }
+  // The number, or FALLBACK for an empty cell (a value the row does not have).
+  double NumberOr(double fallback) const { return text_.empty() ? fallback : Number(); }
+  // Space-separated numbers (none for an empty cell), into *OUT.
+  void Numbers(std::vector<double>* out) const {
+    out->clear();
+    std::size_t at = 0;
+    while (at < text_.size()) {
+      const std::size_t begin = text_.find_first_not_of(' ', at);
+      if (begin == std::string_view::npos) break;
+      const std::size_t end = std::min(text_.find(' ', begin), text_.size());
+      const std::string_view item = text_.substr(begin, end - begin);
+      const std::optional<double> v = ParseDouble(item);
+      if (!v) Fail("number " + std::to_string(out->size() + 1) + ": " + QuoteToken(item) + " is not a number");
+      out->push_back(*v);
+      at = end;
+    }
+  }
+  [[noreturn]] void Fail(const std::string& what) const {
+    FailAtLine(file_, line_, "column " + std::string(column_) + ": " + what);
+  }
+
+ private:
+  std::string_view text_;
+  const std::string& file_;
+  long line_;
+  const char* column_;
+};
+
+// A column of cycles.csv: its name, how a row is written, and how a cell is read back into a
+// record (the inverse: an empty cell gives the row without that value).
+struct CycleColumn {
+  const char* name;
+  void (*write)(const CycleRow&, CsvLine&);
+  void (*read)(const CsvCell&, CyclesCsvRow&);
+};
+
 // cycles.csv: the moving body's pose (origin x,y,z and orientation quaternion qw,qx,qy,qz,
 // world), the model's wrench on the moving body, its contact statistics and time per cycle,
 // and the reference force where one was evaluated (empty cells elsewhere).
-const Column<CycleRow> kCycleColumns[] = {
-    {"model", [](const CycleRow& r, CsvLine& l) { l.Text(r.model); }},
-    {"cycle", [](const CycleRow& r, CsvLine& l) { l.Int(r.cycle); }},
-    {"t", [](const CycleRow& r, CsvLine& l) { l.Num("%.6f", r.t); }},
-    {"x", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.position.x()); }},
-    {"y", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.position.y()); }},
-    {"z", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.position.z()); }},
-    {"qw", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.rotation.w()); }},
-    {"qx", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.rotation.x()); }},
-    {"qy", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.rotation.y()); }},
-    {"qz", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.rotation.z()); }},
-    {"fx", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.force.x()); }},
-    {"fy", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.force.y()); }},
-    {"fz", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.force.z()); }},
-    {"tx", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.torque.x()); }},
-    {"ty", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.torque.y()); }},
-    {"tz", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.torque.z()); }},
-    {"contacts", [](const CycleRow& r, CsvLine& l) { l.Int(r.contacts); }},
-    {"nodes", [](const CycleRow& r, CsvLine& l) { l.Int(r.nodes); }},
-    {"level", [](const CycleRow& r, CsvLine& l) { l.Int(r.level); }},
-    {"max_penetration", [](const CycleRow& r, CsvLine& l) { l.Num("%.6g", r.max_penetration); }},
-    {"depth_voxels", [](const CycleRow& r, CsvLine& l) { l.Num("%.4g", r.depth_voxels); }},
-    {"time_us", [](const CycleRow& r, CsvLine& l) { l.Num("%.3f", r.time_us); }},
-    {"ref_fx", [](const CycleRow& r, CsvLine& l) { r.has_reference ? l.Num("%.9g", r.reference_force.x()) : l.Empty(); }},
-    {"ref_fy", [](const CycleRow& r, CsvLine& l) { r.has_reference ? l.Num("%.9g", r.reference_force.y()) : l.Empty(); }},
-    {"ref_fz", [](const CycleRow& r, CsvLine& l) { r.has_reference ? l.Num("%.9g", r.reference_force.z()) : l.Empty(); }},
-    {"step_us", [](const CycleRow& r, CsvLine& l) { r.q.empty() ? l.Empty() : l.Num("%.3f", r.step_us); }},
-    {"step_B_us", [](const CycleRow& r, CsvLine& l) { r.q_B.empty() ? l.Empty() : l.Num("%.3f", r.step_B_us); }},
-    {"elastic_energy_J", [](const CycleRow& r, CsvLine& l) { r.deformable ? l.Num("%.9g", r.elastic_energy) : l.Empty(); }},
-    {"kinetic_energy_J", [](const CycleRow& r, CsvLine& l) { r.deformable ? l.Num("%.9g", r.kinetic_energy) : l.Empty(); }},
-    {"max_displacement", [](const CycleRow& r, CsvLine& l) { r.deformable ? l.Num("%.9g", r.max_displacement) : l.Empty(); }},
-    {"q", [](const CycleRow& r, CsvLine& l) { l.Numbers("%.9g", r.q); }},
-    {"q_B", [](const CycleRow& r, CsvLine& l) { l.Numbers("%.9g", r.q_B); }},
+const CycleColumn kCycleColumns[] = {
+    {"model", [](const CycleRow& r, CsvLine& l) { l.Text(r.model); },
+     [](const CsvCell& c, CyclesCsvRow& r) { r.model = c.text(); }},
+    {"cycle", [](const CycleRow& r, CsvLine& l) { l.Int(r.cycle); },
+     [](const CsvCell& c, CyclesCsvRow& r) { r.values.cycle = c.Integer<std::int64_t>(); }},
+    {"t", [](const CycleRow& r, CsvLine& l) { l.Num("%.6f", r.t); },
+     [](const CsvCell& c, CyclesCsvRow& r) { r.values.t = c.Number(); }},
+    {"x", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.position.x()); },
+     [](const CsvCell& c, CyclesCsvRow& r) { r.values.position.x() = c.Number(); }},
+    {"y", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.position.y()); },
+     [](const CsvCell& c, CyclesCsvRow& r) { r.values.position.y() = c.Number(); }},
+    {"z", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.position.z()); },
+     [](const CsvCell& c, CyclesCsvRow& r) { r.values.position.z() = c.Number(); }},
+    {"qw", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.rotation.w()); },
+     [](const CsvCell& c, CyclesCsvRow& r) { r.values.rotation.w() = c.Number(); }},
+    {"qx", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.rotation.x()); },
+     [](const CsvCell& c, CyclesCsvRow& r) { r.values.rotation.x() = c.Number(); }},
+    {"qy", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.rotation.y()); },
+     [](const CsvCell& c, CyclesCsvRow& r) { r.values.rotation.y() = c.Number(); }},
+    {"qz", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.rotation.z()); },
+     [](const CsvCell& c, CyclesCsvRow& r) { r.values.rotation.z() = c.Number(); }},
+    {"fx", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.force.x()); },
+     [](const CsvCell& c, CyclesCsvRow& r) { r.values.force.x() = c.Number(); }},
+    {"fy", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.force.y()); },
+     [](const CsvCell& c, CyclesCsvRow& r) { r.values.force.y() = c.Number(); }},
+    {"fz", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.force.z()); },
+     [](const CsvCell& c, CyclesCsvRow& r) { r.values.force.z() = c.Number(); }},
+    {"tx", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.torque.x()); },
+     [](const CsvCell& c, CyclesCsvRow& r) { r.values.torque.x() = c.Number(); }},
+    {"ty", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.torque.y()); },
+     [](const CsvCell& c, CyclesCsvRow& r) { r.values.torque.y() = c.Number(); }},
+    {"tz", [](const CycleRow& r, CsvLine& l) { l.Num("%.9g", r.torque.z()); },
+     [](const CsvCell& c, CyclesCsvRow& r) { r.values.torque.z() = c.Number(); }},
+    {"contacts", [](const CycleRow& r, CsvLine& l) { l.Int(r.contacts); },
+     [](const CsvCell& c, CyclesCsvRow& r) { r.values.contacts = c.Integer<int>(); }},
+    {"nodes", [](const CycleRow& r, CsvLine& l) { l.Int(r.nodes); },
+     [](const CsvCell& c, CyclesCsvRow& r) { r.values.nodes = c.Integer<std::int64_t>(); }},
+    {"level", [](const CycleRow& r, CsvLine& l) { l.Int(r.level); },
+     [](const CsvCell& c, CyclesCsvRow& r) { r.values.level = c.Integer<int>(); }},
+    {"max_penetration", [](const CycleRow& r, CsvLine& l) { l.Num("%.6g", r.max_penetration); },
+     [](const CsvCell& c, CyclesCsvRow& r) { r.values.max_penetration = c.Number(); }},
+    {"depth_voxels", [](const CycleRow& r, CsvLine& l) { l.Num("%.4g", r.depth_voxels); },
+     [](const CsvCell& c, CyclesCsvRow& r) { r.values.depth_voxels = c.Number(); }},
+    {"time_us", [](const CycleRow& r, CsvLine& l) { l.Num("%.3f", r.time_us); },
+     [](const CsvCell& c, CyclesCsvRow& r) { r.values.time_us = c.Number(); }},
+    {"ref_fx", [](const CycleRow& r, CsvLine& l) { r.has_reference ? l.Num("%.9g", r.reference_force.x()) : l.Empty(); },
+     [](const CsvCell& c, CyclesCsvRow& r) {
+       r.values.has_reference = !c.empty();
+       r.values.reference_force.x() = c.NumberOr(0);
+     }},
+    {"ref_fy", [](const CycleRow& r, CsvLine& l) { r.has_reference ? l.Num("%.9g", r.reference_force.y()) : l.Empty(); },
+     [](const CsvCell& c, CyclesCsvRow& r) { r.values.reference_force.y() = c.NumberOr(0); }},
+    {"ref_fz", [](const CycleRow& r, CsvLine& l) { r.has_reference ? l.Num("%.9g", r.reference_force.z()) : l.Empty(); },
+     [](const CsvCell& c, CyclesCsvRow& r) { r.values.reference_force.z() = c.NumberOr(0); }},
+    {"step_us", [](const CycleRow& r, CsvLine& l) { r.q.empty() ? l.Empty() : l.Num("%.3f", r.step_us); },
+     [](const CsvCell& c, CyclesCsvRow& r) { r.values.step_us = c.NumberOr(0); }},
+    {"step_B_us", [](const CycleRow& r, CsvLine& l) { r.q_B.empty() ? l.Empty() : l.Num("%.3f", r.step_B_us); },
+     [](const CsvCell& c, CyclesCsvRow& r) { r.values.step_B_us = c.NumberOr(0); }},
+    {"elastic_energy_J", [](const CycleRow& r, CsvLine& l) { r.deformable ? l.Num("%.9g", r.elastic_energy) : l.Empty(); },
+     [](const CsvCell& c, CyclesCsvRow& r) {
+       r.values.deformable = !c.empty();
+       r.values.elastic_energy = c.NumberOr(0);
+     }},
+    {"kinetic_energy_J", [](const CycleRow& r, CsvLine& l) { r.deformable ? l.Num("%.9g", r.kinetic_energy) : l.Empty(); },
+     [](const CsvCell& c, CyclesCsvRow& r) { r.values.kinetic_energy = c.NumberOr(0); }},
+    {"max_displacement", [](const CycleRow& r, CsvLine& l) { r.deformable ? l.Num("%.9g", r.max_displacement) : l.Empty(); },
+     [](const CsvCell& c, CyclesCsvRow& r) { r.values.max_displacement = c.NumberOr(0); }},
+    {"q", [](const CycleRow& r, CsvLine& l) { l.Numbers("%.9g", r.q); },
+     [](const CsvCell& c, CyclesCsvRow& r) { c.Numbers(&r.q); }},
+    {"q_B", [](const CycleRow& r, CsvLine& l) { l.Numbers("%.9g", r.q_B); },
+     [](const CsvCell& c, CyclesCsvRow& r) { c.Numbers(&r.q_B); }},
 };
 
 // summary.csv: per model and job, continuity, timing, error against the reference and force
@@ -88,26 +199,26 @@ const Column<SummaryRow> kSummaryColumns[] = {
 };
 
 // experiment,job,<axis names>,<column names>
-template <class Row, std::size_t N>
-std::string Header(const ExperimentConfig& config, const Column<Row> (&columns)[N]) {
+template <class Col, std::size_t N>
+std::string Header(const ExperimentConfig& config, const Col (&columns)[N]) {
   std::string h;
   CsvLine line(&h);
   line.Text("experiment");
   line.Text("job");
   for (const SweepAxis& a : config.sweep) line.Text(a.name);
-  for (const Column<Row>& c : columns) line.Text(c.name);
+  for (const Col& c : columns) line.Text(c.name);
   return h + "\n";
 }
 
-template <class Row, std::size_t N>
+template <class Row, class Col, std::size_t N>
 void AppendRows(const ExperimentConfig& config, const JobResult& r, const std::vector<Row>& rows,
-                const Column<Row> (&columns)[N], std::string* out) {
+                const Col (&columns)[N], std::string* out) {
   for (const Row& row : rows) {
     CsvLine line(out);
     line.Text(config.name);
     line.Int(r.job.index);
     for (const auto& [axis, value] : r.job.axis_values) line.Text(value);
-    for (const Column<Row>& c : columns) c.write(row, line);
+    for (const Col& c : columns) c.write(row, line);
     *out += '\n';
   }
 }
@@ -122,6 +233,94 @@ void AppendCyclesCsv(const ExperimentConfig& config, const JobResult& r, std::st
 }
 void AppendSummaryCsv(const ExperimentConfig& config, const JobResult& r, std::string* out) {
   AppendRows(config, r, r.summary, kSummaryColumns, out);
+}
+
+CycleRow CyclesCsvRow::row() const {
+  CycleRow r = values;
+  r.job = job;
+  r.model = model;
+  r.q = q;
+  r.q_B = q_B;
+  return r;
+}
+
+std::vector<std::string> ReadCyclesCsv(const std::filesystem::path& file,
+                                       const std::function<void(const CyclesCsvRow&)>& on_row) {
+  const std::string name = file.string();
+  const std::string text = ReadWholeFile(file);
+  internal::LineScanner scan(text, name);
+  if (!scan.NextLine() || scan.line().empty()) Fail(name, "is empty");
+  const std::vector<std::string> header = SplitCsvLine(std::string(scan.line()));
+
+  // The columns by name: experiment and job at their first occurrence, each declared column at
+  // its last (a sweep axis may share a column's name, as the axis "model" does, and comes
+  // before the declared columns); every header cell left over is a sweep axis.
+  std::vector<bool> claimed(header.size(), false);
+  auto find = [&](const std::string& column, bool last) {
+    for (std::size_t k = 0; k < header.size(); ++k) {
+      const std::size_t c = last ? header.size() - 1 - k : k;
+      if (header[c] == column && !claimed[c]) {
+        claimed[c] = true;
+        return c;
+      }
+    }
+    if (column == "qw" || column == "qx" || column == "qy" || column == "qz") {
+      Fail(name, "has no orientation column " + column +
+                     " (written by an older contactlab before cycles.csv held qw,qx,qy,qz; run the experiment "
+                     "again)");
+    }
+    Fail(name, "has no column '" + column + "' in its header (line 1)");
+  };
+  const std::size_t c_experiment = find("experiment", false), c_job = find("job", false);
+  constexpr std::size_t kColumns = std::size(kCycleColumns);
+  std::size_t c_declared[kColumns];
+  for (std::size_t k = 0; k < kColumns; ++k) c_declared[k] = find(kCycleColumns[k].name, true);
+  std::vector<std::size_t> c_axes;
+  std::vector<std::string> axes;
+  for (std::size_t c = 0; c < header.size(); ++c) {
+    if (claimed[c]) continue;
+    c_axes.push_back(c);
+    axes.push_back(header[c]);
+  }
+
+  // The rows, each cell read by its column; the reduced coordinates of one job's model keep
+  // the length of its first row (the body's r).
+  struct FirstRow {
+    std::size_t q, q_B;
+    long line;
+  };
+  std::map<std::pair<int, std::string>, FirstRow> first_rows;
+  CyclesCsvRow record;
+  while (scan.NextLine()) {
+    if (scan.line().empty()) continue;
+    const long line = scan.line_number();
+    const std::vector<std::string> cells = SplitCsvLine(std::string(scan.line()));
+    if (cells.size() != header.size()) {
+      FailAtLine(name, line,
+                 std::to_string(cells.size()) + " cells, the header (line 1) has " + std::to_string(header.size()));
+    }
+    record = CyclesCsvRow();
+    record.line = line;
+    record.experiment = cells[c_experiment];
+    record.job = CsvCell(cells[c_job], name, line, "job").Integer<int>();
+    for (std::size_t c : c_axes) record.axis_values.push_back(cells[c]);
+    for (std::size_t k = 0; k < kColumns; ++k) {
+      kCycleColumns[k].read(CsvCell(cells[c_declared[k]], name, line, kCycleColumns[k].name), record);
+    }
+    const auto first =
+        first_rows.try_emplace({record.job, record.model}, FirstRow{record.q.size(), record.q_B.size(), line}).first;
+    for (const auto& [column, size, first_size] : {std::tuple{"q", record.q.size(), first->second.q},
+                                                   std::tuple{"q_B", record.q_B.size(), first->second.q_B}}) {
+      if (size != first_size) {
+        FailAtLine(name, line,
+                   std::string("column ") + column + ": " + std::to_string(size) + " reduced coordinates, but the " +
+                       "first row of job " + std::to_string(record.job) + " model " + record.model + " (line " +
+                       std::to_string(first->second.line) + ") holds " + std::to_string(first_size));
+      }
+    }
+    on_row(record);
+  }
+  return axes;
 }
 
 std::vector<std::string> SplitCsvLine(const std::string& line) {

@@ -101,18 +101,14 @@ JobMotion PlanMotion(const ExperimentConfig& config, const Job& job, SceneAssets
   const bool moving_is_B = scene.field_body.name == job.moving_body;
   const Pose& X_moving0 = moving_is_B ? scene.field_body.pose : scene.pointshell_body.pose;
   const Pose& X_other0 = moving_is_B ? scene.pointshell_body.pose : scene.field_body.pose;
-  const ConfigNode tn = ResolvedTrajectoryNode(job.trajectory_node, X_moving0, X_other0);
-  JobMotion m(ParseTrajectory(tn));
+  const TrajectorySpec spec = ParseTrajectorySpec(ResolvedTrajectoryNode(job.trajectory_node, X_moving0, X_other0));
+  JobMotion m(MakeTrajectory(spec));
   m.moving_is_B = moving_is_B;
   m.X_WA0 = scene.pointshell_body.pose;
   m.X_WB0 = scene.field_body.pose;
-  if (tn.Bool("touch", false)) {
-    Eigen::Vector3d dir(0, 0, -1);
-    if (auto d = tn.Find("direction")) {
-      const std::vector<double> v = d->AsDoubles();
-      dir = Eigen::Vector3d(v[0], v[1], v[2]).normalized();
-    }
-    const double depth = tn.Positive("touch_depth", 1e-4);
+  if (spec.touch) {
+    const Eigen::Vector3d dir = spec.shape.direction.normalized();
+    const double depth = spec.touch_depth;
     const std::string where = config.file + ": job " + std::to_string(job.index);
     // Both role orders follow one motion: a job whose roles were swapped takes the placement of
     // the job with the same sweep values in the config's role order (the same poses, the same

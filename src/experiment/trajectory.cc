@@ -9,6 +9,7 @@
 #include "util/atomic_file.h"
 #include "util/data_path.h"
 #include "util/error.h"
+#include "util/param_table.h"
 
 namespace contactlab {
 namespace {
@@ -128,36 +129,215 @@ void SaveTrajectoryCsv(const Trajectory& trajectory, const std::filesystem::path
   });
 }
 
-Trajectory ParseTrajectory(const ConfigNode& n) {
-  const std::string type = n.Get("type").AsString();
-  if (type == "recorded") {
-    n.ExpectKeys({"type", "file", "touch", "touch_depth", "direction"});
-    return LoadTrajectoryCsv(RequireDataFile(n.Get("file").AsString(), FolderOf(n.file())));
+namespace {
+
+using P = ParamRows<TrajectorySpec>;
+
+// V as the reference shows it: [x, y, z].
+std::string ShowVector(const Eigen::Vector3d& v) {
+  std::string s = "[";
+  for (int k = 0; k < 3; ++k) s.append(k ? ", " : "").append(param_detail::Number(v[k]));
+  return s.append("]");
+}
+
+// The rows the types share, DOC saying what the key does for the type.
+P::Row Direction(std::string doc) {
+  return P::Custom(
+      "direction", "vector", "[x, y, z] not zero, or toward", std::move(doc),
+      [](const ConfigNode& v, TrajectorySpec* s) {
+        // "toward" (the other body) is resolved by the experiment runner.
+        if (v.IsScalar() && v.AsString() == "toward") {
+          s->toward = true;
+          return;
+        }
+        s->shape.direction = Vec3(v);
+        if (s->shape.direction.norm() == 0) v.Fail("must be non-zero");
+      },
+      nullptr, [](const TrajectorySpec& s) { return ShowVector(s.shape.direction); });
+}
+P::Row Tangent(std::string doc) {
+  return P::Custom(
+      "tangent", "vector", "[x, y, z]", std::move(doc),
+      [](const ConfigNode& v, TrajectorySpec* s) { s->shape.tangent = Vec3(v); }, nullptr,
+      [](const TrajectorySpec& s) { return ShowVector(s.shape.tangent); });
+}
+P::Row Approach() {
+  return P::Number("approach", PARAM_MEMBER(shape.approach), AtLeast(0), NoUpperBound(),
+                   "how far back against the direction the motion starts")
+      .Unit("m");
+}
+P::Row Depth() {
+  return P::Number("depth", PARAM_MEMBER(shape.depth), NoLowerBound(), NoUpperBound(),
+                   "how far past the start pose along the direction it presses")
+      .Unit("m");
+}
+P::Row Length(std::string doc) {
+  return P::Number("length", PARAM_MEMBER(shape.length), AtLeast(0), NoUpperBound(), std::move(doc)).Unit("m");
+}
+std::vector<P::Row> Timing() {
+  return {P::Number("duration", PARAM_MEMBER(shape.duration), Above(0), NoUpperBound(), "of the whole motion").Unit("s"),
+          P::Number("rate", PARAM_MEMBER(shape.rate), Above(0), NoUpperBound(),
+                    "samples per second (at most 1e8 samples: duration x rate)")
+              .Unit("1/s")};
+}
+std::vector<P::Row> Touch() {
+  return {P::Boolean("touch", PARAM_MEMBER(touch),
+                     "first move the body along the direction until the paper's model (linear, deepest level) "
+                     "is touch_depth deep"),
+          P::Number("touch_depth", PARAM_MEMBER(touch_depth), Above(0), NoUpperBound(), "how deep touch goes")
+              .Unit("m")};
+}
+
+// A procedural type's table: direction, its own rows MIDDLE, timing and touch, and the check
+// that the samples stay within kMaxTrajectorySamples (before any is allocated).
+ParamTable<TrajectorySpec> ProceduralTable(const std::string& type, const std::string& doc, std::vector<P::Row> middle) {
+  std::vector<P::Row> rows = {Direction("the pressing direction, world frame (toward: from the moving body's start "
+                                        "to the other body's origin)")};
+  rows.insert(rows.end(), middle.begin(), middle.end());
+  for (std::vector<P::Row> more : {Timing(), Touch()}) rows.insert(rows.end(), more.begin(), more.end());
+  return ParamTable<TrajectorySpec>(
+      "trajectory: {type: " + type + "}", doc, std::move(rows), [](const ConfigNode& n, TrajectorySpec* s) {
+        if (s->shape.duration * s->shape.rate > kMaxTrajectorySamples) {
+          const ConfigNode at = n.Has("duration") ? n.Get("duration") : n.Get("rate");
+          char buf[160];
+          std::snprintf(buf, sizeof buf, "duration x rate is %.3g samples (cycles), more than the limit of %.0e",
+                        s->shape.duration * s->shape.rate, kMaxTrajectorySamples);
+          at.Fail(buf);
+        }
+      });
+}
+
+// One table per trajectory type, in the order of the reference.
+struct TrajectoryType {
+  std::string name;
+  ParamTable<TrajectorySpec> table;
+};
+const std::vector<TrajectoryType>& TrajectoryTypes() {
+  static const std::vector<TrajectoryType> types = [] {
+    std::vector<TrajectoryType> t;
+    t.push_back({"approach-press",
+                 ProceduralTable("approach-press",
+                                 "Along the direction from -approach to +depth over the first half, and back over the "
+                                 "second (smoothstep ramps).",
+                                 {Approach(), Depth()})});
+    t.push_back({"slide", ProceduralTable("slide",
+                                          "Press to depth in the first fifth of the duration, slide length along the "
+                                          "tangent and back in the middle three fifths, release in the last.",
+                                          {Tangent("the slide's direction (made orthogonal to the direction)"),
+                                           Approach(), Depth(), Length("how far it slides")})});
+    t.push_back({"twist", ProceduralTable("twist",
+                                          "Press to depth in the first fifth of the duration, rotate by angle about "
+                                          "the direction and back in the middle three fifths, release in the last.",
+                                          {Approach(), Depth(),
+                                           P::Number("angle", PARAM_MEMBER(shape.angle), NoLowerBound(),
+                                                     NoUpperBound(), "the largest rotation about the direction")
+                                               .Unit("rad")})});
+    t.push_back({"scan", ProceduralTable("scan",
+                                         "Press to depth in the first fifth of the duration, sweep length along the "
+                                         "tangent at constant speed (centred on the start) in the middle three fifths, "
+                                         "release in the last.",
+                                         {Tangent("the sweep's direction (made orthogonal to the direction)"),
+                                          Approach(), Depth(), Length("how far it sweeps")})});
+    t.push_back({"circle", ProceduralTable("circle",
+                                           "Press to depth in the first fifth of the duration, go once round a circle "
+                                           "in the plane of the tangent (from the start, which is on the circle) in "
+                                           "the middle three fifths, release in the last.",
+                                           {Tangent("with the direction, the plane of the circle (made orthogonal to "
+                                                    "the direction)"),
+                                            Approach(), Depth(),
+                                            P::Number("radius", PARAM_MEMBER(shape.radius), AtLeast(0), NoUpperBound(),
+                                                      "of the circle")
+                                                .Unit("m")})});
+    std::vector<P::Row> recorded = {
+        P::Custom("file", "text", "a CSV file on the data search path",
+                  "t,x,y,z,qw,qx,qy,qz rows, e.g. a session log (required)",
+                  [](const ConfigNode& v, TrajectorySpec* s) {
+                    s->file = RequireDataFile(v.AsString(), FolderOf(v.file()));
+                  },
+                  nullptr, [](const TrajectorySpec&) { return std::string(); }),
+        Direction("the direction of touch (toward: from the moving body's start to the other body's origin)")};
+    for (P::Row& r : Touch()) recorded.push_back(std::move(r));
+    t.push_back({"recorded",
+                 ParamTable<TrajectorySpec>("trajectory: {type: recorded}",
+                                            "The poses of a recorded file at its own times, relative to its first "
+                                            "row (interpolated between rows, slerp for the rotation).",
+                                            std::move(recorded),
+                                            [](const ConfigNode& n, TrajectorySpec*) { (void)n.Get("file"); })});
+    return t;
+  }();
+  return types;
+}
+
+// The types' names, as a list for messages and the reference.
+std::string TypeList() {
+  std::string list;
+  for (const TrajectoryType& t : TrajectoryTypes()) list += (list.empty() ? "" : ", ") + t.name;
+  return list;
+}
+
+// The block's one common key: its type, which chooses the table of the rest.
+const ParamTable<TrajectorySpec>& TypeTable() {
+  static const ParamTable<TrajectorySpec> table(
+      "trajectory",
+      "The motion of the moving body in an experiment config (tables in `src/experiment/trajectory.cc`), relative to "
+      "its start pose: translation in the world frame, rotation about the body's origin. Its type chooses the other "
+      "keys (below); a sweep names them by their path (`trajectory.depth`).",
+      {P::Custom("type", "choice", TypeList(), "the kind of motion (required)",
+                 [](const ConfigNode& v, TrajectorySpec* s) {
+                   const std::string name = v.AsString();
+                   for (const TrajectoryType& t : TrajectoryTypes()) {
+                     if (t.name == name) {
+                       s->shape.type = name;
+                       return;
+                     }
+                   }
+                   v.Fail("'" + v.Quoted() + "' is not one of: " + TypeList());
+                 },
+                 nullptr, [](const TrajectorySpec&) { return std::string(); })});
+  return table;
+}
+
+}  // namespace
+
+TrajectorySpec ParseTrajectorySpec(const ConfigNode& n) {
+  n.ExpectMap();
+  // The type, which chooses the table.
+  TrajectorySpec spec;
+  TypeTable().rows().front().read(n.Get("type"), &spec);
+  const TrajectoryType& type = *std::find_if(TrajectoryTypes().begin(), TrajectoryTypes().end(),
+                                             [&](const TrajectoryType& t) { return t.name == spec.shape.type; });
+  // A key that only other types take is named as such (the table's Parse refuses any other
+  // unknown key).
+  for (const std::string& key : n.Keys()) {
+    if (key == "type" || type.table.Find(key)) continue;
+    std::string others;
+    for (const TrajectoryType& t : TrajectoryTypes()) {
+      if (t.table.Find(key)) others += (others.empty() ? "" : ", ") + t.name;
+    }
+    if (others.empty()) continue;
+    std::string keys = "type";
+    for (const std::string& k : type.table.Keys()) keys += ", " + k;
+    n.Get(key).Fail("not a key of type " + type.name + ", only of " + others + " (" + type.name + " takes: " + keys + ")");
   }
-  n.ExpectKeys({"type", "direction", "tangent", "approach", "depth", "length", "radius", "angle", "duration", "rate",
-                "touch", "touch_depth"});
-  ProceduralTrajectorySpec s;
-  s.type = n.OneOf("type", s.type, {"approach-press", "slide", "twist", "scan", "circle"});
-  // "toward" (the other body) is resolved by the experiment runner; checked here as a placeholder.
-  if (auto d = n.Find("direction"); d && !(d->IsScalar() && d->AsString() == "toward")) s.direction = Vec3(*d);
-  if (auto d = n.Find("tangent")) s.tangent = Vec3(*d);
-  if (s.direction.norm() == 0) n.Get("direction").Fail("must be non-zero");
-  s.approach = n.NonNegative("approach", s.approach);
-  s.depth = n.Double("depth", s.depth);
-  s.length = n.NonNegative("length", s.length);
-  s.radius = n.NonNegative("radius", s.radius);
-  s.angle = n.Double("angle", s.angle);
-  s.duration = n.Positive("duration", s.duration);
-  s.rate = n.Positive("rate", s.rate);
-  // Bounded before the samples are allocated (one per cycle).
-  if (s.duration * s.rate > kMaxTrajectorySamples) {
-    const ConfigNode at = n.Has("duration") ? n.Get("duration") : n.Get("rate");
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "duration x rate is %.3g samples (cycles), more than the limit of %.0e",
-                  s.duration * s.rate, kMaxTrajectorySamples);
-    at.Fail(buf);
+  // The type's own keys, by its table.
+  return type.table.Parse(n, spec, {"type"});
+}
+
+Trajectory MakeTrajectory(const TrajectorySpec& spec) {
+  if (spec.shape.type == "recorded") return LoadTrajectoryCsv(spec.file);
+  return MakeProceduralTrajectory(spec.shape);
+}
+
+Trajectory ParseTrajectory(const ConfigNode& n) { return MakeTrajectory(ParseTrajectorySpec(n)); }
+
+std::string TrajectoryReference() {
+  std::string s = TypeTable().Reference("trajectory");
+  for (const TrajectoryType& t : TrajectoryTypes()) {
+    TrajectorySpec defaults;
+    defaults.shape.type = t.name;
+    s += t.table.Reference(t.table.name(), defaults);
   }
-  return MakeProceduralTrajectory(s);
+  return s;
 }
 
 }  // namespace contactlab

@@ -67,9 +67,37 @@ Trajectory LoadTrajectoryCsv(const std::filesystem::path& file);
 // Writes t,x,y,z,qw,qx,qy,qz at RATE samples per second, atomically.
 void SaveTrajectoryCsv(const Trajectory& trajectory, const std::filesystem::path& file, double rate = 1000);
 
-// From a config node: {type: approach-press|slide|twist|scan|circle, ...} or
-// {type: recorded, file: path}. The keys touch (bool) and touch_depth (m) are read by the
-// experiment runner: it first moves the body along the direction until it touches.
+// The trajectory block of an experiment config: {type: approach-press|slide|twist|scan|circle,
+// ...} or {type: recorded, file: path, ...}. Each type's keys are one parameter table
+// (util/param_table.h) in trajectory.cc: parsing, the refusal of keys the type does not take,
+// range checks and TrajectoryReference come from it.
+struct TrajectorySpec {
+  ProceduralTrajectorySpec shape;  // its type (a procedural type, or "recorded") and, for a
+                                   // procedural type, the motion's keys
+  bool toward = false;             // direction: toward, left to the experiment runner (it sets the
+                                   // unit vector from the moving body's start to the other body's
+                                   // origin); shape.direction keeps its default until then
+  std::filesystem::path file;      // recorded: the CSV, found on the data search path
+  // The experiment runner first moves the body along the direction until the paper's model
+  // (linear, deepest level) is TOUCH_DEPTH deep.
+  bool touch = false;
+  double touch_depth = 1e-4;  // m
+};
+
+// Reads a trajectory block by the table of its type. Throws Error naming the file, line and
+// key: a missing or unknown type, a key the type does not take (or no type takes), a value of
+// the wrong type or out of range, a missing recorded file, more than kMaxTrajectorySamples
+// samples.
+TrajectorySpec ParseTrajectorySpec(const ConfigNode& node);
+
+// The trajectory SPEC describes: a procedural one, or the recorded file read.
+Trajectory MakeTrajectory(const TrajectorySpec& spec);
+
+// MakeTrajectory(ParseTrajectorySpec(NODE)).
 Trajectory ParseTrajectory(const ConfigNode& node);
+
+// The trajectory tables as Markdown, one section per type (after SceneReference in
+// `contactlab params` and docs/scene-reference.md).
+std::string TrajectoryReference();
 
 }  // namespace contactlab

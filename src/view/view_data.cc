@@ -5,9 +5,6 @@
 #include <cmath>
 #include <map>
 #include <set>
-#include <sstream>
-#include <string_view>
-#include <tuple>
 
 #ifdef CONTACTLAB_HAVE_CGAL
 #include "baselines/reference/simplify_mesh.h"
@@ -15,11 +12,9 @@
 #include "deform/embedded_points.h"
 #include "experiment/experiment_config.h"
 #include "experiment/result_csv.h"
-#include "geometry/line_scanner.h"
 #include "util/atomic_file.h"
 #include "util/config_node.h"
 #include "util/error.h"
-#include "util/parse_number.h"
 #include "view/display_points.h"
 #include "view/field_slice.h"
 #include "view/page_encoding.h"
@@ -140,9 +135,16 @@ nlohmann::json SceneViewData(const Scene& scene, SceneAssets& assets, const Scen
   return SceneViewDataAndMeshes(scene, assets, options, poses, &meshes);
 }
 
-Replay ReadReplay(const fs::path& dir, std::optional<int> job, int max_frames) {
-  Replay replay;
-  replay.dir = dir;
+namespace {
+
+// ReadReplay's steps, in the order it takes them.
+
+// The two files of results folder DIR: cycles.csv and meta.json. Throws Error naming the
+// folder or the file that is missing, or the folder when it holds a deformed-field study.
+struct ResultsFiles {
+  fs::path cycles, meta;
+};
+ResultsFiles CheckResultsFolder(const fs::path& dir) {
   if (!fs::is_directory(dir)) {
     Fail(dir.string(), fs::exists(dir) ? "is not a results folder (expected a folder holding cycles.csv and meta.json)"
                                        : "results folder not found");
@@ -154,9 +156,16 @@ Replay ReadReplay(const fs::path& dir, std::optional<int> job, int max_frames) {
   for (const fs::path& f : {cycles_file, meta_file}) {
     if (!fs::exists(f)) Fail(f.string(), "not found (a results folder holds cycles.csv and meta.json)");
   }
-  if (max_frames < 2) Fail("--max-frames", "must be at least 2, got " + std::to_string(max_frames));
+  return {cycles_file, meta_file};
+}
 
-  // meta.json: the resolved config, from which the job's scene is expanded again.
+// What meta.json says of the run: its resolved config (YAML text) and the config file it was
+// read from (meta.json itself when it does not say).
+struct ResolvedConfig {
+  std::string yaml;
+  std::string file;
+};
+ResolvedConfig ReadResolvedConfig(const fs::path& meta_file) {
   nlohmann::json meta;
   try {
     meta = nlohmann::json::parse(ReadWholeFile(meta_file));
@@ -166,89 +175,50 @@ Replay ReadReplay(const fs::path& dir, std::optional<int> job, int max_frames) {
   if (!meta.is_object() || !meta.contains("resolved_config") || !meta["resolved_config"].is_string()) {
     Fail(meta_file.string(), "has no resolved_config (not written by contactlab run)");
   }
-  const std::string config_file = meta.value("config_file", meta_file.string());
+  return {meta["resolved_config"].get<std::string>(), meta.value("config_file", meta_file.string())};
+}
 
-  // cycles.csv: the columns by name.
-  const std::string text = ReadWholeFile(cycles_file);
-  internal::LineScanner scan(text, cycles_file.string());
-  if (!scan.NextLine() || scan.line().empty()) Fail(cycles_file.string(), "is empty");
-  const std::vector<std::string> header = SplitCsvLine(std::string(scan.line()));
-  std::map<std::string, int> column;
-  for (int c = 0; c < int(header.size()); ++c) column.emplace(header[c], c);
-  auto col = [&](const char* name) {
-    const auto it = column.find(name);
-    if (it == column.end()) {
-      const std::string n(name);
-      if (n.size() == 2 && n[0] == 'q') {
-        Fail(cycles_file.string(), "has no orientation column " + n +
-                                       " (written by an older contactlab before cycles.csv held qw,qx,qy,qz; run the "
-                                       "experiment again)");
-      }
-      Fail(cycles_file.string(), "has no column '" + n + "'");
-    }
-    return it->second;
-  };
-  const int c_job = col("job"), c_model = col("model"), c_t = col("t"), c_level = col("level"),
-            c_contacts = col("contacts");
-  const int c_pose[7] = {col("x"), col("y"), col("z"), col("qw"), col("qx"), col("qy"), col("qz")};
-  const int c_force[3] = {col("fx"), col("fy"), col("fz")};
-  const int c_torque[3] = {col("tx"), col("ty"), col("tz")};
-  const int c_experiment = column.count("experiment") ? column["experiment"] : -1;
+// One cycle of one model, as the replay keeps it.
+struct ReplayRow {
+  std::string model;
+  double v[16];  // t, pose x,y,z,qw,qx,qy,qz, force (3), torque (3), level, contacts
+  std::vector<float> q, q_B;  // deformable bodies' reduced coordinates (empty when rigid)
+};
 
-  // Rows of the chosen job (of every job when none is chosen: then the file must hold one), and
-  // the jobs the file holds.
-  struct Row {
-    std::string model;
-    double v[16];  // t, pose x,y,z,qw,qx,qy,qz, force (3), torque (3), level, contacts
-    std::vector<float> q, q_B;  // deformable bodies' reduced coordinates (empty when rigid)
-  };
-  const int c_q = column.count("q") ? column["q"] : -1, c_q_B = column.count("q_B") ? column["q_B"] : -1;
-  // Space-separated reduced coordinates of cell C (empty: none).
-  auto coordinates = [&](const std::vector<std::string>& cells, int c, const char* what) {
-    std::vector<float> q;
-    if (c < 0) return q;
-    std::istringstream in(cells[c]);
-    for (std::string item; in >> item;) {
-      const std::optional<double> v = ParseDouble(item);
-      if (!v) FailAtLine(cycles_file.string(), scan.line_number(), std::string("column ") + what + ": " + QuoteToken(item) + " is not a number");
-      q.push_back(float(*v));
-    }
-    return q;
-  };
+// The rows of cycles.csv kept for the replay: those of JOB (of every job when none is asked
+// for), with the jobs the file holds and the experiment's name (of the first row kept).
+struct CycleRows {
+  std::vector<ReplayRow> rows;
   std::set<int> jobs;
-  std::vector<Row> rows;
-  auto number = [&](const std::vector<std::string>& cells, int c, const char* what) {
-    const std::optional<double> v = c < int(cells.size()) ? ParseDouble(cells[c]) : std::nullopt;
-    if (!v) {
-      FailAtLine(cycles_file.string(), scan.line_number(),
-                 std::string("column ") + what + ": " + (c < int(cells.size()) ? QuoteToken(cells[c]) : "(missing)") +
-                     " is not a number");
-    }
-    return *v;
-  };
-  while (scan.NextLine()) {
-    if (scan.line().empty()) continue;
-    const std::vector<std::string> cells = SplitCsvLine(std::string(scan.line()));
-    if (cells.size() != header.size()) {
-      FailAtLine(cycles_file.string(), scan.line_number(),
-                 std::to_string(cells.size()) + " cells, the header has " + std::to_string(header.size()));
-    }
-    const int row_job = int(number(cells, c_job, "job"));
-    jobs.insert(row_job);
-    if (job && row_job != *job) continue;
-    if (replay.experiment.empty() && c_experiment >= 0) replay.experiment = cells[c_experiment];
-    Row r;
-    r.model = cells[c_model];
-    r.v[0] = number(cells, c_t, "t");
-    for (int k = 0; k < 7; ++k) r.v[1 + k] = number(cells, c_pose[k], header[c_pose[k]].c_str());
-    for (int k = 0; k < 3; ++k) r.v[8 + k] = number(cells, c_force[k], header[c_force[k]].c_str());
-    for (int k = 0; k < 3; ++k) r.v[11 + k] = number(cells, c_torque[k], header[c_torque[k]].c_str());
-    r.v[14] = number(cells, c_level, "level");
-    r.v[15] = number(cells, c_contacts, "contacts");
-    r.q = coordinates(cells, c_q, "q");
-    r.q_B = coordinates(cells, c_q_B, "q_B");
-    rows.push_back(std::move(r));
-  }
+  std::string experiment;
+};
+CycleRows ReadCycleRows(const fs::path& cycles_file, std::optional<int> job) {
+  CycleRows out;
+  ReadCyclesCsv(cycles_file, [&](const CyclesCsvRow& c) {
+    out.jobs.insert(c.job);
+    if (job && c.job != *job) return;
+    if (out.experiment.empty()) out.experiment = c.experiment;
+    const CycleRow& x = c.values;
+    ReplayRow r;
+    r.model = c.model;
+    r.v[0] = x.t;
+    for (int k = 0; k < 3; ++k) r.v[1 + k] = x.position[k];
+    r.v[4] = x.rotation.w(), r.v[5] = x.rotation.x(), r.v[6] = x.rotation.y(), r.v[7] = x.rotation.z();
+    for (int k = 0; k < 3; ++k) r.v[8 + k] = x.force[k];
+    for (int k = 0; k < 3; ++k) r.v[11 + k] = x.torque[k];
+    r.v[14] = x.level;
+    r.v[15] = x.contacts;
+    r.q.assign(c.q.begin(), c.q.end());
+    r.q_B.assign(c.q_B.begin(), c.q_B.end());
+    out.rows.push_back(std::move(r));
+  });
+  return out;
+}
+
+// The job to replay among JOBS (those of CYCLES_FILE): the one asked for, or with none asked
+// for the only one. Throws Error naming the file when there is none, or several and none was
+// asked for, or the one asked for is absent.
+int PickJob(const std::set<int>& jobs, std::optional<int> job, const fs::path& cycles_file) {
   auto job_list = [&] {
     std::string s;
     for (int j : jobs) s += (s.empty() ? "" : ", ") + std::to_string(j);
@@ -257,64 +227,91 @@ Replay ReadReplay(const fs::path& dir, std::optional<int> job, int max_frames) {
   if (jobs.empty()) Fail(cycles_file.string(), "has no rows");
   if (!job) {
     if (jobs.size() > 1) Fail(cycles_file.string(), "holds jobs " + job_list() + ": choose one with --job");
-    replay.job = *jobs.begin();
-  } else {
-    if (!jobs.count(*job)) Fail(cycles_file.string(), "has no job " + std::to_string(*job) + " (it holds " + job_list() + ")");
-    replay.job = *job;
+    return *jobs.begin();
   }
+  if (!jobs.count(*job)) Fail(cycles_file.string(), "has no job " + std::to_string(*job) + " (it holds " + job_list() + ")");
+  return *job;
+}
 
-  // Tracks per model in order of appearance, thinned to MAX_FRAMES.
-  std::map<std::string, std::vector<const Row*>> by_model;
-  std::vector<std::string> model_order;
-  for (const Row& r : rows) {
-    auto& v = by_model[r.model];
-    if (v.empty()) model_order.push_back(r.model);
-    v.push_back(&r);
+// ROWS by model, the models in order of first appearance.
+std::vector<std::pair<std::string, std::vector<const ReplayRow*>>> RowsByModel(const std::vector<ReplayRow>& rows) {
+  std::vector<std::pair<std::string, std::vector<const ReplayRow*>>> models;
+  std::map<std::string, std::size_t> index;
+  for (const ReplayRow& r : rows) {
+    const auto [it, added] = index.try_emplace(r.model, models.size());
+    if (added) models.emplace_back(r.model, std::vector<const ReplayRow*>{});
+    models[it->second].second.push_back(&r);
   }
+  return models;
+}
+
+// The stride that leaves no model with more than MAX_FRAMES of its cycles (every STRIDE-th
+// kept, the first always).
+int StrideFor(const std::vector<std::pair<std::string, std::vector<const ReplayRow*>>>& models, int max_frames) {
   std::size_t longest = 0;
-  for (const auto& [name, v] : by_model) longest = std::max(longest, v.size());
-  replay.stride = int((longest + std::size_t(max_frames) - 1) / std::size_t(max_frames));
-  replay.stride = std::max(1, replay.stride);
-  for (const std::string& name : model_order) {
-    const auto& v = by_model[name];
-    ReplayTrack track;
-    track.model = name;
-    track.cycles = std::int64_t(v.size());
-    for (std::size_t i = 0; i < v.size(); i += std::size_t(replay.stride)) {
-      const double* x = v[i]->v;
-      track.t.push_back(float(x[0]));
-      for (int k = 0; k < 7; ++k) track.pose.push_back(float(x[1 + k]));
-      for (int k = 0; k < 3; ++k) track.force.push_back(float(x[8 + k]));
-      for (int k = 0; k < 3; ++k) track.torque.push_back(float(x[11 + k]));
-      track.level.push_back(std::int32_t(x[14]));
-      track.contacts.push_back(std::int32_t(x[15]));
-      // Reduced coordinates: as many in every row of the model as in its first.
-      for (auto [from, to, r] : {std::tuple{&v[i]->q, &track.q, &track.r}, std::tuple{&v[i]->q_B, &track.q_B, &track.r_B}}) {
-        if (i == 0) *r = int(from->size());
-        if (int(from->size()) != *r) {
-          Fail(cycles_file.string(), "model " + name + ": a row holds " + std::to_string(from->size()) +
-                                         " reduced coordinates, the first " + std::to_string(*r));
-        }
-        to->insert(to->end(), from->begin(), from->end());
-      }
-    }
-    replay.tracks.push_back(std::move(track));
-  }
+  for (const auto& [name, rows] : models) longest = std::max(longest, rows.size());
+  return std::max(1, int((longest + std::size_t(max_frames) - 1) / std::size_t(max_frames)));
+}
 
-  // The job's scene and moving body, from the resolved config expanded again.
-  const ConfigNode root = ConfigNode::LoadString(meta["resolved_config"].get<std::string>(), config_file);
-  const ExperimentConfig config = ParseExperimentConfig(root, meta["resolved_config"].get<std::string>());
+// The track of model NAME from its ROWS (one per cycle, at least one), every STRIDE-th kept.
+ReplayTrack MakeTrack(const std::string& name, const std::vector<const ReplayRow*>& rows, int stride) {
+  ReplayTrack track;
+  track.model = name;
+  track.cycles = std::int64_t(rows.size());
+  // Reduced coordinates: as many in every row of the model as in its first (ReadCyclesCsv
+  // checks it).
+  track.r = int(rows.front()->q.size());
+  track.r_B = int(rows.front()->q_B.size());
+  for (std::size_t i = 0; i < rows.size(); i += std::size_t(stride)) {
+    const double* x = rows[i]->v;
+    track.t.push_back(float(x[0]));
+    for (int k = 0; k < 7; ++k) track.pose.push_back(float(x[1 + k]));
+    for (int k = 0; k < 3; ++k) track.force.push_back(float(x[8 + k]));
+    for (int k = 0; k < 3; ++k) track.torque.push_back(float(x[11 + k]));
+    track.level.push_back(std::int32_t(x[14]));
+    track.contacts.push_back(std::int32_t(x[15]));
+    track.q.insert(track.q.end(), rows[i]->q.begin(), rows[i]->q.end());
+    track.q_B.insert(track.q_B.end(), rows[i]->q_B.begin(), rows[i]->q_B.end());
+  }
+  return track;
+}
+
+// REPLAY's scene, moving body and job label (and its experiment's name when cycles.csv gave
+// none), from the RESOLVED config expanded again to the job REPLAY->job. Throws Error naming
+// META_FILE when the config is not a contact study or has no such job.
+void SetJobScene(const ResolvedConfig& resolved, const fs::path& meta_file, Replay* replay) {
+  const ConfigNode root = ConfigNode::LoadString(resolved.yaml, resolved.file);
+  const ExperimentConfig config = ParseExperimentConfig(root, resolved.yaml);
   if (config.study != "contact") Fail(meta_file.string(), "is a " + config.study + " study, which has no trajectory to replay");
   const std::vector<Job> all = ExpandJobs(config);
-  const auto it = std::find_if(all.begin(), all.end(), [&](const Job& j) { return j.index == replay.job; });
+  const auto it = std::find_if(all.begin(), all.end(), [&](const Job& j) { return j.index == replay->job; });
   if (it == all.end()) {
     Fail(meta_file.string(), "its config has " + std::to_string(all.size()) + " jobs, cycles.csv names job " +
-                                 std::to_string(replay.job));
+                                 std::to_string(replay->job));
   }
-  replay.scene = it->scene;
-  replay.moving_body = it->moving_body;
-  replay.job_label = it->axis_values.empty() ? "" : it->Label();
-  if (replay.experiment.empty()) replay.experiment = config.name;
+  replay->scene = it->scene;
+  replay->moving_body = it->moving_body;
+  replay->job_label = it->axis_values.empty() ? "" : it->Label();
+  if (replay->experiment.empty()) replay->experiment = config.name;
+}
+
+}  // namespace
+
+Replay ReadReplay(const fs::path& dir, std::optional<int> job, int max_frames) {
+  const ResultsFiles files = CheckResultsFolder(dir);
+  if (max_frames < 2) Fail("--max-frames", "must be at least 2, got " + std::to_string(max_frames));
+  const ResolvedConfig config = ReadResolvedConfig(files.meta);
+  const CycleRows cycles = ReadCycleRows(files.cycles, job);
+
+  Replay replay;
+  replay.dir = dir;
+  replay.experiment = cycles.experiment;
+  replay.job = PickJob(cycles.jobs, job, files.cycles);
+  // One track per model, thinned to MAX_FRAMES.
+  const auto models = RowsByModel(cycles.rows);
+  replay.stride = StrideFor(models, max_frames);
+  for (const auto& [name, rows] : models) replay.tracks.push_back(MakeTrack(name, rows, replay.stride));
+  SetJobScene(config, files.meta, &replay);
   return replay;
 }
 

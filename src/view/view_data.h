@@ -74,8 +74,9 @@ struct Replay {
 // Reads results folder DIR (cycles.csv, meta.json) for job JOB (none: the only job it holds),
 // keeping every k-th cycle so no model has more than MAX_FRAMES frames. The job's scene comes
 // from meta.json's resolved config. Throws Error naming the file and what is wrong: a missing
-// folder or file, a deformed-field study, cycles.csv without the orientation columns (written
-// before they were added), several jobs and no JOB, an unknown JOB.
+// folder or file, a deformed-field study, a cycles.csv that ReadCyclesCsv refuses (result_csv.h;
+// one without the orientation columns was written before they were added), several jobs and
+// no JOB, an unknown JOB.
 Replay ReadReplay(const std::filesystem::path& dir, std::optional<int> job, int max_frames = 10000);
 
 // SceneViewData of the replay's scene at its first frame, plus

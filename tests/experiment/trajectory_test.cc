@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <filesystem>
 #include <fstream>
 
 #include "test_support.h"
@@ -119,6 +121,134 @@ TEST(Trajectory, HugeDurationIsRefusedBeforeAllocatingNamingTheKeyAndLimit) {
   }
   // At the limit's scale but under it, the spec still parses (without building it here).
   EXPECT_NO_THROW(ParseTrajectory(ConfigNode::LoadString("type: approach-press\nduration: 3\n", "c.yaml")));
+}
+
+
+ConfigNode Yaml(const std::string& text, const std::string& file = "t.yaml") {
+  return ConfigNode::LoadString(text, file);
+}
+
+using testing::ErrorOf;
+
+// Each type's table reads its keys to the spec; keys left out keep the defaults
+// (trajectory.h: approach 5 mm, depth 2 mm, radius 5 mm, 2 s at 1 kHz, no touch, 0.1 mm).
+TEST(Trajectory, EachTypeReadsItsKeysAndKeepsTheDefaultsOfTheOthers) {
+  TrajectorySpec s = ParseTrajectorySpec(Yaml(
+      "type: slide\ndirection: [0, 1, 0]\ntangent: [1, 0, 1]\napproach: 0.0\ndepth: 0.0015\nlength: 0.02\n"
+      "duration: 0.5\nrate: 500\ntouch: true\ntouch_depth: 0.0002\n"));
+  EXPECT_EQ(s.shape.type, "slide");
+  EXPECT_FALSE(s.toward);
+  EXPECT_EQ(s.shape.direction, Eigen::Vector3d(0, 1, 0));
+  EXPECT_EQ(s.shape.tangent, Eigen::Vector3d(1, 0, 1));
+  EXPECT_EQ(s.shape.approach, 0.0);
+  EXPECT_EQ(s.shape.depth, 0.0015);
+  EXPECT_EQ(s.shape.length, 0.02);
+  EXPECT_EQ(s.shape.duration, 0.5);
+  EXPECT_EQ(s.shape.rate, 500);
+  EXPECT_TRUE(s.touch);
+  EXPECT_EQ(s.touch_depth, 0.0002);
+
+  s = ParseTrajectorySpec(Yaml("{type: circle, direction: toward, radius: 0.003}"));
+  EXPECT_EQ(s.shape.type, "circle");
+  EXPECT_TRUE(s.toward);  // left to the runner: the direction keeps its default until then
+  EXPECT_EQ(s.shape.direction, Eigen::Vector3d(0, 0, -1));
+  EXPECT_EQ(s.shape.radius, 0.003);
+  EXPECT_EQ(s.shape.approach, 0.005);
+  EXPECT_EQ(s.shape.depth, 0.002);
+  EXPECT_EQ(s.shape.duration, 2.0);
+  EXPECT_EQ(s.shape.rate, 1000);
+  EXPECT_FALSE(s.touch);
+  EXPECT_EQ(s.touch_depth, 1e-4);
+
+  // Depth and angle take any sign.
+  s = ParseTrajectorySpec(Yaml("{type: twist, angle: -0.4, depth: -0.001}"));
+  EXPECT_EQ(s.shape.angle, -0.4);
+  EXPECT_EQ(s.shape.depth, -0.001);
+  EXPECT_NEAR(Eigen::AngleAxisd(MakeTrajectory(s).At(1.0).rotation).angle(), 0.4, 1e-9);
+
+  // A recorded file is found beside the config that names it.
+  testing::TempDir dir;
+  std::ofstream(dir / "log.csv") << "t,x,y,z,qw,qx,qy,qz\n0,1,2,3,1,0,0,0\n0.002,1.5,2,3,1,0,0,0\n";
+  s = ParseTrajectorySpec(
+      Yaml("{type: recorded, file: log.csv, direction: [1, 0, 0], touch: true}", (dir / "c.yaml").string()));
+  EXPECT_EQ(s.shape.type, "recorded");
+  EXPECT_TRUE(std::filesystem::equivalent(s.file, dir / "log.csv")) << s.file;
+  EXPECT_EQ(s.shape.direction, Eigen::Vector3d(1, 0, 0));
+  EXPECT_TRUE(s.touch);
+  const Trajectory t = MakeTrajectory(s);
+  EXPECT_EQ(t.num_samples(), 2u);
+  EXPECT_NEAR(t.At(0.002).translation.x(), 0.5, 1e-12);
+}
+
+// A key the type does not take, an unknown key or type, and a value out of range or of the
+// wrong kind: each error names the file, the line, the key and what is wrong.
+TEST(Trajectory, BadKeysAreErrorsNamingTheFileLineAndKey) {
+  const auto error = [](const std::string& text) { return ErrorOf([&] { ParseTrajectorySpec(Yaml(text)); }); };
+  std::string e = error("type: twist\nlength: 0.01\n");
+  EXPECT_NE(e.find("t.yaml:2: length: not a key of type twist, only of slide, scan (twist takes: type, direction, "
+                   "approach, depth, angle, duration, rate, touch, touch_depth)"),
+            std::string::npos)
+      << e;
+  e = error("type: recorded\nfile: log.csv\ndepth: 0.01\n");
+  EXPECT_NE(e.find("t.yaml:3: depth: not a key of type recorded, only of approach-press, slide, twist, scan, circle"),
+            std::string::npos)
+      << e;
+  e = error("type: slide\nlenght: 0.01\n");
+  EXPECT_NE(e.find("t.yaml:2: lenght: unknown key (known keys here: direction, tangent, approach, depth, length, "
+                   "duration, rate, touch, touch_depth, type)"),
+            std::string::npos)
+      << e;
+  e = error("type: wiggle\n");
+  EXPECT_NE(e.find("t.yaml:1: type: 'wiggle' is not one of: approach-press, slide, twist, scan, circle, recorded"),
+            std::string::npos)
+      << e;
+  e = error("duration: 1\n");
+  EXPECT_NE(e.find("t.yaml:1: (top level): missing required key 'type'"), std::string::npos) << e;
+  e = error("type: recorded\ntouch: true\n");
+  EXPECT_NE(e.find("missing required key 'file'"), std::string::npos) << e;
+  e = error("type: approach-press\napproach: -0.001\n");
+  EXPECT_NE(e.find("t.yaml:2: approach: must not be negative, got -0.001"), std::string::npos) << e;
+  e = error("type: scan\nrate: 0\n");
+  EXPECT_NE(e.find("t.yaml:2: rate: must be positive, got 0"), std::string::npos) << e;
+  e = error("type: circle\ndirection: [0, 0, 0]\n");
+  EXPECT_NE(e.find("t.yaml:2: direction: must be non-zero"), std::string::npos) << e;
+  e = error("type: slide\ntangent: [1, 0]\n");
+  EXPECT_NE(e.find("t.yaml:2: tangent: needs 3 numbers"), std::string::npos) << e;
+  e = error("type: slide\ntouch: maybe\n");
+  EXPECT_NE(e.find("t.yaml:2: touch: expected true or false, got 'maybe'"), std::string::npos) << e;
+  e = error("type: approach-press\ntouch_depth: 0\n");
+  EXPECT_NE(e.find("t.yaml:2: touch_depth: must be positive, got 0"), std::string::npos) << e;
+  e = error("type: twist\nangle: wide\n");
+  EXPECT_NE(e.find("t.yaml:2: angle: expected a finite number, got 'wide'"), std::string::npos) << e;
+}
+
+// The reference (`contactlab params`) shows each type's keys, and only those, with the
+// defaults of trajectory.h.
+TEST(Trajectory, ReferenceListsEachTypesKeysWithTheirDefaults) {
+  const std::string r = TrajectoryReference();
+  EXPECT_NE(r.find("| `type` | choice | approach-press, slide, twist, scan, circle, recorded |"), std::string::npos)
+      << r;
+  for (const char* type : {"approach-press", "slide", "twist", "scan", "circle", "recorded"}) {
+    EXPECT_NE(r.find(std::string("### `trajectory: {type: ") + type + "}`"), std::string::npos) << type;
+  }
+  EXPECT_NE(r.find("| `radius` | number | >= 0 | 0.005 | m |"), std::string::npos) << r;
+  EXPECT_NE(r.find("| `duration` | number | > 0 | 2 | s |"), std::string::npos) << r;
+  EXPECT_NE(r.find("| `touch_depth` | number | > 0 | 0.0001 | m |"), std::string::npos) << r;
+  EXPECT_NE(r.find("| `direction` | vector | [x, y, z] not zero, or toward | [0, 0, -1] |"), std::string::npos) << r;
+  const auto rows = [&](const std::string& key) {
+    const std::string cell = "| `" + key + "` |";
+    int n = 0;
+    for (std::size_t at = r.find(cell); at != std::string::npos; at = r.find(cell, at + 1)) ++n;
+    return n;
+  };
+  EXPECT_EQ(rows("direction"), 6);  // every type
+  EXPECT_EQ(rows("touch"), 6);
+  EXPECT_EQ(rows("duration"), 5);   // the procedural ones
+  EXPECT_EQ(rows("tangent"), 3);    // slide, scan, circle
+  EXPECT_EQ(rows("length"), 2);     // slide, scan
+  EXPECT_EQ(rows("radius"), 1);
+  EXPECT_EQ(rows("angle"), 1);
+  EXPECT_EQ(rows("file"), 1);
 }
 
 }  // namespace
