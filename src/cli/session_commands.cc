@@ -8,10 +8,12 @@
 // (a bridge or a hose the user pushes with the haptic body, or the haptic body itself): its
 // reduced deformation takes one step at the end of every cycle (paper sec. 4.1 and 5).
 // --view [PORT] serves a live 3D view of the session on the loopback address
-// (view/live_view_server.h, docs/viewer.md).
+// (view/live_view_server.h, docs/viewer.md); with --view-wait [N] the session starts once N
+// viewers opened the view's stream.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -57,6 +59,8 @@ struct SessionArgs {
   bool quiet = false;
   bool view = false;      // --view given
   std::string view_port;  // its value: a port, or empty (a free one)
+  bool view_wait = false;       // --view-wait given
+  std::string view_wait_count;  // its value: how many viewers, or empty (one)
 };
 
 // Columns of the session log; the first eight are the recorded-trajectory format of the
@@ -80,19 +84,34 @@ void WriteRecord(std::ostream& out, const CycleRecord& r, std::int64_t t0_ns) {
   out << line;
 }
 
-// --view's port (0: a free one), and three.js, checked with the log's target before anything
-// is built; 0 without --view.
-int CheckSessionOptions(const SessionArgs& args) {
+// The live view's options, checked before anything is built.
+struct ViewOptions {
+  int port = 0;     // --view's port (0: a free one)
+  int viewers = 0;  // --view-wait: the streams to wait for before the session starts (0: none)
+};
+
+// The log's target, --view's port and three.js, and --view-wait, checked before anything is
+// built.
+ViewOptions CheckSessionOptions(const SessionArgs& args) {
   if (!args.log.empty()) CheckOutputTarget(args.log, "--log");  // before the session, not after it
-  if (!args.view) return 0;
-  int port = 0;
+  ViewOptions view;
+  if (args.view_wait) {
+    if (!args.view) Fail("--view-wait", "needs --view");
+    view.viewers = 1;
+    if (!args.view_wait_count.empty()) {
+      const std::optional<long long> n = ParseInteger(args.view_wait_count);
+      if (!n || *n < 1 || *n > 64) Fail("--view-wait", QuoteToken(args.view_wait_count) + " is not a number of viewers (1..64)");
+      view.viewers = int(*n);
+    }
+  }
+  if (!args.view) return view;
   if (!args.view_port.empty()) {
     const std::optional<long long> p = ParseInteger(args.view_port);
     if (!p || *p < 0 || *p > 65535) Fail("--view", QuoteToken(args.view_port) + " is not a port (0..65535; 0 or none: a free one)");
-    port = int(*p);
+    view.port = int(*p);
   }
   RequireThreeJs();
-  return port;
+  return view;
 }
 
 // Where the scene's fields and pointshells are cached (--cache).
@@ -201,19 +220,29 @@ class SessionLog {
   std::ofstream out_;
 };
 
-// --view: the live view's snapshot hand-off and its server (page and stream, loopback only).
+// --view: the live view's snapshots (a history, and the publisher that fills it in session
+// time) and its server (page and stream, loopback only).
 struct SessionView {
-  std::unique_ptr<LatestValue<LiveSnapshot>> snapshots;
+  std::unique_ptr<LiveSnapshotHistory> snapshots;
+  std::unique_ptr<LiveSnapshotPublisher> publisher;
   std::unique_ptr<LiveViewServer> server;
 };
 
-SessionView StartSessionView(const SessionArgs& args, SessionScene& s, int port, ContactPointMarks* marks) {
+// Snapshots and marks are taken by session time, counted in cycles of the loop: 50 snapshots
+// and at most 15 marks a second.
+constexpr double kSnapshotsPerSecond = 50, kMarksPerSecond = 15;
+
+SessionView StartSessionView(const SessionArgs& args, SessionScene& s, int port, ContactPointMarks* marks,
+                             double cycle_rate_hz) {
   nlohmann::json data = SceneViewData(s.scene, s.assets, SceneViewOptions{}, BodyPoses{s.scene.pointshell_body.pose, s.X_WB_start});
   data["title"] = s.scene.name + " (live)";
   data["live"] = {{"stream", "stream"}, {"haptic", 1}, {"model", s.model_name}, {"device", args.device}};
+  const auto snapshot_every = std::max<std::int64_t>(1, std::llround(cycle_rate_hz / kSnapshotsPerSecond));
+  const auto marks_every = std::max<std::int64_t>(1, std::int64_t(std::ceil(cycle_rate_hz / kMarksPerSecond)));
   SessionView view;
-  view.snapshots = std::make_unique<LatestValue<LiveSnapshot>>();
-  view.server = std::make_unique<LiveViewServer>(ViewerPage(data), *view.snapshots, port, 50, marks);
+  view.snapshots = std::make_unique<LiveSnapshotHistory>();
+  view.publisher = std::make_unique<LiveSnapshotPublisher>(*view.snapshots, snapshot_every);
+  view.server = std::make_unique<LiveViewServer>(ViewerPage(data), *view.snapshots, port, marks, marks_every);
   return view;
 }
 
@@ -292,8 +321,8 @@ class SessionStatusLine {
 };
 
 // Runs the haptic loop to its end while a consumer thread drains its records into the log,
-// the status line and (with the view) the newest snapshot; returns the loop's report.
-HapticLoopReport RunSessionLoop(HapticLoop& loop, SessionLog& log, LatestValue<LiveSnapshot>* live, bool quiet) {
+// the status line and (with the view) the snapshot publisher; returns the loop's report.
+HapticLoopReport RunSessionLoop(HapticLoop& loop, SessionLog& log, LiveSnapshotPublisher* live, bool quiet) {
   std::atomic<bool> done{false};
   std::thread consumer([&] {
     SessionStatusLine status(quiet);
@@ -301,15 +330,12 @@ HapticLoopReport RunSessionLoop(HapticLoop& loop, SessionLog& log, LatestValue<L
     std::int64_t t0 = -1;
     for (;;) {
       const bool finished = done.load();
-      bool popped = false;
       while (loop.records().TryPop(&rec)) {
-        popped = true;
         if (t0 < 0) t0 = rec.now_ns;
         log.Write(rec, t0);
         status.Add(rec);
+        if (live) live->Offer(rec, t0);  // a snapshot every so many cycles
       }
-      // The live view reads the newest record, not each one.
-      if (live && popped) live->Store(SnapshotOf(rec, t0));
       if (finished) break;
       std::this_thread::sleep_for(std::chrono::milliseconds(live ? 2 : 5));
     }
@@ -324,19 +350,28 @@ HapticLoopReport RunSessionLoop(HapticLoop& loop, SessionLog& log, LatestValue<L
 // The session, step by step: options, scene and model, device, cycle and loop, log, view;
 // then the loop runs and the summary and the log close it.
 void RunSession(const SessionArgs& args) {
-  const int view_port = CheckSessionOptions(args);
+  const ViewOptions view_options = CheckSessionOptions(args);
   SessionScene s(args);
   SessionDevice device(args.device, s.X_WB_start);
   SceneDynamics dynamics = MakeSceneDynamics(s.assets, s.scene.model.cycle_seconds);
   std::unique_ptr<ContactPointMarks> marks = args.view ? MakeViewPointMarks(s) : nullptr;
   HapticCycle cycle(device.mapped, s.model.get(), MakeSessionCycleConfig(args, s, dynamics, marks.get()));
   InstallStopSignalHandlers();
-  HapticLoop loop(cycle, SessionLoopOptions(args));
+  const HapticLoopOptions loop_options = SessionLoopOptions(args);
+  HapticLoop loop(cycle, loop_options);
   SessionLog log(args, s);
-  const SessionView view = args.view ? StartSessionView(args, s, view_port, marks.get()) : SessionView{};
+  const SessionView view =
+      args.view ? StartSessionView(args, s, view_options.port, marks.get(), loop_options.rate_hz) : SessionView{};
   PrintSessionStart(args, s, dynamics, *device.device, view.server.get());
+  // --view-wait: the session starts once its viewers opened the stream (or Ctrl-C: it ends
+  // at once), so that they see it from its first cycle.
+  if (view_options.viewers > 0) {
+    std::printf("view: waiting for %d viewer%s\n", view_options.viewers, view_options.viewers > 1 ? "s" : "");
+    std::fflush(stdout);
+    view.server->WaitForStreams(view_options.viewers, StopSignalRequested);
+  }
 
-  const HapticLoopReport report = RunSessionLoop(loop, log, view.snapshots.get(), args.quiet);
+  const HapticLoopReport report = RunSessionLoop(loop, log, view.publisher.get(), args.quiet);
   if (view.server) view.server->Stop();
   std::printf("%s", FormatLoopReport(report).c_str());
   std::printf("  records dropped by the log consumer: %llu\n",
@@ -363,8 +398,13 @@ const CommandRegistration kSessionCommands([](CLI::App& app) {
   CLI::Option* view = cmd->add_option("--view", args->view_port,
                                       "serve a live 3D view on http://127.0.0.1:PORT/ (no PORT or 0: a free port, printed)")
                           ->expected(0, 1);
-  cmd->callback([args, view] {
+  CLI::Option* view_wait =
+      cmd->add_option("--view-wait", args->view_wait_count,
+                      "with --view: start the session once N viewers (default 1) opened the live view's stream")
+          ->expected(0, 1);
+  cmd->callback([args, view, view_wait] {
     args->view = view->count() > 0;
+    args->view_wait = view_wait->count() > 0;
     RunSession(*args);
   });
 });
