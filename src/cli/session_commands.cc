@@ -8,10 +8,12 @@
 // (a bridge or a hose the user pushes with the haptic body, or the haptic body itself): its
 // reduced deformation takes one step at the end of every cycle (paper sec. 4.1 and 5).
 // --view [PORT] serves a live 3D view of the session on the loopback address
-// (view/live_view_server.h, docs/viewer.md).
+// (view/live_view_server.h, docs/viewer.md); with --view-wait [N] the session starts once N
+// viewers opened the view's stream.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -57,6 +59,8 @@ struct SessionArgs {
   bool quiet = false;
   bool view = false;      // --view given
   std::string view_port;  // its value: a port, or empty (a free one)
+  bool view_wait = false;       // --view-wait given
+  std::string view_wait_count;  // its value: how many viewers, or empty (one)
 };
 
 // Columns of the session log; the first eight are the recorded-trajectory format of the
@@ -80,165 +84,299 @@ void WriteRecord(std::ostream& out, const CycleRecord& r, std::int64_t t0_ns) {
   out << line;
 }
 
-void RunSession(const SessionArgs& args) {
+// The live view's options, checked before anything is built.
+struct ViewOptions {
+  int port = 0;     // --view's port (0: a free one)
+  int viewers = 0;  // --view-wait: the streams to wait for before the session starts (0: none)
+};
+
+// The log's target, --view's port and three.js, and --view-wait, checked before anything is
+// built.
+ViewOptions CheckSessionOptions(const SessionArgs& args) {
   if (!args.log.empty()) CheckOutputTarget(args.log, "--log");  // before the session, not after it
-  // --view: its port and three.js, before anything is built.
-  int view_port = 0;
-  if (args.view) {
-    if (!args.view_port.empty()) {
-      const std::optional<long long> p = ParseInteger(args.view_port);
-      if (!p || *p < 0 || *p > 65535) Fail("--view", QuoteToken(args.view_port) + " is not a port (0..65535; 0 or none: a free one)");
-      view_port = int(*p);
+  ViewOptions view;
+  if (args.view_wait) {
+    if (!args.view) Fail("--view-wait", "needs --view");
+    view.viewers = 1;
+    if (!args.view_wait_count.empty()) {
+      const std::optional<long long> n = ParseInteger(args.view_wait_count);
+      if (!n || *n < 1 || *n > 64) Fail("--view-wait", QuoteToken(args.view_wait_count) + " is not a number of viewers (1..64)");
+      view.viewers = int(*n);
     }
-    RequireThreeJs();
   }
-  const Scene scene = LoadScene(RequireDataFile(args.scene));
+  if (!args.view) return view;
+  if (!args.view_port.empty()) {
+    const std::optional<long long> p = ParseInteger(args.view_port);
+    if (!p || *p < 0 || *p > 65535) Fail("--view", QuoteToken(args.view_port) + " is not a port (0..65535; 0 or none: a free one)");
+    view.port = int(*p);
+  }
+  RequireThreeJs();
+  return view;
+}
+
+// Where the scene's fields and pointshells are cached (--cache).
+AssetOptions SessionAssetOptions(const SessionArgs& args) {
   AssetOptions options;
   options.cache_dir = args.cache;
-  SceneAssets assets(scene, options);
-  const std::string model_name = args.model.empty() ? scene.models.front() : args.model;
-  auto model = MakeSceneContactModel(model_name, scene, assets);
+  return options;
+}
 
-  // --touch: the haptic body starts where it touches the other body, moving toward it.
-  Pose X_WB_start = scene.field_body.pose;
-  if (args.touch > 0) {
-    const Eigen::Vector3d toward = scene.pointshell_body.pose.translation - X_WB_start.translation;
-    X_WB_start = TouchAlong(scene, assets, true, scene.pointshell_body.pose, X_WB_start, toward, args.touch,
-                            args.scene + ": --touch");
+// The scene side of a session: the scene, its fields and pointshells (built or read from the
+// cache), the contact model (--model, or the scene's first) and the haptic body's start pose
+// (--touch: where it touches the other body, moved toward it; else the scene's pose).
+struct SessionScene {
+  explicit SessionScene(const SessionArgs& args)
+      : scene(LoadScene(RequireDataFile(args.scene))),
+        assets(scene, SessionAssetOptions(args)),
+        model_name(args.model.empty() ? scene.models.front() : args.model),
+        model(MakeSceneContactModel(model_name, scene, assets)),
+        X_WB_start(scene.field_body.pose) {
+    if (args.touch > 0) {
+      const Eigen::Vector3d toward = scene.pointshell_body.pose.translation - X_WB_start.translation;
+      X_WB_start = TouchAlong(scene, assets, true, scene.pointshell_body.pose, X_WB_start, toward, args.touch,
+                              args.scene + ": --touch");
+    }
   }
-  std::unique_ptr<HapticDevice> device = MakeDevice(args.device);
-  WorkspaceMappedDevice mapped(*device, X_WB_start);
+
+  Scene scene;
+  SceneAssets assets;
+  std::string model_name;
+  std::unique_ptr<ContactModel> model;
+  Pose X_WB_start;  // the haptic body's (the field body's) pose at the start
+};
+
+// The device of --device, its workspace centred on the haptic body's start pose.
+struct SessionDevice {
+  SessionDevice(const std::string& spec, const Pose& X_WB_start) : device(MakeDevice(spec)), mapped(*device, X_WB_start) {}
+
+  std::unique_ptr<HapticDevice> device;
+  WorkspaceMappedDevice mapped;
+};
+
+// --view: the displayed pointshell points (the page's, same decimation), which the haptic
+// thread marks with their contact state, a chunk per cycle.
+std::unique_ptr<ContactPointMarks> MakeViewPointMarks(SessionScene& s) {
+  return std::make_unique<ContactPointMarks>(DecimatePointshell(*s.assets.A.pointshell(), SceneViewOptions{}.max_points).index);
+}
+
+// The haptic cycle's configuration: the static body A, the coherence guard (the haptic body's
+// real motion against the scene's max_point_speed), --k-vc, the deformable bodies' dynamics
+// (stepped at the haptic rate) and the view's point marks (null without --view).
+HapticCycleConfig MakeSessionCycleConfig(const SessionArgs& args, SessionScene& s, SceneDynamics& dynamics,
+                                         ContactPointMarks* marks) {
   HapticCycleConfig config;
-  config.X_WA = scene.pointshell_body.pose;
-  config.node_budget = scene.node_budget;
-  // The coherence guard: the haptic body's real motion against the scene's max_point_speed.
-  config.max_point_speed = scene.model.max_point_speed;
-  config.cycle_seconds = scene.model.cycle_seconds;
-  config.body_radius_H = assets.B.mesh()->MaxVertexRadius();
+  config.X_WA = s.scene.pointshell_body.pose;
+  config.node_budget = s.scene.node_budget;
+  config.max_point_speed = s.scene.model.max_point_speed;
+  config.cycle_seconds = s.scene.model.cycle_seconds;
+  config.body_radius_H = s.assets.B.mesh()->MaxVertexRadius();
   if (args.k_vc > 0) config.coupling.k_vc = args.k_vc;
-  // Deformable bodies: their dynamics step at the haptic rate, A's and the haptic body's.
-  SceneDynamics dynamics = MakeSceneDynamics(assets, scene.model.cycle_seconds);
   config.dynamics_A = dynamics.A.get();
   config.dynamics_B = dynamics.B.get();
-  // --view: the displayed pointshell points (the page's, same decimation) are marked with
-  // their contact state by the haptic thread, a chunk per cycle.
-  std::unique_ptr<ContactPointMarks> marks;
-  if (args.view) {
-    marks = std::make_unique<ContactPointMarks>(DecimatePointshell(*assets.A.pointshell(), SceneViewOptions{}.max_points).index);
-    config.point_marks = marks.get();
-  }
-  HapticCycle cycle(mapped, model.get(), config);
+  config.point_marks = marks;
+  return config;
+}
 
-  HapticLoopOptions loop_options;
-  loop_options.duration_seconds = args.duration;
-  loop_options.try_realtime = !args.no_realtime;
-  InstallStopSignalHandlers();
-  HapticLoop loop(cycle, loop_options);
+// The loop's options: --duration, and --no-realtime (no SCHED_FIFO, no mlockall).
+HapticLoopOptions SessionLoopOptions(const SessionArgs& args) {
+  HapticLoopOptions options;
+  options.duration_seconds = args.duration;
+  options.try_realtime = !args.no_realtime;
+  return options;
+}
 
-  // The log goes to a temporary name and is renamed when the session ends cleanly; on any
-  // failure the temporary is removed.
-  std::ofstream log;
-  std::optional<TemporaryOutput> log_output;
-  if (!args.log.empty()) {
-    log_output.emplace(args.log);
-    log.open(log_output->temporary(), std::ios::trunc);
-    if (!log) Fail(args.log, "cannot open the session log for writing");
-    log << "# contactlab session log: scene " << scene.name << ", model " << model_name << ", device " << args.device
-        << "\n"
-        << kLogHeader;
+// The session log (--log): written to a temporary name and renamed when the session ends
+// cleanly; on any failure the temporary is removed. Without --log every call does nothing.
+class SessionLog {
+ public:
+  SessionLog(const SessionArgs& args, const SessionScene& s) : path_(args.log) {
+    if (path_.empty()) return;
+    output_.emplace(path_);
+    out_.open(output_->temporary(), std::ios::trunc);
+    if (!out_) Fail(path_, "cannot open the session log for writing");
+    out_ << "# contactlab session log: scene " << s.scene.name << ", model " << s.model_name << ", device " << args.device
+         << "\n"
+         << kLogHeader;
   }
 
-  // --view: the live view's page and server (loopback only), before the loop starts.
-  std::unique_ptr<LatestValue<LiveSnapshot>> live;
+  // Consumer thread: one row per record, T0_NS the first record's time.
+  void Write(const CycleRecord& r, std::int64_t t0_ns) {
+    if (out_.is_open()) WriteRecord(out_, r, t0_ns);
+  }
+
+  // After the session: closes the log, checks that every write went through, and renames it
+  // onto its name. Throws Error naming the log when a write failed.
+  void Commit() {
+    if (!out_.is_open()) return;
+    out_.close();
+    if (!out_) Fail(path_, "write failed (disk full or I/O error)");
+    output_->Commit();
+    std::printf("session log: %s\n", path_.c_str());
+  }
+
+ private:
+  std::string path_;
+  std::optional<TemporaryOutput> output_;
+  std::ofstream out_;
+};
+
+// --view: the live view's snapshots (a history, and the publisher that fills it in session
+// time) and its server (page and stream, loopback only).
+struct SessionView {
+  std::unique_ptr<LiveSnapshotHistory> snapshots;
+  std::unique_ptr<LiveSnapshotPublisher> publisher;
   std::unique_ptr<LiveViewServer> server;
-  if (args.view) {
-    nlohmann::json data = SceneViewData(scene, assets, SceneViewOptions{}, BodyPoses{scene.pointshell_body.pose, X_WB_start});
-    data["title"] = scene.name + " (live)";
-    data["live"] = {{"stream", "stream"}, {"haptic", 1}, {"model", model_name}, {"device", args.device}};
-    live = std::make_unique<LatestValue<LiveSnapshot>>();
-    server = std::make_unique<LiveViewServer>(ViewerPage(data), *live, view_port, 50, marks.get());
-  }
+};
 
+// Snapshots and marks are taken by session time, counted in cycles of the loop: 50 snapshots
+// and at most 15 marks a second.
+constexpr double kSnapshotsPerSecond = 50, kMarksPerSecond = 15;
+
+SessionView StartSessionView(const SessionArgs& args, SessionScene& s, int port, ContactPointMarks* marks,
+                             double cycle_rate_hz) {
+  nlohmann::json data = SceneViewData(s.scene, s.assets, SceneViewOptions{}, BodyPoses{s.scene.pointshell_body.pose, s.X_WB_start});
+  data["title"] = s.scene.name + " (live)";
+  data["live"] = {{"stream", "stream"}, {"haptic", 1}, {"model", s.model_name}, {"device", args.device}};
+  const auto snapshot_every = std::max<std::int64_t>(1, std::llround(cycle_rate_hz / kSnapshotsPerSecond));
+  const auto marks_every = std::max<std::int64_t>(1, std::int64_t(std::ceil(cycle_rate_hz / kMarksPerSecond)));
+  SessionView view;
+  view.snapshots = std::make_unique<LiveSnapshotHistory>();
+  view.publisher = std::make_unique<LiveSnapshotPublisher>(*view.snapshots, snapshot_every);
+  view.server = std::make_unique<LiveViewServer>(ViewerPage(data), *view.snapshots, port, marks, marks_every);
+  return view;
+}
+
+// The start lines on stdout: scene, model, device, length and deformable bodies; where the
+// device is (a udp device's bound port, also when udp:0 picked it); the view's address.
+void PrintSessionStart(const SessionArgs& args, const SessionScene& s, const SceneDynamics& dynamics,
+                       const HapticDevice& device, const LiveViewServer* server) {
   std::string deformable;
-  if (dynamics.A) deformable += ", " + scene.pointshell_body.name + " deformable, r = " + std::to_string(dynamics.A->r());
-  if (dynamics.B) deformable += ", " + scene.field_body.name + " deformable, r = " + std::to_string(dynamics.B->r());
-  std::printf("session: scene %s, model %s, device %s, %.1f s (Ctrl-C stops)%s\n", scene.name.c_str(),
-              model_name.c_str(), args.device.c_str(), args.duration, deformable.c_str());
-  // Where the device is (a udp device's bound port, also when udp:0 picked it).
-  std::printf("device: %s\n", device->description().c_str());
+  if (dynamics.A) deformable += ", " + s.scene.pointshell_body.name + " deformable, r = " + std::to_string(dynamics.A->r());
+  if (dynamics.B) deformable += ", " + s.scene.field_body.name + " deformable, r = " + std::to_string(dynamics.B->r());
+  std::printf("session: scene %s, model %s, device %s, %.1f s (Ctrl-C stops)%s\n", s.scene.name.c_str(),
+              s.model_name.c_str(), args.device.c_str(), args.duration, deformable.c_str());
+  std::printf("device: %s\n", device.description().c_str());
   if (server) std::printf("view: %s\n", server->url().c_str());
   std::fflush(stdout);
+}
+
+// The one-line status on stderr, every half second of session time: rate, 99th-percentile
+// cycle time, points in contact, level rendered, clamps, coherence resets, contact faults
+// (when any) and a rejecting device's counters (so that zero force has a reason).
+class SessionStatusLine {
+ public:
+  explicit SessionStatusLine(bool quiet) : quiet_(quiet) { work_us_.reserve(4096); }
+
+  // Consumer thread, every record in order.
+  void Add(const CycleRecord& r) {
+    if (window_start_ < 0) window_start_ = r.now_ns;
+    work_us_.push_back(double(r.work_ns) * 1e-3);
+    ++window_cycles_;
+    points_ = r.points_in_contact;
+    level_ = r.level_rendered;
+    coherence_resets_ = r.coherence_resets;
+    contact_faults_ = r.contact_faults;
+    input_ = r.device_input;
+    if (r.safety_flags & (kSafetyForceClamped | kSafetyTorqueClamped)) ++clamps_;
+    if (r.now_ns - window_start_ > 500'000'000) {
+      Print(r.now_ns);
+      work_us_.clear();
+      window_cycles_ = 0;
+      window_start_ = r.now_ns;
+    }
+  }
+
+  // Ends the line after the session.
+  void Finish() const {
+    if (!quiet_) std::fprintf(stderr, "\n");
+  }
+
+ private:
+  void Print(std::int64_t now_ns) {
+    if (quiet_ || work_us_.empty()) return;
+    std::sort(work_us_.begin(), work_us_.end());
+    const double p99 = work_us_[std::min(work_us_.size() - 1, std::size_t(0.99 * work_us_.size()))];
+    const double rate = window_cycles_ / std::max(1e-9, double(now_ns - window_start_) * 1e-9);
+    std::fprintf(stderr, "\r%7.0f Hz  p99 %7.1f us  contacts %5d  level %2d  clamps %6llu  coherence resets %lld", rate,
+                 p99, points_, level_, static_cast<unsigned long long>(clamps_),
+                 static_cast<long long>(coherence_resets_));
+    if (contact_faults_ > 0) std::fprintf(stderr, "  contact faults %lld", static_cast<long long>(contact_faults_));
+    if (input_.received > 0 || input_.rejected() > 0)
+      std::fprintf(stderr, "  rejected %lld (malformed %lld, dup %lld, order %lld, stale %lld, future %lld) resyncs %lld",
+                   static_cast<long long>(input_.rejected()), static_cast<long long>(input_.malformed),
+                   static_cast<long long>(input_.duplicate), static_cast<long long>(input_.out_of_order),
+                   static_cast<long long>(input_.stale), static_cast<long long>(input_.future),
+                   static_cast<long long>(input_.resyncs));
+    std::fprintf(stderr, "   ");
+    std::fflush(stderr);
+  }
+
+  bool quiet_;
+  std::vector<double> work_us_;  // this window's cycle times
+  std::int64_t window_start_ = -1, window_cycles_ = 0;
+  int points_ = 0, level_ = -1;
+  std::uint64_t clamps_ = 0;
+  std::int64_t coherence_resets_ = 0, contact_faults_ = 0;
+  DeviceInputStats input_;
+};
+
+// Runs the haptic loop to its end while a consumer thread drains its records into the log,
+// the status line and (with the view) the snapshot publisher; returns the loop's report.
+HapticLoopReport RunSessionLoop(HapticLoop& loop, SessionLog& log, LiveSnapshotPublisher* live, bool quiet) {
   std::atomic<bool> done{false};
   std::thread consumer([&] {
+    SessionStatusLine status(quiet);
     CycleRecord rec;
-    std::int64_t t0 = -1, window_start = -1, window_cycles = 0;
-    std::vector<double> work_us;
-    work_us.reserve(4096);
-    int points = 0, level = -1;
-    std::uint64_t clamps = 0;
-    std::int64_t coherence_resets = 0, contact_faults = 0;
-    DeviceInputStats input;
-    auto status = [&](std::int64_t now) {
-      if (args.quiet || work_us.empty()) return;
-      std::sort(work_us.begin(), work_us.end());
-      const double p99 = work_us[std::min(work_us.size() - 1, std::size_t(0.99 * work_us.size()))];
-      const double rate = window_cycles / std::max(1e-9, double(now - window_start) * 1e-9);
-      std::fprintf(stderr, "\r%7.0f Hz  p99 %7.1f us  contacts %5d  level %2d  clamps %6llu  coherence resets %lld", rate,
-                   p99, points, level, static_cast<unsigned long long>(clamps),
-                   static_cast<long long>(coherence_resets));
-      if (contact_faults > 0) std::fprintf(stderr, "  contact faults %lld", static_cast<long long>(contact_faults));
-      // A device that rejects samples (udp): what it rejected, so zero force has a reason.
-      if (input.received > 0 || input.rejected() > 0)
-        std::fprintf(stderr, "  rejected %lld (malformed %lld, dup %lld, order %lld, stale %lld, future %lld) resyncs %lld",
-                     static_cast<long long>(input.rejected()), static_cast<long long>(input.malformed),
-                     static_cast<long long>(input.duplicate), static_cast<long long>(input.out_of_order),
-                     static_cast<long long>(input.stale), static_cast<long long>(input.future),
-                     static_cast<long long>(input.resyncs));
-      std::fprintf(stderr, "   ");
-      std::fflush(stderr);
-    };
+    std::int64_t t0 = -1;
     for (;;) {
       const bool finished = done.load();
-      bool popped = false;
       while (loop.records().TryPop(&rec)) {
-        popped = true;
-        if (t0 < 0) t0 = window_start = rec.now_ns;
-        if (log.is_open()) WriteRecord(log, rec, t0);
-        work_us.push_back(double(rec.work_ns) * 1e-3);
-        ++window_cycles;
-        points = rec.points_in_contact;
-        level = rec.level_rendered;
-        coherence_resets = rec.coherence_resets;
-        contact_faults = rec.contact_faults;
-        input = rec.device_input;
-        if (rec.safety_flags & (kSafetyForceClamped | kSafetyTorqueClamped)) ++clamps;
-        if (rec.now_ns - window_start > 500'000'000) {
-          status(rec.now_ns);
-          work_us.clear();
-          window_cycles = 0;
-          window_start = rec.now_ns;
-        }
+        if (t0 < 0) t0 = rec.now_ns;
+        log.Write(rec, t0);
+        status.Add(rec);
+        if (live) live->Offer(rec, t0);  // a snapshot every so many cycles
       }
-      // The live view reads the newest record, not each one.
-      if (live && popped) live->Store(SnapshotOf(rec, t0));
       if (finished) break;
       std::this_thread::sleep_for(std::chrono::milliseconds(live ? 2 : 5));
     }
-    if (!args.quiet) std::fprintf(stderr, "\n");
+    status.Finish();
   });
   const HapticLoopReport report = loop.Run();
   done.store(true);
   consumer.join();
-  if (server) server->Stop();
+  return report;
+}
+
+// The session, step by step: options, scene and model, device, cycle and loop, log, view;
+// then the loop runs and the summary and the log close it.
+void RunSession(const SessionArgs& args) {
+  const ViewOptions view_options = CheckSessionOptions(args);
+  SessionScene s(args);
+  SessionDevice device(args.device, s.X_WB_start);
+  SceneDynamics dynamics = MakeSceneDynamics(s.assets, s.scene.model.cycle_seconds);
+  std::unique_ptr<ContactPointMarks> marks = args.view ? MakeViewPointMarks(s) : nullptr;
+  HapticCycle cycle(device.mapped, s.model.get(), MakeSessionCycleConfig(args, s, dynamics, marks.get()));
+  InstallStopSignalHandlers();
+  const HapticLoopOptions loop_options = SessionLoopOptions(args);
+  HapticLoop loop(cycle, loop_options);
+  SessionLog log(args, s);
+  const SessionView view =
+      args.view ? StartSessionView(args, s, view_options.port, marks.get(), loop_options.rate_hz) : SessionView{};
+  PrintSessionStart(args, s, dynamics, *device.device, view.server.get());
+  // --view-wait: the session starts once its viewers opened the stream (or Ctrl-C: it ends
+  // at once), so that they see it from its first cycle.
+  if (view_options.viewers > 0) {
+    std::printf("view: waiting for %d viewer%s\n", view_options.viewers, view_options.viewers > 1 ? "s" : "");
+    std::fflush(stdout);
+    view.server->WaitForStreams(view_options.viewers, StopSignalRequested);
+  }
+
+  const HapticLoopReport report = RunSessionLoop(loop, log, view.publisher.get(), args.quiet);
+  if (view.server) view.server->Stop();
   std::printf("%s", FormatLoopReport(report).c_str());
   std::printf("  records dropped by the log consumer: %llu\n",
               static_cast<unsigned long long>(loop.records().dropped()));
-  if (log.is_open()) {
-    log.close();
-    if (!log) Fail(args.log, "write failed (disk full or I/O error)");
-    log_output->Commit();
-    std::printf("session log: %s\n", args.log.c_str());
-  }
+  log.Commit();
 }
 
 const CommandRegistration kSessionCommands([](CLI::App& app) {
@@ -260,8 +398,13 @@ const CommandRegistration kSessionCommands([](CLI::App& app) {
   CLI::Option* view = cmd->add_option("--view", args->view_port,
                                       "serve a live 3D view on http://127.0.0.1:PORT/ (no PORT or 0: a free port, printed)")
                           ->expected(0, 1);
-  cmd->callback([args, view] {
+  CLI::Option* view_wait =
+      cmd->add_option("--view-wait", args->view_wait_count,
+                      "with --view: start the session once N viewers (default 1) opened the live view's stream")
+          ->expected(0, 1);
+  cmd->callback([args, view, view_wait] {
     args->view = view->count() > 0;
+    args->view_wait = view_wait->count() > 0;
     RunSession(*args);
   });
 });

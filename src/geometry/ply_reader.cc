@@ -222,8 +222,18 @@ std::string RecordWhere(std::string_view file, const PlyElement& element, long l
          std::to_string(element.count) + ", byte offset " + std::to_string(offset) + ")";
 }
 
+// Counts record R of ELEMENT as stepped through, against STATS' budget (nothing without STATS).
+void CountVisit(PlyReadStats* stats, std::string_view file, const PlyElement& element, long long r) {
+  if (stats == nullptr) return;
+  ++stats->records_visited;
+  if (stats->max_records_visited >= 0 && stats->records_visited > stats->max_records_visited) {
+    Fail(std::string(file) + " (PLY element '" + element.name + "' record " + std::to_string(r) + ")",
+         "the reader stepped through more than " + std::to_string(stats->max_records_visited) + " records");
+  }
+}
+
 void ReadBinaryBody(std::string_view bytes, std::string_view file, const PlyHeader& header, const PlyLayout& layout,
-                    TriangleMesh* mesh) {
+                    TriangleMesh* mesh, PlyReadStats* stats) {
   const bool file_big = header.format == PlyFormat::kBinaryBigEndian;
   const bool host_big = std::endian::native == std::endian::big;
   BinaryCursor cursor(bytes, header.data_offset, file_big != host_big);
@@ -235,8 +245,12 @@ void ReadBinaryBody(std::string_view bytes, std::string_view file, const PlyHead
     const bool is_face = e == layout.face_element;
     // A record without properties holds no bytes: nothing to read, however large the count
     // (up to 2^31 empty iterations otherwise).
-    if (element.properties.empty()) continue;
+    if (element.properties.empty()) {
+      if (stats) stats->records_skipped += element.count;
+      continue;
+    }
     for (long long r = 0; r < element.count; ++r) {
+      CountVisit(stats, file, element, r);
       const std::size_t record_offset = cursor.offset();
       const auto truncated = [&]() {
         Fail(RecordWhere(file, element, r, record_offset),
@@ -288,7 +302,7 @@ void ReadBinaryBody(std::string_view bytes, std::string_view file, const PlyHead
 }
 
 void ReadAsciiBody(std::string_view bytes, std::string_view file, const PlyHeader& header, const PlyLayout& layout,
-                   TriangleMesh* mesh) {
+                   TriangleMesh* mesh, PlyReadStats* stats) {
   LineScanner scanner(bytes.substr(header.data_offset), file, header.data_line);
   const long long num_vertices = header.elements[layout.vertex_element].count;
   std::vector<int> polygon;
@@ -298,6 +312,7 @@ void ReadAsciiBody(std::string_view bytes, std::string_view file, const PlyHeade
     const bool is_face = e == layout.face_element;
     // One record per line.
     for (long long r = 0; r < element.count; ++r) {
+      CountVisit(stats, file, element, r);
       if (!scanner.NextContentLine()) {
         scanner.Fail("truncated: file ends after " + std::to_string(r) + " of " + std::to_string(element.count) +
                      " '" + element.name + "' elements");
@@ -339,7 +354,7 @@ void ReadAsciiBody(std::string_view bytes, std::string_view file, const PlyHeade
 
 }  // namespace
 
-TriangleMesh ReadPly(std::string_view bytes, std::string_view file) {
+TriangleMesh ReadPly(std::string_view bytes, std::string_view file, PlyReadStats* stats) {
   const PlyHeader header = ParseHeader(bytes, file);
   const PlyLayout layout = FindLayout(header, file);
   TriangleMesh mesh;
@@ -348,9 +363,9 @@ TriangleMesh ReadPly(std::string_view bytes, std::string_view file) {
   mesh.vertices.reserve(std::min<std::size_t>(header.elements[layout.vertex_element].count, data_bytes / 3 + 1));
   mesh.triangles.reserve(std::min<std::size_t>(header.elements[layout.face_element].count, data_bytes / 4 + 1));
   if (header.format == PlyFormat::kAscii) {
-    ReadAsciiBody(bytes, file, header, layout, &mesh);
+    ReadAsciiBody(bytes, file, header, layout, &mesh, stats);
   } else {
-    ReadBinaryBody(bytes, file, header, layout, &mesh);
+    ReadBinaryBody(bytes, file, header, layout, &mesh, stats);
   }
   if (mesh.triangles.empty()) Fail(file, "no faces: the mesh has no triangles");
   return mesh;

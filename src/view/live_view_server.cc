@@ -67,22 +67,36 @@ std::string MarksJson(const PointMarkSweep& s) {
   return head + Base64Encode(PackPointStates(s.states)) + "\"}";
 }
 
-std::pair<std::uint64_t, std::string> LiveViewServer::LatestMarks() {
-  std::lock_guard<std::mutex> lock(marks_mutex_);
-  if (marks_->TakeLatest(&marks_sweep_)) marks_json_ = MarksJson(marks_sweep_);
-  return {marks_sweep_.sequence, marks_json_};
+namespace {
+
+// How often an idle stream looks for new snapshots and marks. Latency only: which snapshots a
+// stream sends does not depend on it.
+constexpr std::chrono::milliseconds kStreamPoll{10};
+// How long Stop() lets the open streams send what is left before it cuts them (a client that
+// does not read).
+constexpr std::chrono::seconds kStreamDrain{5};
+
+}  // namespace
+
+LiveSnapshotPublisher::LiveSnapshotPublisher(LiveSnapshotHistory& history, std::int64_t every_cycles)
+    : history_(history), every_cycles_(every_cycles) {
+  if (every_cycles_ <= 0) Fail("live view", "snapshots must be taken every N > 0 cycles");
 }
 
-LiveViewServer::LiveViewServer(std::string page, const LatestValue<LiveSnapshot>& source, int port, double rate_hz,
-                               ContactPointMarks* marks, double marks_rate_hz)
+LiveViewServer::Marks LiveViewServer::LatestMarks() {
+  std::lock_guard<std::mutex> lock(marks_mutex_);
+  if (marks_->TakeLatest(&marks_sweep_)) marks_json_ = MarksJson(marks_sweep_);
+  return {marks_sweep_.sequence, marks_sweep_.last_cycle, marks_json_};
+}
+
+LiveViewServer::LiveViewServer(std::string page, const LiveSnapshotHistory& source, int port, ContactPointMarks* marks,
+                               std::int64_t marks_every_cycles)
     : page_(std::move(page)),
       source_(source),
-      rate_hz_(rate_hz),
       marks_(marks),
-      marks_rate_hz_(marks_rate_hz),
+      marks_every_cycles_(marks_every_cycles),
       server_(std::make_unique<httplib::Server>()) {
-  if (!(rate_hz_ > 0 && rate_hz_ <= 1000)) Fail("live view", "stream rate must be in (0, 1000] Hz");
-  if (!(marks_rate_hz_ > 0 && marks_rate_hz_ <= rate_hz_)) Fail("live view", "marks rate must be in (0, stream rate] Hz");
+  if (marks_every_cycles_ <= 0) Fail("live view", "marks must be at least 1 cycle apart");
   if (port < 0 || port > 65535) Fail("--view", "port " + std::to_string(port) + " is not in 0..65535");
 
   server_->Get("/", [this](const httplib::Request&, httplib::Response& res) {
@@ -90,59 +104,102 @@ LiveViewServer::LiveViewServer(std::string page, const LatestValue<LiveSnapshot>
   });
   server_->Get("/snapshot", [this](const httplib::Request&, httplib::Response& res) {
     LiveSnapshot s;
-    if (!source_.Load(&s)) {
+    if (!source_.Latest(&s)) {
       res.status = 204;
       return;
     }
     res.set_content(SnapshotJson(s), "application/json");
   });
   server_->Get("/marks", [this](const httplib::Request&, httplib::Response& res) {
-    const auto [sequence, json] = marks_ ? LatestMarks() : std::pair<std::uint64_t, std::string>{0, ""};
-    if (sequence == 0) {
+    const Marks m = marks_ ? LatestMarks() : Marks{};
+    if (m.sequence == 0) {
       res.status = 204;
       return;
     }
-    res.set_content(json, "application/json");
+    res.set_content(m.json, "application/json");
   });
-  // Server-sent events: each new snapshot once, polled at the stream's rate, and the newest
-  // marks at their lower rate; the stream ends when the server stops or the client goes away.
+  // Server-sent events: every snapshot of the history once and in order from where the stream
+  // joined, and the newest marks when due; the stream ends when the server stops (after
+  // sending what was published before) or the client goes away.
   server_->Get("/stream", [this](const httplib::Request&, httplib::Response& res) {
     res.set_header("Cache-Control", "no-cache");
-    auto last = std::make_shared<std::uint64_t>(0);
-    auto last_marks = std::make_shared<std::uint64_t>(0);
-    auto marks_due = std::make_shared<std::chrono::steady_clock::time_point>();
-    res.set_chunked_content_provider("text/event-stream", [this, last, last_marks, marks_due](std::size_t,
-                                                                                             httplib::DataSink& sink) {
-      const auto period = std::chrono::duration<double>(1.0 / rate_hz_);
-      for (;;) {
-        if (stopping_.load()) {
-          sink.done();
-          return true;
-        }
-        if (marks_ && std::chrono::steady_clock::now() >= *marks_due) {
-          const auto [sequence, json] = LatestMarks();
-          if (sequence != 0 && sequence != *last_marks) {
-            *last_marks = sequence;
-            *marks_due = std::chrono::steady_clock::now() +
-                         std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                             std::chrono::duration<double>(1.0 / marks_rate_hz_));
-            const std::string event = "event: marks\ndata: " + json + "\n\n";
-            if (!sink.write(event.data(), event.size())) return false;
+    struct Stream {
+      std::uint64_t next = 0;            // the next snapshot to send
+      std::uint64_t marks_sequence = 0;  // the last marks sent (0: none yet) and their cycle
+      std::int64_t marks_cycle = 0;
+    };
+    auto stream = std::make_shared<Stream>();
+    const std::uint64_t published = source_.published();
+    stream->next = published > 0 ? published - 1 : 0;
+    {
+      std::lock_guard<std::mutex> lock(streams_mutex_);
+      ++streams_opened_;
+      ++streams_open_;
+    }
+    streams_changed_.notify_all();
+    res.set_chunked_content_provider(
+        "text/event-stream",
+        [this, stream](std::size_t, httplib::DataSink& sink) {
+          for (;;) {
+            // Whether the server stops, before looking: what was published before Stop() is
+            // then all there.
+            bool stopping;
+            {
+              std::lock_guard<std::mutex> lock(streams_mutex_);
+              stopping = stopping_;
+            }
+            bool wrote = false;
+            // The newest marks, when a sweep completed at least marks_every_cycles_ after the last
+            // one sent. Looked for after each snapshot that is that far on (and while none was
+            // sent, and at the end), so that marks go out in session time, between the snapshots,
+            // and a sweep is copied and encoded only when it may be due.
+            const auto send_marks_when_due = [&](bool look) {
+              if (!marks_ || !look) return true;
+              const Marks m = LatestMarks();
+              if (m.sequence == 0 || m.sequence == stream->marks_sequence) return true;
+              if (stream->marks_sequence != 0 && m.last_cycle - stream->marks_cycle < marks_every_cycles_) return true;
+              stream->marks_sequence = m.sequence;
+              stream->marks_cycle = m.last_cycle;
+              const std::string event = "event: marks\ndata: " + m.json + "\n\n";
+              wrote = true;
+              return sink.write(event.data(), event.size());
+            };
+            // Every snapshot published since the last look, in order; a stream more than the
+            // history behind skips to the newest.
+            for (LiveSnapshot s;;) {
+              const HistoryRead read = source_.Get(stream->next, &s);
+              if (read == HistoryRead::kNotYet) break;
+              if (read == HistoryRead::kOverwritten) {
+                stream->next = source_.published() - 1;
+                continue;
+              }
+              ++stream->next;
+              const std::string event = "data: " + SnapshotJson(s) + "\n\n";
+              if (!sink.write(event.data(), event.size())) return false;
+              wrote = true;
+              if (!send_marks_when_due(stream->marks_sequence == 0 || s.cycle - stream->marks_cycle >= marks_every_cycles_))
+                return false;
+            }
+            if (!send_marks_when_due(stream->marks_sequence == 0 || stopping)) return false;
+            if (stopping) {
+              sink.done();
+              return true;
+            }
+            if (wrote) return true;
+            {
+              std::unique_lock<std::mutex> lock(streams_mutex_);
+              streams_changed_.wait_for(lock, kStreamPoll, [&] { return stopping_; });
+            }
+            if (!sink.is_writable()) return false;
           }
-        }
-        LiveSnapshot s;
-        const std::uint64_t version = source_.version();
-        if (version != *last && source_.Load(&s)) {
-          *last = version;
-          const std::string event = "data: " + SnapshotJson(s) + "\n\n";
-          if (!sink.write(event.data(), event.size())) return false;
-          std::this_thread::sleep_for(period);
-          return true;
-        }
-        std::this_thread::sleep_for(period);
-        if (!sink.is_writable()) return false;
-      }
-    });
+        },
+        [this](bool) {
+          {
+            std::lock_guard<std::mutex> lock(streams_mutex_);
+            --streams_open_;
+          }
+          streams_changed_.notify_all();
+        });
   });
 
   // Loopback only: the page and the stream never leave this machine.
@@ -162,8 +219,22 @@ LiveViewServer::LiveViewServer(std::string page, const LatestValue<LiveSnapshot>
 
 LiveViewServer::~LiveViewServer() { Stop(); }
 
+bool LiveViewServer::WaitForStreams(int count, const std::function<bool()>& give_up) {
+  std::unique_lock<std::mutex> lock(streams_mutex_);
+  while (streams_opened_ < count) {
+    if (give_up && give_up()) return false;
+    streams_changed_.wait_for(lock, std::chrono::milliseconds(100), [&] { return streams_opened_ >= count; });
+  }
+  return true;
+}
+
 void LiveViewServer::Stop() {
-  stopping_.store(true);
+  {
+    std::unique_lock<std::mutex> lock(streams_mutex_);
+    stopping_ = true;
+    streams_changed_.notify_all();
+    streams_changed_.wait_for(lock, kStreamDrain, [&] { return streams_open_ == 0; });
+  }
   if (server_) server_->stop();
   if (thread_.joinable()) thread_.join();
 }

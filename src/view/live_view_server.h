@@ -3,14 +3,18 @@
 // stream of snapshots of the session: the haptic body's and the device's poses, the forces,
 // level rendered and points in contact, cycle time. The haptic thread is untouched: its cycle
 // records reach the session's consumer thread through the loop's lock-free ring (haptic_loop.h),
-// the consumer stores the newest as a LiveSnapshot (LatestValue, lock-free), and the server's
-// threads read it at the stream's rate. With the per-point contact marks of the displayed
-// pointshell points (haptics/contact_point_marks.h), the stream also carries the newest
-// completed sweep of marks at a lower rate.
+// the consumer takes one snapshot every so many cycles (LiveSnapshotPublisher: by session time,
+// not by the wall clock) into a lock-free history (snapshot_history.h), and each stream sends
+// every snapshot of the history in order from where it joined, whenever its thread runs. With
+// the per-point contact marks of the displayed pointshell points
+// (haptics/contact_point_marks.h), the stream also carries the newest completed sweep of marks,
+// at most one per so many cycles.
 #pragma once
 
 #include <atomic>
+#include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -18,7 +22,7 @@
 
 #include "haptics/contact_point_marks.h"
 #include "haptics/haptic_cycle.h"
-#include "view/latest_value.h"
+#include "view/snapshot_history.h"
 
 namespace httplib {
 class Server;
@@ -46,6 +50,33 @@ struct LiveSnapshot {
 // The snapshot of record R of a session whose first cycle started at T0_NS.
 LiveSnapshot SnapshotOf(const CycleRecord& r, std::int64_t t0_ns);
 
+// A session's snapshots in the order they were taken, for the streams: 256 of them, 5 s at 50
+// a second (a stream that falls further behind skips to the newest).
+using LiveSnapshotHistory = SnapshotHistory<LiveSnapshot, 256>;
+
+// Which of a session's records become snapshots, decided in session time: the first record of
+// every block of EVERY_CYCLES haptic cycles, i.e. cycles 0, N, 2N, ... when the consumer
+// dropped none (at 1 kHz and N = 20: 50 snapshots a second of session time, however fast or
+// late the consumer and the streams run).
+class LiveSnapshotPublisher {
+ public:
+  // HISTORY must outlive the publisher. Throws Error unless EVERY_CYCLES > 0.
+  LiveSnapshotPublisher(LiveSnapshotHistory& history, std::int64_t every_cycles);
+  // Consumer thread, each record in order; T0_NS is the first record's time. Publishes R when
+  // it opens a new block. Wait-free, allocation-free, never throws.
+  void Offer(const CycleRecord& r, std::int64_t t0_ns) noexcept {
+    const std::int64_t block = r.cycle / every_cycles_;
+    if (block <= last_block_) return;
+    last_block_ = block;
+    history_.Publish(SnapshotOf(r, t0_ns));
+  }
+
+ private:
+  LiveSnapshotHistory& history_;
+  std::int64_t every_cycles_;
+  std::int64_t last_block_ = -1;
+};
+
 // {"t", "cycle", "body": [x,y,z,qw,qx,qy,qz], "device": [...], "contact_force": [...],
 // "force": [...], "torque": [...], "contacts", "level", "work_us", "safety"}, numbers with 9
 // significant digits (as the session log).
@@ -61,41 +92,59 @@ std::string MarksJson(const PointMarkSweep& sweep);
 
 class LiveViewServer {
  public:
-  // Serves PAGE at "/", the snapshots of SOURCE at "/stream" (text/event-stream, one
-  // "data: JSON" event whenever a new snapshot is there, checked RATE_HZ times a second) and
-  // the newest one at "/snapshot" (JSON; 204 before the first), on 127.0.0.1:PORT (0: a free
-  // port). With MARKS, the stream also sends "event: marks" + "data: MarksJson" whenever a
-  // newer sweep completed, at most MARKS_RATE_HZ times a second, and "/marks" returns the
+  // Serves PAGE at "/", the snapshots of SOURCE at "/stream" (text/event-stream, one "data:
+  // JSON" event per snapshot, each snapshot once and in order, starting from the newest when
+  // the stream opens or from the first when none was published yet) and the newest one at
+  // "/snapshot" (JSON; 204 before the first), on 127.0.0.1:PORT (0: a free port). With MARKS,
+  // the stream also sends "event: marks" + "data: MarksJson" when a newer sweep completed at
+  // least MARKS_EVERY_CYCLES haptic cycles after the last one it sent, and "/marks" returns the
   // newest (204 before the first). SOURCE and MARKS must outlive the server. Throws Error
   // naming the address when it cannot bind.
-  LiveViewServer(std::string page, const LatestValue<LiveSnapshot>& source, int port, double rate_hz = 50,
-                 ContactPointMarks* marks = nullptr, double marks_rate_hz = 15);
+  LiveViewServer(std::string page, const LiveSnapshotHistory& source, int port, ContactPointMarks* marks = nullptr,
+                 std::int64_t marks_every_cycles = 67);
   ~LiveViewServer();
   LiveViewServer(const LiveViewServer&) = delete;
   LiveViewServer& operator=(const LiveViewServer&) = delete;
 
   int port() const { return port_; }
   std::string url() const { return "http://127.0.0.1:" + std::to_string(port_) + "/"; }
-  // Ends every stream and stops serving (also done by the destructor).
+
+  // Blocks until COUNT streams were opened (since the server started), or GIVE_UP returns
+  // true (asked a few times a second, e.g. a stop signal); returns whether they were. A
+  // stream opened before any snapshot was published sends them all from the first.
+  bool WaitForStreams(int count, const std::function<bool()>& give_up);
+
+  // Ends the streams and stops serving (also done by the destructor). Each open stream first
+  // sends every snapshot published before the call (and the newest marks when due), then
+  // ends cleanly; a stream whose client does not read is cut after a few seconds.
   void Stop();
 
  private:
-  std::string page_;
+  struct Marks {
+    std::uint64_t sequence = 0;  // 0: none yet
+    std::int64_t last_cycle = 0;
+    std::string json;
+  };
   // The newest sweep of marks and its JSON, shared by the stream threads (TakeLatest has one
   // reader at a time).
-  std::pair<std::uint64_t, std::string> LatestMarks();
+  Marks LatestMarks();
 
-  const LatestValue<LiveSnapshot>& source_;
-  double rate_hz_;
+  std::string page_;
+  const LiveSnapshotHistory& source_;
   ContactPointMarks* marks_;
-  double marks_rate_hz_;
+  std::int64_t marks_every_cycles_;
   std::mutex marks_mutex_;
   PointMarkSweep marks_sweep_;
   std::string marks_json_;
   int port_ = 0;
   std::unique_ptr<httplib::Server> server_;
   std::thread thread_;
-  std::atomic<bool> stopping_{false};
+  // The streams: opened so far, still open, and whether the server is stopping (streams_mutex_).
+  std::mutex streams_mutex_;
+  std::condition_variable streams_changed_;
+  int streams_opened_ = 0;
+  int streams_open_ = 0;
+  bool stopping_ = false;
 };
 
 }  // namespace contactlab

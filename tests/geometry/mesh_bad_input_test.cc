@@ -310,9 +310,10 @@ TEST(MeshBadInput, PlyEndHeaderWithoutLineBreakIsTruncatedNotReadPastTheEnd) {
 // A binary PLY element without properties has records of no bytes: skipped at once, whatever
 // its count (a count near 2^31 made the reader spin for seconds, minutes under sanitizers).
 // Found by tests/fuzz/fuzz_ply_reader. Here a thousand such elements, before, between and after
-// the mesh's, declare some 2^41 empty records in all: a reader that visits them one by one cannot
-// finish within the test's timeout however fast it is, and the mesh around them reads as if
-// they were absent. (What reading costs is measured by benchmarks, not asserted here.)
+// the mesh's, declare some 2^41 empty records in all. The reader's cost is counted, not timed:
+// it may step through the mesh's four records (three vertices, one face) and no more, so a
+// reader that visits the empty records one by one fails at its fifth instead of running for
+// hours; and the mesh around them reads as if they were absent.
 TEST(MeshBadInput, PlyElementWithoutPropertiesCostsNothingWhateverItsCount) {
   const auto ply = [](int empty_elements, int count) {
     std::string empty;
@@ -325,13 +326,46 @@ TEST(MeshBadInput, PlyElementWithoutPropertiesCostsNothingWhateverItsCount) {
     b.Put<std::uint8_t>(3).Put<std::int32_t>(0).Put<std::int32_t>(1).Put<std::int32_t>(2);
     return b.bytes();
   };
-  const TriangleMesh plain = ReadInMemory("ply", ply(0, 0));
-  const TriangleMesh padded = ReadInMemory("ply", ply(1000 / 3, 2147483646));
+  constexpr int kEmptyElements = 3 * (1000 / 3), kCount = 2147483646;  // the largest count the header takes
+  internal::PlyReadStats plain_stats, padded_stats;
+  plain_stats.max_records_visited = padded_stats.max_records_visited = 4;
+  const TriangleMesh plain = internal::ReadPly(ply(0, 0), "plain.ply", &plain_stats);
+  TriangleMesh padded;
+  try {
+    padded = internal::ReadPly(ply(kEmptyElements / 3, kCount), "padded.ply", &padded_stats);
+  } catch (const Error& e) {
+    FAIL() << "the empty records cost per-record work: " << e.what();
+  }
+  EXPECT_EQ(plain_stats.records_visited, 4);
+  EXPECT_EQ(padded_stats.records_visited, 4);
+  EXPECT_EQ(padded_stats.records_skipped, std::int64_t(kEmptyElements) * kCount);
   ASSERT_EQ(padded.num_triangles(), 1);
   ASSERT_EQ(padded.vertices.size(), 3u);
   EXPECT_EQ(padded.triangles, plain.triangles);
   for (int i = 0; i < 3; ++i) EXPECT_EQ(padded.vertices[i], plain.vertices[i]) << "vertex " << i;
   EXPECT_EQ(padded.vertices[1], Eigen::Vector3d(1, 0, 0));
+}
+
+// The budget of the cost check above holds: a read that needs more records than allowed
+// throws, naming the file and the record where it stopped.
+TEST(MeshBadInput, PlyRecordBudgetStopsTheReadAtOnce) {
+  ByteBuilder b;
+  b.Text("ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+         "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n");
+  for (const float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) b.Put<float>(v);
+  b.Put<std::uint8_t>(3).Put<std::int32_t>(0).Put<std::int32_t>(1).Put<std::int32_t>(2);
+  internal::PlyReadStats stats;
+  stats.max_records_visited = 2;
+  try {
+    internal::ReadPly(b.bytes(), "budget.ply", &stats);
+    FAIL() << "expected an Error";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("budget.ply"), std::string::npos) << message;
+    EXPECT_NE(message.find("'vertex' record 2"), std::string::npos) << message;
+    EXPECT_NE(message.find("more than 2 records"), std::string::npos) << message;
+  }
+  EXPECT_EQ(stats.records_visited, 3);
 }
 
 // A garbage token quoted in an error is cut short and its control bytes escaped: a

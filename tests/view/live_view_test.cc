@@ -1,11 +1,15 @@
 // The live view of a session end to end: `contactlab session ... --view` on a free loopback
 // port, its page and event stream read with httplib::Client while the session runs, and every
-// streamed snapshot checked against the session's log row of the same cycle.
+// streamed snapshot checked against the session's log row of the same cycle. Nothing here
+// depends on how fast the session, its threads or this test run: snapshots are taken by
+// session time (cycles), each stream sends every one of them in order, the session waits for
+// its viewer (--view-wait) and, when it ends, sends what is left before ending the stream.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
 #include <array>
 #include <chrono>
+#include <span>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -25,6 +29,7 @@
 #include "view/page_encoding.h"
 #include "view/latest_value.h"
 #include "view/live_view_server.h"
+#include "view/snapshot_history.h"
 
 // After every header that includes Eigen: httplib.h brings <resolv.h>, whose macro _res breaks
 // Eigen's headers.
@@ -104,9 +109,117 @@ TEST(LatestValue, StoringSnapshotsAllocatesNothing) {
   EXPECT_EQ(v.version(), 1000u);
 }
 
+// A value of the history tests: both fields always equal, so a torn copy shows.
+struct Numbered {
+  std::uint64_t a, b;
+};
+
+TEST(SnapshotHistory, ReaderLearnsWhatIsThereNotYetAndOverwritten) {
+  SnapshotHistory<Numbered, 4> h;
+  Numbered v{};
+  EXPECT_EQ(h.published(), 0u);
+  EXPECT_FALSE(h.Latest(&v));
+  EXPECT_EQ(h.Get(0, &v), HistoryRead::kNotYet);
+  for (std::uint64_t k = 0; k < 6; ++k) h.Publish({k, k});
+  EXPECT_EQ(h.published(), 6u);
+  EXPECT_EQ(h.Get(0, &v), HistoryRead::kOverwritten);  // by 4
+  EXPECT_EQ(h.Get(1, &v), HistoryRead::kOverwritten);  // by 5
+  for (std::uint64_t k = 2; k < 6; ++k) {
+    ASSERT_EQ(h.Get(k, &v), HistoryRead::kOk) << k;
+    EXPECT_EQ(v.a, k);
+  }
+  EXPECT_EQ(h.Get(6, &v), HistoryRead::kNotYet);
+  ASSERT_TRUE(h.Latest(&v));
+  EXPECT_EQ(v.a, 5u);
+}
+
+// A reader that follows a writer reads each value whole and in order, or learns that it fell
+// behind and skips; it ends when the writer has published all, however the two are scheduled.
+TEST(SnapshotHistory, FollowingReaderSeesWholeValuesInOrder) {
+  static SnapshotHistory<Numbered, 16> h;  // small: the reader sometimes falls behind
+  constexpr std::uint64_t kN = 100000;
+  std::thread writer([] {
+    for (std::uint64_t k = 0; k < kN; ++k) {
+      h.Publish({k, k});
+      if (k % 8 == 0) std::this_thread::yield();  // on a shared core, let the reader in
+    }
+  });
+  std::uint64_t read = 0, torn = 0, wrong = 0;
+  for (std::uint64_t k = 0; k < kN;) {
+    Numbered v;
+    switch (h.Get(k, &v)) {
+      case HistoryRead::kOk:
+        torn += v.a != v.b;
+        wrong += v.a != k;
+        ++read;
+        ++k;
+        break;
+      case HistoryRead::kOverwritten:
+        k = h.published() - 1;  // as a stream does: on to the newest
+        break;
+      case HistoryRead::kNotYet:
+        std::this_thread::yield();
+        break;
+    }
+  }
+  writer.join();
+  EXPECT_EQ(torn, 0u);
+  EXPECT_EQ(wrong, 0u);
+  EXPECT_GT(read, 0u);
+}
+
+// Snapshots are chosen by the cycles of the records, not by when they arrive: the first record
+// of every block of 20 cycles, also when records are missing (dropped by a lagging consumer).
+TEST(LiveSnapshotPublisher, TakesTheFirstRecordOfEveryBlockOfCycles) {
+  auto history = std::make_unique<LiveSnapshotHistory>();
+  LiveSnapshotPublisher publisher(*history, 20);
+  CycleRecord r;
+  const std::int64_t t0 = 5'000'000'000;
+  for (std::int64_t cycle = 0; cycle < 100; ++cycle) {
+    if (cycle >= 37 && cycle <= 41) continue;  // records lost: block 2 starts at 42
+    r.cycle = cycle;
+    r.now_ns = t0 + cycle * 1'000'000;
+    publisher.Offer(r, t0);
+  }
+  ASSERT_EQ(history->published(), 5u);
+  const std::int64_t expected[5] = {0, 20, 42, 60, 80};
+  for (std::uint64_t k = 0; k < 5; ++k) {
+    LiveSnapshot s;
+    ASSERT_EQ(history->Get(k, &s), HistoryRead::kOk);
+    EXPECT_EQ(s.cycle, expected[k]);
+    EXPECT_DOUBLE_EQ(s.t, expected[k] * 1e-3);
+  }
+  EXPECT_THROW(LiveSnapshotPublisher(*history, 0), Error);
+}
+
+// The events of a stream: snapshots (as JSON) and marks, in the order they came.
+struct StreamEvents {
+  std::string buffer;
+  std::vector<nlohmann::json> snapshots, marks;
+  std::vector<char> order;  // 's' or 'm' per event
+  // Takes N more bytes; returns the number of complete events seen so far.
+  std::size_t Add(const char* data, std::size_t n) {
+    buffer.append(data, n);
+    for (std::size_t end; (end = buffer.find("\n\n")) != std::string::npos;) {
+      const std::string event = buffer.substr(0, end);
+      buffer.erase(0, end + 2);
+      const std::string marks_prefix = "event: marks\ndata: ";
+      if (event.rfind(marks_prefix, 0) == 0) {
+        marks.push_back(nlohmann::json::parse(event.substr(marks_prefix.size())));
+        order.push_back('m');
+        continue;
+      }
+      EXPECT_EQ(event.rfind("data: ", 0), 0u) << event;
+      snapshots.push_back(nlohmann::json::parse(event.substr(6)));
+      order.push_back('s');
+    }
+    return order.size();
+  }
+};
+
 TEST(LiveView, ServerStreamsTheNewestSnapshotOnLoopback) {
-  LatestValue<LiveSnapshot> source;
-  LiveViewServer server("<html>page</html>", source, 0, 100);
+  auto source = std::make_unique<LiveSnapshotHistory>();
+  LiveViewServer server("<html>page</html>", *source, 0);
   ASSERT_GT(server.port(), 0);
   httplib::Client client("127.0.0.1", server.port());
   // Before the first snapshot: the page, and no snapshot.
@@ -117,12 +230,15 @@ TEST(LiveView, ServerStreamsTheNewestSnapshotOnLoopback) {
   ASSERT_TRUE(none);
   EXPECT_EQ(none->status, 204);
   LiveSnapshot s;
+  s.t = 1.48;
+  s.cycle = 1480;
+  source->Publish(s);
   s.t = 1.5;
   s.cycle = 1500;
   s.p_WH[2] = -0.25;
   s.contact_force[2] = 3.0;
   s.level_rendered = 2;
-  source.Store(s);
+  source->Publish(s);
   auto one = client.Get("/snapshot");
   ASSERT_TRUE(one);
   const nlohmann::json j = nlohmann::json::parse(one->body);
@@ -130,7 +246,7 @@ TEST(LiveView, ServerStreamsTheNewestSnapshotOnLoopback) {
   EXPECT_DOUBLE_EQ(j["body"][2].get<double>(), -0.25);
   EXPECT_DOUBLE_EQ(j["contact_force"][2].get<double>(), 3.0);
   EXPECT_EQ(j["level"], 2);
-  // The stream sends it once as an event.
+  // A stream opened now starts with the newest as an event.
   std::string got;
   client.Get("/stream", [&](const char* data, std::size_t n) {
     got.append(data, n);
@@ -139,6 +255,140 @@ TEST(LiveView, ServerStreamsTheNewestSnapshotOnLoopback) {
   EXPECT_EQ(got.rfind("data: {\"t\":1.500000,\"cycle\":1500,", 0), 0u) << got;
   server.Stop();
   EXPECT_FALSE(client.Get("/"));
+}
+
+// A stream sends every snapshot published after it joined, once and in order, however they
+// are spread in time: here the client publishes the next ones (five at once, then one, then
+// five) as it receives the first, second and third, so the stream's thread meets them in
+// whatever rhythm it runs. The client stops at the last one published, which a stream that
+// skips reaches early.
+TEST(LiveView, StreamSendsEverySnapshotOnceInOrderFromWhereItJoined) {
+  auto source = std::make_unique<LiveSnapshotHistory>();
+  LiveViewServer server("<html></html>", *source, 0);
+  httplib::Client client("127.0.0.1", server.port());
+  client.set_read_timeout(60, 0);  // a hang guard only
+  std::int64_t cycle = 0;
+  const auto publish = [&](int n) {
+    for (int i = 0; i < n; ++i) {
+      LiveSnapshot s;
+      s.cycle = cycle;
+      s.t = double(cycle) * 1e-3;
+      source->Publish(s);
+      cycle += 20;
+    }
+  };
+  publish(3);  // cycles 0, 20, 40: the stream joins at the newest (40)
+  const int rounds[3] = {5, 1, 5};  // published on receiving the 1st, 2nd and 3rd snapshot
+  StreamEvents events;
+  client.Get("/stream", [&](const char* data, std::size_t n) {
+    const std::size_t before = events.snapshots.size();
+    events.Add(data, n);
+    for (std::size_t k = before; k < events.snapshots.size() && k < 3; ++k) publish(rounds[k]);
+    return events.snapshots.size() < 3 || events.snapshots.back()["cycle"].get<std::int64_t>() < cycle - 20;
+  });
+  std::vector<std::int64_t> cycles;
+  for (const nlohmann::json& e : events.snapshots) cycles.push_back(e["cycle"].get<std::int64_t>());
+  std::vector<std::int64_t> expected;
+  for (std::int64_t c = 40; c <= 260; c += 20) expected.push_back(c);
+  EXPECT_EQ(cycles, expected);
+  EXPECT_TRUE(events.marks.empty());
+  server.Stop();
+}
+
+// Stop() lets each open stream send every snapshot published before it, then ends the stream
+// cleanly; WaitForStreams is how a session (and this test) knows that its viewer is there.
+TEST(LiveView, StopEndsEachStreamAfterEverySnapshotPublishedBeforeIt) {
+  auto source = std::make_unique<LiveSnapshotHistory>();
+  LiveViewServer server("<html></html>", *source, 0);
+  StreamEvents events;
+  bool ended_cleanly = false;
+  std::thread viewer([&] {
+    httplib::Client client("127.0.0.1", server.port());
+    client.set_read_timeout(60, 0);  // a hang guard only
+    const auto res = client.Get("/stream", [&](const char* data, std::size_t n) {
+      events.Add(data, n);
+      return true;
+    });
+    ended_cleanly = res && res->status == 200;
+  });
+  const auto guard = std::chrono::steady_clock::now() + std::chrono::seconds(60);  // a hang guard only
+  ASSERT_TRUE(server.WaitForStreams(1, [&] { return std::chrono::steady_clock::now() > guard; }));
+  constexpr int kSnapshots = 200;  // fewer than the history holds: none can be overwritten unread
+  for (int k = 0; k < kSnapshots; ++k) {
+    LiveSnapshot s;
+    s.cycle = 20 * k;
+    source->Publish(s);
+  }
+  server.Stop();
+  viewer.join();
+  EXPECT_TRUE(ended_cleanly);
+  ASSERT_EQ(events.snapshots.size(), std::size_t(kSnapshots));
+  for (int k = 0; k < kSnapshots; ++k) EXPECT_EQ(events.snapshots[k]["cycle"], 20 * k) << k;
+}
+
+// Contact marks of every point: in contact on odd cycles, clear on even ones.
+class CycleParityModel final : public ContactModel {
+ public:
+  std::string_view name() const override { return "parity"; }
+  ContactResult Evaluate(const ContactQuery&) override { return {}; }
+  void Reset() override {}
+  int PointStates(const ContactQuery& q, std::span<const std::int32_t> points, PointState* out) override {
+    for (std::size_t k = 0; k < points.size(); ++k) out[k] = q.cycle % 2 ? PointState::kInContact : PointState::kClear;
+    return int(points.size());
+  }
+};
+
+// Marks go out at most once per MARKS_EVERY_CYCLES cycles of the sweeps (session time), and keep
+// going out as the session's cycles advance. The client plays the session: on each snapshot
+// it receives, it runs four more cycles (a sweep each) and publishes the snapshot of the last.
+// A stream looks for marks right after sending a snapshot at least 10 cycles after the last
+// marks, when the client may have run one more round: each gap is 10 to 17 cycles.
+TEST(LiveView, StreamSendsMarksAtMostOncePerMarksCycles) {
+  auto source = std::make_unique<LiveSnapshotHistory>();
+  ContactPointMarks marks({0, 1, 2}, 3);
+  CycleParityModel model;
+  constexpr std::int64_t kMarksEvery = 10;
+  LiveViewServer server("<html></html>", *source, 0, &marks, kMarksEvery);
+  httplib::Client client("127.0.0.1", server.port());
+  client.set_read_timeout(60, 0);  // a hang guard only
+  std::int64_t cycle = 0;
+  const auto run_to = [&](std::int64_t last) {
+    for (ContactQuery q; cycle <= last; ++cycle) {
+      q.cycle = cycle;
+      marks.Update(model, q, cycle);
+    }
+    LiveSnapshot s;
+    s.cycle = last;
+    source->Publish(s);
+  };
+  run_to(0);
+  StreamEvents events;
+  client.Get("/stream", [&](const char* data, std::size_t n) {
+    const std::size_t before = events.snapshots.size();
+    events.Add(data, n);
+    if (events.snapshots.size() > before) {
+      const std::int64_t c = events.snapshots.back()["cycle"].get<std::int64_t>();
+      if (c >= 48) return false;
+      run_to(c + 4);
+    }
+    return true;
+  });
+  ASSERT_GE(events.marks.size(), 3u) << "marks by cycle 4, and at most 17 cycles after each";
+  for (std::size_t k = 0; k < events.marks.size(); ++k) {
+    const nlohmann::json& m = events.marks[k];
+    EXPECT_EQ(m["points"], 3);
+    EXPECT_EQ(m["first_cycle"], m["last_cycle"]);
+    const std::int64_t c = m["last_cycle"].get<std::int64_t>();
+    EXPECT_EQ(m["in_contact"], c % 2 ? 3 : 0);
+    if (k == 0) {
+      EXPECT_LE(c, 4);
+    } else {
+      const std::int64_t gap = c - events.marks[k - 1]["last_cycle"].get<std::int64_t>();
+      EXPECT_GE(gap, kMarksEvery) << "marks " << k;
+      EXPECT_LE(gap, kMarksEvery + 7) << "marks " << k;
+    }
+  }
+  server.Stop();
 }
 
 // The session log's rows by t (its first column, "%.6f").
@@ -159,15 +409,19 @@ std::map<std::string, std::vector<double>> LogRows(const std::filesystem::path& 
   return rows;
 }
 
+// A 2-second session with --view-wait: it starts once this test opened the stream, the
+// stream sends every snapshot the session took (one per 20 cycles, cycle 0 first) and, when the
+// session ends, the rest and a clean end. Every snapshot and every contact marks event is then
+// checked against the session's log. The session runs at 1 kHz in real time, but what the
+// test checks depends only on its cycles: how fast the test, the session's consumer and the
+// stream's thread run changes nothing.
 TEST(LiveView, SessionStreamMatchesItsLog) {
   TempDir dir;
   std::ofstream(dir / "scene.yaml") << kScene;
-  // Warm the cache first so the session starts at once.
   const std::string cli = CONTACTLAB_CLI;
-  const std::string common = (dir / "scene.yaml").string() + " --cache " + (dir / "cache").string();
-  ASSERT_EQ(std::system((cli + " contact " + common + " > /dev/null 2>&1").c_str()), 0);
-  const std::string command = cli + " session " + common + " --device sim:circle:0.004:1 --touch 0.001 --duration 3 " +
-                              "--no-realtime --quiet --view --log " + (dir / "log.csv").string() + " 2>&1";
+  const std::string command = cli + " session " + (dir / "scene.yaml").string() + " --cache " +
+                              (dir / "cache").string() + " --device sim:circle:0.004:1 --touch 0.001 --duration 2 " +
+                              "--no-realtime --quiet --view --view-wait --log " + (dir / "log.csv").string() + " 2>&1";
   FILE* pipe = ::popen(command.c_str(), "r");
   ASSERT_NE(pipe, nullptr);
   std::string output;
@@ -183,7 +437,7 @@ TEST(LiveView, SessionStreamMatchesItsLog) {
 
   // The page: the viewer with the scene's data and the live stream's address.
   httplib::Client client("127.0.0.1", port);
-  client.set_read_timeout(10, 0);
+  client.set_read_timeout(60, 0);  // a hang guard only
   auto page = client.Get("/");
   ASSERT_TRUE(page) << output;
   EXPECT_EQ(page->status, 200);
@@ -198,39 +452,36 @@ TEST(LiveView, SessionStreamMatchesItsLog) {
   const int drawn = data["pointshell"]["points"].get<int>();
   ASSERT_EQ(data["pointshell"]["kept"], data["pointshell"]["total"]);
 
-  // One second of the stream: snapshots, and the contact marks of the drawn points.
-  std::string buffer;
-  std::vector<nlohmann::json> events, marks;
-  client.Get("/stream", [&](const char* data, std::size_t n) {
-    buffer.append(data, n);
-    for (std::size_t end; (end = buffer.find("\n\n")) != std::string::npos;) {
-      const std::string event = buffer.substr(0, end);
-      buffer.erase(0, end + 2);
-      const std::string marks_prefix = "event: marks\ndata: ";
-      if (event.rfind(marks_prefix, 0) == 0) {
-        marks.push_back(nlohmann::json::parse(event.substr(marks_prefix.size())));
-        continue;
-      }
-      EXPECT_EQ(event.rfind("data: ", 0), 0u) << event;
-      events.push_back(nlohmann::json::parse(event.substr(6)));
-    }
-    return events.size() < 50 || events.back()["t"].get<double>() - events.front()["t"].get<double>() < 1.0;
+  // The whole stream: opening it starts the session; it ends when the session does.
+  StreamEvents stream;
+  const auto streamed = client.Get("/stream", [&](const char* data, std::size_t n) {
+    stream.Add(data, n);
+    return true;
   });
   while (std::fgets(buf.data(), int(buf.size()), pipe)) output += buf.data();
   const int status = ::pclose(pipe);
   ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << output;
+  ASSERT_TRUE(streamed && streamed->status == 200) << "the stream did not end cleanly\n" << output;
+  const std::vector<nlohmann::json>& events = stream.snapshots;
+  const std::vector<nlohmann::json>& marks = stream.marks;
 
-  // 30 to 60 snapshots a second, in order.
-  ASSERT_GE(events.size(), 30u) << output;
-  const double span = events.back()["t"].get<double>() - events.front()["t"].get<double>();
-  const double rate = double(events.size() - 1) / span;
-  EXPECT_GE(rate, 30.0);
-  EXPECT_LE(rate, 60.0);
-  for (std::size_t i = 1; i < events.size(); ++i) EXPECT_GT(events[i]["cycle"], events[i - 1]["cycle"]);
-
-  // Each snapshot is the log's row of its cycle: haptic body pose, device pose, force.
+  // The log's rows are the cycles in order when the consumer dropped none.
+  ASSERT_NE(output.find("records dropped by the log consumer: 0"), std::string::npos) << output;
   std::vector<std::string> header;
   const auto rows = LogRows(dir / "log.csv", &header);
+  const std::size_t cycles = rows.size();
+  ASSERT_GT(cycles, 100u) << output;
+
+  // Every snapshot of the session, once and in order: cycles 0, 20, 40, ... to the last.
+  ASSERT_EQ(events.size(), (cycles - 1) / 20 + 1) << cycles << " cycles";
+  for (std::size_t i = 0; i < events.size(); ++i) ASSERT_EQ(events[i]["cycle"].get<long>(), long(20 * i)) << i;
+  // That is 50 a second of session time at 1 kHz; fewer only where the loop skipped releases.
+  const double span = events.back()["t"].get<double>() - events.front()["t"].get<double>();
+  const double rate = double(events.size() - 1) / span;
+  EXPECT_GE(rate, 30.0) << output;
+  EXPECT_LE(rate, 60.0) << output;
+
+  // Each snapshot is the log's row of its cycle: haptic body pose, device pose, force.
   auto col = [&](const char* name) { return int(std::find(header.begin(), header.end(), name) - header.begin()); };
   const int body = col("body_x"), device = col("x"), force = col("force_x"), contacts = col("points_in_contact");
   ASSERT_LT(body, int(header.size()));
@@ -241,6 +492,7 @@ TEST(LiveView, SessionStreamMatchesItsLog) {
     std::snprintf(t, sizeof t, "%.6f", e["t"].get<double>());
     const auto it = rows.find(t);
     ASSERT_NE(it, rows.end()) << "no log row at t = " << t;
+    ASSERT_EQ(std::distance(rows.begin(), it), e["cycle"].get<long>()) << "t = " << t;  // t has a fixed width: in order
     const std::vector<double>& r = it->second;
     for (int k = 0; k < 7; ++k) {
       EXPECT_NEAR(e["body"][k].get<double>(), r[body + k], 1e-8) << "t = " << t << ", body " << k;
@@ -256,22 +508,16 @@ TEST(LiveView, SessionStreamMatchesItsLog) {
   EXPECT_GT(in_contact, 0) << "the hand never pressed the plate into the ball";
   EXPECT_GT(moved, 1e-3) << "the device did not move";
 
-  // Marks, 5 to 20 a second: every drawn point marked, the counts those of the 2-bit states,
-  // and (the shell fits in one chunk, so a sweep is one cycle) the points marked in contact
-  // are as many as the log's points in contact at that cycle. The log's rows are the cycles
-  // in order when the consumer dropped none, which the snapshots' rows confirm.
-  ASSERT_NE(output.find("records dropped by the log consumer: 0"), std::string::npos) << output;
+  // Marks: at least one (a stream sends the newest before it ends), at most one per 67 cycles
+  // of session time (15 a second at 1 kHz); every drawn point marked, the counts those of the
+  // 2-bit states, and (the shell fits in one chunk, so a sweep is one cycle) the points marked
+  // in contact as many as the log's points in contact at that cycle.
   std::vector<double> contacts_by_cycle;
   for (const auto& [t, r] : rows) contacts_by_cycle.push_back(r[contacts]);  // t has a fixed width: in order
-  for (const nlohmann::json& e : events) {
-    char t[32];
-    std::snprintf(t, sizeof t, "%.6f", e["t"].get<double>());
-    ASSERT_EQ(std::distance(rows.begin(), rows.find(t)), e["cycle"].get<long>()) << "t = " << t;
-  }
-  EXPECT_GE(marks.size(), 5u);
-  EXPECT_LE(double(marks.size()), 20.0 * (span + 0.2));
+  ASSERT_GE(marks.size(), 1u);
   int marks_in_contact = 0;
-  for (const nlohmann::json& m : marks) {
+  for (std::size_t k = 0; k < marks.size(); ++k) {
+    const nlohmann::json& m = marks[k];
     EXPECT_EQ(m["points"].get<int>(), drawn);
     const std::string packed = Base64Decode(m["states"].get<std::string>(), "marks");
     ASSERT_EQ(int(packed.size()), (drawn + 3) / 4);
@@ -284,6 +530,9 @@ TEST(LiveView, SessionStreamMatchesItsLog) {
     const long cycle = m["last_cycle"].get<long>();
     ASSERT_LT(cycle, long(contacts_by_cycle.size()));
     EXPECT_EQ(counts[2], int(contacts_by_cycle[std::size_t(cycle)])) << "cycle " << cycle;
+    if (k > 0) {
+      EXPECT_GE(cycle - marks[k - 1]["last_cycle"].get<long>(), 67) << "marks " << k;
+    }
     marks_in_contact += counts[2] > 0;
   }
   EXPECT_GT(marks_in_contact, 0);

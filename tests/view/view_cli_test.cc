@@ -91,6 +91,16 @@ TEST(ViewCli, BadInputsFailNamingTheFileAndLeaveNoOutput) {
   EXPECT_NE(o.exit_code, 0);
   EXPECT_NE(o.output.find("--view: 70000 is not a port"), std::string::npos) << o.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "cache2"));
+  // So does --view-wait without --view, or with a count that is not one.
+  o = RunCli("session " + (dir / "scene.yaml").string() + " --device sim --duration 0.1 --view-wait --cache " +
+             (dir / "cache2").string());
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find("--view-wait: needs --view"), std::string::npos) << o.output;
+  o = RunCli("session " + (dir / "scene.yaml").string() + " --device sim --duration 0.1 --view --view-wait 0 --cache " +
+             (dir / "cache2").string());
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find("--view-wait: 0 is not a number of viewers"), std::string::npos) << o.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "cache2"));
   // No page, and no temporary, was left by any of them.
   EXPECT_FALSE(std::filesystem::exists(dir / "page.html"));
   for (const auto& e : std::filesystem::directory_iterator(dir.path())) {
