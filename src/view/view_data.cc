@@ -12,6 +12,7 @@
 #include "deform/embedded_points.h"
 #include "experiment/experiment_config.h"
 #include "experiment/result_csv.h"
+#include "experiment/study.h"
 #include "util/atomic_file.h"
 #include "util/config_node.h"
 #include "util/error.h"
@@ -150,12 +151,12 @@ ResultsFiles CheckResultsFolder(const fs::path& dir) {
                                        : "results folder not found");
   }
   const fs::path cycles_file = dir / "cycles.csv", meta_file = dir / "meta.json";
-  if (fs::exists(dir / "field_error.csv") && !fs::exists(cycles_file)) {
-    Fail(dir.string(), "holds a deformed-field study (field_error.csv), which has no trajectory to replay");
+  if (!fs::exists(meta_file)) Fail(meta_file.string(), "not found (a results folder holds cycles.csv and meta.json)");
+  // The study that wrote the folder says whether it holds trajectories (experiment/study.h).
+  if (const Study& study = StudyOfResults(dir); !study.replayable) {
+    Fail(dir.string(), "holds a " + study.name + " study (" + study.description + "), which has no trajectory to replay");
   }
-  for (const fs::path& f : {cycles_file, meta_file}) {
-    if (!fs::exists(f)) Fail(f.string(), "not found (a results folder holds cycles.csv and meta.json)");
-  }
+  if (!fs::exists(cycles_file)) Fail(cycles_file.string(), "not found (a results folder holds cycles.csv and meta.json)");
   return {cycles_file, meta_file};
 }
 

@@ -62,7 +62,7 @@ TEST(ViewCli, BadInputsFailNamingTheFileAndLeaveNoOutput) {
   std::filesystem::create_directories(dir / "empty");
   o = RunCli("view " + (dir / "empty").string() + out);
   EXPECT_NE(o.exit_code, 0);
-  EXPECT_NE(o.output.find((dir / "empty" / "cycles.csv").string() + ": not found"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find((dir / "empty" / "meta.json").string() + ": not found"), std::string::npos) << o.output;
   // --job with a scene.
   o = RunCli("view " + (dir / "scene.yaml").string() + " --job 1" + out);
   EXPECT_NE(o.exit_code, 0);

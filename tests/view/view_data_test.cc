@@ -261,12 +261,23 @@ TEST(Replay, BadResultsFolderIsAClearErrorNamingTheFile) {
   std::ofstream(dir / "file") << "x";
   e = ErrorOf([&] { ReadReplay(dir / "file", std::nullopt); });
   EXPECT_NE(e.find("is not a results folder"), std::string::npos) << e;
-  // No cycles.csv.
+  // No meta.json.
   std::filesystem::create_directories(dir / "empty");
   e = ErrorOf([&] { ReadReplay(dir / "empty", std::nullopt); });
-  EXPECT_NE(e.find((dir / "empty" / "cycles.csv").string() + ": not found"), std::string::npos) << e;
-  // cycles.csv from before the orientation columns.
+  EXPECT_NE(e.find((dir / "empty" / "meta.json").string() + ": not found"), std::string::npos) << e;
+  // A contact study's meta.json but no cycles.csv.
   RunTiny(dir);
+  std::filesystem::copy_file(dir / "out" / "meta.json", dir / "empty" / "meta.json");
+  e = ErrorOf([&] { ReadReplay(dir / "empty", std::nullopt); });
+  EXPECT_NE(e.find((dir / "empty" / "cycles.csv").string() + ": not found"), std::string::npos) << e;
+  // The results of a study without trajectories, whatever files lie beside them.
+  std::filesystem::create_directories(dir / "loop");
+  std::filesystem::copy_file(dir / "out" / "cycles.csv", dir / "loop" / "cycles.csv");
+  WriteFileAtomically(dir / "loop" / "meta.json", R"({"study": "closed-loop", "jobs": [0]})");
+  e = ErrorOf([&] { ReadReplay(dir / "loop", std::nullopt); });
+  EXPECT_NE(e.find((dir / "loop").string() + ": holds a closed-loop study"), std::string::npos) << e;
+  EXPECT_NE(e.find("no trajectory to replay"), std::string::npos) << e;
+  // cycles.csv from before the orientation columns.
   const std::string csv = ReadWholeFile(dir / "out" / "cycles.csv");
   std::string old = csv;
   const std::size_t at = old.find(",qw,qx,qy,qz");
