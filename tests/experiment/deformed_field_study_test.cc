@@ -12,6 +12,7 @@
 
 #include "experiment/result_csv.h"
 #include "experiment/study.h"
+#include "csv_rows.h"
 #include "test_support.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
@@ -54,22 +55,7 @@ ExperimentConfig Load(const TempDir& dir, const std::string& text) {
   return LoadExperimentConfig(dir / "config.yaml");
 }
 
-// The rows of a CSV file as column -> cell maps.
-std::vector<std::map<std::string, std::string>> ReadCsv(const std::filesystem::path& file) {
-  std::istringstream in(ReadWholeFile(file));
-  std::string line;
-  std::getline(in, line);
-  const std::vector<std::string> header = SplitCsvLine(line);
-  std::vector<std::map<std::string, std::string>> rows;
-  while (std::getline(in, line)) {
-    const std::vector<std::string> cells = SplitCsvLine(line);
-    EXPECT_EQ(cells.size(), header.size()) << line;
-    std::map<std::string, std::string> row;
-    for (std::size_t i = 0; i < header.size() && i < cells.size(); ++i) row[header[i]] = cells[i];
-    rows.push_back(row);
-  }
-  return rows;
-}
+using testing::ReadCsvRows;
 
 double Num(const std::map<std::string, std::string>& row, const std::string& key) {
   const auto it = row.find(key);
@@ -91,7 +77,7 @@ TEST(DeformedFieldStudy, SmallSweepWritesSaneErrorAndSliceTables) {
   ASSERT_EQ(rows.size(), 2u);
   for (const std::string& f : FindStudy("deformed-field")->Files()) EXPECT_TRUE(std::filesystem::is_regular_file(dir / "out" / f)) << f;
 
-  const auto error = ReadCsv(dir / "out" / "field_error.csv");
+  const auto error = ReadCsvRows(dir / "out" / "field_error.csv");
   ASSERT_EQ(error.size(), 2u);
   for (std::size_t j = 0; j < error.size(); ++j) {
     const auto& r = error[j];
@@ -121,7 +107,7 @@ TEST(DeformedFieldStudy, SmallSweepWritesSaneErrorAndSliceTables) {
   EXPECT_LE(rows[0].rms, rows[0].max);
 
   // The slice: only the job with domains = 2, a full grid through the legs (inside and outside).
-  const auto slice = ReadCsv(dir / "out" / "field_slice.csv");
+  const auto slice = ReadCsvRows(dir / "out" / "field_slice.csv");
   ASSERT_FALSE(slice.empty());
   int inside = 0, max_i = 0, max_j = 0;
   for (const auto& s : slice) {
@@ -152,12 +138,12 @@ TEST(DeformedFieldStudy, SingleJobRunsMergeIntoTheWholeSweep) {
     (void)RunDeformedFieldStudy(config, o, {j});
   }
   MergeResults({dir / "job-0", dir / "job-1"}, dir / "merged");
-  const auto error = ReadCsv(dir / "merged" / "field_error.csv");
+  const auto error = ReadCsvRows(dir / "merged" / "field_error.csv");
   ASSERT_EQ(error.size(), 2u);
   EXPECT_EQ(error[0].at("job"), "0");
   EXPECT_EQ(error[1].at("job"), "1");
-  EXPECT_EQ(ReadCsv(dir / "merged" / "field_slice.csv").size(), ReadCsv(dir / "job-1" / "field_slice.csv").size());
-  EXPECT_TRUE(ReadCsv(dir / "job-0" / "field_slice.csv").empty());  // the slice is job 1's only
+  EXPECT_EQ(ReadCsvRows(dir / "merged" / "field_slice.csv").size(), ReadCsvRows(dir / "job-1" / "field_slice.csv").size());
+  EXPECT_TRUE(ReadCsvRows(dir / "job-0" / "field_slice.csv").empty());  // the slice is job 1's only
   EXPECT_FALSE(std::filesystem::exists(dir / "merged" / "cycles.csv"));
 }
 

@@ -16,6 +16,7 @@
 #include "experiment/result_csv.h"
 #include "experiment/runner.h"
 #include "scene_fixtures.h"
+#include "csv_rows.h"
 #include "test_support.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
@@ -31,22 +32,7 @@ ExperimentConfig Load(const TempDir& dir, const std::string& text) {
   return LoadExperimentConfig(dir / "config.yaml");
 }
 
-// The rows of a CSV file as column -> cell maps.
-std::vector<std::map<std::string, std::string>> ReadCsv(const fs::path& file) {
-  std::istringstream in(ReadWholeFile(file));
-  std::string line;
-  std::getline(in, line);
-  const std::vector<std::string> header = SplitCsvLine(line);
-  std::vector<std::map<std::string, std::string>> rows;
-  while (std::getline(in, line)) {
-    const std::vector<std::string> cells = SplitCsvLine(line);
-    EXPECT_EQ(cells.size(), header.size()) << line;
-    std::map<std::string, std::string> row;
-    for (std::size_t i = 0; i < header.size() && i < cells.size(); ++i) row[header[i]] = cells[i];
-    rows.push_back(row);
-  }
-  return rows;
-}
+using testing::ReadCsvRows;
 
 // The ball-on-plate scene with the plate as the haptic body pushed up into the ball.
 std::string LoopConfig(const std::string& loop = "{motions: [push, slide]}",
@@ -159,7 +145,7 @@ TEST(ClosedLoopStudy, TheSweptStiffnessReachesTheLoopAndSingleJobsMergeIntoTheSw
   for (const std::string& f : study.Files()) EXPECT_TRUE(fs::is_regular_file(dir / "all" / f)) << f;
   EXPECT_EQ(StudyOfResults(dir / "all").name, "closed-loop");
 
-  const auto rows = ReadCsv(dir / "all" / "stability.csv");
+  const auto rows = ReadCsvRows(dir / "all" / "stability.csv");
   ASSERT_EQ(rows.size(), 4u);  // 2 jobs x 1 model x 2 motions
   const char* motions[] = {"push", "slide"};
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -191,7 +177,7 @@ TEST(ClosedLoopStudy, TheSweptStiffnessReachesTheLoopAndSingleJobsMergeIntoTheSw
     study.run(config, o, {j});
   }
   MergeResults({dir / "job-0", dir / "job-1"}, dir / "merged");
-  const auto merged = ReadCsv(dir / "merged" / "stability.csv");
+  const auto merged = ReadCsvRows(dir / "merged" / "stability.csv");
   ASSERT_EQ(merged.size(), rows.size());
   for (std::size_t i = 0; i < rows.size(); ++i) {
     for (const auto& [column, value] : rows[i]) {
