@@ -376,6 +376,105 @@ ExperimentConfig LoadExperimentConfig(const std::filesystem::path& config_file, 
   return ParseExperimentConfig(node, resolved);
 }
 
+namespace {
+
+// The reference a contact study's models are measured against: a model name, or a denser
+// version of the scene ({model, points, levels, resolution}).
+void ParseReference(const ConfigNode& root, ExperimentConfig* config) {
+  ExperimentConfig& c = *config;
+  if (auto r = root.Find("reference"); r && r->IsMap()) {
+    r->ExpectKeys({"model", "points", "levels", "resolution"});
+    c.reference_model = r->Get("model").AsString();
+    c.reference_points = int(r->IntInRange("points", 0, 1, kMaxPointshellPoints));
+    c.reference_levels = int(r->IntInRange("levels", 0, 1, kMaxPointshellLevels));
+    c.reference_resolution = int(r->IntInRange("resolution", 0, 8, kMaxFieldResolution));
+  } else {
+    c.reference_model = root.String("reference", "");
+  }
+  c.reference_every = int(root.PositiveInt("reference_every", 1));
+}
+
+// The sweep axes, in order: an alias of STUDY (or the scene's) or a key path, each with its values.
+std::vector<SweepAxis> ParseSweep(const ConfigNode& root, const Study& study) {
+  std::vector<SweepAxis> sweep;
+  if (auto s = root.Find("sweep")) {
+    const std::map<std::string, std::string> aliases = AxisAliases(study);
+    for (const std::string& key : s->Keys()) {
+      const ConfigNode axis = s->Get(key);
+      SweepAxis a{key, key, {}, {}};
+      if (auto alias = aliases.find(key); alias != aliases.end()) {
+        a.path = alias->second;
+      } else if (key.find_first_of(".[") == std::string::npos) {
+        axis.Fail("unknown sweep axis: give a key path (e.g. scene.model.k_C, trajectory.depth) or one of " +
+                  AliasList(aliases));
+      }
+      // A value: a scalar, or {label: NAME, value: ANY}.
+      auto add = [&](const ConfigNode& v) {
+        if (v.IsMap()) {
+          v.ExpectKeys({"label", "value"});
+          const std::string label = ScalarText(v.Get("label"));
+          if (label.empty() || label.find_first_of(",\n\r\"") != std::string::npos) {
+            v.Get("label").Fail("a label must be a non-empty name without commas, quotes or line breaks");
+          }
+          YAML::Emitter e;
+          e << YAML::Flow << v.Get("value").yaml();
+          a.values.push_back(label);
+          a.labelled_yaml.push_back(e.c_str());
+        } else {
+          a.values.push_back(ScalarText(v));
+          a.labelled_yaml.emplace_back();
+        }
+      };
+      if (axis.IsSequence()) {
+        for (const ConfigNode& v : axis.Elements()) add(v);
+      } else {
+        add(axis);
+      }
+      if (a.values.empty()) axis.Fail("a sweep axis needs at least one value");
+      sweep.push_back(a);
+    }
+  }
+  return sweep;
+}
+
+// Every sweep value on its own (so an error names its axis and value), so errors come before any
+// work; the combinations are checked as the jobs expand.
+void CheckEachSweepValue(const ExperimentConfig& c) {
+  for (std::size_t a = 0; a < c.sweep.size(); ++a) {
+    for (std::size_t v = 0; v < c.sweep[a].values.size(); ++v) {
+      ExperimentConfig one = c;
+      one.sweep = {c.sweep[a]};
+      one.sweep[0].values = {c.sweep[a].values[v]};
+      one.sweep[0].labelled_yaml = {c.sweep[a].labelled_yaml[v]};
+      try {
+        (void)BuildJob(one, 0, {0});
+      } catch (const Error& e) {
+        const std::string at = c.file + ": sweep." + c.sweep[a].name + " value '" + c.sweep[a].values[v] + "'";
+        const std::string msg = e.what();
+        if (msg.rfind(at, 0) == 0) throw;
+        Fail(at, msg);
+      }
+    }
+  }
+}
+
+// What each job's registered models refuse of its scene (a deformable body a model treats as
+// rigid, coherence against a deformed field, ...), said before any job builds its assets. Models
+// not registered in this program are left to the run.
+void CheckModelsAgainstScenes(const ExperimentConfig& c) {
+  for (const Job& job : ExpandJobs(c)) {
+    const Scene& s = job.scene;
+    const std::string where = c.file + (c.sweep.empty() ? std::string() : " (job " + job.Label() + ")");
+    for (const std::string& name : job.models) {
+      if (FindContactModel(name) == nullptr) continue;
+      CheckContactModel(name, s.model, s.pointshell_body.name, s.pointshell_body.deformable.has_value(),
+                        s.field_body.name, s.field_body.deformable.has_value(), where);
+    }
+  }
+}
+
+}  // namespace
+
 ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resolved_yaml) {
   // The keys every study reads, then those of the config's study; a key only other studies read
   // is a mistake, not ignored.
@@ -434,88 +533,15 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
   if (c.moving_body != c.scene.field_body.name && c.moving_body != c.scene.pointshell_body.name) {
     root.Get("moving_body").Fail("'" + c.moving_body + "' is not a body of the scene");
   }
-  if (auto r = root.Find("reference"); r && r->IsMap()) {
-    r->ExpectKeys({"model", "points", "levels", "resolution"});
-    c.reference_model = r->Get("model").AsString();
-    c.reference_points = int(r->IntInRange("points", 0, 1, kMaxPointshellPoints));
-    c.reference_levels = int(r->IntInRange("levels", 0, 1, kMaxPointshellLevels));
-    c.reference_resolution = int(r->IntInRange("resolution", 0, 8, kMaxFieldResolution));
-  } else {
-    c.reference_model = root.String("reference", "");
-  }
-  c.reference_every = int(root.PositiveInt("reference_every", 1));
+  ParseReference(root, &c);
   if (auto m = root.Find("metrics")) {
     m->ExpectKeys({"cutoff_hz", "timing"});
     c.cutoff_hz = m->Positive("cutoff_hz", c.cutoff_hz);
     c.timing = m->Bool("timing", c.timing);
   }
-  if (auto s = root.Find("sweep")) {
-    const std::map<std::string, std::string> aliases = AxisAliases(study);
-    for (const std::string& key : s->Keys()) {
-      const ConfigNode axis = s->Get(key);
-      SweepAxis a{key, key, {}, {}};
-      if (auto alias = aliases.find(key); alias != aliases.end()) {
-        a.path = alias->second;
-      } else if (key.find_first_of(".[") == std::string::npos) {
-        axis.Fail("unknown sweep axis: give a key path (e.g. scene.model.k_C, trajectory.depth) or one of " +
-                  AliasList(aliases));
-      }
-      // A value: a scalar, or {label: NAME, value: ANY}.
-      auto add = [&](const ConfigNode& v) {
-        if (v.IsMap()) {
-          v.ExpectKeys({"label", "value"});
-          const std::string label = ScalarText(v.Get("label"));
-          if (label.empty() || label.find_first_of(",\n\r\"") != std::string::npos) {
-            v.Get("label").Fail("a label must be a non-empty name without commas, quotes or line breaks");
-          }
-          YAML::Emitter e;
-          e << YAML::Flow << v.Get("value").yaml();
-          a.values.push_back(label);
-          a.labelled_yaml.push_back(e.c_str());
-        } else {
-          a.values.push_back(ScalarText(v));
-          a.labelled_yaml.emplace_back();
-        }
-      };
-      if (axis.IsSequence()) {
-        for (const ConfigNode& v : axis.Elements()) add(v);
-      } else {
-        add(axis);
-      }
-      if (a.values.empty()) axis.Fail("a sweep axis needs at least one value");
-      c.sweep.push_back(a);
-    }
-  }
-  // Check every sweep value on its own first (so an error names its axis and value), then
-  // every combination, and the trajectory, so errors come before any work.
-  for (std::size_t a = 0; a < c.sweep.size(); ++a) {
-    for (std::size_t v = 0; v < c.sweep[a].values.size(); ++v) {
-      ExperimentConfig one = c;
-      one.sweep = {c.sweep[a]};
-      one.sweep[0].values = {c.sweep[a].values[v]};
-      one.sweep[0].labelled_yaml = {c.sweep[a].labelled_yaml[v]};
-      try {
-        (void)BuildJob(one, 0, {0});
-      } catch (const Error& e) {
-        const std::string at = c.file + ": sweep." + c.sweep[a].name + " value '" + c.sweep[a].values[v] + "'";
-        const std::string msg = e.what();
-        if (msg.rfind(at, 0) == 0) throw;
-        Fail(at, msg);
-      }
-    }
-  }
-  // What each job's registered models refuse of its scene (a deformable body a model treats as
-  // rigid, coherence against a deformed field, ...), said here before any job builds its assets.
-  // Models not registered in this program are left to the run.
-  for (const Job& job : ExpandJobs(c)) {
-    const Scene& s = job.scene;
-    const std::string where = c.file + (c.sweep.empty() ? std::string() : " (job " + job.Label() + ")");
-    for (const std::string& name : job.models) {
-      if (FindContactModel(name) == nullptr) continue;
-      CheckContactModel(name, s.model, s.pointshell_body.name, s.pointshell_body.deformable.has_value(),
-                        s.field_body.name, s.field_body.deformable.has_value(), where);
-    }
-  }
+  c.sweep = ParseSweep(root, study);
+  CheckEachSweepValue(c);
+  CheckModelsAgainstScenes(c);
   if (study.check) study.check(c, root);
   return c;
 }
