@@ -13,6 +13,7 @@
 #include "experiment/result_csv.h"
 #include "experiment/runner.h"
 #include "sdf/sparse_field.h"
+#include "scene_fixtures.h"
 #include "test_support.h"
 #include "util/atomic_file.h"
 
@@ -57,23 +58,13 @@ TEST(BodyMemory, PointshellBytesCountPointsNormalsAndTree) {
 }
 
 // A 4 cm ball pressed into a plate, at two plate-field resolutions.
-const char* kConfig = R"(name: memory
-scene:
-  name: ball-plate
-  bodies:
-    - name: ball
-      mesh: "sphere:0.02,3"
-      pose: [0, 0, 0.0215, 1, 0, 0, 0]
-      role: pointshell
-      pointshell: {points: 256, levels: 2, seed: 3}
-      field: {resolution: 24}
-    - name: plate
-      mesh: "box:0.05,0.05,0.01,2"
-      pose: [0, 0, -0.01, 1, 0, 0, 0]
-      role: field
-      field: {resolution: 24}
-  model: {k_C: 1000}
-models: [pointshell, pointshell-linear]
+const std::string kConfig = [] {
+  testing::BallOnPlate s;
+  s.ball_z = 0.0215;
+  s.points = 256;
+  s.seed = 3;
+  return "name: memory\nscene:\n" + s.Yaml(2);
+}() + R"(models: [pointshell, pointshell-linear]
 moving_body: ball
 trajectory: {type: approach-press, direction: [0, 0, -1], approach: 0.002, depth: 0.003, duration: 0.01}
 sweep:

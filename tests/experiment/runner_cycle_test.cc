@@ -109,23 +109,12 @@ TEST(RunnerCycles, RecordedCoordinatesPrintWithNineSignificantDigits) {
 std::string TwistConfig(double max_point_speed, const std::string& models = "[pointshell]") {
   char speed[64];
   std::snprintf(speed, sizeof speed, "%.17g", max_point_speed);
-  return std::string("name: twist\n"
-                     "scene:\n"
-                     "  name: ball-plate\n"
-                     "  bodies:\n"
-                     "    - name: ball\n"
-                     "      mesh: \"sphere:0.02,3\"\n"
-                     "      pose: [0, 0, 0.0205, 1, 0, 0, 0]\n"
-                     "      role: pointshell\n"
-                     "      pointshell: {points: 1024, levels: 3, seed: 3}\n"
-                     "      field: {resolution: 24}\n"
-                     "    - name: plate\n"
-                     "      mesh: \"box:0.05,0.05,0.01,2\"\n"
-                     "      pose: [0, 0, -0.01, 1, 0, 0, 0]\n"
-                     "      role: field\n"
-                     "      field: {resolution: 24}\n"
-                     "  model: {k_C: 1000, L: 10, max_point_speed: ") +
-         speed +
+  testing::BallOnPlate scene;
+  scene.points = 1024;
+  scene.levels = 3;
+  scene.seed = 3;
+  scene.k_C = 0;  // the model block below
+  return "name: twist\nscene:\n" + scene.Yaml(2) + "  model: {k_C: 1000, L: 10, max_point_speed: " + speed +
          "}\n"
          "models: " +
          models +

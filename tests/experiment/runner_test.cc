@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "scene_fixtures.h"
 #include "test_support.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
@@ -16,24 +17,15 @@ namespace {
 using testing::TempDir;
 
 // A 4 cm ball pressed 1.5 mm into a plate: procedural, small, fast.
-const char* kConfig = R"(name: tiny
-description: a ball pressed into a plate
-scene:
-  name: ball-plate
-  bodies:
-    - name: ball
-      mesh: "sphere:0.02,3"
-      pose: [0, 0, 0.0215, 1, 0, 0, 0]
-      role: pointshell
-      pointshell: {points: 256, levels: 2, seed: 3}
-      field: {resolution: 24}
-    - name: plate
-      mesh: "box:0.05,0.05,0.01,2"
-      pose: [0, 0, -0.01, 1, 0, 0, 0]
-      role: field
-      field: {resolution: 24}
-  model: {k_C: 1000}
-models: [pointshell, pointshell-linear]
+testing::BallOnPlate TinyBallPlate() {
+  testing::BallOnPlate s;
+  s.ball_z = 0.0215;
+  s.points = 256;
+  s.seed = 3;
+  return s;
+}
+const std::string kConfig = "name: tiny\ndescription: a ball pressed into a plate\nscene:\n" +
+                            TinyBallPlate().Yaml(2) + R"(models: [pointshell, pointshell-linear]
 moving_body: ball
 trajectory: {type: approach-press, direction: [0, 0, -1], approach: 0.002, depth: 0.003, duration: 0.04}
 reference: pointshell-linear

@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "experiment/experiment_config.h"
+#include "scene_fixtures.h"
 #include "test_support.h"
 #include "util/error.h"
 
@@ -13,21 +14,14 @@ namespace {
 
 using testing::TempDir;
 
-const char* kScene = R"(name: ball-plate
-bodies:
-  - name: ball
-    mesh: "sphere:0.02,3"
-    pose: [0, 0, 0.0215, 1, 0, 0, 0]
-    role: pointshell
-    pointshell: {points: 256, levels: 2, seed: 3}
-    field: {resolution: 24}
-  - name: plate
-    mesh: "box:0.05,0.05,0.01,2"
-    pose: [0, 0, -0.01, 1, 0, 0, 0]
-    role: field
-    field: {resolution: 24}
-model: {k_C: 1000}
-)";
+// The ball-on-plate scene, the ball 1.5 mm above the plate, 256 points of seed 3.
+const std::string kScene = [] {
+  testing::BallOnPlate s;
+  s.ball_z = 0.0215;
+  s.points = 256;
+  s.seed = 3;
+  return s.Yaml();
+}();
 
 // A config over the scene file, with SWEEP (YAML lines under "sweep:").
 ExperimentConfig Load(const TempDir& dir, const std::string& sweep) {
