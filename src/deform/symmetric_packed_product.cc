@@ -36,11 +36,21 @@ HWY_INLINE void FourRows(const double* HWY_RESTRICT r0, const double* HWY_RESTRI
       y[k] += rows[a][k] * x[p + a];
     }
   }
-  // Columns k >= p + 4, two vectors at a time.
+  // Columns k >= p + 4: first the (n - p - 4) mod (2 lanes) nearest the diagonal, scalar,
+  // then two vectors at a time up to n. Vector columns thus sit on one grid ending at n in
+  // every row block, so each vector load of y reads exactly what an earlier vector store
+  // wrote (a vector load over scalar stores cannot be forwarded and stalls).
+  int k = p + 4;
+  for (const int head = k + (n - k) % (2 * lanes); k < head; ++k) {
+    dot[0] += r0[k] * x[k];
+    dot[1] += r1[k] * x[k];
+    dot[2] += r2[k] * x[k];
+    dot[3] += r3[k] * x[k];
+    y[k] += (r0[k] * x[p] + r1[k] * x[p + 1]) + (r2[k] * x[p + 2] + r3[k] * x[p + 3]);
+  }
   const V x0s = hn::Set(d, x[p]), x1s = hn::Set(d, x[p + 1]), x2s = hn::Set(d, x[p + 2]), x3s = hn::Set(d, x[p + 3]);
   V a0 = hn::Zero(d), a1 = a0, a2 = a0, a3 = a0, b0 = a0, b1 = a0, b2 = a0, b3 = a0;
-  int k = p + 4;
-  for (; k + 2 * lanes <= n; k += 2 * lanes) {
+  for (; k < n; k += 2 * lanes) {
     const V xa = hn::LoadU(d, x + k), xb = hn::LoadU(d, x + k + lanes);
     const V s0a = hn::LoadU(d, r0 + k), s0b = hn::LoadU(d, r0 + k + lanes);
     const V s1a = hn::LoadU(d, r1 + k), s1b = hn::LoadU(d, r1 + k + lanes);
@@ -59,14 +69,6 @@ HWY_INLINE void FourRows(const double* HWY_RESTRICT r0, const double* HWY_RESTRI
     const V yb = hn::Add(hn::MulAdd(s0b, x0s, hn::Mul(s1b, x1s)), hn::MulAdd(s2b, x2s, hn::Mul(s3b, x3s)));
     hn::StoreU(hn::Add(hn::LoadU(d, y + k), ya), d, y + k);
     hn::StoreU(hn::Add(hn::LoadU(d, y + k + lanes), yb), d, y + k + lanes);
-  }
-  // Tail, fewer than two vectors: scalar.
-  for (; k < n; ++k) {
-    dot[0] += r0[k] * x[k];
-    dot[1] += r1[k] * x[k];
-    dot[2] += r2[k] * x[k];
-    dot[3] += r3[k] * x[k];
-    y[k] += (r0[k] * x[p] + r1[k] * x[p + 1]) + (r2[k] * x[p + 2] + r3[k] * x[p + 3]);
   }
   y[p] += dot[0] + hn::GetLane(hn::SumOfLanes(d, hn::Add(a0, b0)));
   y[p + 1] += dot[1] + hn::GetLane(hn::SumOfLanes(d, hn::Add(a1, b1)));
