@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "deform/symmetric_packed_product.h"
 #include "util/error.h"
 #include "util/progress.h"
 
@@ -37,6 +38,33 @@ ReducedInternalForces::ReducedInternalForces(ReducedModelKind kind, Eigen::Matri
   }
   if (!A_.allFinite() || !B_.allFinite() || !C_.allFinite()) Fail(where, "a coefficient is not finite");
   BuildPairTable();
+  if (kind_ == ReducedModelKind::kStVK) {
+    // C must be the symmetric S with the pair weights on its columns (Compute makes it so).
+    const double tolerance = 1e-9 * C_.cwiseAbs().maxCoeff();
+    for (int i = 0; i < r_; ++i)
+      for (int j = i; j < r_; ++j)
+        for (int l = 0; l < r_; ++l)
+          for (int m = l; m < r_; ++m) {
+            const int p = Pair(i, j), k = Pair(l, m);
+            if (std::abs(C_(p, k) / (l == m ? 1.0 : 2.0) - C_(k, p) / (i == j ? 1.0 : 2.0)) > tolerance) {
+              Fail(where, "the cubic coefficients are not symmetric (entry " + std::to_string(p) + ", " +
+                              std::to_string(k) + ")");
+            }
+          }
+    PackCubic();
+  }
+}
+
+void ReducedInternalForces::PackCubic() {
+  // Row p of the upper triangle, S(p, k) = C(p, k) / weight(k) for k >= p (exact: the weights
+  // are 1 and 2).
+  const int np = num_pairs();
+  cubic_packed_.assign(PackedUpperSize(np), 0.0);
+  for (int l = 0, k = 0; l < r_; ++l)
+    for (int m = l; m < r_; ++m, ++k) {
+      const double weight = l == m ? 1.0 : 2.0;
+      for (int p = 0; p <= k; ++p) cubic_packed_[PackedUpperRowStart(p, np) + (k - p)] = C_(p, k) / weight;
+    }
 }
 
 void ReducedInternalForces::BuildPairTable() {
@@ -127,6 +155,7 @@ ReducedInternalForces ReducedInternalForces::Compute(const StVKFem& fem, const E
                             P(out.Pair(i, m), out.Pair(j, l))) / 3.0;
           out.C_(out.Pair(i, j), out.Pair(l, m)) = c * (l == m ? 1.0 : 2.0);
         }
+  out.PackCubic();
   return out;
 }
 
@@ -136,8 +165,6 @@ ReducedInternalForces::Workspace ReducedInternalForces::MakeWorkspace() const {
   ws.w = Eigen::VectorXd::Zero(np);
   ws.kb = Eigen::VectorXd::Zero(np);
   ws.kc = Eigen::VectorXd::Zero(np);
-  ws.Kb = ReducedMatrix::Zero(r_, r_);
-  ws.Kc = ReducedMatrix::Zero(r_, r_);
   ws.T = ReducedMatrix::Zero(r_, r_);
   return ws;
 }
@@ -150,22 +177,32 @@ void ReducedInternalForces::Evaluate(const ReducedVector& q, ReducedVector* f, R
     if (K) *K = A_;
     return;
   }
-  // Monomials w_(lm) = q_l q_m, then Kb = B q and Kc = C w in pair order.
+  // Weighted monomials w_(lm) = q_l q_m (l == m) or 2 q_l q_m (l < m), in pair order: with
+  // them Kc = S w for the symmetric S (the same products as C (q_l q_m), scaled exactly).
   double* w = ws->w.data();
-  for (int l = 0, p = 0; l < r; ++l)
-    for (int m = l; m < r; ++m, ++p) w[p] = q[l] * q[m];
-  ws->kb.noalias() = B_ * q;
-  ws->kc.noalias() = C_ * ws->w;
-  for (int i = 0, p = 0; i < r; ++i)
-    for (int j = i; j < r; ++j, ++p) {
-      ws->Kb(i, j) = ws->Kb(j, i) = ws->kb[p];
-      ws->Kc(i, j) = ws->Kc(j, i) = ws->kc[p];
-    }
-  if (f) {
-    ws->T = A_ + ws->Kb + ws->Kc;
-    f->noalias() = ws->T * q;
+  for (int l = 0, p = 0; l < r; ++l) {
+    w[p++] = q[l] * q[l];
+    for (int m = l + 1; m < r; ++m, ++p) w[p] = 2 * (q[l] * q[m]);
   }
-  if (K) *K = A_ + 2 * ws->Kb + 3 * ws->Kc;
+  // Kb = B q (npairs x r, 3 r^3 / 2 multiply-adds at r = 15: 1800) and Kc = S w (npairs^2:
+  // 14400), in pair order.
+  ws->kb.noalias() = B_ * q;
+  SymmetricPackedProduct(cubic_packed_.data(), num_pairs(), w, ws->kc.data());
+  // Unpack into the secant matrix T = A + Kb + Kc (f = T q) and the tangent stiffness
+  // K = A + 2 Kb + 3 Kc, one pass over the upper triangle.
+  const double* kb = ws->kb.data();
+  const double* kc = ws->kc.data();
+  if (f) {
+    ReducedMatrix& T = ws->T;
+    for (int i = 0, p = 0; i < r; ++i)
+      for (int j = i; j < r; ++j, ++p) T(i, j) = T(j, i) = A_(i, j) + kb[p] + kc[p];
+    f->noalias() = T * q;
+  }
+  if (K) {
+    K->resize(r, r);
+    for (int i = 0, p = 0; i < r; ++i)
+      for (int j = i; j < r; ++j, ++p) (*K)(i, j) = (*K)(j, i) = A_(i, j) + 2 * kb[p] + 3 * kc[p];
+  }
 }
 
 double ReducedInternalForces::Energy(const ReducedVector& q, Workspace* ws) const {
@@ -174,9 +211,12 @@ double ReducedInternalForces::Energy(const ReducedVector& q, Workspace* ws) cons
     Aq.noalias() = A_ * q;
     return 0.5 * q.dot(Aq);
   }
-  Evaluate(q, nullptr, nullptr, ws);  // fills Kb, Kc
-  ws->T = 0.5 * A_ + ws->Kb / 3.0 + ws->Kc / 4.0;
-  return q.dot(ws->T * q);
+  Evaluate(q, nullptr, nullptr, ws);  // fills kb, kc
+  // W = q^T (A / 2 + Kb / 3 + Kc / 4) q.
+  ReducedMatrix& T = ws->T;
+  for (int i = 0, p = 0; i < r_; ++i)
+    for (int j = i; j < r_; ++j, ++p) T(i, j) = T(j, i) = 0.5 * A_(i, j) + ws->kb[p] / 3.0 + ws->kc[p] / 4.0;
+  return q.dot(T * q);
 }
 
 }  // namespace contactlab

@@ -7,6 +7,9 @@
 // has fully symmetric coefficient tensors A (r x r), B (r x r x r), C (r x r x r x r),
 // precomputed exactly by summing per-element contributions. Evaluation writes
 //   Kb = B(q, .), Kc = C(q, q, .)   =>   f = (A + Kb + Kc) q,   K = A + 2 Kb + 3 Kc.
+// Kc, the r^4 part, is one product of the symmetric npairs x npairs matrix of C with the
+// monomials q_l q_m; it reads only the upper half of that matrix (packed, SIMD: see
+// symmetric_packed_product.h), the largest array the time step streams.
 #pragma once
 
 #include <Eigen/Core>
@@ -25,16 +28,17 @@ class ReducedInternalForces {
  public:
   // Scratch for Evaluate, sized once by MakeWorkspace.
   struct Workspace {
-    Eigen::VectorXd w;   // npairs monomials q_l q_m (l <= m)
+    Eigen::VectorXd w;   // npairs monomials q_l q_m (l <= m), times 2 when l < m
     Eigen::VectorXd kb;  // npairs entries of Kb (upper triangle, pair order)
     Eigen::VectorXd kc;  // npairs entries of Kc
-    ReducedMatrix Kb, Kc, T;
+    ReducedMatrix T;     // r x r: A + Kb + Kc (the secant matrix, f = T q)
   };
 
   ReducedInternalForces() = default;
   // From stored coefficients (model files). A is r x r; for kStVK, B is npairs x r and C is
   // npairs x npairs (see Compute), npairs = r (r + 1) / 2; for kLinear B and C are empty.
-  // Throws Error naming WHERE when sizes disagree or r exceeds kMaxReducedModes.
+  // Throws Error naming WHERE when sizes disagree, r exceeds kMaxReducedModes, or C is not
+  // symmetric (C(p, k) / w_k = C(k, p) / w_p with the pair weights w, to 1e-9 relative).
   ReducedInternalForces(ReducedModelKind kind, Eigen::MatrixXd A, Eigen::MatrixXd B, Eigen::MatrixXd C,
                         const std::string& where = "reduced forces");
 
@@ -62,11 +66,16 @@ class ReducedInternalForces {
 
  private:
   void BuildPairTable();
+  // cubic_packed_ from C_.
+  void PackCubic();
 
   ReducedModelKind kind_ = ReducedModelKind::kStVK;
   int r_ = 0;
   Eigen::MatrixXd A_, B_, C_;
   std::vector<int> pair_;  // r x r symmetric table of pair indices
+  // The symmetric matrix S(p, k) = C_ijlm, p = pair(i, j), k = pair(l, m) (C_ without the pair
+  // weights), as packed upper rows: npairs (npairs + 1) / 2 entries (kStVK only).
+  std::vector<double> cubic_packed_;
 };
 
 }  // namespace contactlab
