@@ -68,8 +68,7 @@ LoopSpec ParseLoopSpec(const ConfigNode& root) {
   return LoopSpec();
 }
 
-LoopJobResult RunClosedLoopJob(const ExperimentConfig& config, const Job& job, const RunOptions& options) {
-  (void)config;
+LoopJobResult RunClosedLoopJob(const Job& job, const RunOptions& options) {
   const LoopSpec spec = ParseLoopSpec(job.config);
   SceneAssets assets(job.scene, options.assets);
   const ClosedLoopScene where = MakeClosedLoopScene(job.scene, assets);
@@ -132,8 +131,8 @@ bool IsLoopColumn(const std::string& name) {
 }
 
 // Every job's loop section parses (an error names the job's sweep values).
-void CheckClosedLoopStudy(const ExperimentConfig& config, const ConfigNode&) {
-  for (const Job& job : ExpandJobs(config)) {
+void CheckClosedLoopStudy(const ExperimentConfig& config, const ConfigNode&, const std::vector<Job>& jobs) {
+  for (const Job& job : jobs) {
     try {
       (void)ParseLoopSpec(job.config);
     } catch (const Error& e) {
@@ -152,7 +151,7 @@ void RunClosedLoopStudy(const ExperimentConfig& config, const RunOptions& option
   std::fprintf(stderr, "\n");
   std::vector<LoopJobResult> results(only.empty() ? all.size() : only.size());
   const JobsRun jobs = RunJobs(config, all, only, options, [&](std::size_t i, const Job& job) {
-    results[i] = RunClosedLoopJob(config, job, options);
+    results[i] = RunClosedLoopJob(job, options);
   });
   WriteStudyResults(StudyOf(config), options.out_dir, {StabilityCsv(config, results)},
                     RunMetadata(config, jobs.indices, jobs.wall_seconds, jobs.parallel));

@@ -49,8 +49,8 @@ struct LoopJobResult {
   std::vector<LoopRow> rows;  // per model, per motion
 };
 
-// Runs JOB of a closed-loop CONFIG: every model of the job, every motion of its loop section.
-LoopJobResult RunClosedLoopJob(const ExperimentConfig& config, const Job& job, const RunOptions& options);
+// Runs JOB of a closed-loop config: every model of the job, every motion of its loop section.
+LoopJobResult RunClosedLoopJob(const Job& job, const RunOptions& options);
 
 // stability.csv: experiment, job, the sweep axes, then the declared columns.
 std::string StabilityCsv(const ExperimentConfig& config, const std::vector<LoopJobResult>& results);

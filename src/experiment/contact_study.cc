@@ -10,13 +10,10 @@
 namespace contactlab {
 namespace {
 
-// The trajectory section is a mapping with a type, and every job's trajectory parses, so errors
-// come before any work.
-void CheckContactStudy(const ExperimentConfig& config, const ConfigNode& root) {
-  const ConfigNode trajectory = root.Get("trajectory");
-  trajectory.ExpectMap();
-  if (!trajectory.Has("type")) trajectory.Fail("missing required key 'type'");
-  for (Job& job : ExpandJobs(config)) (void)ParseTrajectory(job.trajectory_node);
+// Every job's trajectory parses (a mapping with a known type and its keys), so errors come
+// before any work.
+void CheckContactStudy(const ExperimentConfig&, const ConfigNode&, const std::vector<Job>& jobs) {
+  for (const Job& job : jobs) (void)ParseTrajectory(job.trajectory_node);
 }
 
 // Runs the jobs and prints one line per job and model.

@@ -353,8 +353,8 @@ namespace {
 
 // Every job's sections parse, its field body is deformable, and the slice's job filter names
 // sweep axes and their values.
-void CheckFieldStudy(const ExperimentConfig& c, const ConfigNode& root) {
-  for (Job& job : ExpandJobs(c)) {
+void CheckFieldStudy(const ExperimentConfig& c, const ConfigNode& root, const std::vector<Job>& jobs) {
+  for (const Job& job : jobs) {
     const FieldStudySpec spec = ParseFieldStudySpec(job.config);
     if (!job.scene.field_body.deformable) {
       Fail(c.file, "study: deformed-field needs a deformable field body, but body '" + job.scene.field_body.name +

@@ -461,8 +461,8 @@ void CheckEachSweepValue(const ExperimentConfig& c) {
 // What each job's registered models refuse of its scene (a deformable body a model treats as
 // rigid, coherence against a deformed field, ...), said before any job builds its assets. Models
 // not registered in this program are left to the run.
-void CheckModelsAgainstScenes(const ExperimentConfig& c) {
-  for (const Job& job : ExpandJobs(c)) {
+void CheckModelsAgainstScenes(const ExperimentConfig& c, const std::vector<Job>& jobs) {
+  for (const Job& job : jobs) {
     const Scene& s = job.scene;
     const std::string where = c.file + (c.sweep.empty() ? std::string() : " (job " + job.Label() + ")");
     for (const std::string& name : job.models) {
@@ -541,8 +541,9 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
   }
   c.sweep = ParseSweep(root, study);
   CheckEachSweepValue(c);
-  CheckModelsAgainstScenes(c);
-  if (study.check) study.check(c, root);
+  const std::vector<Job> jobs = ExpandJobs(c);
+  CheckModelsAgainstScenes(c, jobs);
+  if (study.check) study.check(c, root, jobs);
   return c;
 }
 
