@@ -1,8 +1,8 @@
 # The layering rule of DESIGN.md, checked on the sources: nothing in src/contact or baselines
 # includes a header of the experiment harness or the command line, nor of deform/ other than
-# where deformed points are (the kinematics: embedded points, the deformable pointshell, the
-# deformed distance field, the tet mesh they live in); baselines/CMakeLists.txt checks the
-# same of what they link when the build is configured. Run by ctest as
+# where deformed points are (the kinematics: embedded points and their vector batches, the
+# deformable pointshell, the deformed distance field, the tet mesh they live in);
+# baselines/CMakeLists.txt checks the same of what they link when the build is configured. Run by ctest as
 #   cmake -DROOT=<source dir> -P tests/layering_check.cmake
 file(GLOB_RECURSE sources ${ROOT}/src/contact/*.h ${ROOT}/src/contact/*.cc ${ROOT}/baselines/*.h ${ROOT}/baselines/*.cc)
 list(LENGTH sources count)
@@ -17,7 +17,7 @@ foreach(f IN LISTS sources)
   endforeach()
   file(STRINGS ${f} lines REGEX "^[ \t]*#[ \t]*include[ \t]*\"deform/")
   foreach(l IN LISTS lines)
-    if(NOT l MATCHES "\"deform/(embedded_points|deformable_pointshell|deformed_distance_field|tet_mesh)\\.h\"")
+    if(NOT l MATCHES "\"deform/(embedded_points|reduced_point_batch|deformable_pointshell|deformed_distance_field|tet_mesh)\\.h\"")
       string(APPEND violations "\n  ${f}: ${l}")
     endif()
   endforeach()

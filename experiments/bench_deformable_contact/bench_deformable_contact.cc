@@ -10,6 +10,9 @@
 //                  a realistic q (the bridge settled under the dragon's press, a few mm of
 //                  displacement); linear traversal (every point) and tree traversal.
 //                  Counter ns_per_node (CPU time / nodes visited).
+//   BM_StreamBasis the bound of the linear traversal: read every point's rows of U (as the
+//                  deformed positions do) and the rest positions, nothing else. Counters
+//                  ns_per_point and GBps (bytes of U and X read per second).
 //   BM_Step        ReducedIntegrator::Step(f, &K) with the reduced contact force and stiffness
 //                  of the settled configuration, against Step(f) without K.
 //   BM_Cycle       the coupled loop of contactlab run (query with q held fixed, then
@@ -44,6 +47,7 @@
 #include "contact/deformable_contact_models.h"
 #include "contact/pointshell_contact_model.h"
 #include "deform/reduced_integrator.h"
+#include "deform/reduced_point_batch.h"
 #include "experiment/contact_placement.h"
 #include "experiment/scene.h"
 #include "experiment/scene_assets.h"
@@ -261,6 +265,25 @@ void BM_PerNode(benchmark::State& state, SceneCase c, int r, Shell shell, Points
   state.SetItemsProcessed(std::int64_t(nodes));
 }
 
+// The bandwidth bound of the linear traversal: every point's three rows of U and its rest
+// position streamed through vector loads (deform/reduced_point_batch.h), summed so nothing is
+// skipped.
+void BM_StreamBasis(benchmark::State& state, SceneCase c, int r) {
+  Prepared* prepared = TryPrepare(state, c, r);
+  if (prepared == nullptr) return;
+  const DeformablePointshell& shell = *prepared->assets->A.deformable_pointshell();
+  const EmbeddedPoints& P = shell.points();
+  const Pointshell& s = shell.shell();
+  const int n = s.level_point_end[s.num_levels() - 1];
+  const std::size_t bytes = sizeof(float) * (3 * std::size_t(P.basis_stride()) + 3) * std::size_t(n);
+  for (auto _ : state) benchmark::DoNotOptimize(StreamPointRows(P, s.x.data(), s.y.data(), s.z.data(), n));
+  const double iterations = double(std::max<benchmark::IterationCount>(1, state.iterations()));
+  state.counters["ns_per_point"] =
+      benchmark::Counter(double(n) * iterations * 1e-9, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["GBps"] = benchmark::Counter(double(bytes) * iterations * 1e-9, benchmark::Counter::kIsRate);
+  state.counters["MB"] = 1e-6 * double(bytes);
+}
+
 // ---------------------------------------------------------------------------------------------
 // 2. The reduced step inside the cycle, with and without the contact stiffness.
 
@@ -439,6 +462,12 @@ void RegisterAll() {
           "per_node/points:" + points + (variant == Variant::kLinear ? "/linear/" : "/tree/");
       benchmark::RegisterBenchmark((prefix + "rigid").c_str(), BM_PerNode, nc.scene, nc.rs[0], kRigid, variant)
           ->Unit(benchmark::kMicrosecond);
+      if (variant == Variant::kLinear) {
+        const int r = std::find(nc.rs.begin(), nc.rs.end(), 15) != nc.rs.end() ? 15 : nc.rs.back();
+        benchmark::RegisterBenchmark(("stream_basis/points:" + points + "/r:" + std::to_string(r)).c_str(),
+                                     BM_StreamBasis, nc.scene, r)
+            ->Unit(benchmark::kMicrosecond);
+      }
       for (int r : nc.rs) {
         for (Shell shell : {kDeformableAtRest, kDeformableSettled}) {
           benchmark::RegisterBenchmark((prefix + kShellNames[shell] + "/r:" + std::to_string(r)).c_str(), BM_PerNode,

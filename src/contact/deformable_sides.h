@@ -25,6 +25,7 @@
 #include "contact/reduced_force_sum.h"
 #include "deform/deformable_pointshell.h"
 #include "deform/deformed_distance_field.h"
+#include "deform/reduced_point_batch.h"
 #include "reduced/reduced_state.h"
 
 namespace contactlab {
@@ -48,11 +49,12 @@ class ReducedCoordinatesF {
     return true;
   }
   void Reset() { has_previous_ = false; }
+  // Q (r entries, then zeros up to kMaxBasisStride) and |Q|.
   const float* q() const { return q_; }
   const float* abs_q() const { return abs_q_; }
 
  private:
-  float q_[kMaxReducedModes] = {};
+  alignas(64) float q_[kMaxBasisStride] = {};
   float abs_q_[kMaxReducedModes] = {};
   bool has_previous_ = false;
 };
@@ -76,20 +78,28 @@ class DeformableShell {
   void Reset() { q_.Reset(); }
 
   // Points INDEX[k] (BEGIN + k when INDEX is null), k < N, at this query's q (A's frame) into
-  // X, Y, Z; and point I's corrected unit normal.
+  // X, Y, Z.
   void Positions(const std::int32_t* index, int begin, int n, float* x, float* y, float* z) const {
-    for (int k = 0; k < n; ++k) {
-      float p[3];
-      shell_->points().PositionF(index ? index[k] : begin + k, q_.q(), p);
-      x[k] = p[0], y[k] = p[1], z[k] = p[2];
-    }
+    const Pointshell& s = shell();
+    DeformedPositions(shell_->points(), s.x.data(), s.y.data(), s.z.data(), q_.q(), index, begin, n, x, y, z);
   }
-  void Normal(int i, float* n_A) const { shell_->points().CorrectedNormalF(i, q_.q(), n_A); }
-  // Point I in contact at depth D < 0 with normal N_A: its part of A's reduced force.
-  void AddReduced(int i, const float* n_A, float d, ReducedForceSum* sum) const {
-    float w[kMaxReducedModes];
-    shell_->points().ProjectF(i, n_A, w);
-    sum->Add(d, w);
+  // The corrected unit normals of points INDEX[k], k < N, at this query's q into NX, NY, NZ.
+  void Normals(const std::int32_t* index, int n, float* nx, float* ny, float* nz) const {
+    const Pointshell& s = shell();
+    CorrectedNormals(shell_->points(), s.nx.data(), s.ny.data(), s.nz.data(), q_.q(), index, n, nx, ny, nz);
+  }
+  // Points INDEX[k], k < N, in contact at depths D[k] < 0 with normals (NX, NY, NZ)[INDEX[k]]
+  // (A's frame): their part of A's reduced force, summed in float a run at a time.
+  void AddReduced(const float* nx, const float* ny, const float* nz, const std::int32_t* index, const float* d, int n,
+                  ReducedForceSum* sum) const {
+    const EmbeddedPoints& P = shell_->points();
+    const int stride = P.basis_stride(), r = P.r();
+    alignas(64) float g[kMaxBasisStride];
+    alignas(64) float G[kMaxReducedModes * kMaxBasisStride];
+    std::fill(g, g + stride, 0.f);
+    if (sum->stiffness()) std::fill(G, G + r * stride, 0.f);
+    AddReducedPointSums(P, nx, ny, nz, index, d, n, g, sum->stiffness() ? G : nullptr);
+    sum->AddSums(g, G, stride);
   }
 
  private:

@@ -175,18 +175,25 @@ struct PointshellFieldModel<Shell, Field>::Pass {
           m.field_.Distances(X_BA, s.x.data() + offset, s.y.data() + offset, s.z.data() + offset, idx, mk, d + c0,
                              nearest);
         }
-        // 2. What the points in contact need later: position, normal, proxy.
+        // 2. What the points in contact need later: position, normal (a batch of them), proxy.
+        std::int32_t hit[kChunk];
+        float hit_d[kChunk];
+        int hits = 0;
         for (int k = 0; k < mk; ++k) {
           if (!(d[c0 + k] < 0.f)) [[likely]] continue;
           const int i = idx ? idx[k] : first + k;
-          if constexpr (Shell::kDeforms) {
-            m.x_[i] = px[k], m.y_[i] = py[k], m.z_[i] = pz[k];
-            float n_A[3];
-            m.shell_.Normal(i, n_A);
-            m.nx_[i] = n_A[0], m.ny_[i] = n_A[1], m.nz_[i] = n_A[2];
-          }
+          if constexpr (Shell::kDeforms) m.x_[i] = px[k], m.y_[i] = py[k], m.z_[i] = pz[k];
           if constexpr (Field::kDeforms) m.nearest_[i] = nearest[k];
-          if (contacts == nullptr) AddOnItsOwn(i, d[c0 + k]);
+          hit_d[hits] = d[c0 + k];
+          hit[hits++] = i;
+        }
+        if constexpr (Shell::kDeforms) {
+          float hx[kChunk], hy[kChunk], hz[kChunk];
+          m.shell_.Normals(hit, hits, hx, hy, hz);
+          for (int h = 0; h < hits; ++h) m.nx_[hit[h]] = hx[h], m.ny_[hit[h]] = hy[h], m.nz_[hit[h]] = hz[h];
+        }
+        if (contacts == nullptr) {
+          for (int h = 0; h < hits; ++h) AddOnItsOwn(hit[h], hit_d[h]);
         }
         // 3. Their forces, a buffer at a time.
         if (contacts != nullptr) contacts->Collect(first, idx, d + c0, mk);
@@ -202,30 +209,33 @@ struct PointshellFieldModel<Shell, Field>::Pass {
     const float n_A[3] = {P.nx[i], P.ny[i], P.nz[i]};
     AddContactPointWith(X_BA, n_A, p_B, d, params().gradient, acc,
                         [this](const Eigen::Vector3d& p) { return m.field_.Gradient(p); }, n_B);
-    AddReduced(i, d);
+    const std::int32_t index = i;
+    AddReduced(&index, &d, 1);
   }
-  // Point I in contact at depth D: its part of each deformable side's reduced force.
-  void AddReduced(int i, float d) {
+  // Points INDEX[k], k < N, in contact at depths D[k]: their part of each deformable side's
+  // reduced force.
+  void AddReduced(const std::int32_t* index, const float* d, int n) {
     if constexpr (kDeforms) {
       const ContactPointArrays P = Points();
-      const float n_A[3] = {P.nx[i], P.ny[i], P.nz[i]};
       if constexpr (Shell::kDeforms) {
-        if (sum_A != nullptr) m.shell_.AddReduced(i, n_A, d, sum_A);
+        if (sum_A != nullptr) m.shell_.AddReduced(P.nx, P.ny, P.nz, index, d, n, sum_A);
       }
       if constexpr (Field::kDeforms) {
         if (sum_B != nullptr) {
-          float p_B[3], n_B[3];
-          X_BA.Apply(P.x[i], P.y[i], P.z[i], p_B);
-          X_BA.Rotate(n_A[0], n_A[1], n_A[2], n_B);
-          m.field_.AddReduced(m.nearest_[i], p_B, n_B, d, sum_B);
+          for (int k = 0; k < n; ++k) {
+            const int i = index[k];
+            float p_B[3], n_B[3];
+            X_BA.Apply(P.x[i], P.y[i], P.z[i], p_B);
+            X_BA.Rotate(P.nx[i], P.ny[i], P.nz[i], n_B);
+            m.field_.AddReduced(m.nearest_[i], p_B, n_B, d[k], sum_B);
+          }
         }
       }
     }
   }
   // HalfspaceContactBuffer's flush hook: the reduced forces of a run of points added.
   static void OnFlush(void* self, const std::int32_t* index, const float* d, int n) {
-    Pass& pass = *static_cast<Pass*>(self);
-    for (int k = 0; k < n; ++k) pass.AddReduced(index[k], d[k]);
+    static_cast<Pass*>(self)->AddReduced(index, d, n);
   }
 
   const PointshellContactParams& params() const { return m.params_; }

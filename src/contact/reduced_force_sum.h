@@ -28,6 +28,16 @@ class ReducedForceSum {
         for (int a = 0; a <= b; ++a) G_[b * r_ + a] += double(w[a] * w[b]);
     }
   }
+  // Float sums of many points (deform/reduced_point_batch.h): G_SUM (r entries) adds to g and,
+  // when the stiffness is summed, row b < r of STIFFNESS (at STIFFNESS + b STRIDE) to G.
+  void AddSums(const float* g_sum, const float* stiffness, int stride) {
+    for (int j = 0; j < r_; ++j) g_[j] += double(g_sum[j]);
+    if (stiffness_) {
+      for (int b = 0; b < r_; ++b)
+        for (int a = 0; a <= b; ++a) G_[b * r_ + a] += double(stiffness[b * stride + a]);
+    }
+  }
+  bool stiffness() const { return stiffness_; }
   // Writes SIGN * K * g to F and, when K_OUT is non-null (and the stiffness was summed), K * G.
   void Write(double k, double sign, ReducedVector* f, ReducedMatrix* K_out) const {
     f->resize(r_);

@@ -146,15 +146,16 @@ EmbeddedPoints::EmbeddedPoints(const TetMesh& mesh, const Eigen::MatrixXd& U,
   if (U.rows() != 3 * mesh.num_vertices()) Fail("embedded points", "the basis row count is not 3 x #vertices");
   if (!normals.empty() && normals.size() != points.size()) Fail("embedded points", "normals and points differ in count");
   r_ = int(U.cols());
+  stride_ = (r_ + kBasisLanes - 1) / kBasisLanes * kBasisLanes;
   scheme_ = scheme;
   const std::size_t np = points.size();
   tet_.resize(np);
   bary_.resize(4 * np);
   rest_.resize(3 * np);
   normal_.assign(3 * np, 0.f);
-  u_.resize(np * 3 * r_);
+  u_.assign(np * 3 * std::size_t(stride_), 0.f);
   f_.resize(np * 9 * r_);
-  nc_.resize(np * 3 * r_);
+  nc_.assign(np * 3 * std::size_t(stride_), 0.f);
   const std::vector<Eigen::Matrix3d> vertex_modes =
       scheme == GradientScheme::kSmooth ? VertexGradientModes(mesh, U) : std::vector<Eigen::Matrix3d>();
   const TetGrid grid(mesh);
@@ -184,8 +185,8 @@ EmbeddedPoints::EmbeddedPoints(const TetMesh& mesh, const Eigen::MatrixXd& U,
       }
       const Eigen::Vector3d nj = -Fj.transpose() * n;  // column j of the normal correction
       for (int c = 0; c < 3; ++c) {
-        u_[(3 * i + c) * r_ + j] = float(uj[c]);
-        nc_[(3 * i + c) * r_ + j] = float(nj[c]);
+        u_[(3 * i + c) * stride_ + j] = float(uj[c]);
+        nc_[(3 * i + c) * stride_ + j] = float(nj[c]);
       }
       for (int a = 0; a < 3; ++a)
         for (int c = 0; c < 3; ++c) f_[(9 * i + 3 * a + c) * r_ + j] = float(Fj(a, c));
@@ -196,14 +197,14 @@ EmbeddedPoints::EmbeddedPoints(const TetMesh& mesh, const Eigen::MatrixXd& U,
 Eigen::MatrixXd EmbeddedPoints::Basis(int i) const {
   Eigen::MatrixXd B(3, r_);
   for (int c = 0; c < 3; ++c)
-    for (int j = 0; j < r_; ++j) B(c, j) = u_[(3 * i + c) * r_ + j];
+    for (int j = 0; j < r_; ++j) B(c, j) = u_[(3 * std::size_t(i) + c) * stride_ + j];
   return B;
 }
 
 Eigen::Vector3d EmbeddedPoints::Displacement(int i, const double* q) const {
   Eigen::Vector3d d;
   for (int c = 0; c < 3; ++c) {
-    const float* row = &u_[(3 * std::size_t(i) + c) * r_];
+    const float* row = &u_[(3 * std::size_t(i) + c) * stride_];
     double s = 0;
     for (int j = 0; j < r_; ++j) s += double(row[j]) * q[j];
     d[c] = s;
@@ -237,7 +238,7 @@ Eigen::Vector3d EmbeddedPoints::Normal(int i, const double* q) const {
 Eigen::Vector3d EmbeddedPoints::CorrectedNormal(int i, const double* q) const {
   Eigen::Vector3d m;
   for (int c = 0; c < 3; ++c) {
-    const float* row = &nc_[(3 * std::size_t(i) + c) * r_];
+    const float* row = &nc_[(3 * std::size_t(i) + c) * stride_];
     double s = normal_[3 * i + c];
     for (int j = 0; j < r_; ++j) s += double(row[j]) * q[j];
     m[c] = s;
@@ -248,7 +249,7 @@ Eigen::Vector3d EmbeddedPoints::CorrectedNormal(int i, const double* q) const {
 
 void EmbeddedPoints::AddPointForce(int i, const Eigen::Vector3d& force, double* f_q) const {
   for (int c = 0; c < 3; ++c) {
-    const float* row = &u_[(3 * std::size_t(i) + c) * r_];
+    const float* row = &u_[(3 * std::size_t(i) + c) * stride_];
     for (int j = 0; j < r_; ++j) f_q[j] += double(row[j]) * force[c];
   }
 }

@@ -21,8 +21,9 @@
 #include <cmath>
 #include <vector>
 
-#include "reduced/reduced_state.h"
 #include "deform/tet_mesh.h"
+#include "reduced/reduced_state.h"
+#include "util/aligned_vector.h"
 
 namespace contactlab {
 
@@ -40,6 +41,15 @@ class EmbeddedPoints {
 
   int size() const { return int(tet_.size()); }
   int r() const { return r_; }
+  // The rows of every U_i for vector kernels (deform/reduced_point_batch.h): row c of point i
+  // at basis_rows() + (3 i + c) basis_stride(), its r entries then zeros up to the stride, r
+  // rounded up to kBasisLanes floats. Starts on a cache line; at r = 15 a point's three rows
+  // are exactly three lines.
+  static constexpr int kBasisLanes = 8;
+  int basis_stride() const { return stride_; }
+  const float* basis_rows() const { return u_.data(); }
+  // The rows of every normal-correction matrix N_i, laid out as basis_rows().
+  const float* normal_rows() const { return nc_.data(); }
   int tet(int i) const { return tet_[i]; }
   // Barycentric coordinates of point I (4 entries, sum 1; all >= 0 inside its tet).
   Eigen::Vector4d barycentric(int i) const { return Eigen::Map<const Eigen::Vector4d>(&bary_[4 * i]); }
@@ -63,12 +73,12 @@ class EmbeddedPoints {
   // Single-precision forms of the above for the haptic cycle's per-point loops, Q as float
   // (r entries): inline, allocation-free, 3r multiply-adds each.
   void PositionF(int i, const float* q, float* out) const {
-    for (int c = 0; c < 3; ++c) out[c] = rest_[3 * std::size_t(i) + c] + Dot(&u_[(3 * std::size_t(i) + c) * r_], q);
+    for (int c = 0; c < 3; ++c) out[c] = rest_[3 * std::size_t(i) + c] + Dot(&u_[(3 * std::size_t(i) + c) * stride_], q);
   }
   void CorrectedNormalF(int i, const float* q, float* out) const {
     float len2 = 0;
     for (int c = 0; c < 3; ++c) {
-      out[c] = normal_[3 * std::size_t(i) + c] + Dot(&nc_[(3 * std::size_t(i) + c) * r_], q);
+      out[c] = normal_[3 * std::size_t(i) + c] + Dot(&nc_[(3 * std::size_t(i) + c) * stride_], q);
       len2 += out[c] * out[c];
     }
     const float inv = len2 > 0 ? 1.f / std::sqrt(len2) : 0.f;
@@ -76,8 +86,8 @@ class EmbeddedPoints {
   }
   // W = U_i^T V (r entries) for a vector V at point I.
   void ProjectF(int i, const float* v, float* w) const {
-    const float* row = &u_[3 * std::size_t(i) * r_];
-    for (int j = 0; j < r_; ++j) w[j] = row[j] * v[0] + row[r_ + j] * v[1] + row[2 * r_ + j] * v[2];
+    const float* row = &u_[3 * std::size_t(i) * stride_];
+    for (int j = 0; j < r_; ++j) w[j] = row[j] * v[0] + row[stride_ + j] * v[1] + row[2 * stride_ + j] * v[2];
   }
 
  private:
@@ -88,14 +98,15 @@ class EmbeddedPoints {
   }
 
   int r_ = 0;
+  int stride_ = 0;  // basis_stride()
   GradientScheme scheme_ = GradientScheme::kSmooth;
   std::vector<int> tet_;       // #P enclosing tet
   std::vector<double> bary_;   // #P x 4 barycentric coordinates
   std::vector<float> rest_;    // #P x 3 rest positions
   std::vector<float> normal_;  // #P x 3 rest normals (zero when none were given)
-  std::vector<float> u_;       // #P x 3 x r: row c of U_i at u_[(3 i + c) r]
+  AlignedVector<float> u_;     // #P x 3 x stride: row c of U_i at u_[(3 i + c) stride]
   std::vector<float> f_;       // #P x 9 x r: entry (a, b) of F_j at f_[(9 i + 3 a + b) r + j]
-  std::vector<float> nc_;      // #P x 3 x r: row c of N_i at nc_[(3 i + c) r]
+  AlignedVector<float> nc_;    // #P x 3 x stride: row c of N_i at nc_[(3 i + c) stride]
 };
 
 // Index of the tet containing P, or the one P is least outside of, and its barycentric
