@@ -20,6 +20,7 @@
 
 #include "bench_common.h"
 #include "deform/deformed_field_accuracy.h"
+#include "deform/deformed_field_batch.h"
 #include "deform/reduced_model.h"
 #include "geometry/mesh_io.h"
 #include "geometry/procedural_shapes.h"
@@ -168,6 +169,55 @@ BENCHMARK(BM_QueryCoherent)
     ->Args({40, 5, 1})  // the paper's setting, coherent order
     ->Args({40, 3, 1})  // k = 3
     ->Unit(benchmark::kNanosecond);
+
+// The many-point query (deform/deformed_field_batch.h) over the same band points, a batch of 256
+// per call as the contact model issues them. Args: proxies, k, domains, order (0 as BM_Query,
+// 1 the Morton order of BM_QueryCoherent). Counter ns_per_query.
+void BM_QueryBatch(benchmark::State& state) {
+  const Setup& s = GetSetup();
+  const DeformedDistanceField& field = GetField(int(state.range(0)), int(state.range(1)), int(state.range(2)));
+  DeformedFieldState fs(field);
+  fs.Update(field, s.q.data());
+  const std::size_t n = s.points.size() / 3;
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  if (state.range(3) == 1) {
+    auto morton = [&](std::size_t i) {
+      std::uint64_t code = 0;
+      for (int c = 0; c < 3; ++c) {
+        const std::uint64_t v = std::uint64_t(std::max(0.f, (s.points[3 * i + c] + 0.5f) / 0.002f)) & 0x1fffff;
+        for (int b = 0; b < 21; ++b) code |= ((v >> b) & 1u) << (3 * b + c);
+      }
+      return code;
+    };
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return morton(a) < morton(b); });
+  }
+  std::vector<float> x(n), y(n), z(n), d(n);
+  std::vector<std::int32_t> nearest(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    x[i] = s.points[3 * order[i]], y[i] = s.points[3 * order[i] + 1], z[i] = s.points[3 * order[i] + 2];
+  }
+  constexpr std::size_t kBatch = 256;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    DeformedFieldDistances(field, fs, &x[i], &y[i], &z[i], int(kBatch), &d[i], &nearest[i]);
+    benchmark::DoNotOptimize(d.data());
+    i = (i + kBatch) & (n - 1);
+  }
+  const double queries = double(state.iterations()) * double(kBatch);
+  state.SetItemsProcessed(std::int64_t(queries));
+  state.counters["ns_per_query"] =
+      benchmark::Counter(queries * 1e-9, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_QueryBatch)
+    ->Args({40, 5, 1, 0})  // the issue's target: <= 60 ns
+    ->Args({40, 5, 1, 1})
+    ->Args({20, 5, 1, 0})
+    ->Args({80, 5, 1, 0})
+    ->Args({40, 3, 1, 0})
+    ->Args({40, 8, 1, 0})
+    ->Args({40, 5, 3, 0})  // three domains: <= 3 x one
+    ->Unit(benchmark::kMicrosecond);
 
 // DeformedFieldState::Update: every proxy slot's position and pull-back at q (once per cycle).
 // Args: proxies, domains.

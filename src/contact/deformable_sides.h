@@ -17,6 +17,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -25,6 +26,7 @@
 #include "contact/reduced_force_sum.h"
 #include "deform/deformable_pointshell.h"
 #include "deform/deformed_distance_field.h"
+#include "deform/deformed_field_batch.h"
 #include "deform/reduced_point_batch.h"
 #include "reduced/reduced_state.h"
 
@@ -49,13 +51,13 @@ class ReducedCoordinatesF {
     return true;
   }
   void Reset() { has_previous_ = false; }
-  // Q (r entries, then zeros up to kMaxBasisStride) and |Q|.
+  // Q and |Q| (r entries, then zeros up to kMaxBasisStride).
   const float* q() const { return q_; }
   const float* abs_q() const { return abs_q_; }
 
  private:
   alignas(64) float q_[kMaxBasisStride] = {};
-  float abs_q_[kMaxReducedModes] = {};
+  alignas(64) float abs_q_[kMaxBasisStride] = {};
   bool has_previous_ = false;
 };
 
@@ -127,15 +129,20 @@ class DeformedField {
     state_.Update(*field_, q != nullptr ? q->q.data() : nullptr);
     return true;
   }
+  // Placed in B a chunk at a time, then answered as one batch (deform/deformed_field_batch.h).
   void Distances(const FloatTransform& X_BA, const float* x, const float* y, const float* z,
                  const std::int32_t* index, int n, float* d, std::int32_t* nearest) const {
-    for (int k = 0; k < n; ++k) {
-      const int i = index ? index[k] : k;
-      float p_B[3];
-      X_BA.Apply(x[i], y[i], z[i], p_B);
-      int slot = -1;
-      d[k] = field_->Distance(state_, p_B, &slot);
-      if (nearest != nullptr) nearest[k] = slot;
+    constexpr int kChunk = 256;
+    float bx[kChunk], by[kChunk], bz[kChunk];
+    for (int c0 = 0; c0 < n; c0 += kChunk) {
+      const int m = std::min(kChunk, n - c0);
+      for (int k = 0; k < m; ++k) {
+        const int i = index ? index[c0 + k] : c0 + k;
+        float p_B[3];
+        X_BA.Apply(x[i], y[i], z[i], p_B);
+        bx[k] = p_B[0], by[k] = p_B[1], bz[k] = p_B[2];
+      }
+      DeformedFieldDistances(*field_, state_, bx, by, bz, m, d + c0, nearest ? nearest + c0 : nullptr);
     }
   }
   // By central differences of the deformed field, half a rest cell apart.

@@ -47,8 +47,11 @@ DeformablePointshell::DeformablePointshell(std::shared_ptr<const Pointshell> she
     }
   }
   // Stored as float, rounded up so the bound stays conservative.
-  rho_.resize(rho.size());
-  for (std::size_t k = 0; k < rho.size(); ++k) rho_[k] = std::nextafter(float(rho[k]), INFINITY);
+  const int stride = points_.basis_stride();
+  rho_.assign(std::size_t(N) * stride, 0.f);
+  for (int n = 0; n < N; ++n) {
+    for (int j = 0; j < r; ++j) rho_[std::size_t(n) * stride + j] = std::nextafter(float(rho[std::size_t(n) * r + j]), INFINITY);
+  }
   for (int j = 0; j < r; ++j) {
     double spread = 0, displacement = 0;
     for (int n = 0; n < N; ++n) spread = std::max(spread, rho[std::size_t(n) * r + j]);

@@ -1,16 +1,18 @@
 // The deformed distance field (paper sec. 4.2) against independent references: the rest field
 // at q = 0, rigid motions applied through the proxies, the weights of eq. (3), C^0 continuity
-// in x and q, and the exact distance to the deformed surface mesh (closest triangle by a BVH,
+// in x and q, the many-point query against the one-point one, and the exact distance to the deformed surface mesh (closest triangle by a BVH,
 // sign by the winding number) in the contact band.
 #include "deform/deformed_distance_field.h"
 
 #include <gtest/gtest.h>
+#include <hwy/targets.h>
 
 #include <Eigen/Geometry>
 #include <cmath>
 #include <random>
 
 #include "beam_fixture.h"
+#include "deform/deformed_field_batch.h"
 #include "deform/reduced_model.h"
 #include "geometry/procedural_shapes.h"
 #include "sdf/build_distance_field.h"
@@ -298,6 +300,48 @@ TEST(DeformedDistanceField, DomainsCoverTheBodyAndHoldKProxies) {
   o.domains = 1;
   o.neighbours = 1;
   EXPECT_THROW(DeformedDistanceField(b.field, b.model.mesh, b.model.basis, o, "capsule"), Error);
+}
+
+// The batched query (deform/deformed_field_batch.h) against the one-point query, on every
+// instruction set compiled: the same nearest slot and d to float rounding, for k from 2 to the
+// largest, one and three domains, points in the band, far outside the box, on a proxy (all
+// weight on it) and batch sizes that leave partial vectors and batches.
+TEST(DeformedDistanceField, ManyPointQueryEqualsTheOnePointQuery) {
+  std::mt19937 rng(41);
+  const Body& body = Torus();
+  const double h = body.field->spacing();
+  for (const auto& [k, domains] : std::vector<std::pair<int, int>>{{2, 1}, {5, 1}, {5, 3}, {8, 2}, {kMaxProxyNeighbours, 1}}) {
+    const DeformedDistanceField field = MakeField(body, 40, k, domains);
+    DeformedFieldState state(field);
+    const Eigen::VectorXd q = ScaledQ(body.model, 0.02, &rng);
+    state.Update(field, q.data());
+    std::vector<float> x, y, z;
+    std::uniform_real_distribution<float> u(-0.25f, 0.25f), uz(-0.08f, 0.08f);
+    for (int i = 0; i < 150; ++i) x.push_back(u(rng)), y.push_back(u(rng)), z.push_back(uz(rng));
+    for (int i = 0; i < 5; ++i) x.push_back(3.f + float(i)), y.push_back(-2.f), z.push_back(0.5f);  // far outside
+    for (int i = 0; i < 7; ++i) {  // on a proxy: its weight dominates
+      const Eigen::Vector3f p = state.position(field.slot_begin(0) + i);
+      x.push_back(p.x()), y.push_back(p.y()), z.push_back(p.z());
+    }
+    for (int n : {1, 7, int(x.size())}) {
+      const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
+      for (std::int64_t target : targets) {
+        hwy::SetSupportedTargetsForTest(target);
+        std::vector<float> d(n);
+        std::vector<std::int32_t> nearest(n, -2);
+        DeformedFieldDistances(field, state, x.data(), y.data(), z.data(), n, d.data(), nearest.data());
+        for (int i = 0; i < n; ++i) {
+          const float p[3] = {x[i], y[i], z[i]};
+          int slot = -3;
+          const float expected = field.Distance(state, p, &slot);
+          ASSERT_NEAR(d[i], expected, 1e-5 * h + 1e-6 * std::abs(expected))
+              << hwy::TargetName(target) << " k " << k << " domains " << domains << " point " << i;
+          ASSERT_EQ(nearest[i], slot) << hwy::TargetName(target) << " k " << k << " point " << i;
+        }
+      }
+      hwy::SetSupportedTargetsForTest(0);
+    }
+  }
 }
 
 }  // namespace

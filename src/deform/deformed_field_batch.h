@@ -1,0 +1,22 @@
+// The deformed distance field (Barbič & James 2008, sec. 4.2) answering many points at once:
+// for a group of points (one per vector lane) the k nearest deformed proxies of a domain are
+// kept sorted in registers while the domain's proxies stream past (compare and blend, no
+// branches), the eq. (3) weights are formed lane-wise, the k pull-backs gather their proxy's
+// affine map, and the k pulled-back points of a whole batch go to the domain's rest field as one
+// vectorised lookup (sdf/batch_distance.h). Google Highway, run-time dispatch.
+#pragma once
+
+#include <cstdint>
+
+#include "deform/deformed_distance_field.h"
+
+namespace contactlab {
+
+// D[k] = FIELD.Distance(STATE, (X, Y, Z)[k]) for k < N (field body frame) and, when NEAREST is
+// not null, NEAREST[k] the slot that call reports. Equal to the one-point Distance to float
+// rounding (fused multiply-adds, another summation order); the same proxies are chosen, ties
+// broken alike. Allocates nothing, throws nothing.
+void DeformedFieldDistances(const DeformedDistanceField& field, const DeformedFieldState& state, const float* x,
+                            const float* y, const float* z, int n, float* d, std::int32_t* nearest);
+
+}  // namespace contactlab
