@@ -34,9 +34,9 @@ struct Scratch {
 
 // Domain DOM's part of points [0, NB) of a batch at (X, Y, Z): fills S with the pulled-back
 // points and weights of each point's K nearest slots, nearest first. K is a template argument
-// so the sorted list stays in registers.
+// so the sorted list stays in registers. Returns whether any point weights its K-th slot.
 template <int k>
-void NearestAndPullBacks(const DeformedDistanceField& field, const DeformedFieldState& state, int dom,
+bool NearestAndPullBacks(const DeformedDistanceField& field, const DeformedFieldState& state, int dom,
                          const float* HWY_RESTRICT x, const float* HWY_RESTRICT y, const float* HWY_RESTRICT z, int nb,
                          Scratch* HWY_RESTRICT s) {
   const DF df;
@@ -49,6 +49,7 @@ void NearestAndPullBacks(const DeformedDistanceField& field, const DeformedField
   const float* HWY_RESTRICT a = state.pullback(0);
   const int begin = field.slot_begin(dom), end = field.slot_end(dom);
   const VF inf = hn::Set(df, std::numeric_limits<float>::infinity()), zero = hn::Zero(df), one = hn::Set(df, 1.f);
+  bool last_weighted = false;
   for (int b0 = 0; b0 < nb; b0 += kLanes) {  // NB is a whole number of vectors (padded by the caller)
     const VF px = hn::LoadU(df, x + b0), py = hn::LoadU(df, y + b0), pz = hn::LoadU(df, z + b0);
     // The sorted list: squared distances and slots (as float bit patterns, so one float mask
@@ -95,9 +96,19 @@ void NearestAndPullBacks(const DeformedDistanceField& field, const DeformedField
       W = hn::IfThenElse(degenerate, count, W);
     }
     const VF inv_W = one / W;
-    // The pull-backs X = c + A x through each chosen slot's affine map (12 floats a slot).
+    // The pull-backs X = c + A x through each chosen slot's affine map (12 floats a slot). The
+    // k-th weight is zero but where all k are equidistant: only then is its point pulled back
+    // (elsewhere it keeps the query point, a valid lookup that is never weighted).
     for (int m = 0; m < k; ++m) {
-      hn::StoreU(w[m] * inv_W, df, s->w + m * kBatch + b0);
+      const VF wm = w[m] * inv_W;
+      hn::StoreU(wm, df, s->w + m * kBatch + b0);
+      if (m == k - 1 && hn::AllTrue(df, wm == zero)) {
+        hn::StoreU(px, df, s->px + m * kBatch + b0);
+        hn::StoreU(py, df, s->py + m * kBatch + b0);
+        hn::StoreU(pz, df, s->pz + m * kBatch + b0);
+        continue;
+      }
+      if (m == k - 1) last_weighted = true;
       const VI base = hn::Max(hn::BitCast(di, slot[m]), hn::Zero(di)) * hn::Set(di, 12);  // -1 (a NaN point): slot 0
       auto coef = [&](int e) HWY_ATTR { return hn::GatherIndex(df, a + e, base); };
       const VF X = hn::MulAdd(coef(0), px, hn::MulAdd(coef(1), py, hn::MulAdd(coef(2), pz, coef(9))));
@@ -109,9 +120,10 @@ void NearestAndPullBacks(const DeformedDistanceField& field, const DeformedField
     }
     hn::StoreU(hn::BitCast(di, slot[0]), di, s->first + b0);
   }
+  return last_weighted;
 }
 
-void NearestAndPullBacksFor(int k, const DeformedDistanceField& field, const DeformedFieldState& state, int dom,
+bool NearestAndPullBacksFor(int k, const DeformedDistanceField& field, const DeformedFieldState& state, int dom,
                             const float* x, const float* y, const float* z, int nb, Scratch* s) {
   static_assert(kMaxProxyNeighbours == 16);
   switch (k) {
@@ -137,6 +149,7 @@ void NearestAndPullBacksFor(int k, const DeformedDistanceField& field, const Def
     default:
       break;  // k is checked in [2, kMaxProxyNeighbours] when the field is built
   }
+  return false;
 }
 
 void DeformedFieldDistancesImpl(const DeformedDistanceField& field, const DeformedFieldState& state,
@@ -169,12 +182,14 @@ void DeformedFieldDistancesImpl(const DeformedDistanceField& field, const Deform
       best_slot[b] = -1;
     }
     for (int dom = 0; dom < field.num_domains(); ++dom) {
-      NearestAndPullBacksFor(k, field, state, dom, bx, by, bz, padded, &s);
+      // The lookups of the weighted neighbours: the first k - 1, the k-th only when some point
+      // weights it.
+      const int looked = NearestAndPullBacksFor(k, field, state, dom, bx, by, bz, padded, &s) ? k : k - 1;
       const DistanceField& rest = field.domain_field(dom);
       if (padded == kBatch) {
-        BatchDistances(rest, identity, s.px, s.py, s.pz, nullptr, k * kBatch, s.looked);
+        BatchDistances(rest, identity, s.px, s.py, s.pz, nullptr, looked * kBatch, s.looked);
       } else {
-        for (int m = 0; m < k; ++m) {
+        for (int m = 0; m < looked; ++m) {
           BatchDistances(rest, identity, s.px + m * kBatch, s.py + m * kBatch, s.pz + m * kBatch, nullptr, padded,
                          s.looked + m * kBatch);
         }
@@ -182,7 +197,7 @@ void DeformedFieldDistancesImpl(const DeformedDistanceField& field, const Deform
       // d = sum_m w_m d_rest(X_m), a zero weight adding nothing (even where d_rest is infinite).
       for (int b = 0; b < padded; ++b) {
         float sum = 0;
-        for (int m = 0; m < k; ++m) {
+        for (int m = 0; m < looked; ++m) {
           const float w = s.w[m * kBatch + b];
           if (w != 0.f) sum += w * s.looked[m * kBatch + b];
         }
