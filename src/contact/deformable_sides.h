@@ -3,23 +3,25 @@
 // goes as a reduced force:
 //
 //   DeformableShell (sec. 4.1)  points at x = X + U q with the linear normal correction, node
-//       radii R(q) = R_0 + sum_j |q_j| rho_j (the point-based BD-tree); a change dq moves every
-//       point and grows every radius by at most sum_j c_j |dq_j| (DeformablePointshell::
-//       mode_travel), the side's travel. A point's force F_i (A's frame) enters A's reduced
+//       radii R(q) = R_0 + sum_j |q_j| rho_j (the point-based BD-tree). For temporal coherence
+//       it keeps the q of its last kHistory queries: between a node's sleep and now its ball
+//       moved and grew by at most sum_j c_nj |q_j - q_sleep,j| (DeformablePointshell::
+//       node_travel, the node's own bound). A point's force F_i (A's frame) enters A's reduced
 //       force through U_i^T.
 //   DeformedField (sec. 4.2)    distances from the proxies at q_B (nearest k, eq. (3), pulled
-//       back through the proxies' deformation gradients, domains combined by minimum). No
-//       travel: nothing cheap bounds how fast its distances drop, so the model refuses temporal
-//       coherence against it. A point's force enters B's reduced force at its nearest proxy (or
-//       the query's k proxies, weighted).
+//       back through the proxies' deformation gradients, domains combined by minimum). Nothing
+//       cheap bounds how fast its distances drop, so the model refuses temporal coherence
+//       against it. A point's force enters B's reduced force at its nearest proxy (or the
+//       query's k proxies, weighted).
 //
-// Both keep the q of the previous query for their travel, and take q as float once a query.
+// Both take q as float once a query.
 #pragma once
 
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 
 #include "contact/float_transform.h"
@@ -32,25 +34,20 @@
 
 namespace contactlab {
 
-// Reduced coordinates of one query in float, and the travel since the previous query.
+// Reduced coordinates of one query in float.
 class ReducedCoordinatesF {
  public:
-  // Q (null: at rest) for a body of R coordinates whose mode j moves any point by at most
-  // TRAVEL_PER_MODE(j) per unit; adds the travel since the previous Load to *TRAVEL (when not
-  // null). False when Q has another size than R (nothing is changed then).
-  template <class TravelPerMode>
-  bool Load(const ReducedState* q, int r, TravelPerMode&& travel_per_mode, double* travel) {
+  // Q (null: at rest) for a body of R coordinates. False when Q has another size than R
+  // (nothing is changed then).
+  bool Load(const ReducedState* q, int r) {
     if (q != nullptr && q->size() != r) return false;
     for (int j = 0; j < r; ++j) {
       const float v = q != nullptr ? float(q->q[j]) : 0.f;
-      if (travel != nullptr && has_previous_) *travel += double(travel_per_mode(j)) * std::fabs(v - q_[j]);
       q_[j] = v;
       abs_q_[j] = std::fabs(v);
     }
-    has_previous_ = true;
     return true;
   }
-  void Reset() { has_previous_ = false; }
   // Q and |Q| (r entries, then zeros up to kMaxBasisStride).
   const float* q() const { return q_; }
   const float* abs_q() const { return abs_q_; }
@@ -58,7 +55,6 @@ class ReducedCoordinatesF {
  private:
   alignas(64) float q_[kMaxBasisStride] = {};
   alignas(64) float abs_q_[kMaxBasisStride] = {};
-  bool has_previous_ = false;
 };
 
 class DeformableShell {
@@ -73,11 +69,24 @@ class DeformableShell {
   const Pointshell& shell() const { return shell_->shell(); }
   int r() const { return shell_->r(); }
 
-  bool Begin(const ReducedState* q, double* travel) {
-    return q_.Load(q, r(), [this](int j) { return shell_->mode_travel(j); }, travel);
+  // Also records Q as this query's entry of the history.
+  bool Begin(const ReducedState* q) {
+    if (!q_.Load(q, r())) return false;
+    ++stamp_;
+    std::copy(q_.q(), q_.q() + kMaxBasisStride, history_[stamp_ % kHistory]);
+    return true;
   }
   float Radius(int node) const { return shell_->RadiusF(node, q_.abs_q()); }
-  void Reset() { q_.Reset(); }
+  void Reset() {}
+
+  // Temporal coherence: this query's stamp, and how far NODE's ball may have moved closer since
+  // the query stamped SINCE (infinite once that query has left the history).
+  static constexpr std::uint32_t kHistory = 256;
+  std::uint32_t stamp() const { return stamp_; }
+  float Travel(int node, std::uint32_t since) const {
+    if (stamp_ - since >= kHistory) return std::numeric_limits<float>::infinity();
+    return shell_->NodeTravelF(node, q_.q(), history_[since % kHistory]);
+  }
 
   // Points INDEX[k] (BEGIN + k when INDEX is null), k < N, at this query's q (A's frame) into
   // X, Y, Z.
@@ -107,6 +116,8 @@ class DeformableShell {
  private:
   Source shell_;
   ReducedCoordinatesF q_;
+  std::uint32_t stamp_ = 0;                                  // queries begun
+  alignas(64) float history_[kHistory][kMaxBasisStride] = {};  // q of query s at [s % kHistory]
 };
 
 class DeformedField {
@@ -123,9 +134,9 @@ class DeformedField {
   const DistanceField& rest_field() const { return field_->rest_field(); }
   int r() const { return field_->r(); }
 
-  // Also moves the proxies to Q, held fixed during the query. Adds no travel.
-  bool Begin(const ReducedState* q, double* /*travel*/) {
-    if (!q_.Load(q, r(), [](int) { return 0.f; }, nullptr)) return false;
+  // Also moves the proxies to Q, held fixed during the query.
+  bool Begin(const ReducedState* q) {
+    if (!q_.Load(q, r())) return false;
     state_.Update(*field_, q != nullptr ? q->q.data() : nullptr);
     return true;
   }
@@ -157,7 +168,7 @@ class DeformedField {
     }
     return g;
   }
-  void Reset() { q_.Reset(); }
+  void Reset() {}
 
   // A point in contact at P_B (B's frame) with normal N_B and depth D < 0, whose lookup found
   // proxy slot NEAREST: its part of B's reduced force.

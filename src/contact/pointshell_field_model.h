@@ -13,10 +13,12 @@
 //   "pointshell"         breadth-first traversal culling a subtree when d exceeds the node's
 //                        bounding radius, optionally with temporal coherence and a node budget.
 //
-// Temporal coherence, one clock for every combination: the clock reads the distance any point
-// may have closed on B since the first query, lipschitz * (max_point_speed * elapsed time + the
-// sides' deformation travel summed over queries); a culled node whose ball was MARGIN clear of
-// contact sleeps until the clock has advanced by MARGIN. A rigid side has no deformation travel.
+// Temporal coherence: the clock reads the distance any point may have closed on B by rigid
+// motion since the first query, lipschitz * max_point_speed * elapsed time; a culled node whose
+// ball was MARGIN clear of contact sleeps until the clock has advanced by MARGIN. A deformable
+// shell adds the node's own deformation bound, lipschitz * sum_j c_nj |q_j - q_j at its sleep|
+// (DeformableShell::Travel): path-independent, and small for a node whose region hardly moves
+// with q, so a small change of q wakes only the nodes it can bring into contact.
 // max_point_speed must bound the rigid motion of A's points relative to B. Against a deformed
 // field coherence is refused (an Error at construction): no cheap bound covers how fast its
 // distances can drop (a point pulled back through a proxy's deformation gradient moves with
@@ -79,6 +81,7 @@ class PointshellFieldModel final : public ContactModel {
     const Pointshell& s = shell_.shell();
     traversal_ = TreeTraversalState(s);
     wake_.assign(std::size_t(s.num_nodes()), -std::numeric_limits<double>::infinity());
+    if constexpr (Shell::kDeforms) sleep_stamp_.assign(std::size_t(s.num_nodes()), 0u);
     if constexpr (Shell::kDeforms) {
       for (auto* v : {&x_, &y_, &z_, &nx_, &ny_, &nz_}) v->assign(std::size_t(s.num_points()), 0.f);
     }
@@ -118,7 +121,7 @@ class PointshellFieldModel final : public ContactModel {
   // Scratch sized once at construction.
   TreeTraversalState traversal_;
   std::vector<double> wake_;  // (#N) coherence clock value at which a culled node wakes
-  double travel_ = 0;         // the sides' deformation travel summed over queries, metres
+  std::vector<std::uint32_t> sleep_stamp_;  // (#N) a deformable shell's stamp when the node slept
   // A deformable shell's points in contact this query: deformed position and corrected normal
   // (A's frame), written at the point's index (#P each).
   std::vector<float> x_, y_, z_, nx_, ny_, nz_;
@@ -240,8 +243,18 @@ struct PointshellFieldModel<Shell, Field>::Pass {
 
   const PointshellContactParams& params() const { return m.params_; }
   float Radius(int node) const { return m.shell_.Radius(node); }
-  bool Asleep(int node) const { return clock < m.wake_[node]; }
-  void Sleep(int node, double margin) { m.wake_[node] = clock + margin; }
+  bool Asleep(int node) const {
+    if constexpr (Shell::kDeforms) {  // the travel is >= 0: formed only for a node the clock alone keeps asleep
+      return clock < m.wake_[node] &&
+             clock + m.params_.lipschitz * double(m.shell_.Travel(node, m.sleep_stamp_[node])) < m.wake_[node];
+    } else {
+      return clock < m.wake_[node];
+    }
+  }
+  void Sleep(int node, double margin) {
+    m.wake_[node] = clock + margin;
+    if constexpr (Shell::kDeforms) m.sleep_stamp_[node] = m.shell_.stamp();
+  }
 };
 
 template <class Shell, class Field>
@@ -249,19 +262,14 @@ ContactResult PointshellFieldModel<Shell, Field>::Evaluate(const ContactQuery& q
   ContactResult result;
   const BodyDeformation* def_A = query.deformation_A;
   const BodyDeformation* def_B = query.deformation_B;
-  // This query's deformations (rigid sides take none) and how far they moved since the last.
-  // A side whose deformation fits keeps it even when the other's does not, so its travel is
-  // counted either way and the coherence clock never runs behind a side.
-  double travel = 0;
-  const bool fits_A = shell_.Begin(def_A ? def_A->q : nullptr, &travel);
-  const bool fits_B = field_.Begin(def_B ? def_B->q : nullptr, &travel);
-  travel_ += travel;
+  // This query's deformations (rigid sides take none).
+  const bool fits_A = shell_.Begin(def_A ? def_A->q : nullptr);
+  const bool fits_B = field_.Begin(def_B ? def_B->q : nullptr);
   if (!fits_A || !fits_B) {
     result.stats.faults = 1;
     return result;
   }
-  const double clock =
-      params_.lipschitz * (double(query.cycle) * params_.max_point_speed * params_.cycle_seconds + travel_);
+  const double clock = params_.lipschitz * double(query.cycle) * params_.max_point_speed * params_.cycle_seconds;
 
   // The reduced forces wanted of the deformable sides (an instance with none keeps no sums).
   struct NoSum {};

@@ -6,14 +6,13 @@
 // A shell side answers:
 //   kDeforms                 false: positions and normals are the pointshell's own arrays
 //   shell()                  the pointshell whose tree the traversals walk
-//   Begin(q, &travel)        this query's deformation (null: none); TRAVEL += how far it may
-//                            have moved any point or grown any radius since the last query
-//                            (metres); false when Q does not fit the body
+//   Begin(q)                 this query's deformation (null: none); false when Q does not fit
+//                            the body
 //   Radius(node)             the node's bounding radius at this query
 //   Reset()                  forget the previous query
 // A field side answers:
 //   kDeforms, rest_field()   the field at rest (checks, gradient step)
-//   Begin(q, &travel)        as the shell side's, for the field body
+//   Begin(q)                 as the shell side's, for the field body
 //   Distances(X_BA, x, y, z, index, n, d, nearest)
 //                            d[k] of point (x, y, z)[i], i = index[k] (k when null), placed in
 //                            B by X_BA; NEAREST[k] the proxy its force acts through (deformed
@@ -38,7 +37,7 @@ namespace contactlab {
 struct RigidSide {
   static constexpr bool kDeforms = false;
   int r() const { return 0; }
-  bool Begin(const ReducedState* q, double* travel) const { return q == nullptr || q->size() == 0; }
+  bool Begin(const ReducedState* q) const { return q == nullptr || q->size() == 0; }
   void Reset() {}
 };
 

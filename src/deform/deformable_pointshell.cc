@@ -52,6 +52,14 @@ DeformablePointshell::DeformablePointshell(std::shared_ptr<const Pointshell> she
   for (int n = 0; n < N; ++n) {
     for (int j = 0; j < r; ++j) rho_[std::size_t(n) * stride + j] = std::nextafter(float(rho[std::size_t(n) * r + j]), INFINITY);
   }
+  node_travel_.assign(std::size_t(N) * stride, 0.f);
+  for (int n = 0; n < N; ++n) {
+    const Eigen::MatrixXd& Uc = basis[s.node_point[n]];
+    for (int j = 0; j < r; ++j) {
+      node_travel_[std::size_t(n) * stride + j] =
+          std::nextafter(float(rho[std::size_t(n) * r + j] + Uc.col(j).norm()), INFINITY);
+    }
+  }
   for (int j = 0; j < r; ++j) {
     double spread = 0, displacement = 0;
     for (int n = 0; n < N; ++n) spread = std::max(spread, rho[std::size_t(n) * r + j]);

@@ -10,6 +10,7 @@
 // Radii are evaluated only for the nodes a traversal visits, with |q| computed once a cycle.
 #pragma once
 
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -32,9 +33,23 @@ class DeformablePointshell {
   const float* node_spread(int node) const { return &rho_[std::size_t(node) * points_.basis_stride()]; }
   // Largest displacement per unit q_j of any point relative to any node's own point, plus of
   // any point itself: c_j = max_n rho_nj + max_i |U_ij|. A change dq moves every point and
-  // grows every radius by at most sum_j c_j |dq_j| together (temporal coherence under
-  // deformation).
+  // grows every radius by at most sum_j c_j |dq_j| together.
   float mode_travel(int j) const { return travel_[j]; }
+  // The same bound for one node (temporal coherence under deformation): c_nj = rho_nj + |U_cj|,
+  // c the node's own point, so between q0 and q the node's ball moves and grows by at most
+  // sum_j c_nj |q_j - q0_j| (its point by |U_c (q - q0)|, its radius by the rho terms). Laid
+  // out as node_spread; rounded up to float.
+  const float* node_travel(int node) const { return &node_travel_[std::size_t(node) * points_.basis_stride()]; }
+  // sum_j c_nj |q_j - q0_j| in single precision for the hot loop; Q and Q0 zero past r up to the
+  // basis stride. Rounded up by a relative 1e-5 so float summation cannot undercut it.
+  float NodeTravelF(int node, const float* q, const float* q0) const {
+    const float* c = node_travel(node);
+    float s[EmbeddedPoints::kBasisLanes] = {};
+    for (int j = 0; j < points_.basis_stride(); j += EmbeddedPoints::kBasisLanes) {
+      for (int l = 0; l < EmbeddedPoints::kBasisLanes; ++l) s[l] += c[j + l] * std::fabs(q[j + l] - q0[j + l]);
+    }
+    return (((s[0] + s[4]) + (s[1] + s[5])) + ((s[2] + s[6]) + (s[3] + s[7]))) * (1.f + 1e-5f);
+  }
   // R(q) in single precision for the hot loop, ABS_Q as float, zero past r up to the basis
   // stride. Eight partial sums (a multiple of eight entries): independent multiply-adds the
   // compiler packs into vectors, not one chain of r dependent ones.
@@ -60,6 +75,7 @@ class DeformablePointshell {
   EmbeddedPoints points_;
   std::vector<float> rho_;     // (#N x stride) rho_[n stride + j], rounded up to float
   std::vector<float> travel_;  // (r) mode_travel
+  std::vector<float> node_travel_;  // (#N x stride) node_travel
 };
 
 }  // namespace contactlab

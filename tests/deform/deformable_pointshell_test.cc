@@ -126,5 +126,40 @@ TEST(DeformablePointshell, CorrectedNormalsAreOrthogonalToTheDeformedSurface) {
   }
 }
 
+// The per-node coherence bound: between two deformations q0 and q, a node's deformed point
+// moves and its radius grows by at most sum_j c_nj |q_j - q0_j| together, checked against the
+// positions and radii themselves (in double); and it is tighter than the one global bound per
+// mode for the nodes near the anchored end.
+TEST(DeformablePointshell, NodeTravelBoundsEachNodesBallMotion) {
+  const ReducedModel model =
+      BuildReducedModel(testing::MakeBeam(), testing::BeamOptions(8, ReducedModelKind::kStVK), "beam");
+  const auto shell = BeamShell();
+  const DeformablePointshell deformable(shell, model.mesh, model.basis);
+  const Pointshell& s = *shell;
+  const int r = deformable.r();
+  const int stride = deformable.points().basis_stride();
+  std::mt19937 rng(23);
+  int tighter = 0;
+  for (double scale : {0.01, 0.2, 1.0}) {
+    for (int trial = 0; trial < 5; ++trial) {
+      const Eigen::VectorXd q0 = testing::RandomVector(r, scale, &rng), q = testing::RandomVector(r, scale, &rng);
+      std::vector<float> q0f(stride, 0.f), qf(stride, 0.f);
+      for (int j = 0; j < r; ++j) q0f[j] = float(q0[j]), qf[j] = float(q[j]);
+      const Eigen::VectorXd a0 = q0.cwiseAbs(), a = q.cwiseAbs();
+      double global = 0;
+      for (int j = 0; j < r; ++j) global += deformable.mode_travel(j) * std::abs(q[j] - q0[j]);
+      for (int node = 0; node < s.num_nodes(); ++node) {
+        const int c = s.node_point[node];
+        const double moved = (deformable.points().Position(c, q.data()) - deformable.points().Position(c, q0.data())).norm();
+        const double grown = deformable.Radius(node, a.data()) - deformable.Radius(node, a0.data());
+        const double bound = deformable.NodeTravelF(node, qf.data(), q0f.data());
+        ASSERT_LE(moved + grown, bound * (1 + 1e-5) + 1e-9) << "node " << node << " scale " << scale;
+        tighter += bound < 0.5 * global;
+      }
+    }
+  }
+  EXPECT_GT(tighter, 0);
+}
+
 }  // namespace
 }  // namespace contactlab
