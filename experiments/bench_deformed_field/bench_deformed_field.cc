@@ -108,6 +108,24 @@ const DeformedDistanceField& GetField(int proxies, int k, int domains) {
   return *slot;
 }
 
+// The indices of POINTS (x, y, z triples) sorted along a Morton curve of 2 mm cells: a spatially
+// coherent order, the way a pointshell traversal issues its queries.
+std::vector<std::size_t> MortonOrder(const std::vector<float>& points) {
+  const std::size_t n = points.size() / 3;
+  auto morton = [&](std::size_t i) {
+    std::uint64_t code = 0;
+    for (int c = 0; c < 3; ++c) {
+      const std::uint64_t v = std::uint64_t(std::max(0.f, (points[3 * i + c] + 0.5f) / 0.002f)) & 0x1fffff;
+      for (int b = 0; b < 21; ++b) code |= ((v >> b) & 1u) << (3 * b + c);
+    }
+    return code;
+  };
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return morton(a) < morton(b); });
+  return order;
+}
+
 // One Distance at band points of the deformed body. Args: proxies, k, domains.
 void BM_Query(benchmark::State& state) {
   const Setup& s = GetSetup();
@@ -142,17 +160,7 @@ void BM_QueryCoherent(benchmark::State& state) {
   DeformedFieldState fs(field);
   fs.Update(field, s.q.data());
   const std::size_t n = s.points.size() / 3;
-  auto morton = [&](std::size_t i) {
-    std::uint64_t code = 0;
-    for (int c = 0; c < 3; ++c) {
-      const std::uint64_t v = std::uint64_t(std::max(0.f, (s.points[3 * i + c] + 0.5f) / 0.002f)) & 0x1fffff;
-      for (int b = 0; b < 21; ++b) code |= ((v >> b) & 1u) << (3 * b + c);
-    }
-    return code;
-  };
-  std::vector<std::size_t> order(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return morton(a) < morton(b); });
+  const std::vector<std::size_t> order = MortonOrder(s.points);
   std::vector<float> points(3 * n);
   for (std::size_t i = 0; i < n; ++i) {
     for (int c = 0; c < 3; ++c) points[3 * i + c] = s.points[3 * order[i] + c];
@@ -181,17 +189,7 @@ void BM_QueryBatch(benchmark::State& state) {
   const std::size_t n = s.points.size() / 3;
   std::vector<std::size_t> order(n);
   for (std::size_t i = 0; i < n; ++i) order[i] = i;
-  if (state.range(3) == 1) {
-    auto morton = [&](std::size_t i) {
-      std::uint64_t code = 0;
-      for (int c = 0; c < 3; ++c) {
-        const std::uint64_t v = std::uint64_t(std::max(0.f, (s.points[3 * i + c] + 0.5f) / 0.002f)) & 0x1fffff;
-        for (int b = 0; b < 21; ++b) code |= ((v >> b) & 1u) << (3 * b + c);
-      }
-      return code;
-    };
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return morton(a) < morton(b); });
-  }
+  if (state.range(3) == 1) order = MortonOrder(s.points);
   std::vector<float> x(n), y(n), z(n), d(n);
   std::vector<std::int32_t> nearest(n);
   for (std::size_t i = 0; i < n; ++i) {

@@ -35,13 +35,18 @@ std::shared_ptr<Pointshell> BeamShell() {
   return testing::MakeNestedShell(p, n, {16, 64, 256, 1024});
 }
 
-TEST(DeformablePointshell, TreeRadiiBoundEverySubtreePointAtRandomDeformations) {
-  const ReducedModel model =
+// The beam shell embedded in the beam's r = 8 StVK model.
+const DeformablePointshell& BeamDeformable() {
+  static const ReducedModel model =
       BuildReducedModel(testing::MakeBeam(), testing::BeamOptions(8, ReducedModelKind::kStVK), "beam");
-  const auto shell = BeamShell();
-  const DeformablePointshell deformable(shell, model.mesh, model.basis);
+  static const DeformablePointshell deformable(BeamShell(), model.mesh, model.basis);
+  return deformable;
+}
+
+TEST(DeformablePointshell, TreeRadiiBoundEverySubtreePointAtRandomDeformations) {
+  const DeformablePointshell& deformable = BeamDeformable();
   ASSERT_EQ(deformable.r(), 8);
-  const Pointshell& s = *shell;
+  const Pointshell& s = deformable.shell();
   std::mt19937 rng(22);
   double slack_sum = 0;
   int slack_count = 0;
@@ -131,11 +136,8 @@ TEST(DeformablePointshell, CorrectedNormalsAreOrthogonalToTheDeformedSurface) {
 // positions and radii themselves (in double); and it is tighter than the one global bound per
 // mode for the nodes near the anchored end.
 TEST(DeformablePointshell, NodeTravelBoundsEachNodesBallMotion) {
-  const ReducedModel model =
-      BuildReducedModel(testing::MakeBeam(), testing::BeamOptions(8, ReducedModelKind::kStVK), "beam");
-  const auto shell = BeamShell();
-  const DeformablePointshell deformable(shell, model.mesh, model.basis);
-  const Pointshell& s = *shell;
+  const DeformablePointshell& deformable = BeamDeformable();
+  const Pointshell& s = deformable.shell();
   const int r = deformable.r();
   const int stride = deformable.points().basis_stride();
   std::mt19937 rng(23);
