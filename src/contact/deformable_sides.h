@@ -77,7 +77,6 @@ class DeformableShell {
     return true;
   }
   float Radius(int node) const { return shell_->RadiusF(node, q_.abs_q()); }
-  void Reset() {}
 
   // Temporal coherence: this query's stamp, and how far NODE's ball may have moved closer since
   // the query stamped SINCE (infinite once that query has left the history).
@@ -168,8 +167,6 @@ class DeformedField {
     }
     return g;
   }
-  void Reset() {}
-
   // A point in contact at P_B (B's frame) with normal N_B and depth D < 0, whose lookup found
   // proxy slot NEAREST: its part of B's reduced force.
   void AddReduced(int nearest, const float* p_B, const float* n_B, float d, ReducedForceSum* sum) const {

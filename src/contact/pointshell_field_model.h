@@ -81,8 +81,8 @@ class PointshellFieldModel final : public ContactModel {
     const Pointshell& s = shell_.shell();
     traversal_ = TreeTraversalState(s);
     wake_.assign(std::size_t(s.num_nodes()), -std::numeric_limits<double>::infinity());
-    if constexpr (Shell::kDeforms) sleep_stamp_.assign(std::size_t(s.num_nodes()), 0u);
     if constexpr (Shell::kDeforms) {
+      sleep_stamp_.assign(std::size_t(s.num_nodes()), 0u);
       for (auto* v : {&x_, &y_, &z_, &nx_, &ny_, &nz_}) v->assign(std::size_t(s.num_points()), 0.f);
     }
     if constexpr (Field::kDeforms) nearest_.assign(std::size_t(s.num_points()), -1);
@@ -96,8 +96,6 @@ class PointshellFieldModel final : public ContactModel {
   void Reset() override {
     std::fill(wake_.begin(), wake_.end(), -std::numeric_limits<double>::infinity());
     traversal_.Reset();
-    shell_.Reset();
-    field_.Reset();
   }
   // Tree: from the traversal's list of evaluated points; linear: d evaluated again at QUERY's
   // pose and A's deformation, in B's field as the latest query left it (kLinearPointStatesPerCall

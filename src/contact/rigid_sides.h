@@ -9,7 +9,6 @@
 //   Begin(q)                 this query's deformation (null: none); false when Q does not fit
 //                            the body
 //   Radius(node)             the node's bounding radius at this query
-//   Reset()                  forget the previous query
 // A field side answers:
 //   kDeforms, rest_field()   the field at rest (checks, gradient step)
 //   Begin(q)                 as the shell side's, for the field body
@@ -38,7 +37,6 @@ struct RigidSide {
   static constexpr bool kDeforms = false;
   int r() const { return 0; }
   bool Begin(const ReducedState* q) const { return q == nullptr || q->size() == 0; }
-  void Reset() {}
 };
 
 class RigidShell : public RigidSide {

@@ -43,24 +43,12 @@ class DeformablePointshell {
   // sum_j c_nj |q_j - q0_j| in single precision for the hot loop; Q and Q0 zero past r up to the
   // basis stride. Rounded up by a relative 1e-5 so float summation cannot undercut it.
   float NodeTravelF(int node, const float* q, const float* q0) const {
-    const float* c = node_travel(node);
-    float s[EmbeddedPoints::kBasisLanes] = {};
-    for (int j = 0; j < points_.basis_stride(); j += EmbeddedPoints::kBasisLanes) {
-      for (int l = 0; l < EmbeddedPoints::kBasisLanes; ++l) s[l] += c[j + l] * std::fabs(q[j + l] - q0[j + l]);
-    }
-    return (((s[0] + s[4]) + (s[1] + s[5])) + ((s[2] + s[6]) + (s[3] + s[7]))) * (1.f + 1e-5f);
+    return StrideSum(node_travel(node), [&](int j) { return std::fabs(q[j] - q0[j]); }) * (1.f + 1e-5f);
   }
   // R(q) in single precision for the hot loop, ABS_Q as float, zero past r up to the basis
-  // stride. Eight partial sums (a multiple of eight entries): independent multiply-adds the
-  // compiler packs into vectors, not one chain of r dependent ones.
+  // stride.
   float RadiusF(int node, const float* abs_q) const {
-    static_assert(EmbeddedPoints::kBasisLanes == 8);
-    const float* rho = node_spread(node);
-    float s[EmbeddedPoints::kBasisLanes] = {};
-    for (int j = 0; j < points_.basis_stride(); j += EmbeddedPoints::kBasisLanes) {
-      for (int l = 0; l < EmbeddedPoints::kBasisLanes; ++l) s[l] += rho[j + l] * abs_q[j + l];
-    }
-    return shell_->node_radius[node] + (((s[0] + s[4]) + (s[1] + s[5])) + ((s[2] + s[6]) + (s[3] + s[7])));
+    return shell_->node_radius[node] + StrideSum(node_spread(node), [&](int j) { return abs_q[j]; });
   }
   // R(q) of NODE; ABS_Q holds |q_j| (r entries). No allocation.
   double Radius(int node, const double* abs_q) const {
@@ -71,6 +59,18 @@ class DeformablePointshell {
   }
 
  private:
+  // sum_j ROW[j] TERM(j) over the basis stride in eight partial sums: independent multiply-adds
+  // the compiler packs into vectors, not one chain of r dependent ones.
+  template <class Term>
+  float StrideSum(const float* row, Term&& term) const {
+    static_assert(EmbeddedPoints::kBasisLanes == 8);
+    float s[EmbeddedPoints::kBasisLanes] = {};
+    for (int j = 0; j < points_.basis_stride(); j += EmbeddedPoints::kBasisLanes) {
+      for (int l = 0; l < EmbeddedPoints::kBasisLanes; ++l) s[l] += row[j + l] * term(j + l);
+    }
+    return ((s[0] + s[4]) + (s[1] + s[5])) + ((s[2] + s[6]) + (s[3] + s[7]));
+  }
+
   std::shared_ptr<const Pointshell> shell_;
   EmbeddedPoints points_;
   std::vector<float> rho_;     // (#N x stride) rho_[n stride + j], rounded up to float

@@ -156,18 +156,7 @@ void DeformedFieldDistancesImpl(const DeformedDistanceField& field, const Deform
                                 const float* HWY_RESTRICT x, const float* HWY_RESTRICT y,
                                 const float* HWY_RESTRICT z, int n, float* HWY_RESTRICT d,
                                 std::int32_t* HWY_RESTRICT nearest) {
-  const int k = field.neighbours();
-  bool small_domain = false;
-  for (int dom = 0; dom < field.num_domains(); ++dom) small_domain |= field.slot_end(dom) - field.slot_begin(dom) < k;
-  if (small_domain) {  // fewer slots than neighbours: the one-point query takes what there is
-    for (int b = 0; b < n; ++b) {
-      const float p[3] = {x[b], y[b], z[b]};
-      int slot = -1;
-      d[b] = field.Distance(state, p, &slot);
-      if (nearest != nullptr) nearest[b] = slot;
-    }
-    return;
-  }
+  const int k = field.neighbours();  // every domain holds at least k slots (its construction)
   const BatchTransform identity{{1, 0, 0, 0, 1, 0, 0, 0, 1}, {0, 0, 0}};
   Scratch s;
   alignas(64) float bx[kBatch], by[kBatch], bz[kBatch], best[kBatch];

@@ -70,33 +70,14 @@ class EmbeddedPoints {
   // F_q += U_i^T FORCE: the reduced force of a point force (newtons) applied at point I.
   void AddPointForce(int i, const Eigen::Vector3d& force, double* f_q) const;
 
-  // Single-precision forms of the above for the haptic cycle's per-point loops, Q as float
-  // (r entries): inline, allocation-free, 3r multiply-adds each.
-  void PositionF(int i, const float* q, float* out) const {
-    for (int c = 0; c < 3; ++c) out[c] = rest_[3 * std::size_t(i) + c] + Dot(&u_[(3 * std::size_t(i) + c) * stride_], q);
-  }
-  void CorrectedNormalF(int i, const float* q, float* out) const {
-    float len2 = 0;
-    for (int c = 0; c < 3; ++c) {
-      out[c] = normal_[3 * std::size_t(i) + c] + Dot(&nc_[(3 * std::size_t(i) + c) * stride_], q);
-      len2 += out[c] * out[c];
-    }
-    const float inv = len2 > 0 ? 1.f / std::sqrt(len2) : 0.f;
-    for (int c = 0; c < 3; ++c) out[c] *= inv;
-  }
-  // W = U_i^T V (r entries) for a vector V at point I.
+  // W = U_i^T V (r entries, float) for a vector V at point I: a deformed field's proxy force.
+  // Positions and normals of many points: deform/reduced_point_batch.h.
   void ProjectF(int i, const float* v, float* w) const {
     const float* row = &u_[3 * std::size_t(i) * stride_];
     for (int j = 0; j < r_; ++j) w[j] = row[j] * v[0] + row[stride_ + j] * v[1] + row[2 * stride_ + j] * v[2];
   }
 
  private:
-  float Dot(const float* row, const float* q) const {
-    float s = 0;
-    for (int j = 0; j < r_; ++j) s += row[j] * q[j];
-    return s;
-  }
-
   int r_ = 0;
   int stride_ = 0;  // basis_stride()
   GradientScheme scheme_ = GradientScheme::kSmooth;

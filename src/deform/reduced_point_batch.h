@@ -20,14 +20,14 @@ inline constexpr int kMaxBasisStride =
 
 // (X, Y, Z)[k] = rest position + U_i q of point i = INDEX[k] (BEGIN + k when INDEX is null) of
 // P, k < N; the rest positions are REST_X/Y/Z[i]. Q holds P.basis_stride() floats, zero past
-// r. Equal to PositionF to float rounding (another summation order). Allocates nothing,
+// r. Equal to EmbeddedPoints::Position to float rounding (another summation order). Allocates nothing,
 // throws nothing.
 void DeformedPositions(const EmbeddedPoints& P, const float* rest_x, const float* rest_y, const float* rest_z,
                        const float* q, const std::int32_t* index, int begin, int n, float* x, float* y, float* z);
 
 // (NX, NY, NZ)[k] = normalize(rest normal + N_i q), the corrected unit normal of point
 // i = INDEX[k], k < N, the rest normals REST_NX/NY/NZ[i] (zero where the sum is zero). Equal to
-// CorrectedNormalF to float rounding.
+// EmbeddedPoints::CorrectedNormal to float rounding.
 void CorrectedNormals(const EmbeddedPoints& P, const float* rest_nx, const float* rest_ny, const float* rest_nz,
                       const float* q, const std::int32_t* index, int n, float* nx, float* ny, float* nz);
 
