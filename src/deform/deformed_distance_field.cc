@@ -122,6 +122,39 @@ std::shared_ptr<const DistanceField> CutField(const DistanceField& rest, const D
                                                std::move(values), info);
 }
 
+// The levels 0, 1/2, 1, 2, 3 and 4 cells of FIELD (a dense domain field) with their boxes.
+DomainLevels BoundLevels(const DistanceField& field) {
+  DomainLevels lv;
+  const Eigen::Vector3i n = field.dims();
+  const double h = field.spacing();
+  for (double cells : {0.0, 0.5, 1.0, 2.0, 3.0, 4.0}) {
+    const float tau = float(cells * h);
+    if (tau > field.boundary_min()) break;
+    Eigen::Vector3i lo = n, hi(-1, -1, -1);
+    for (int k = 0; k < n.z(); ++k)
+      for (int j = 0; j < n.y(); ++j)
+        for (int i = 0; i < n.x(); ++i) {
+          if (field.value(i, j, k) <= tau) {
+            lo = lo.cwiseMin(Eigen::Vector3i(i, j, k));
+            hi = hi.cwiseMax(Eigen::Vector3i(i, j, k));
+          }
+        }
+    const int l = lv.count++;
+    lv.tau[l] = tau;
+    for (int c = 0; c < 3; ++c) {
+      if (hi.x() < 0) {  // no sample that low: the field exceeds tau everywhere
+        lv.lo[l][c] = std::numeric_limits<float>::infinity();
+        lv.hi[l][c] = -std::numeric_limits<float>::infinity();
+        continue;
+      }
+      // The cells around those samples, grown by a little more than float rounding.
+      lv.lo[l][c] = float(field.origin()[c] + (std::max(lo[c] - 1, 0) - 1e-3) * h);
+      lv.hi[l][c] = float(field.origin()[c] + (std::min(hi[c] + 1, n[c] - 1) + 1e-3) * h);
+    }
+  }
+  return lv;
+}
+
 }  // namespace
 
 double DomainRegion::SignedDistance(const Eigen::Vector3d& X) const {
@@ -254,6 +287,7 @@ DeformedDistanceField::DeformedDistanceField(std::shared_ptr<const DistanceField
     D.end = int(slot_points.size());
     D.field = D.region.planes.empty() ? rest_ : CutField(*rest_, D.region, overlap_, band);
     if (!D.field) Fail(where, "domain " + std::to_string(d) + " (" + D.region.description + ") holds no geometry");
+    if (regions.size() > 1) D.levels = BoundLevels(*D.field);
     domains_.push_back(std::move(D));
   }
   proxies_ = EmbeddedPoints(mesh, U, slot_points, {}, GradientScheme::kSmooth);
@@ -289,12 +323,62 @@ DeformedFieldState::DeformedFieldState(const DeformedDistanceField& field)
     : x_(std::size_t(field.num_slots())),
       y_(std::size_t(field.num_slots())),
       z_(std::size_t(field.num_slots())),
-      a_(12 * std::size_t(field.num_slots())) {
+      a_(12 * std::size_t(field.num_slots())),
+      bounds_(std::size_t(field.num_domains())) {
   Update(field, nullptr);
 }
 
 void DeformedFieldState::Set(const DeformedDistanceField& field, int i, const Eigen::Vector3d& p,
                              const Eigen::Matrix3d& F) {
+  SetSlot(field, i, p, F);
+  UpdateBounds(field);
+}
+
+void DeformedFieldState::UpdateBounds(const DeformedDistanceField& field) {
+  using Matrix3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
+  for (int d = 0; d < field.num_domains(); ++d) {
+    const int begin = field.slot_begin(d), end = field.slot_end(d);
+    Matrix3 A = Matrix3::Zero();
+    Eigen::Vector3d c = Eigen::Vector3d::Zero(), o = Eigen::Vector3d::Zero();
+    auto slot_map = [&](int i, Matrix3* Ai, Eigen::Vector3d* ci) {
+      const float* a = pullback(i);
+      for (int e = 0; e < 9; ++e) (*Ai)(e / 3, e % 3) = a[e];
+      *ci = Eigen::Vector3d(a[9], a[10], a[11]);
+    };
+    for (int i = begin; i < end; ++i) {
+      Matrix3 Ai;
+      Eigen::Vector3d ci;
+      slot_map(i, &Ai, &ci);
+      A += Ai;
+      c += ci;
+      o += Eigen::Vector3d(x_[i], y_[i], z_[i]);
+    }
+    const double inv = 1.0 / std::max(end - begin, 1);
+    A *= inv, c *= inv, o *= inv;
+    double spread = 0, slope = 0;
+    for (int i = begin; i < end; ++i) {
+      Matrix3 Ai;
+      Eigen::Vector3d ci;
+      slot_map(i, &Ai, &ci);
+      spread = std::max(spread, (ci - c + (Ai - A) * o).norm());
+      slope = std::max(slope, (Ai - A).norm());
+    }
+    DomainBound& b = bounds_[d];
+    for (int e = 0; e < 9; ++e) b.a[e] = float(A(e / 3, e % 3));
+    for (int e = 0; e < 3; ++e) b.c[e] = float(c[e]), b.o[e] = float(o[e]);
+    // Rounded up by a little more than the float conversions of the slots' maps can move them.
+    b.spread = float(spread * (1 + 1e-5) + 1e-6 * (c.lpNorm<Eigen::Infinity>() + A.lpNorm<Eigen::Infinity>() *
+                                                                                    o.lpNorm<Eigen::Infinity>()));
+    b.slope = float(slope * (1 + 1e-5) + 1e-6 * A.lpNorm<Eigen::Infinity>());
+  }
+}
+
+float DeformedDistanceField::DomainLowerBound(const DeformedFieldState& state, int d, const float* x) const {
+  return DomainBoundAt(state.domain_bound(d), domains_[d].levels, domains_[d].field->float_grid(), x[0], x[1], x[2]);
+}
+
+void DeformedFieldState::SetSlot(const DeformedDistanceField& field, int i, const Eigen::Vector3d& p,
+                                 const Eigen::Matrix3d& F) {
   const Eigen::Matrix3d A = F.inverse();
   const Eigen::Vector3d c = field.proxies().rest_position(i) - A * p;
   x_[i] = float(p.x());
@@ -309,13 +393,14 @@ void DeformedFieldState::Update(const DeformedDistanceField& field, const double
   const EmbeddedPoints& proxies = field.proxies();
   for (int i = 0; i < proxies.size(); ++i) {
     if (q == nullptr) {
-      Set(field, i, proxies.rest_position(i), Eigen::Matrix3d::Identity());
+      SetSlot(field, i, proxies.rest_position(i), Eigen::Matrix3d::Identity());
       continue;
     }
     const Eigen::Matrix3d F = proxies.DeformationGradient(i, q);
     const bool invertible = F.determinant() > 1e-3;
-    Set(field, i, proxies.Position(i, q), invertible ? F : Eigen::Matrix3d::Identity());
+    SetSlot(field, i, proxies.Position(i, q), invertible ? F : Eigen::Matrix3d::Identity());
   }
+  UpdateBounds(field);
 }
 
 }  // namespace contactlab

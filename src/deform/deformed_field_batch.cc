@@ -152,15 +152,94 @@ bool NearestAndPullBacksFor(int k, const DeformedDistanceField& field, const Def
   return false;
 }
 
-void DeformedFieldDistancesImpl(const DeformedDistanceField& field, const DeformedFieldState& state,
-                                const float* HWY_RESTRICT x, const float* HWY_RESTRICT y,
-                                const float* HWY_RESTRICT z, int n, float* HWY_RESTRICT d,
-                                std::int32_t* HWY_RESTRICT nearest) {
+// Domain DOM's distance at the NB points (X, Y, Z) (NB <= kBatch, padded by the caller to
+// whole vectors) into SUM, and each point's nearest slot into S->first.
+void DomainSums(const DeformedDistanceField& field, const DeformedFieldState& state, int dom, const float* x,
+                const float* y, const float* z, int nb, Scratch* s, float* HWY_RESTRICT sum) {
   const int k = field.neighbours();  // every domain holds at least k slots (its construction)
   const BatchTransform identity{{1, 0, 0, 0, 1, 0, 0, 0, 1}, {0, 0, 0}};
+  // Only the first k - 1 neighbours carry weight unless some point weighs its k-th (ties,
+  // or points on a proxy): their lookups are skipped then.
+  const int looked = NearestAndPullBacksFor(k, field, state, dom, x, y, z, nb, s) ? k : k - 1;
+  const DistanceField& rest = field.domain_field(dom);
+  if (nb == kBatch) {
+    BatchDistances(rest, identity, s->px, s->py, s->pz, nullptr, looked * kBatch, s->looked);
+  } else {
+    for (int m = 0; m < looked; ++m) {
+      BatchDistances(rest, identity, s->px + m * kBatch, s->py + m * kBatch, s->pz + m * kBatch, nullptr, nb,
+                     s->looked + m * kBatch);
+    }
+  }
+  // d = sum of w_m d_rest(X_m), skipping zero weights as the one-point query does.
+  for (int b = 0; b < nb; ++b) {
+    float total = 0;
+    for (int m = 0; m < looked; ++m) {
+      const float w = s->w[m * kBatch + b];
+      if (w != 0.f) total += w * s->looked[m * kBatch + b];
+    }
+    sum[b] = total;
+  }
+}
+
+// DomainBoundAt (deformed_distance_field.h) for domain DOM at the NB points (X, Y, Z), a vector
+// at a time.
+void DomainBounds(const DeformedDistanceField& field, const DeformedFieldState& state, int dom, const float* x,
+                  const float* y, const float* z, int nb, float* HWY_RESTRICT out) {
+  const DF df;
+  using VF = hn::Vec<DF>;
+  auto c = [&](float v) HWY_ATTR { return hn::Set(df, v); };
+  const DeformedFieldState::DomainBound& bd = state.domain_bound(dom);
+  const DomainLevels& lv = field.domain_levels(dom);
+  const DistanceField::FloatGrid g = field.domain_field(dom).float_grid();
+  const VF zero = hn::Zero(df), ninf = c(-std::numeric_limits<float>::infinity());
+  const float margin = 1e-4f / g.inv_h;
+  for (int b0 = 0; b0 < nb; b0 += kLanes) {
+    const VF px = hn::LoadU(df, x + b0), py = hn::LoadU(df, y + b0), pz = hn::LoadU(df, z + b0);
+    const VF X = c(bd.c[0]) + c(bd.a[0]) * px + c(bd.a[1]) * py + c(bd.a[2]) * pz;
+    const VF Y = c(bd.c[1]) + c(bd.a[3]) * px + c(bd.a[4]) * py + c(bd.a[5]) * pz;
+    const VF Z = c(bd.c[2]) + c(bd.a[6]) * px + c(bd.a[7]) * py + c(bd.a[8]) * pz;
+    const VF ex = px - c(bd.o[0]), ey = py - c(bd.o[1]), ez = pz - c(bd.o[2]);
+    const VF rho = c(bd.spread) + c(bd.slope) * hn::Sqrt(ex * ex + ey * ey + ez * ez);
+    auto box_distance = [&](float lx, float ly, float lz, float hx, float hy, float hz) HWY_ATTR {
+      const VF dx = hn::Max(hn::Max(c(lx) - X, X - c(hx)), zero);
+      const VF dy = hn::Max(hn::Max(c(ly) - Y, Y - c(hy)), zero);
+      const VF dz = hn::Max(hn::Max(c(lz) - Z, Z - c(hz)), zero);
+      return hn::Sqrt(dx * dx + dy * dy + dz * dz);
+    };
+    const VF t = box_distance(g.ox, g.oy, g.oz, g.x1, g.y1, g.z1) - rho;
+    const VF v = t + c(g.boundary_min);
+    VF bound = hn::IfThenElse(t > zero, v - c(1e-5f) * hn::Abs(v) - c(margin), ninf);
+    for (int j = 0; j < lv.count; ++j) {
+      const VF outside = box_distance(lv.lo[j][0], lv.lo[j][1], lv.lo[j][2], lv.hi[j][0], lv.hi[j][1], lv.hi[j][2]);
+      const float tau = lv.tau[j] - 1e-5f * std::abs(lv.tau[j]) - margin;
+      bound = hn::IfThenElse(outside > rho, hn::Max(bound, c(tau)), bound);
+    }
+    hn::StoreU(bound, df, out + b0);
+  }
+}
+
+// Copies the points IDX[0, M) of (X, Y, Z) to (CX, CY, CZ), padded to whole vectors by
+// repeating the last; returns the padded count.
+int Gather(const int* idx, int m, const float* x, const float* y, const float* z, float* cx, float* cy, float* cz) {
+  const int padded = (m + kLanes - 1) / kLanes * kLanes;
+  for (int j = 0; j < padded; ++j) {
+    const int b = idx[std::min(j, m - 1)];
+    cx[j] = x[b], cy[j] = y[b], cz[j] = z[b];
+  }
+  return padded;
+}
+
+std::int64_t DeformedFieldDistancesImpl(const DeformedDistanceField& field, const DeformedFieldState& state,
+                                        const float* HWY_RESTRICT x, const float* HWY_RESTRICT y,
+                                        const float* HWY_RESTRICT z, int n, float* HWY_RESTRICT d,
+                                        std::int32_t* HWY_RESTRICT nearest) {
+  const int domains = field.num_domains();
   Scratch s;
-  alignas(64) float bx[kBatch], by[kBatch], bz[kBatch], best[kBatch];
-  alignas(64) std::int32_t best_slot[kBatch];
+  alignas(64) float bx[kBatch], by[kBatch], bz[kBatch], best[kBatch], sum[kBatch];
+  alignas(64) float cx[kBatch], cy[kBatch], cz[kBatch], bound[kBatch], home_bound[kBatch];
+  alignas(64) std::int32_t best_slot[kBatch], best_domain[kBatch], home[kBatch];
+  int idx[kBatch];
+  std::int64_t answered = 0;
   for (int b0 = 0; b0 < n; b0 += kBatch) {
     const int nb = std::min(kBatch, n - b0);
     const int padded = (nb + kLanes - 1) / kLanes * kLanes;
@@ -169,31 +248,52 @@ void DeformedFieldDistancesImpl(const DeformedDistanceField& field, const Deform
       bx[b] = x[i], by[b] = y[i], bz[b] = z[i];
       best[b] = std::numeric_limits<float>::infinity();
       best_slot[b] = -1;
+      best_domain[b] = domains;
     }
-    for (int dom = 0; dom < field.num_domains(); ++dom) {
-      // The lookups of the weighted neighbours: the first k - 1, the k-th only when some point
-      // weights it.
-      const int looked = NearestAndPullBacksFor(k, field, state, dom, bx, by, bz, padded, &s) ? k : k - 1;
-      const DistanceField& rest = field.domain_field(dom);
-      if (padded == kBatch) {
-        BatchDistances(rest, identity, s.px, s.py, s.pz, nullptr, looked * kBatch, s.looked);
-      } else {
-        for (int m = 0; m < looked; ++m) {
-          BatchDistances(rest, identity, s.px + m * kBatch, s.py + m * kBatch, s.pz + m * kBatch, nullptr, padded,
-                         s.looked + m * kBatch);
+    // Domain DOM's distance at the points IDX[0, M): kept where smaller than the best so far, or
+    // equal and from an earlier domain (the one-point query keeps the first smallest).
+    auto answer = [&](int dom, int m) {
+      if (m == 0) return;
+      const int mp = Gather(idx, m, bx, by, bz, cx, cy, cz);
+      DomainSums(field, state, dom, cx, cy, cz, mp, &s, sum);
+      for (int j = 0; j < m; ++j) {
+        const int b = idx[j];
+        if (sum[j] < best[b] || (sum[j] == best[b] && dom < best_domain[b])) {
+          best[b] = sum[j];
+          best_slot[b] = s.first[j];
+          best_domain[b] = dom;
         }
       }
-      // d = sum_m w_m d_rest(X_m), a zero weight adding nothing (even where d_rest is infinite).
-      for (int b = 0; b < padded; ++b) {
-        float sum = 0;
-        for (int m = 0; m < looked; ++m) {
-          const float w = s.w[m * kBatch + b];
-          if (w != 0.f) sum += w * s.looked[m * kBatch + b];
+      answered += m;
+    };
+    if (domains == 1) {
+      for (int b = 0; b < nb; ++b) idx[b] = b;
+      answer(0, nb);
+    } else {
+      // Branch and bound over the domains: each point is first answered by the domain with the
+      // smallest lower bound (DomainBoundAt), then by each other domain whose bound does not
+      // exceed the distance it has.
+      for (int b = 0; b < padded; ++b) home[b] = 0, home_bound[b] = std::numeric_limits<float>::infinity();
+      for (int dom = 0; dom < domains; ++dom) {
+        DomainBounds(field, state, dom, bx, by, bz, padded, bound);
+        for (int b = 0; b < nb; ++b) {
+          if (bound[b] < home_bound[b] || dom == 0) home_bound[b] = bound[b], home[b] = dom;
         }
-        if (sum < best[b]) {
-          best[b] = sum;
-          best_slot[b] = s.first[b];
+      }
+      for (int dom = 0; dom < domains; ++dom) {
+        int m = 0;
+        for (int b = 0; b < nb; ++b) {
+          if (home[b] == dom) idx[m++] = b;
         }
+        answer(dom, m);
+      }
+      for (int dom = 0; dom < domains; ++dom) {
+        DomainBounds(field, state, dom, bx, by, bz, padded, bound);
+        int m = 0;
+        for (int b = 0; b < nb; ++b) {
+          if (home[b] != dom && !(bound[b] > best[b])) idx[m++] = b;
+        }
+        answer(dom, m);
       }
     }
     for (int b = 0; b < nb; ++b) d[b0 + b] = best[b];
@@ -201,6 +301,7 @@ void DeformedFieldDistancesImpl(const DeformedDistanceField& field, const Deform
       for (int b = 0; b < nb; ++b) nearest[b0 + b] = best_slot[b];
     }
   }
+  return answered;
 }
 
 }  // namespace HWY_NAMESPACE
@@ -212,10 +313,11 @@ namespace contactlab {
 
 HWY_EXPORT(DeformedFieldDistancesImpl);
 
-void DeformedFieldDistances(const DeformedDistanceField& field, const DeformedFieldState& state, const float* x,
-                            const float* y, const float* z, int n, float* d, std::int32_t* nearest) {
-  if (n <= 0) return;
-  HWY_DYNAMIC_DISPATCH(DeformedFieldDistancesImpl)(field, state, x, y, z, n, d, nearest);
+std::int64_t DeformedFieldDistances(const DeformedDistanceField& field, const DeformedFieldState& state,
+                                    const float* x, const float* y, const float* z, int n, float* d,
+                                    std::int32_t* nearest) {
+  if (n <= 0) return 0;
+  return HWY_DYNAMIC_DISPATCH(DeformedFieldDistancesImpl)(field, state, x, y, z, n, d, nearest);
 }
 
 }  // namespace contactlab

@@ -15,8 +15,12 @@ namespace contactlab {
 // D[k] = FIELD.Distance(STATE, (X, Y, Z)[k]) for k < N (field body frame) and, when NEAREST is
 // not null, NEAREST[k] the slot that call reports. Equal to the one-point Distance to float
 // rounding (fused multiply-adds, another summation order); the same proxies are chosen, ties
-// broken alike. Allocates nothing, throws nothing.
-void DeformedFieldDistances(const DeformedDistanceField& field, const DeformedFieldState& state, const float* x,
-                            const float* y, const float* z, int n, float* d, std::int32_t* nearest);
+// broken alike. With several domains, a domain whose lower bound
+// (DeformedDistanceField::DomainLowerBound) exceeds the distance another domain already gave a
+// point is not queried for it: it cannot hold the minimum. Returns the (point, domain) queries
+// answered, N per domain without that culling. Allocates nothing, throws nothing.
+std::int64_t DeformedFieldDistances(const DeformedDistanceField& field, const DeformedFieldState& state,
+                                    const float* x, const float* y, const float* z, int n, float* d,
+                                    std::int32_t* nearest);
 
 }  // namespace contactlab

@@ -310,7 +310,8 @@ TEST(DeformedDistanceField, ManyPointQueryEqualsTheOnePointQuery) {
   std::mt19937 rng(41);
   const Body& body = Torus();
   const double h = body.field->spacing();
-  for (const auto& [k, domains] : std::vector<std::pair<int, int>>{{2, 1}, {5, 1}, {5, 3}, {8, 2}, {kMaxProxyNeighbours, 1}}) {
+  for (const auto& [k, domains] :
+       std::vector<std::pair<int, int>>{{2, 1}, {5, 1}, {5, 3}, {8, 2}, {5, 6}, {kMaxProxyNeighbours, 1}}) {
     const DeformedDistanceField field = MakeField(body, 40, k, domains);
     DeformedFieldState state(field);
     const Eigen::VectorXd q = ScaledQ(body.model, 0.02, &rng);
@@ -329,7 +330,12 @@ TEST(DeformedDistanceField, ManyPointQueryEqualsTheOnePointQuery) {
         hwy::SetSupportedTargetsForTest(target);
         std::vector<float> d(n);
         std::vector<std::int32_t> nearest(n, -2);
-        DeformedFieldDistances(field, state, x.data(), y.data(), z.data(), n, d.data(), nearest.data());
+        const std::int64_t answered =
+            DeformedFieldDistances(field, state, x.data(), y.data(), z.data(), n, d.data(), nearest.data());
+        EXPECT_GE(answered, n);
+        EXPECT_LE(answered, std::int64_t(n) * domains);
+        // Far points and most points of one part need not ask every domain.
+        if (domains > 1 && n == int(x.size())) EXPECT_LT(answered, std::int64_t(n) * domains);
         for (int i = 0; i < n; ++i) {
           const float p[3] = {x[i], y[i], z[i]};
           int slot = -3;
@@ -340,6 +346,44 @@ TEST(DeformedDistanceField, ManyPointQueryEqualsTheOnePointQuery) {
         }
       }
       hwy::SetSupportedTargetsForTest(0);
+    }
+  }
+}
+
+// DomainLowerBound against each domain's distance formed independently (its k nearest slots
+// and weights, the pull-backs, the domain's own rest field), under deformations up to a fifth of
+// the body's size, for points in and around the body and far away: never above it, and a real
+// bound (positive) for most domains at points around the body under small deformations.
+TEST(DeformedDistanceField, DomainLowerBoundNeverExceedsTheDomainsDistance) {
+  std::mt19937 rng(43);
+  for (const Body* body : {&Torus(), &Bar()}) {
+    const DeformedDistanceField field = MakeField(*body, 40, 5, 4);
+    DeformedFieldState state(field);
+    for (double displacement : {0.0, 0.01, 0.05, 0.1}) {
+      const Eigen::VectorXd q = ScaledQ(body->model, displacement, &rng);
+      state.Update(field, q.data());
+      std::uniform_real_distribution<float> u(-0.6f, 0.6f);
+      int bounded = 0;
+      for (int i = 0; i < 400; ++i) {
+        const float x[3] = {u(rng), u(rng), u(rng)};
+        for (int dom = 0; dom < field.num_domains(); ++dom) {
+          int slots[kMaxProxyNeighbours];
+          float w[kMaxProxyNeighbours];
+          const int n = field.Weights(state, dom, x, slots, w);
+          double expected = 0;
+          for (int m = 0; m < n; ++m) {
+            const float* a = state.pullback(slots[m]);
+            const Eigen::Vector3d X(a[9] + a[0] * x[0] + a[1] * x[1] + a[2] * x[2],
+                                    a[10] + a[3] * x[0] + a[4] * x[1] + a[5] * x[2],
+                                    a[11] + a[6] * x[0] + a[7] * x[1] + a[8] * x[2]);
+            if (w[m] != 0.f) expected += w[m] * field.domain_field(dom).Distance(X);
+          }
+          const float bound = field.DomainLowerBound(state, dom, x);
+          ASSERT_LE(bound, expected) << "displacement " << displacement << " domain " << dom << " point " << i;
+          if (bound > 0) ++bounded;
+        }
+      }
+      if (displacement <= 0.01) EXPECT_GT(bounded, 400) << "displacement " << displacement;  // of 1600
     }
   }
 }
