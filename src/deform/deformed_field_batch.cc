@@ -49,27 +49,55 @@ bool NearestAndPullBacks(const DeformedDistanceField& field, const DeformedField
   const float* HWY_RESTRICT a = state.pullback(0);
   const int begin = field.slot_begin(dom), end = field.slot_end(dom);
   const VF inf = hn::Set(df, std::numeric_limits<float>::infinity()), zero = hn::Zero(df), one = hn::Set(df, 1.f);
+  int slot_bits = 1;
+  while ((1 << slot_bits) < field.num_slots() && slot_bits < 20) ++slot_bits;
+  const VI low = hn::Set(di, (1 << slot_bits) - 1), high = hn::Not(low);
+  const VI last_slot = hn::Set(di, field.num_slots() - 1);
   bool last_weighted = false;
   for (int b0 = 0; b0 < nb; b0 += kLanes) {  // NB is a whole number of vectors (padded by the caller)
     const VF px = hn::LoadU(df, x + b0), py = hn::LoadU(df, y + b0), pz = hn::LoadU(df, z + b0);
-    // The sorted list: squared distances and slots (as float bit patterns, so one float mask
-    // blends both).
-    VF top[k], slot[k];
-    for (int m = 0; m < k; ++m) top[m] = inf, slot[m] = hn::BitCast(df, hn::Set(di, -1));
-    // The domain's slots in order; a nearer one is carried down the sorted list (strictly
-    // nearer only, so of equal distances the earlier slot stays first, as in the scalar scan).
+    // The sorted list as integer keys: a squared distance's bits (a non-negative float orders
+    // as an integer) with the low SLOT_BITS replaced by the slot, so a candidate is carried
+    // down the list by one min and one max per entry, and the list takes k registers, not 2k.
+    VI key[k];
+    for (int m = 0; m < k; ++m) key[m] = hn::Set(di, std::numeric_limits<std::int32_t>::max());
     for (int j = begin; j < end; ++j) {
       const VF dx = px - hn::Set(df, sx[j]), dy = py - hn::Set(df, sy[j]), dz = pz - hn::Set(df, sz[j]);
-      VF e = hn::MulAdd(dx, dx, hn::MulAdd(dy, dy, dz * dz));
-      if (hn::AllFalse(df, e < top[k - 1])) continue;  // nearer than no point's k-th: often so for a tree level's neighbours
-      VF c = hn::BitCast(df, hn::Set(di, j));
+      const VF e = hn::MulAdd(dx, dx, hn::MulAdd(dy, dy, dz * dz));
+      VI c = hn::Or(hn::And(hn::BitCast(di, e), high), hn::Set(di, j));
+      if (hn::AllFalse(di, c < key[k - 1])) continue;  // nearer than no point's k-th: often so for a tree level's neighbours
       for (int m = 0; m < k; ++m) {
-        const auto nearer = e < top[m];
-        const VF t = top[m], u = slot[m];
-        top[m] = hn::IfThenElse(nearer, e, t);
-        e = hn::IfThenElse(nearer, t, e);
-        slot[m] = hn::IfThenElse(nearer, c, u);
-        c = hn::IfThenElse(nearer, u, c);
+        const VI t = key[m];
+        key[m] = hn::Min(t, c);
+        c = hn::Max(t, c);
+      }
+    }
+    // The chosen slots' exact squared distances (as the scan formed them). The keys order them
+    // by distance to the bits the slot replaced and by slot within, so equal distances keep
+    // the earlier slot first, as in the scalar scan; a pair whose distances differ only in
+    // those bits may be out of order, and is sorted by (distance, slot) here.
+    VF top[k], slot[k];
+    for (int m = 0; m < k; ++m) {
+      const VI sl = hn::Min(hn::And(key[m], low), last_slot);
+      slot[m] = hn::BitCast(df, sl);
+      const VF dx = px - hn::GatherIndex(df, sx, sl), dy = py - hn::GatherIndex(df, sy, sl),
+               dz = pz - hn::GatherIndex(df, sz, sl);
+      top[m] = hn::MulAdd(dx, dx, hn::MulAdd(dy, dy, dz * dz));
+    }
+    auto unordered = top[0] > top[1];
+    for (int m = 1; m + 1 < k; ++m) unordered = hn::Or(unordered, top[m] > top[m + 1]);
+    if (HWY_UNLIKELY(!hn::AllFalse(df, unordered))) {
+      for (int pass = 0; pass < k; ++pass) {
+        for (int m = pass % 2; m + 1 < k; m += 2) {
+          const VI sa = hn::BitCast(di, slot[m]), sb = hn::BitCast(di, slot[m + 1]);
+          const auto swap = hn::Or(top[m + 1] < top[m],
+                                   hn::And(top[m + 1] == top[m], hn::RebindMask(df, sb < sa)));
+          const VF ta = top[m], ua = slot[m];
+          top[m] = hn::IfThenElse(swap, top[m + 1], ta);
+          top[m + 1] = hn::IfThenElse(swap, ta, top[m + 1]);
+          slot[m] = hn::IfThenElse(swap, slot[m + 1], ua);
+          slot[m + 1] = hn::IfThenElse(swap, ua, slot[m + 1]);
+        }
       }
     }
     // w_m ~ 1/d_m - 1/d_max (eq. (3)), clamped at zero, normalised; all equidistant (or the
