@@ -99,6 +99,23 @@ LiveViewServer::LiveViewServer(std::string page, const LiveSnapshotHistory& sour
   if (marks_every_cycles_ <= 0) Fail("live view", "marks must be at least 1 cycle apart");
   if (port < 0 || port > 65535) Fail("--view", "port " + std::to_string(port) + " is not in 0..65535");
 
+  // A thread per stream the limit allows and spares for everything else: a stream holds its
+  // thread for its whole life. Idle and stalled connections are cut, so they cannot hold the
+  // spares.
+  server_->new_task_queue = [] { return new httplib::ThreadPool(kLiveViewStreamLimit + kLiveViewSpareThreads); };
+  server_->set_read_timeout(2, 0);
+  server_->set_write_timeout(2, 0);
+  server_->set_keep_alive_timeout(1);
+  // Only GET and HEAD: anything else is refused before its body is read (a POST without a body
+  // would otherwise wait for one until the read timeout).
+  server_->set_pre_routing_handler([](const httplib::Request& req, httplib::Response& res) {
+    if (req.method == "GET" || req.method == "HEAD") return httplib::Server::HandlerResponse::Unhandled;
+    res.status = 405;
+    res.set_header("Allow", "GET, HEAD");
+    res.set_header("Connection", "close");
+    res.set_content("the live view answers GET and HEAD only\n", "text/plain");
+    return httplib::Server::HandlerResponse::Handled;
+  });
   server_->Get("/", [this](const httplib::Request&, httplib::Response& res) {
     res.set_content(page_, "text/html; charset=utf-8");
   });
@@ -128,14 +145,21 @@ LiveViewServer::LiveViewServer(std::string page, const LiveSnapshotHistory& sour
       std::uint64_t marks_sequence = 0;  // the last marks sent (0: none yet) and their cycle
       std::int64_t marks_cycle = 0;
     };
-    auto stream = std::make_shared<Stream>();
-    const std::uint64_t published = source_.published();
-    stream->next = published > 0 ? published - 1 : 0;
     {
       std::lock_guard<std::mutex> lock(streams_mutex_);
+      if (streams_open_ >= kLiveViewStreamLimit) {
+        res.status = 503;
+        res.set_content("the live view serves at most " + std::to_string(kLiveViewStreamLimit) +
+                            " streams at once; close one and retry\n",
+                        "text/plain");
+        return;
+      }
       ++streams_opened_;
       ++streams_open_;
     }
+    auto stream = std::make_shared<Stream>();
+    const std::uint64_t published = source_.published();
+    stream->next = published > 0 ? published - 1 : 0;
     streams_changed_.notify_all();
     res.set_chunked_content_provider(
         "text/event-stream",

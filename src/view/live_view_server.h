@@ -90,12 +90,21 @@ std::string PackPointStates(const std::vector<PointState>& states);
 // base64 of PackPointStates}.
 std::string MarksJson(const PointMarkSweep& sweep);
 
+// Event streams a live view serves at once; one more is answered 503. The server's thread pool
+// holds a thread per open stream and kLiveViewSpareThreads more, so the page, /snapshot and
+// /marks are always answered however many streams are open.
+inline constexpr int kLiveViewStreamLimit = 16;
+inline constexpr int kLiveViewSpareThreads = 4;
+
 class LiveViewServer {
  public:
   // Serves PAGE at "/", the snapshots of SOURCE at "/stream" (text/event-stream, one "data:
   // JSON" event per snapshot, each snapshot once and in order, starting from the newest when
   // the stream opens or from the first when none was published yet) and the newest one at
-  // "/snapshot" (JSON; 204 before the first), on 127.0.0.1:PORT (0: a free port). With MARKS,
+  // "/snapshot" (JSON; 204 before the first), on 127.0.0.1:PORT (0: a free port). At most
+  // kLiveViewStreamLimit streams at once (503 past it); methods other than GET and HEAD get 405
+  // without their body being read; a client that sends nothing or stops reading is cut after
+  // a few seconds. With MARKS,
   // the stream also sends "event: marks" + "data: MarksJson" when a newer sweep completed at
   // least MARKS_EVERY_CYCLES haptic cycles after the last one it sent, and "/marks" returns the
   // newest (204 before the first). SOURCE and MARKS must outlive the server. Throws Error

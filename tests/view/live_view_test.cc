@@ -4,8 +4,12 @@
 // depends on how fast the session, its threads or this test run: snapshots are taken by
 // session time (cycles), each stream sends every one of them in order, the session waits for
 // its viewer (--view-wait) and, when it ends, sends what is left before ending the stream.
+#include <arpa/inet.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <chrono>
@@ -324,6 +328,70 @@ TEST(LiveView, StopEndsEachStreamAfterEverySnapshotPublishedBeforeIt) {
   EXPECT_TRUE(ended_cleanly);
   ASSERT_EQ(events.snapshots.size(), std::size_t(kSnapshots));
   for (int k = 0; k < kSnapshots; ++k) EXPECT_EQ(events.snapshots[k]["cycle"], 20 * k) << k;
+}
+
+// What a raw loopback connection to PORT gets back after sending REQUEST (maybe nothing): all it
+// reads until the server closes, or until a 20 s receive timeout (a hang guard only).
+std::string RawExchange(int port, const std::string& request) {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  EXPECT_GE(fd, 0);
+  timeval guard{20, 0};
+  setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &guard, sizeof guard);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(std::uint16_t(port));
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  EXPECT_EQ(connect(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address), 0);
+  if (!request.empty()) EXPECT_EQ(send(fd, request.data(), request.size(), 0), ssize_t(request.size()));
+  std::string reply;
+  char buffer[4096];
+  for (ssize_t n; (n = recv(fd, buffer, sizeof buffer, 0)) > 0;) reply.append(buffer, std::size_t(n));
+  close(fd);
+  return reply;
+}
+
+// More watchers than the stream limit cannot starve the live view: with every stream slot held,
+// one more stream gets 503, the page and /snapshot are still answered, a POST without a body
+// gets 405 at once, a connection that sends nothing is closed, and when the server stops every
+// held stream ends cleanly.
+TEST(LiveView, StreamsPastTheLimitCannotStarveThePage) {
+  auto source = std::make_unique<LiveSnapshotHistory>();
+  LiveViewServer server("<html>live</html>", *source, 0);
+  std::vector<std::thread> watchers;
+  std::vector<int> status(kLiveViewStreamLimit, 0);
+  for (int i = 0; i < kLiveViewStreamLimit; ++i) {
+    watchers.emplace_back([&, i] {
+      httplib::Client client("127.0.0.1", server.port());
+      client.set_read_timeout(60, 0);  // a hang guard only
+      const auto res = client.Get("/stream", [](const char*, std::size_t) { return true; });
+      status[i] = res ? res->status : -1;
+    });
+  }
+  const auto guard = std::chrono::steady_clock::now() + std::chrono::seconds(60);  // a hang guard only
+  ASSERT_TRUE(server.WaitForStreams(kLiveViewStreamLimit, [&] { return std::chrono::steady_clock::now() > guard; }));
+
+  httplib::Client client("127.0.0.1", server.port());
+  client.set_read_timeout(20, 0);  // a hang guard only
+  const auto extra = client.Get("/stream");
+  ASSERT_TRUE(extra);
+  EXPECT_EQ(extra->status, 503);
+  EXPECT_NE(extra->body.find("at most " + std::to_string(kLiveViewStreamLimit) + " streams"), std::string::npos);
+  for (int round = 0; round < 3; ++round) {
+    const auto page = client.Get("/");
+    ASSERT_TRUE(page) << round;
+    EXPECT_EQ(page->status, 200);
+    EXPECT_EQ(page->body, "<html>live</html>");
+    const auto snapshot = client.Get("/snapshot");
+    ASSERT_TRUE(snapshot) << round;
+    EXPECT_EQ(snapshot->status, 204);  // nothing published yet
+  }
+  const std::string post = RawExchange(server.port(), "POST / HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n");
+  EXPECT_EQ(post.rfind("HTTP/1.1 405", 0), 0u) << post;
+  EXPECT_EQ(RawExchange(server.port(), ""), "");  // closed by the server's read timeout
+
+  server.Stop();
+  for (std::thread& t : watchers) t.join();
+  for (int i = 0; i < kLiveViewStreamLimit; ++i) EXPECT_EQ(status[i], 200) << "stream " << i;
 }
 
 // Contact marks of every point: in contact on odd cycles, clear on even ones.
