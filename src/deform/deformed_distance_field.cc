@@ -335,6 +335,7 @@ void DeformedFieldState::Set(const DeformedDistanceField& field, int i, const Ei
 }
 
 void DeformedFieldState::UpdateBounds(const DeformedDistanceField& field) {
+  if (field.num_domains() == 1) return;  // nothing to cull
   using Matrix3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
   for (int d = 0; d < field.num_domains(); ++d) {
     const int begin = field.slot_begin(d), end = field.slot_end(d);

@@ -108,7 +108,7 @@ class DeformedFieldState {
     float a[9], c[3], o[3];  // A row-major, c, O
     float spread, slope;
   };
-  const DomainBound& domain_bound(int d) const { return bounds_[d]; }
+  const DomainBound& domain_bound(int d) const { return bounds_[d]; }  // kept with several domains only
 
  private:
   void SetSlot(const DeformedDistanceField& field, int i, const Eigen::Vector3d& p, const Eigen::Matrix3d& F);

@@ -201,25 +201,27 @@ Eigen::MatrixXd EmbeddedPoints::Basis(int i) const {
   return B;
 }
 
+// The rows' sums are formed side by side, each in the order j = 0, 1, ...: independent chains
+// of additions instead of one after another, the same values.
 Eigen::Vector3d EmbeddedPoints::Displacement(int i, const double* q) const {
-  Eigen::Vector3d d;
-  for (int c = 0; c < 3; ++c) {
-    const float* row = &u_[(3 * std::size_t(i) + c) * stride_];
-    double s = 0;
-    for (int j = 0; j < r_; ++j) s += double(row[j]) * q[j];
-    d[c] = s;
+  const float* rows = &u_[3 * std::size_t(i) * stride_];
+  double s[3] = {0, 0, 0};
+  for (int j = 0; j < r_; ++j) {
+    const double qj = q[j];
+    for (int c = 0; c < 3; ++c) s[c] += double(rows[c * stride_ + j]) * qj;
   }
-  return d;
+  return Eigen::Vector3d(s[0], s[1], s[2]);
 }
 
 Eigen::Matrix3d EmbeddedPoints::DeformationGradient(int i, const double* q) const {
-  Eigen::Matrix3d F;
-  for (int e = 0; e < 9; ++e) {
-    const float* row = &f_[(9 * std::size_t(i) + e) * r_];
-    double s = 0;
-    for (int j = 0; j < r_; ++j) s += double(row[j]) * q[j];
-    F(e / 3, e % 3) = s + (e / 3 == e % 3 ? 1.0 : 0.0);
+  const float* rows = &f_[9 * std::size_t(i) * r_];
+  double s[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+  for (int j = 0; j < r_; ++j) {
+    const double qj = q[j];
+    for (int e = 0; e < 9; ++e) s[e] += double(rows[e * r_ + j]) * qj;
   }
+  Eigen::Matrix3d F;
+  for (int e = 0; e < 9; ++e) F(e / 3, e % 3) = s[e] + (e / 3 == e % 3 ? 1.0 : 0.0);
   return F;
 }
 
