@@ -96,10 +96,22 @@ void WriteStudyResults(const Study& study, const std::filesystem::path& out_dir,
     throw std::logic_error("study " + study.name + ": " + std::to_string(tables.size()) + " tables given, " +
                            std::to_string(study.tables.size()) + " declared");
   }
+  // meta.json counts each table's rows, so that a merge can tell a complete table from one cut
+  // short at a line break.
+  nlohmann::json counted = meta;
+  for (std::size_t t = 0; t < tables.size(); ++t) {
+    long rows = 0;  // non-empty lines after the header
+    for (std::size_t at = tables[t].find('\n'); at != std::string::npos && at + 1 < tables[t].size();) {
+      const std::size_t eol = tables[t].find('\n', at + 1);
+      if (eol != at + 1) ++rows;
+      at = eol;
+    }
+    counted["table_rows"][study.tables[t]] = rows;
+  }
   std::filesystem::create_directories(out_dir);
   for (std::size_t t = 0; t < tables.size(); ++t) WriteFileAtomically(out_dir / study.tables[t], tables[t]);
   for (const Study::Derived& d : study.derived) WriteFileAtomically(out_dir / d.file, d.compute(tables));
-  WriteFileAtomically(out_dir / "meta.json", meta.dump(2) + "\n");
+  WriteFileAtomically(out_dir / "meta.json", counted.dump(2) + "\n");
 }
 
 }  // namespace contactlab

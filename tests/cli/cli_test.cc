@@ -387,6 +387,97 @@ TEST(Cli, SlurmScriptsRunByHandMergeToTheLocalRunsSummary) {
   EXPECT_EQ(WithoutTimings(ReadWholeFile(out / "summary.csv")), WithoutTimings(summary_local));
   EXPECT_EQ(WithoutTimings(ReadWholeFile(out / "cycles.csv")), WithoutTimings(ReadWholeFile(dir / "local" / "cycles.csv")));
   EXPECT_GT(std::count(summary_local.begin(), summary_local.end(), '\n'), 3);
+  // A task killed while writing (its cycles.csv cut mid-row): the merge fails naming its folder.
+  const std::string cut = ReadWholeFile(out / "job-2" / "cycles.csv");
+  std::filesystem::remove(out / "summary.csv");
+  std::ofstream(out / "job-2" / "cycles.csv", std::ios::binary | std::ios::trunc) << cut.substr(0, cut.size() / 2);
+  EXPECT_NE(std::system(merge.c_str()), 0);
+  const std::string said_cut = ReadWholeFile(dir / "merge.txt");
+  EXPECT_NE(said_cut.find((out / "job-2" / "cycles.csv").string()), std::string::npos) << said_cut;
+  EXPECT_FALSE(std::filesystem::exists(out / "summary.csv"));
+}
+
+// Two single-job runs of a two-point sweep, for the merge checks.
+struct TwoJobRuns {
+  testing::TempDir dir;
+  TwoJobRuns() {
+    std::ofstream(dir / "scene.yaml") << kScene;
+    std::ofstream(dir / "exp.yaml") << "name: e\nscene: scene.yaml\n" << testing::PressTrajectoryYaml(0.02)
+                                    << "\nsweep: {points: [64, 128]}\n";
+    for (int job : {0, 1}) {
+      const Outcome o = RunCli("run " + (dir / "exp.yaml").string() + " --job " + std::to_string(job) + " --out " +
+                               (dir / ("f" + std::to_string(job))).string() + " --cache " + (dir / "cache").string());
+      EXPECT_EQ(o.exit_code, 0) << o.output;
+    }
+  }
+  std::string Merge(const std::string& folders, const std::string& out, const std::string& more = "") const {
+    std::string args = "merge";
+    std::istringstream names(folders);
+    for (std::string f; names >> f;) args += " " + (dir / f).string();
+    return args + " --out " + (dir / out).string() + more;
+  }
+  void CopyFolder(const std::string& from, const std::string& to) const {
+    std::filesystem::copy(dir / from, dir / to, std::filesystem::copy_options::recursive);
+  }
+};
+
+// A job's cycles.csv cut short (mid-row, as by `head -c 3000`, or at a line break): the merge
+// fails naming the file and writes nothing, where it used to write a file the viewer rejects.
+TEST(CliMerge, ACutShortTableIsRefusedNamingItsFile) {
+  TwoJobRuns runs;
+  const std::filesystem::path& dir = runs.dir.path();
+  runs.CopyFolder("f1", "f1t");
+  const std::string cycles = ReadWholeFile(dir / "f1" / "cycles.csv");
+  ASSERT_GT(cycles.size(), 3000u);
+  std::ofstream(dir / "f1t" / "cycles.csv", std::ios::binary | std::ios::trunc) << cycles.substr(0, 3000);
+  Outcome o = RunCli(runs.Merge("f0 f1t", "mt"));
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find((dir / "f1t" / "cycles.csv").string()), std::string::npos) << o.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "mt"));
+  // Cut at a line break: every row well formed, but fewer than meta.json counted.
+  const std::size_t last_row = cycles.rfind('\n', cycles.size() - 2);
+  std::ofstream(dir / "f1t" / "cycles.csv", std::ios::binary | std::ios::trunc) << cycles.substr(0, last_row + 1);
+  o = RunCli(runs.Merge("f0 f1t", "mt"));
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find((dir / "f1t" / "cycles.csv").string() + ": "), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("meta.json counted"), std::string::npos) << o.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "mt"));
+  // The intact folders merge, and the viewer replays the merged job.
+  o = RunCli(runs.Merge("f0 f1", "m"));
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  o = RunCli("view " + (dir / "m").string() + " --job 1 --out " + (dir / "x.html").string());
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_TRUE(std::filesystem::exists(dir / "x.html"));
+}
+
+// The same job twice, a job of the sweep missing, and a job of another config are refused
+// (naming the folder); --partial merges some of a sweep.
+TEST(CliMerge, DuplicateMissingAndForeignJobsAreRefused) {
+  TwoJobRuns runs;
+  const std::filesystem::path& dir = runs.dir.path();
+  Outcome o = RunCli(runs.Merge("f0 f0", "m00"));
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find("holds job 0, which an earlier folder holds too"), std::string::npos) << o.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "m00"));
+
+  o = RunCli(runs.Merge("f1", "m1"));
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find("the sweep has 2 jobs and 1 of them are in none of the folders (0)"), std::string::npos)
+      << o.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "m1"));
+  o = RunCli(runs.Merge("f1", "m1", " --partial"));
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(ReadWholeFile(dir / "m1" / "meta.json").find("\"partial\": true"), std::string::npos);
+
+  // Job 1 of the sweep under another config value.
+  const Outcome other = RunCli("run " + (dir / "exp.yaml").string() + " --job 1 --set trajectory.depth=0.001 --out " +
+                               (dir / "g1").string() + " --cache " + (dir / "cache").string());
+  ASSERT_EQ(other.exit_code, 0) << other.output;
+  o = RunCli(runs.Merge("f0 g1", "mg"));
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find((dir / "g1" / "meta.json").string() + ": was run with another config"), std::string::npos)
+      << o.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "mg"));
 }
 
 }  // namespace
