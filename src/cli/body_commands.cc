@@ -20,6 +20,7 @@
 #include "util/atomic_file.h"
 #include "util/data_path.h"
 #include "util/error.h"
+#include "util/number_text.h"
 #include "util/output_target.h"
 
 namespace contactlab::cli {
@@ -58,24 +59,34 @@ void ExportPointshell(BodyAssets& body, const ReducedState* q, int level, const 
     dps = body.deformable_pointshell();
     for (int j = 0; j < q->size(); ++j) abs_q.push_back(std::fabs(q->q[j]));
   }
-  std::string text = "x,y,z,nx,ny,nz,level,parent,radius\n";
-  char line[320];
-  int lev = 0;
-  for (int n = 0; n < s.level_node_begin[last + 1]; ++n) {
-    while (n >= s.level_node_begin[lev + 1]) ++lev;
-    const int i = s.node_point[n];
-    Eigen::Vector3d x(s.x[i], s.y[i], s.z[i]), nrm(s.nx[i], s.ny[i], s.nz[i]);
-    double radius = s.node_radius[n];
-    if (dps) {
-      x = dps->points().Position(i, q->q.data());
-      nrm = dps->points().CorrectedNormal(i, q->q.data());
-      radius = lev == s.num_levels() - 1 ? 0.0 : dps->Radius(n, abs_q.data());
+  // Deformed values are doubles, rest values the pointshell's floats: each written as the
+  // shortest text that reads back exactly (util/number_text.h); a non-finite one writes nothing.
+  WriteFileAtomically(out, [&](std::ostream& stream) {
+    std::string text = "x,y,z,nx,ny,nz,level,parent,radius\n";
+    int lev = 0;
+    for (int n = 0; n < s.level_node_begin[last + 1]; ++n) {
+      while (n >= s.level_node_begin[lev + 1]) ++lev;
+      const int i = s.node_point[n];
+      const std::string what = "node " + std::to_string(n);
+      if (dps) {
+        const Eigen::Vector3d x = dps->points().Position(i, q->q.data());
+        const Eigen::Vector3d nrm = dps->points().CorrectedNormal(i, q->q.data());
+        for (int c = 0; c < 3; ++c) AppendNumber(x[c], &text, what + " position"), text += ',';
+        for (int c = 0; c < 3; ++c) AppendNumber(nrm[c], &text, what + " normal"), text += ',';
+      } else {
+        for (const float v : {s.x[i], s.y[i], s.z[i]}) AppendNumber(v, &text, what + " position"), text += ',';
+        for (const float v : {s.nx[i], s.ny[i], s.nz[i]}) AppendNumber(v, &text, what + " normal"), text += ',';
+      }
+      text += std::to_string(lev) + ',' + std::to_string(s.node_parent[n]) + ',';
+      if (dps) {
+        AppendNumber(lev == s.num_levels() - 1 ? 0.0 : dps->Radius(n, abs_q.data()), &text, what + " radius");
+      } else {
+        AppendNumber(s.node_radius[n], &text, what + " radius");
+      }
+      text += '\n';
     }
-    std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g,%.7g,%.7g,%.7g,%d,%d,%.9g\n", x.x(), x.y(), x.z(), nrm.x(),
-                  nrm.y(), nrm.z(), lev, s.node_parent[n], radius);
-    text += line;
-  }
-  WriteFileAtomically(out, text);
+    stream << text;
+  });
   std::fprintf(stderr, "%s: %d nodes of levels 0..%d%s\n", out.c_str(), s.level_node_begin[last + 1], last,
                q ? ", deformed" : "");
 }

@@ -52,6 +52,17 @@ ReducedState ParseReducedCoordinates(const std::string& text, BodyAssets& body, 
     }
     state.q[j] = *v;
   }
+  // Finite coordinates may still deform the body beyond what doubles hold (q = 1e308): every
+  // node's displacement U_v q, its squared length and its displaced position must be finite.
+  const auto model = body.reduced_model();
+  const Eigen::VectorXd u = model->basis * state.q;
+  for (int v = 0; v < model->mesh.num_vertices(); ++v) {
+    const Eigen::Vector3d u_v = u.segment<3>(3 * v);
+    if (!u_v.allFinite() || !std::isfinite(u_v.squaredNorm()) || !(model->mesh.vertices[v] + u_v).allFinite()) {
+      Fail(source, "these coordinates deform the body beyond finite numbers (node " + std::to_string(v) +
+                       " moves by " + std::to_string(u_v.norm()) + " m); give smaller values");
+    }
+  }
   return state;
 }
 

@@ -600,6 +600,35 @@ TEST(CliDeformable, ContactAtQAndBodyExportAreConsistentAndBadQIsRefused) {
   EXPECT_NE(ReadWholeFile(dir / "session.csv").find(",step_us,q_norm,q_norm_body\n"), std::string::npos);
 }
 
+// Finite coordinates whose deformation overflows (q = 1e308: positions inf) are an input error
+// naming the option, in every command that takes them; nothing is written.
+TEST(CliDeformable, CoordinatesWhoseDeformationOverflowsAreRefusedNamingTheOption) {
+  testing::TempDir dir;
+  std::ofstream(dir / "beam.yaml") << kBeamScene;
+  std::ofstream(dir / "p.csv") << "x,y,z\n0,0,0\n0.05,0,0\n";
+  const std::string scene = (dir / "beam.yaml").string() + " --cache " + (dir / "cache").string();
+  const std::string huge = "1e308,1e308,1e308,1e308";
+  const std::string said = "(body 'beam'): these coordinates deform the body beyond finite numbers";
+  Outcome o = RunCli("body-export " + scene + " --body beam --q " + huge + " --mesh " + (dir / "o.obj").string());
+  EXPECT_EQ(o.exit_code, 1);
+  EXPECT_NE(o.output.find("--q " + said), std::string::npos) << o.output;
+  o = RunCli("body-export " + scene + " --body beam --q " + huge + " --pointshell " + (dir / "o.csv").string());
+  EXPECT_EQ(o.exit_code, 1);
+  EXPECT_NE(o.output.find("--q " + said), std::string::npos) << o.output;
+  o = RunCli("body-eval " + scene + " --body beam --q " + huge + " --points " + (dir / "p.csv").string() + " --out " +
+             (dir / "d.csv").string());
+  EXPECT_EQ(o.exit_code, 1);
+  EXPECT_NE(o.output.find("--q " + said), std::string::npos) << o.output;
+  o = RunCli("contact " + scene + " --q-a " + huge);
+  EXPECT_EQ(o.exit_code, 1);
+  EXPECT_NE(o.output.find("--q-a " + said), std::string::npos) << o.output;
+  EXPECT_EQ(o.output.find("force on"), std::string::npos) << o.output;
+  for (const char* f : {"o.obj", "o.csv", "d.csv"}) EXPECT_FALSE(std::filesystem::exists(dir / f)) << f;
+  // A quaternion too large for its norm still names a rotation (normalised without overflow).
+  o = RunCli("contact " + scene + " --pose-a 0,0,0,1e308,1e308,0,0 --json");
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+}
+
 TEST(CliDeformable, BodyEvalGivesTheRigidFieldAndTheDeformedFieldOnTheDeformedSurface) {
   testing::TempDir dir;
   std::ofstream(dir / "beam.yaml") << kBeamScene;
