@@ -8,6 +8,7 @@
 // (as sdf-eval), its deformed distance field at Q for a deformable one (paper sec. 4.2).
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "cli/command_registry.h"
@@ -28,7 +29,7 @@ namespace {
 
 struct BodyExportArgs {
   std::string scene, body, q, mesh_out, pointshell_out, cache;
-  int level = -1;
+  std::optional<int> level;  // --level, when given
 };
 
 void ExportMesh(BodyAssets& body, const ReducedState* q, const std::string& out) {
@@ -43,16 +44,16 @@ void ExportMesh(BodyAssets& body, const ReducedState* q, const std::string& out)
                q ? ", deformed" : "");
 }
 
-// x,y,z,nx,ny,nz,level,parent,radius per tree node of levels 0..LEVEL; parent is the row of
-// the parent node (-1 on level 0).
-void ExportPointshell(BodyAssets& body, const ReducedState* q, int level, const std::string& out) {
+// x,y,z,nx,ny,nz,level,parent,radius per tree node of levels 0..LEVEL (every level when not
+// given); parent is the row of the parent node (-1 on level 0).
+void ExportPointshell(BodyAssets& body, const ReducedState* q, std::optional<int> level, const std::string& out) {
   const auto shell = body.pointshell();
   const Pointshell& s = *shell;
-  if (level < -1 || level >= s.num_levels()) {
-    Fail("--level", std::to_string(level) + " is out of range (the pointshell has " +
-                        std::to_string(s.num_levels()) + " levels)");
+  if (level && (*level < 0 || *level >= s.num_levels())) {
+    Fail("--level", std::to_string(*level) + " is out of range: the pointshell has levels 0.." +
+                        std::to_string(s.num_levels() - 1) + " (leave --level out for all of them)");
   }
-  const int last = level < 0 ? s.num_levels() - 1 : level;
+  const int last = level ? *level : s.num_levels() - 1;
   std::shared_ptr<const DeformablePointshell> dps;
   std::vector<double> abs_q;
   if (q != nullptr) {

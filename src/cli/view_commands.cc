@@ -62,7 +62,7 @@ void RequireFiniteViewData(const nlohmann::json& data, const std::string& file) 
 struct ViewArgs {
   std::string input;
   std::string out;
-  int job = -1;
+  std::optional<int> job;  // --job, when given
   int max_points = 50000;
   int max_triangles = 50000;
   int max_frames = 10000;
@@ -75,6 +75,7 @@ struct ViewArgs {
 void RunView(const ViewArgs& args) {
   CheckOutputTarget(args.out, "--out");
   RequireThreeJs();
+  if (args.job && *args.job < 0) Fail("--job", std::to_string(*args.job) + " is not a job index (jobs count from 0)");
   if (args.max_points < 16) Fail("--max-points", "must be at least 16, got " + std::to_string(args.max_points));
   SceneViewOptions options;
   options.max_points = args.max_points;
@@ -98,7 +99,7 @@ void RunView(const ViewArgs& args) {
     // A results folder: replay one job.
     CheckOutputIsNotInput(args.out, fs::path(args.input) / "cycles.csv", "--out");
     CheckOutputIsNotInput(args.out, fs::path(args.input) / "meta.json", "--out");
-    const Replay replay = ReadReplay(args.input, args.job >= 0 ? std::optional<int>(args.job) : std::nullopt,
+    const Replay replay = ReadReplay(args.input, args.job,
                                      args.max_frames);
     SceneAssets assets(replay.scene, assets_options);
     data = ReplayViewData(replay, assets, options);
@@ -106,7 +107,7 @@ void RunView(const ViewArgs& args) {
            std::to_string(replay.tracks.size()) + " model(s)";
   } else {
     // A scene file.
-    if (args.job >= 0) Fail("--job", "applies to a results folder, not to the scene " + args.input);
+    if (args.job) Fail("--job", "applies to a results folder, not to the scene " + args.input);
     const fs::path scene_file = RequireDataFile(args.input);
     CheckOutputIsNotInput(args.out, scene_file, "--out");
     const Scene scene = LoadScene(scene_file);

@@ -39,18 +39,19 @@ ReducedState ParseReducedCoordinates(const std::string& text, BodyAssets& body, 
       token.clear();
     }
   }
+  // Each value a finite number first, so that "hello" is named as what it is, not counted.
   const int r = body.reduced_model()->r();
+  ReducedState state(r);
+  for (std::size_t j = 0; j < tokens.size(); ++j) {
+    const std::optional<double> v = ParseDouble(tokens[j]);
+    if (!v) {
+      Fail(source, "value " + std::to_string(j + 1) + " '" + QuoteToken(tokens[j]) + "' is not a finite number");
+    }
+    if (int(j) < r) state.q[int(j)] = *v;
+  }
   if (int(tokens.size()) != r) {
     Fail(source, std::to_string(tokens.size()) + " values given; the body has r = " + std::to_string(r) +
                      " reduced coordinates");
-  }
-  ReducedState state(r);
-  for (int j = 0; j < r; ++j) {
-    const std::optional<double> v = ParseDouble(tokens[j]);
-    if (!v || !std::isfinite(*v)) {
-      Fail(source, "value " + std::to_string(j + 1) + " '" + tokens[j] + "' is not a finite number");
-    }
-    state.q[j] = *v;
   }
   // Finite coordinates may still deform the body beyond what doubles hold (q = 1e308): every
   // node's displacement U_v q, its squared length and its displaced position must be finite.

@@ -450,6 +450,21 @@ TEST(CliMerge, ACutShortTableIsRefusedNamingItsFile) {
   EXPECT_TRUE(std::filesystem::exists(dir / "x.html"));
 }
 
+// A negative --job is named as such, not taken for "no --job" (which asks to choose one).
+TEST(CliMerge, ANegativeJobIsNotAJobIndex) {
+  TwoJobRuns runs;
+  const std::filesystem::path& dir = runs.dir.path();
+  ASSERT_EQ(RunCli(runs.Merge("f0 f1", "m")).exit_code, 0);
+  Outcome o = RunCli("view " + (dir / "m").string() + " --job -1 --out " + (dir / "x.html").string());
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find("--job: -1 is not a job index (jobs count from 0)"), std::string::npos) << o.output;
+  EXPECT_EQ(o.output.find("choose one with --job"), std::string::npos) << o.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.html"));
+  o = RunCli("view " + (dir / "m").string() + " --out " + (dir / "x.html").string());
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find("choose one with --job"), std::string::npos) << o.output;
+}
+
 // The same job twice, a job of the sweep missing, and a job of another config are refused
 // (naming the folder); --partial merges some of a sweep.
 TEST(CliMerge, DuplicateMissingAndForeignJobsAreRefused) {
@@ -627,6 +642,47 @@ TEST(CliDeformable, CoordinatesWhoseDeformationOverflowsAreRefusedNamingTheOptio
   // A quaternion too large for its norm still names a rotation (normalised without overflow).
   o = RunCli("contact " + scene + " --pose-a 0,0,0,1e308,1e308,0,0 --json");
   EXPECT_EQ(o.exit_code, 0) << o.output;
+}
+
+// Messages that say what is wrong: a word among the coordinates is not a number (not a count),
+// a negative --level is out of range (not "all levels"), and an anchor that holds no vertex is
+// named by the file and line that give it.
+TEST(CliDeformable, BadCoordinatesLevelsAndAnchorsAreNamedForWhatTheyAre) {
+  testing::TempDir dir;
+  std::ofstream(dir / "beam.yaml") << kBeamScene;
+  const std::string scene = (dir / "beam.yaml").string() + " --cache " + (dir / "cache").string();
+  Outcome o = RunCli("body-export " + scene + " --body beam --q hello --mesh " + (dir / "o.obj").string());
+  EXPECT_EQ(o.exit_code, 1);
+  EXPECT_NE(o.output.find("--q (body 'beam'): value 1 'hello' is not a finite number"), std::string::npos) << o.output;
+  o = RunCli("contact " + scene + " --q-a 0,0,x");
+  EXPECT_EQ(o.exit_code, 1);
+  EXPECT_NE(o.output.find("--q-a (body 'beam'): value 3 'x' is not a finite number"), std::string::npos) << o.output;
+  o = RunCli("body-export " + scene + " --body beam --level -1 --pointshell " + (dir / "o.csv").string());
+  EXPECT_EQ(o.exit_code, 1);
+  EXPECT_NE(o.output.find("--level: -1 is out of range: the pointshell has levels 0..2"), std::string::npos) << o.output;
+  o = RunCli("body-export " + scene + " --body beam --level 3 --pointshell " + (dir / "o.csv").string());
+  EXPECT_EQ(o.exit_code, 1);
+  EXPECT_NE(o.output.find("--level: 3 is out of range"), std::string::npos) << o.output;
+  for (const char* f : {"o.obj", "o.csv"}) EXPECT_FALSE(std::filesystem::exists(dir / f)) << f;
+  // Without --level: every level (0..2), and with --level 1 levels 0..1 only.
+  ASSERT_EQ(RunCli("body-export " + scene + " --body beam --pointshell " + (dir / "all.csv").string()).exit_code, 0);
+  ASSERT_EQ(RunCli("body-export " + scene + " --body beam --level 1 --pointshell " + (dir / "l1.csv").string()).exit_code, 0);
+  const auto all = ReadNumbers(dir / "all.csv", ',', true), l1 = ReadNumbers(dir / "l1.csv", ',', true);
+  EXPECT_EQ(all.back()[6], 2.0);
+  EXPECT_EQ(l1.back()[6], 1.0);
+  EXPECT_LT(l1.size(), all.size());
+
+  // An anchor plane below the whole beam: the error names the scene file, its line and key.
+  std::string far = kBeamScene;
+  far.replace(far.find("[x, -0.09]"), 10, "[x, -5.0]");
+  std::ofstream(dir / "far.yaml") << far;
+  o = RunCli("body-export " + (dir / "far.yaml").string() + " --cache " + (dir / "cache").string() +
+             " --body beam --q 0,0,0,0 --mesh " + (dir / "o.obj").string());
+  EXPECT_EQ(o.exit_code, 1);
+  EXPECT_NE(o.output.find((dir / "far.yaml").string() + ":8: bodies[0].deformable.anchor ("), std::string::npos)
+      << o.output;
+  EXPECT_NE(o.output.find("body 'beam'"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("no vertex of the simulation mesh is anchored"), std::string::npos) << o.output;
 }
 
 TEST(CliDeformable, BodyEvalGivesTheRigidFieldAndTheDeformedFieldOnTheDeformedSurface) {
