@@ -8,6 +8,7 @@
 // (as sdf-eval), its deformed distance field at Q for a deformable one (paper sec. 4.2).
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "cli/command_registry.h"
@@ -20,6 +21,7 @@
 #include "util/atomic_file.h"
 #include "util/data_path.h"
 #include "util/error.h"
+#include "util/number_text.h"
 #include "util/output_target.h"
 
 namespace contactlab::cli {
@@ -27,7 +29,7 @@ namespace {
 
 struct BodyExportArgs {
   std::string scene, body, q, mesh_out, pointshell_out, cache;
-  int level = -1;
+  std::optional<int> level;  // --level, when given
 };
 
 void ExportMesh(BodyAssets& body, const ReducedState* q, const std::string& out) {
@@ -42,40 +44,50 @@ void ExportMesh(BodyAssets& body, const ReducedState* q, const std::string& out)
                q ? ", deformed" : "");
 }
 
-// x,y,z,nx,ny,nz,level,parent,radius per tree node of levels 0..LEVEL; parent is the row of
-// the parent node (-1 on level 0).
-void ExportPointshell(BodyAssets& body, const ReducedState* q, int level, const std::string& out) {
+// x,y,z,nx,ny,nz,level,parent,radius per tree node of levels 0..LEVEL (every level when not
+// given); parent is the row of the parent node (-1 on level 0).
+void ExportPointshell(BodyAssets& body, const ReducedState* q, std::optional<int> level, const std::string& out) {
   const auto shell = body.pointshell();
   const Pointshell& s = *shell;
-  if (level < -1 || level >= s.num_levels()) {
-    Fail("--level", std::to_string(level) + " is out of range (the pointshell has " +
-                        std::to_string(s.num_levels()) + " levels)");
+  if (level && (*level < 0 || *level >= s.num_levels())) {
+    Fail("--level", std::to_string(*level) + " is out of range: the pointshell has levels 0.." +
+                        std::to_string(s.num_levels() - 1) + " (leave --level out for all of them)");
   }
-  const int last = level < 0 ? s.num_levels() - 1 : level;
+  const int last = level ? *level : s.num_levels() - 1;
   std::shared_ptr<const DeformablePointshell> dps;
   std::vector<double> abs_q;
   if (q != nullptr) {
     dps = body.deformable_pointshell();
     for (int j = 0; j < q->size(); ++j) abs_q.push_back(std::fabs(q->q[j]));
   }
-  std::string text = "x,y,z,nx,ny,nz,level,parent,radius\n";
-  char line[320];
-  int lev = 0;
-  for (int n = 0; n < s.level_node_begin[last + 1]; ++n) {
-    while (n >= s.level_node_begin[lev + 1]) ++lev;
-    const int i = s.node_point[n];
-    Eigen::Vector3d x(s.x[i], s.y[i], s.z[i]), nrm(s.nx[i], s.ny[i], s.nz[i]);
-    double radius = s.node_radius[n];
-    if (dps) {
-      x = dps->points().Position(i, q->q.data());
-      nrm = dps->points().CorrectedNormal(i, q->q.data());
-      radius = lev == s.num_levels() - 1 ? 0.0 : dps->Radius(n, abs_q.data());
+  // Deformed values are doubles, rest values the pointshell's floats: each written as the
+  // shortest text that reads back exactly (util/number_text.h); a non-finite one writes nothing.
+  WriteFileAtomically(out, [&](std::ostream& stream) {
+    std::string text = "x,y,z,nx,ny,nz,level,parent,radius\n";
+    int lev = 0;
+    for (int n = 0; n < s.level_node_begin[last + 1]; ++n) {
+      while (n >= s.level_node_begin[lev + 1]) ++lev;
+      const int i = s.node_point[n];
+      const std::string what = "node " + std::to_string(n);
+      if (dps) {
+        const Eigen::Vector3d x = dps->points().Position(i, q->q.data());
+        const Eigen::Vector3d nrm = dps->points().CorrectedNormal(i, q->q.data());
+        for (int c = 0; c < 3; ++c) AppendNumber(x[c], &text, what + " position"), text += ',';
+        for (int c = 0; c < 3; ++c) AppendNumber(nrm[c], &text, what + " normal"), text += ',';
+      } else {
+        for (const float v : {s.x[i], s.y[i], s.z[i]}) AppendNumber(v, &text, what + " position"), text += ',';
+        for (const float v : {s.nx[i], s.ny[i], s.nz[i]}) AppendNumber(v, &text, what + " normal"), text += ',';
+      }
+      text += std::to_string(lev) + ',' + std::to_string(s.node_parent[n]) + ',';
+      if (dps) {
+        AppendNumber(lev == s.num_levels() - 1 ? 0.0 : dps->Radius(n, abs_q.data()), &text, what + " radius");
+      } else {
+        AppendNumber(s.node_radius[n], &text, what + " radius");
+      }
+      text += '\n';
     }
-    std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g,%.7g,%.7g,%.7g,%d,%d,%.9g\n", x.x(), x.y(), x.z(), nrm.x(),
-                  nrm.y(), nrm.z(), lev, s.node_parent[n], radius);
-    text += line;
-  }
-  WriteFileAtomically(out, text);
+    stream << text;
+  });
   std::fprintf(stderr, "%s: %d nodes of levels 0..%d%s\n", out.c_str(), s.level_node_begin[last + 1], last,
                q ? ", deformed" : "");
 }

@@ -17,6 +17,7 @@
 #include "experiment/scene_assets.h"
 #include "experiment/scene.h"
 #include "util/data_path.h"
+#include "util/error.h"
 
 namespace contactlab::cli {
 namespace {
@@ -57,6 +58,11 @@ void RunContact(const ContactArgs& args) {
   const auto t0 = std::chrono::steady_clock::now();
   const ContactResult r = model->Evaluate(q);
   const double micros = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+  // A refused query or a non-finite wrench is an error, never a zero or "nan" printed as a result.
+  if (r.stats.faults > 0) Fail(model_name, "refused the query (a deformation that does not fit its body); no wrench");
+  if (!r.on_B.force.allFinite() || !r.on_B.torque.allFinite() || !r.K_B.allFinite()) {
+    Fail(model_name, "gave a non-finite wrench or stiffness at these poses and coordinates; nothing printed");
+  }
 
   if (args.json) {
     nlohmann::json j;

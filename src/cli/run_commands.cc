@@ -1,6 +1,6 @@
 // `contactlab run CONFIG.yaml [--out DIR] [--set key=value ...] [--list-jobs] [--job I]
 // [--slurm [--dry-run] [--partition P] [--time T] [--cpus-per-task C] [--mem M]]` and
-// `contactlab merge DIR... --out DIR` / `contactlab merge --sweep DIR --jobs N --out DIR`: the
+// `contactlab merge DIR... --out DIR [--partial]` / `contactlab merge --sweep DIR --jobs N --out DIR`: the
 // experiment harness's entry points. A sweep can be spread over a cluster: --list-jobs prints
 // the sweep points, --job I runs one of them, --slurm writes and submits a Slurm array of them
 // plus a merge job (experiment/slurm_script.h), and merge joins the pieces.
@@ -150,6 +150,7 @@ const CommandRegistration kRunCommands([](CLI::App& app) {
     std::string out;
     std::string sweep;
     int jobs = 0;
+    bool partial = false;
   };
   auto margs = std::make_shared<MergeArgs>();
   CLI::App* merge = app.add_subcommand("merge", "Join the results of single-job runs into one results folder");
@@ -159,6 +160,8 @@ const CommandRegistration kRunCommands([](CLI::App& app) {
                     "results (every failed task is named)");
   merge->add_option("--jobs", margs->jobs, "with --sweep: the number of sweep points N")->check(CLI::PositiveNumber);
   merge->add_option("--out", margs->out, "merged results folder")->required();
+  merge->add_flag("--partial", margs->partial,
+                  "merge some of the sweep's jobs (without it every job of the sweep must be in the folders)");
   merge->callback([margs] {
     std::vector<std::filesystem::path> paths(margs->dirs.begin(), margs->dirs.end());
     if (!margs->sweep.empty()) {
@@ -170,7 +173,7 @@ const CommandRegistration kRunCommands([](CLI::App& app) {
     }
     CheckOutputFolder(margs->out, "--out");
     for (const auto& p : paths) CheckOutputIsNotInput(margs->out, p, "--out");
-    MergeResults(paths, margs->out);
+    MergeResults(paths, margs->out, MergeOptions{.partial = margs->partial});
     std::printf("merged %zu folders into %s\n", paths.size(), margs->out.c_str());
   });
 });

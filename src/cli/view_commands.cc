@@ -12,6 +12,8 @@
 #include <optional>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "cli/command_registry.h"
 #include "experiment/scene.h"
 #include "experiment/scene_assets.h"
@@ -19,6 +21,7 @@
 #include "util/data_path.h"
 #include "util/error.h"
 #include "util/output_target.h"
+#include "util/parse_number.h"
 #include "view/view_data.h"
 #include "view/viewer_page.h"
 
@@ -27,15 +30,44 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// Where DATA (the page's embedded data) holds a non-finite number, which JSON cannot spell (the
+// page would show nothing there): true with *WHERE its key path and *VALUE the number.
+bool FindNonFinite(const nlohmann::json& data, std::string* where, double* value) {
+  if (data.is_number_float()) {
+    *value = data.get<double>();
+    return !std::isfinite(*value);
+  }
+  if (data.is_object()) {
+    for (const auto& [key, item] : data.items()) {
+      if (FindNonFinite(item, where, value)) return where->insert(0, "." + key), true;
+    }
+  } else if (data.is_array()) {
+    for (std::size_t i = 0; i < data.size(); ++i) {
+      if (FindNonFinite(data[i], where, value)) return where->insert(0, "[" + std::to_string(i) + "]"), true;
+    }
+  }
+  return false;
+}
+
+// Throws Error naming FILE when DATA holds a non-finite number.
+void RequireFiniteViewData(const nlohmann::json& data, const std::string& file) {
+  std::string where;
+  double value = 0;
+  if (FindNonFinite(data, &where, &value)) {
+    Fail(file, "cannot write the page: data" + where + " is " + std::to_string(value) +
+                   ", not a finite number; nothing written");
+  }
+}
+
 struct ViewArgs {
   std::string input;
   std::string out;
-  int job = -1;
+  std::optional<int> job;  // --job, when given
   int max_points = 50000;
   int max_triangles = 50000;
   int max_frames = 10000;
   std::string slice_axis = "auto";
-  double slice_at = std::numeric_limits<double>::quiet_NaN();  // NaN: automatic
+  std::string slice_at;  // empty: automatic
   std::string cache;
   bool no_cache = false;
 };
@@ -43,6 +75,7 @@ struct ViewArgs {
 void RunView(const ViewArgs& args) {
   CheckOutputTarget(args.out, "--out");
   RequireThreeJs();
+  if (args.job && *args.job < 0) Fail("--job", std::to_string(*args.job) + " is not a job index (jobs count from 0)");
   if (args.max_points < 16) Fail("--max-points", "must be at least 16, got " + std::to_string(args.max_points));
   SceneViewOptions options;
   options.max_points = args.max_points;
@@ -51,7 +84,11 @@ void RunView(const ViewArgs& args) {
   }
   options.max_triangles = args.max_triangles;
   options.slice_axis = args.slice_axis == "auto" ? -1 : args.slice_axis == "x" ? 0 : args.slice_axis == "y" ? 1 : 2;
-  if (!std::isnan(args.slice_at)) options.slice_at = args.slice_at;
+  if (!args.slice_at.empty()) {
+    const std::optional<double> at = ParseDouble(args.slice_at);
+    if (!at) Fail("--slice-at", "'" + QuoteToken(args.slice_at) + "' is not a finite number (metres)");
+    options.slice_at = *at;
+  }
   AssetOptions assets_options;
   assets_options.cache_dir = args.cache;
   assets_options.use_cache = !args.no_cache;
@@ -62,7 +99,7 @@ void RunView(const ViewArgs& args) {
     // A results folder: replay one job.
     CheckOutputIsNotInput(args.out, fs::path(args.input) / "cycles.csv", "--out");
     CheckOutputIsNotInput(args.out, fs::path(args.input) / "meta.json", "--out");
-    const Replay replay = ReadReplay(args.input, args.job >= 0 ? std::optional<int>(args.job) : std::nullopt,
+    const Replay replay = ReadReplay(args.input, args.job,
                                      args.max_frames);
     SceneAssets assets(replay.scene, assets_options);
     data = ReplayViewData(replay, assets, options);
@@ -70,7 +107,7 @@ void RunView(const ViewArgs& args) {
            std::to_string(replay.tracks.size()) + " model(s)";
   } else {
     // A scene file.
-    if (args.job >= 0) Fail("--job", "applies to a results folder, not to the scene " + args.input);
+    if (args.job) Fail("--job", "applies to a results folder, not to the scene " + args.input);
     const fs::path scene_file = RequireDataFile(args.input);
     CheckOutputIsNotInput(args.out, scene_file, "--out");
     const Scene scene = LoadScene(scene_file);
@@ -81,6 +118,7 @@ void RunView(const ViewArgs& args) {
     data = SceneViewData(scene, assets, options);
     what = "scene " + scene.name;
   }
+  RequireFiniteViewData(data, args.out);
   const std::string page = ViewerPage(data);
   WriteFileAtomically(args.out, page);
   std::fprintf(stderr, "%s: %s, %.1f MB\n", args.out.c_str(), what.c_str(), double(page.size()) / 1e6);

@@ -52,8 +52,9 @@ std::vector<std::uint8_t> FindFixedVertices(const TetMesh& mesh, const Anchoring
                                             const std::string& where) {
   std::vector<std::uint8_t> fixed(mesh.vertices.size(), 0);
   if (!anchoring.anchored()) return fixed;
+  const std::string where_given = anchoring.source.empty() ? where : anchoring.source + " (" + where + ")";
   if (anchoring.kind == Anchoring::Kind::kBelowPlane && !(anchoring.normal.norm() > 0)) {
-    Fail(where, "the anchoring plane normal is zero");
+    Fail(where_given, "the anchoring plane normal is zero");
   }
   int count = 0;
   for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
@@ -73,9 +74,9 @@ std::vector<std::uint8_t> FindFixedVertices(const TetMesh& mesh, const Anchoring
     std::ostringstream s;
     s << "no vertex of the simulation mesh is anchored (" << anchoring.Describe()
       << "; mesh box [" << b.min.transpose() << "] .. [" << b.max.transpose() << "])";
-    Fail(where, s.str());
+    Fail(where_given, s.str());
   }
-  if (count == mesh.num_vertices()) Fail(where, "every vertex is anchored (" + anchoring.Describe() + "); nothing can move");
+  if (count == mesh.num_vertices()) Fail(where_given, "every vertex is anchored (" + anchoring.Describe() + "); nothing can move");
   return fixed;
 }
 

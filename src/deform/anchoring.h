@@ -18,6 +18,9 @@ struct Anchoring {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitY();
   double offset = 0;
   Aabb box;  // kInBox: vertices inside BOX are fixed; kOutsideBox: those outside (a bridge's ends)
+  // Where it was given ("scene.yaml:14: bodies[0].deformable.anchor"), for errors; empty when it
+  // was not read from a file. Not part of what it anchors (neither hashed nor saved).
+  std::string source;
 
   static Anchoring Free() { return {}; }
   static Anchoring BelowY(double y);
@@ -29,8 +32,9 @@ struct Anchoring {
   std::string Describe() const;
 };
 
-// Per-vertex flags (1 = fixed) of MESH. Throws Error (naming WHERE) when anchoring is asked
-// for and no vertex is fixed, or when every vertex is fixed.
+// Per-vertex flags (1 = fixed) of MESH. Throws Error (naming ANCHORING.source, the file and line
+// it was given at, and WHERE) when anchoring is asked for and no vertex is fixed, or when every
+// vertex is fixed.
 std::vector<std::uint8_t> FindFixedVertices(const TetMesh& mesh, const Anchoring& anchoring,
                                             const std::string& where = "anchoring");
 

@@ -54,6 +54,14 @@ class BodyDynamics {
     integrator_->Reset();
     ZeroForce();
   }
+  // Puts the body in STATE (r entries each; throws Error otherwise), no force.
+  void SetState(const ReducedState& state) {
+    integrator_->SetState(state);
+    ZeroForce();
+  }
+  // False when a step has left the state non-finite (a diverged integration): a contact query
+  // must not read it (the haptic cycle and the runner count a fault and Reset the body).
+  bool finite() const { return state().q.allFinite() && state().qdot.allFinite(); }
   // This cycle's deformation for the contact query: the body's state in, its reduced force (and
   // stiffness) out, zeroed now. Valid until the next Prepare or Step.
   const BodyDeformation* Prepare() {

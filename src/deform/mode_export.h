@@ -10,7 +10,8 @@
 namespace contactlab {
 
 // Writes MODEL's mesh and basis columns (each scaled by SCALE, metres per unit q) to PATH
-// atomically. Throws Error naming PATH when it cannot be written.
+// atomically, each number as the shortest text that reads back exactly. Throws Error naming PATH
+// when it cannot be written or a value is not finite (nothing is written then).
 void ExportModesVtk(const ReducedModel& model, const std::filesystem::path& path, double scale = 1.0);
 
 }  // namespace contactlab

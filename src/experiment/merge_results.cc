@@ -1,9 +1,16 @@
 // Joins the results of single-job runs (a cluster array's tasks) into one results folder: the
 // rows of each of the study's tables concatenated under one header (experiment/study.h), its
 // derived files recomputed (a contact study's convergence.csv), meta.json listing every job and
-// folder.
+// folder. Every input is checked before anything is written: its tables complete (each row as
+// many cells as the header, the rows its meta.json counted), the same experiment, config and
+// commits as the first folder, no job twice, and every job of the sweep present unless the
+// merge is partial. Each output goes to a temporary name and is renamed at the end.
+#include <algorithm>
+#include <set>
+
 #include <nlohmann/json.hpp>
 
+#include "experiment/result_csv.h"
 #include "experiment/runner.h"
 #include "experiment/study.h"
 #include "util/atomic_file.h"
@@ -11,51 +18,136 @@
 
 namespace contactlab {
 namespace fs = std::filesystem;
+namespace {
 
-void MergeResults(const std::vector<fs::path>& job_dirs, const fs::path& out_dir) {
+// The data rows of TABLE's TEXT (its header line aside), after checking that the text ends
+// with a line break and that every row has as many cells as the header. Throws Error naming
+// the file (and the line) otherwise.
+long CheckTableRows(const fs::path& file, const std::string& text) {
+  if (text.empty()) Fail(file.string(), "is empty (an unfinished job?)");
+  if (text.back() != '\n') Fail(file.string(), "does not end with a line break: it was cut short (an unfinished job?)");
+  const std::size_t header_end = text.find('\n');
+  const std::size_t cells = SplitCsvLine(text.substr(0, header_end)).size();
+  long rows = 0, line = 1;
+  for (std::size_t at = header_end + 1; at < text.size();) {
+    const std::size_t eol = text.find('\n', at);
+    ++line;
+    const std::string row = text.substr(at, eol - at);
+    at = eol + 1;
+    if (row.empty()) continue;
+    const std::size_t n = SplitCsvLine(row).size();
+    if (n != cells) {
+      FailAtLine(file.string(), line,
+                 std::to_string(n) + " cells, the header has " + std::to_string(cells) + " (an unfinished job?)");
+    }
+    ++rows;
+  }
+  return rows;
+}
+
+// META's value of KEY as text (empty when absent), for comparing folders.
+std::string Field(const nlohmann::json& meta, const char* key) {
+  if (!meta.contains(key)) return "";
+  return meta[key].is_string() ? meta[key].get<std::string>() : meta[key].dump();
+}
+
+}  // namespace
+
+void MergeResults(const std::vector<fs::path>& job_dirs, const fs::path& out_dir, const MergeOptions& options) {
   if (job_dirs.empty()) Fail(out_dir.string(), "nothing to merge");
   // The study that wrote the first folder (its meta.json says); every folder must be of it.
   const Study& study = StudyOfResults(job_dirs.front());
   const std::vector<std::string>& tables = study.tables;
   std::vector<std::string> headers(tables.size()), bodies(tables.size());
+  std::vector<long> rows(tables.size(), 0);
   nlohmann::json meta;
   std::vector<int> jobs;
+  std::set<int> seen;
   double wall = 0;
   for (const fs::path& dir : job_dirs) {
-    if (!fs::exists(dir / "meta.json")) Fail(dir.string(), "is missing meta.json (an unfinished job?)");
+    const fs::path meta_file = dir / "meta.json";
+    if (!fs::exists(meta_file)) Fail(dir.string(), "is missing meta.json (an unfinished job?)");
     if (const Study& s = StudyOfResults(dir); &s != &study) {
-      Fail((dir / "meta.json").string(), "holds a " + s.name + " study, the first folder a " + study.name + " study");
+      Fail(meta_file.string(), "holds a " + s.name + " study, the first folder a " + study.name + " study");
     }
     for (const std::string& name : tables) {
       if (!fs::exists(dir / name)) Fail(dir.string(), "is missing " + name + " (an unfinished job?)");
     }
-    // Every folder's table must have the first folder's columns.
+    nlohmann::json m;
+    try {
+      m = nlohmann::json::parse(ReadWholeFile(meta_file));
+    } catch (const nlohmann::json::exception& e) {
+      Fail(meta_file.string(), std::string("not valid JSON: ") + e.what());
+    }
+    if (meta.is_null()) meta = m;
+    // The same experiment, config (after --set and --profile) and commits as the first folder.
+    if (m.value("experiment", "") != meta.value("experiment", "")) {
+      Fail(meta_file.string(), "belongs to experiment '" + m.value("experiment", "") + "', the first folder to '" +
+                                   meta.value("experiment", "") + "'");
+    }
+    if (Field(m, "resolved_config") != Field(meta, "resolved_config")) {
+      Fail(meta_file.string(), "was run with another config (resolved_config differs from " +
+                                   (job_dirs.front() / "meta.json").string() + ")");
+    }
+    for (const char* key : {"git_commit", "build_commit"}) {
+      if (Field(m, key) != Field(meta, key)) {
+        Fail(meta_file.string(), std::string(key) + " is " + Field(m, key) + ", the first folder's " + Field(meta, key) +
+                                     ": the jobs come from different commits");
+      }
+    }
+    // Its jobs, none already merged.
+    if (!m.contains("jobs") || !m["jobs"].is_array()) Fail(meta_file.string(), "has no list of jobs");
+    for (const auto& j : m["jobs"]) {
+      if (!j.is_number_integer()) Fail(meta_file.string(), "jobs holds " + j.dump() + ", not a job index");
+      const int job = j.get<int>();
+      if (!seen.insert(job).second) {
+        Fail(meta_file.string(), "holds job " + std::to_string(job) + ", which an earlier folder holds too");
+      }
+      jobs.push_back(job);
+    }
+    // Each table complete: every row of the header's shape, as many rows as meta.json counted,
+    // and of the first folder's columns.
+    const nlohmann::json counted = m.value("table_rows", nlohmann::json::object());
     for (std::size_t t = 0; t < tables.size(); ++t) {
-      const std::string text = ReadWholeFile(dir / tables[t]);
+      const fs::path file = dir / tables[t];
+      const std::string text = ReadWholeFile(file);
+      const long n = CheckTableRows(file, text);
+      if (counted.contains(tables[t]) && counted[tables[t]] != n) {
+        Fail(file.string(), std::to_string(n) + " rows, its meta.json counted " + counted[tables[t]].dump() +
+                                " (an unfinished or altered job?)");
+      }
       const auto eol = text.find('\n');
       const std::string h = text.substr(0, eol + 1);
       if (headers[t].empty()) {
         headers[t] = h;
       } else if (h != headers[t]) {
-        Fail((dir / tables[t]).string(), "its columns differ from the first folder's");
+        Fail(file.string(), "its columns differ from the first folder's");
       }
       bodies[t] += text.substr(eol + 1);
+      rows[t] += n;
     }
-    nlohmann::json m;
-    try {
-      m = nlohmann::json::parse(ReadWholeFile(dir / "meta.json"));
-    } catch (const nlohmann::json::exception& e) {
-      Fail((dir / "meta.json").string(), std::string("not valid JSON: ") + e.what());
-    }
-    if (meta.is_null()) meta = m;
-    if (m.value("experiment", "") != meta.value("experiment", "")) {
-      Fail((dir / "meta.json").string(), "belongs to another experiment");
-    }
-    for (int j : m["jobs"]) jobs.push_back(j);
     wall += m.value("wall_seconds", 0.0);
+  }
+  // Every sweep point present, unless the merge is partial (runs recorded before meta.json
+  // counted the sweep's jobs are not checked).
+  if (!options.partial && meta.contains("sweep_jobs") && meta["sweep_jobs"].is_number_integer()) {
+    const int total = meta["sweep_jobs"].get<int>();
+    std::string missing;
+    int count = 0;
+    for (int j = 0; j < total; ++j) {
+      if (seen.count(j) == 0) {
+        if (++count <= 10) missing += (missing.empty() ? "" : ", ") + std::to_string(j);
+      }
+    }
+    if (count > 0) {
+      Fail(out_dir.string(), "the sweep has " + std::to_string(total) + " jobs and " + std::to_string(count) +
+                                 " of them are in none of the folders (" + missing + (count > 10 ? ", ..." : "") +
+                                 "); nothing merged (give --partial to merge some of a sweep)");
+    }
   }
   meta["jobs"] = jobs;
   meta["wall_seconds"] = wall;
+  meta["partial"] = options.partial;
   meta["merged_from"] = nlohmann::json::array();
   for (const fs::path& d : job_dirs) meta["merged_from"].push_back(d.string());
   std::vector<std::string> merged(tables.size());

@@ -39,18 +39,30 @@ ReducedState ParseReducedCoordinates(const std::string& text, BodyAssets& body, 
       token.clear();
     }
   }
+  // Each value a finite number first, so that "hello" is named as what it is, not counted.
   const int r = body.reduced_model()->r();
+  ReducedState state(r);
+  for (std::size_t j = 0; j < tokens.size(); ++j) {
+    const std::optional<double> v = ParseDouble(tokens[j]);
+    if (!v) {
+      Fail(source, "value " + std::to_string(j + 1) + " '" + QuoteToken(tokens[j]) + "' is not a finite number");
+    }
+    if (int(j) < r) state.q[int(j)] = *v;
+  }
   if (int(tokens.size()) != r) {
     Fail(source, std::to_string(tokens.size()) + " values given; the body has r = " + std::to_string(r) +
                      " reduced coordinates");
   }
-  ReducedState state(r);
-  for (int j = 0; j < r; ++j) {
-    const std::optional<double> v = ParseDouble(tokens[j]);
-    if (!v || !std::isfinite(*v)) {
-      Fail(source, "value " + std::to_string(j + 1) + " '" + tokens[j] + "' is not a finite number");
+  // Finite coordinates may still deform the body beyond what doubles hold (q = 1e308): every
+  // node's displacement U_v q, its squared length and its displaced position must be finite.
+  const auto model = body.reduced_model();
+  const Eigen::VectorXd u = model->basis * state.q;
+  for (int v = 0; v < model->mesh.num_vertices(); ++v) {
+    const Eigen::Vector3d u_v = u.segment<3>(3 * v);
+    if (!u_v.allFinite() || !std::isfinite(u_v.squaredNorm()) || !(model->mesh.vertices[v] + u_v).allFinite()) {
+      Fail(source, "these coordinates deform the body beyond finite numbers (node " + std::to_string(v) +
+                       " moves by " + std::to_string(u_v.norm()) + " m); give smaller values");
     }
-    state.q[j] = *v;
   }
   return state;
 }

@@ -269,8 +269,22 @@ void RunModel(const JobSetup& setup, const std::string& name, CycleStorage& stor
     q.node_budget = scene.node_budget;
     if (dynamics.A) q.deformation_A = dynamics.A->Prepare();
     if (dynamics.B) q.deformation_B = dynamics.B->Prepare();
+    // A deformation that left finite numbers (a diverged step) is not queried: no force, a
+    // counted contact fault, and the body restarts from rest (as in the haptic cycle).
+    bool finite = true;
+    for (BodyDynamics* d : {dynamics.A.get(), dynamics.B.get()}) {
+      if (d != nullptr && !d->finite()) {
+        d->Reset();
+        finite = false;
+      }
+    }
     const auto t0 = std::chrono::steady_clock::now();
-    const ContactResult r = model->Evaluate(q);
+    ContactResult r;
+    if (finite) {
+      r = model->Evaluate(q);
+    } else {
+      r.stats.faults = 1;
+    }
     const double us = MicrosecondsSince(t0);
     CycleRow row;
     row.job = setup.job.index;

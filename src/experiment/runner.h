@@ -126,9 +126,18 @@ JobsRun RunJobs(const ExperimentConfig& config, const std::vector<Job>& all, con
 std::vector<SummaryRow> RunExperiment(const ExperimentConfig& config, const RunOptions& options,
                                       const std::vector<int>& jobs = {});
 
-// Joins the results of single-job runs (folders holding cycles.csv, summary.csv, meta.json)
-// into OUT_DIR, recomputing convergence.csv. Throws Error naming a folder that is missing a
-// file or whose columns differ.
-void MergeResults(const std::vector<std::filesystem::path>& job_dirs, const std::filesystem::path& out_dir);
+// How a merge treats an incomplete sweep.
+struct MergeOptions {
+  bool partial = false;  // merge some of a sweep's jobs (without it, every job must be present)
+};
+
+// Joins the results of single-job runs (folders holding the study's tables and meta.json) into
+// OUT_DIR, recomputing the derived files (convergence.csv). Checks every folder first and
+// writes nothing when one fails: a missing or cut-short table (a row of another shape than its
+// header, fewer rows than its meta.json counted), another study, experiment, config or commit
+// than the first folder's, a job already merged, or (unless OPTIONS.partial) a job of the sweep
+// in no folder. Throws Error naming the folder or file and the problem.
+void MergeResults(const std::vector<std::filesystem::path>& job_dirs, const std::filesystem::path& out_dir,
+                  const MergeOptions& options = {});
 
 }  // namespace contactlab

@@ -251,7 +251,10 @@ const ParamTable<DeformableSpec>& DeformableParams() {
           P::Custom(
                "anchor", "none or block", "none, {below: [axis, value]}, {box: [x0, y0, z0, x1, y1, z1]}, {outside: [...]}",
                "vertices held fixed (body frame, metres, after scale and centring)",
-               [](const ConfigNode& v, DeformableSpec* d) { d->anchor = ParseAnchor(v); },
+               [](const ConfigNode& v, DeformableSpec* d) {
+                 d->anchor = ParseAnchor(v);
+                 d->anchor.source = v.Location();  // errors found when the model is built name it
+               },
                [](const DeformableSpec& d, Hasher* h) { HashAnchor(d.anchor, h); },
                [](const DeformableSpec& d) { return d.anchor.anchored() ? d.anchor.Describe() : std::string("none"); })
               .Shapes(kShapesReducedModel)

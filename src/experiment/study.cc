@@ -5,8 +5,11 @@
 #include <yaml-cpp/yaml.h>
 
 #include <nlohmann/json.hpp>
+#include <cctype>
 #include <stdexcept>
+#include <string_view>
 
+#include "experiment/result_csv.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
 
@@ -19,6 +22,45 @@ namespace {
 std::vector<Study>& Registry() {
   static std::vector<Study> studies;
   return studies;
+}
+
+// Throws Error naming FILE, the line and the column when a cell of the CSV TEXT spells a
+// non-finite number (as printf writes them: nan, -nan, inf, -inf, in any case).
+void RequireFiniteCells(const std::filesystem::path& file, const std::string& text) {
+  auto non_finite = [](std::string_view cell) {
+    if (!cell.empty() && (cell.front() == '-' || cell.front() == '+')) cell.remove_prefix(1);
+    std::string lower(cell.substr(0, 9));
+    for (char& c : lower) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return lower == "nan" || lower == "inf" || lower == "infinity" || lower.rfind("nan(", 0) == 0;
+  };
+  const std::size_t header_end = text.find('\n');
+  if (header_end == std::string::npos) return;
+  const std::vector<std::string> header = SplitCsvLine(text.substr(0, header_end));
+  long line = 1;
+  for (std::size_t at = header_end + 1; at < text.size();) {
+    std::size_t eol = text.find('\n', at);
+    if (eol == std::string::npos) eol = text.size();
+    ++line;
+    std::size_t column = 0;
+    for (std::size_t start = at; start <= eol; ++column) {
+      std::size_t end = text.find(',', start);
+      if (end == std::string::npos || end > eol) end = eol;
+      const std::string_view cell(text.data() + start, end - start);
+      // A cell of numbers separated by spaces (q, q_B) is checked number by number.
+      for (std::size_t s = 0; s <= cell.size();) {
+        std::size_t e = cell.find(' ', s);
+        if (e == std::string_view::npos) e = cell.size();
+        if (non_finite(cell.substr(s, e - s))) {
+          FailAtLine(file.string(), line,
+                     "column " + (column < header.size() ? header[column] : std::to_string(column + 1)) + " is " +
+                         std::string(cell.substr(s, e - s)) + ", not a finite number; nothing written");
+        }
+        s = e + 1;
+      }
+      start = end + 1;
+    }
+    at = eol + 1;
+  }
 }
 
 }  // namespace
@@ -96,10 +138,24 @@ void WriteStudyResults(const Study& study, const std::filesystem::path& out_dir,
     throw std::logic_error("study " + study.name + ": " + std::to_string(tables.size()) + " tables given, " +
                            std::to_string(study.tables.size()) + " declared");
   }
+  // No table holds a non-finite number: a reader would take "nan" or "inf" as text or fail.
+  for (std::size_t t = 0; t < tables.size(); ++t) RequireFiniteCells(out_dir / study.tables[t], tables[t]);
+  // meta.json counts each table's rows, so that a merge can tell a complete table from one cut
+  // short at a line break.
+  nlohmann::json counted = meta;
+  for (std::size_t t = 0; t < tables.size(); ++t) {
+    long rows = 0;  // non-empty lines after the header
+    for (std::size_t at = tables[t].find('\n'); at != std::string::npos && at + 1 < tables[t].size();) {
+      const std::size_t eol = tables[t].find('\n', at + 1);
+      if (eol != at + 1) ++rows;
+      at = eol;
+    }
+    counted["table_rows"][study.tables[t]] = rows;
+  }
   std::filesystem::create_directories(out_dir);
   for (std::size_t t = 0; t < tables.size(); ++t) WriteFileAtomically(out_dir / study.tables[t], tables[t]);
   for (const Study::Derived& d : study.derived) WriteFileAtomically(out_dir / d.file, d.compute(tables));
-  WriteFileAtomically(out_dir / "meta.json", meta.dump(2) + "\n");
+  WriteFileAtomically(out_dir / "meta.json", counted.dump(2) + "\n");
 }
 
 }  // namespace contactlab

@@ -16,6 +16,7 @@
 #include "util/atomic_file.h"
 #include "util/error.h"
 #include "util/gzip_file.h"
+#include "util/number_text.h"
 
 namespace contactlab {
 namespace {
@@ -24,13 +25,6 @@ std::string LowerExtension(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   return ext;
-}
-
-// Appends the shortest text that reads back as exactly V.
-void AppendNumber(double v, std::string* out) {
-  char buffer[32];
-  const auto [ptr, ec] = std::to_chars(buffer, buffer + sizeof(buffer), v);
-  out->append(buffer, ptr);
 }
 
 void AppendInt(long long v, std::string* out) {
@@ -54,6 +48,14 @@ void CheckSavable(const TriangleMesh& mesh, const std::filesystem::path& path) {
     const Eigen::Vector3i& f = mesh.triangles[t];
     if ((f.array() < 0).any() || (f.array() >= n).any()) {
       Fail(path.string(), "cannot save: triangle " + std::to_string(t) + " has a vertex index out of range");
+    }
+  }
+  // No program reads "inf" or "nan" back as a coordinate.
+  for (int v = 0; v < n; ++v) {
+    if (!mesh.vertices[v].allFinite()) {
+      Fail(path.string(), "cannot save: vertex " + std::to_string(v) + " has a non-finite coordinate (" +
+                              std::to_string(mesh.vertices[v].x()) + ", " + std::to_string(mesh.vertices[v].y()) +
+                              ", " + std::to_string(mesh.vertices[v].z()) + "); nothing written");
     }
   }
 }

@@ -78,7 +78,8 @@ struct CycleRecord {
   double device_torque[3] = {0, 0, 0};    // torque written, N m
   std::int64_t coherence_resets = 0;      // such resets so far this session
   // The contact model refused this cycle's query and gave no force (ContactStats::faults: a
-  // deformation whose size does not fit its body), and such cycles so far this session.
+  // deformation whose size does not fit its body), or a deformation was not finite (a diverged
+  // step: not queried, no force, the body restarted from rest); such cycles so far this session.
   bool contact_fault = false;
   std::int64_t contact_faults = 0;
   DeviceInputStats device_input;          // the device's input counters after this cycle

@@ -9,6 +9,7 @@
 
 #include "util/atomic_file.h"
 #include "util/error.h"
+#include "util/number_text.h"
 
 namespace contactlab {
 
@@ -20,18 +21,22 @@ void ExportPointshell(const Pointshell& s, int level, const std::filesystem::pat
     Fail(path.string(), "level " + std::to_string(level) + " is outside [0, " + std::to_string(s.num_levels()) + ")");
   }
   const std::int32_t n = s.level_point_end[level];
-  char buf[256];
   if (ext == ".ply") {
     WriteFileAtomically(path, [&](std::ostream& out) {
       out << "ply\nformat ascii 1.0\ncomment contactlab pointshell level " << level << " (method " << s.method
           << ", inward normals)\nelement vertex " << n
           << "\nproperty float x\nproperty float y\nproperty float z\nproperty float nx\nproperty float ny\n"
              "property float nz\nend_header\n";
+      std::string text;
       for (std::int32_t i = 0; i < n; ++i) {
-        std::snprintf(buf, sizeof buf, "%.9g %.9g %.9g %.9g %.9g %.9g\n", s.x[i], s.y[i], s.z[i], s.nx[i], s.ny[i],
-                      s.nz[i]);
-        out << buf;
+        const std::string what = "point " + std::to_string(i);
+        const float values[6] = {s.x[i], s.y[i], s.z[i], s.nx[i], s.ny[i], s.nz[i]};
+        for (int c = 0; c < 6; ++c) {
+          AppendNumber(values[c], &text, what);
+          text += c < 5 ? ' ' : '\n';
+        }
       }
+      out << text;
     });
     return;
   }
@@ -49,12 +54,18 @@ void ExportPointshell(const Pointshell& s, int level, const std::filesystem::pat
     }
   }
   WriteFileAtomically(path, [&](std::ostream& out) {
-    out << "x,y,z,nx,ny,nz,level,parent,radius\n";
+    std::string text = "x,y,z,nx,ny,nz,level,parent,radius\n";
     for (std::int32_t i = 0; i < n; ++i) {
-      std::snprintf(buf, sizeof buf, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%d,%.9g\n", s.x[i], s.y[i], s.z[i], s.nx[i],
-                    s.ny[i], s.nz[i], intro[i], parent[i], radius[i]);
-      out << buf;
+      const std::string what = "point " + std::to_string(i);
+      for (const float v : {s.x[i], s.y[i], s.z[i], s.nx[i], s.ny[i], s.nz[i]}) {
+        AppendNumber(v, &text, what);
+        text += ',';
+      }
+      text += std::to_string(intro[i]) + ',' + std::to_string(parent[i]) + ',';
+      AppendNumber(radius[i], &text, what + " radius");
+      text += '\n';
     }
+    out << text;
   });
 }
 

@@ -12,6 +12,7 @@
 
 #include "util/atomic_file.h"
 #include "util/error.h"
+#include "util/number_text.h"
 
 namespace contactlab {
 namespace {
@@ -94,13 +95,17 @@ void WritePointDistancesCsv(const std::filesystem::path& path, const std::vector
                             const std::vector<double>& distances) {
   if (points.size() != distances.size()) Fail(path.string(), "points and distances differ in number");
   WriteFileAtomically(path, [&](std::ostream& out) {
-    out << "x,y,z,d\n";
-    char buf[128];
+    std::string text = "x,y,z,d\n";
     for (std::size_t n = 0; n < points.size(); ++n) {
-      std::snprintf(buf, sizeof(buf), "%.17g,%.17g,%.17g,%.9g\n", points[n].x(), points[n].y(), points[n].z(),
-                    distances[n]);
-      out << buf;
+      const std::string row = "row " + std::to_string(n + 2);
+      for (int c = 0; c < 3; ++c) {
+        AppendNumber(points[n][c], &text, row + " point");
+        text += ',';
+      }
+      AppendNumber(distances[n], &text, row + " distance d");
+      text += '\n';
     }
+    out << text;
   });
 }
 

@@ -13,7 +13,9 @@ namespace contactlab {
 // for a row without exactly three finite numbers, and for a missing or unreadable file.
 std::vector<Eigen::Vector3d> ReadPointsCsv(const std::filesystem::path& path);
 
-// Writes "x,y,z,d" with a header line, full precision, atomically (util/atomic_file.h).
+// Writes "x,y,z,d" with a header line, each number as the shortest text that reads back exactly
+// (util/number_text.h), atomically (util/atomic_file.h). Throws Error naming PATH, writing
+// nothing, for a non-finite point or distance.
 // POINTS and DISTANCES have the same length.
 void WritePointDistancesCsv(const std::filesystem::path& path, const std::vector<Eigen::Vector3d>& points,
                             const std::vector<double>& distances);

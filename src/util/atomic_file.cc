@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "util/error.h"
+#include "util/number_text.h"
 #include "util/output_target.h"
 #include "util/temporary_files.h"
 
@@ -55,7 +56,11 @@ void WriteFileAtomically(const fs::path& path, const std::function<void(std::ost
   {
     std::ofstream out(output.temporary(), binary ? std::ios::binary | std::ios::trunc : std::ios::trunc);
     if (!out) Fail(path.string(), "cannot open a temporary file for writing");
-    write(out);
+    try {
+      write(out);
+    } catch (const NonFiniteValue& e) {
+      Fail(path.string(), e.what());  // the temporary is removed with OUTPUT
+    }
     out.flush();
     if (!out) Fail(path.string(), "write failed (disk full or I/O error)");
   }

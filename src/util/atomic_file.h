@@ -34,7 +34,8 @@ class TemporaryOutput {
 
 // Calls WRITE with a stream onto a TemporaryOutput for PATH, flushes, checks the stream, and
 // renames the temporary file onto PATH. On any failure (including an exception thrown by WRITE)
-// the temporary file is removed and Error is thrown naming PATH. BINARY opens in binary mode.
+// the temporary file is removed and Error is thrown naming PATH (a NonFiniteValue thrown by WRITE,
+// util/number_text.h, becomes "PATH: what"). BINARY opens in binary mode.
 void WriteFileAtomically(const std::filesystem::path& path,
                          const std::function<void(std::ostream&)>& write, bool binary = false);
 

@@ -387,6 +387,112 @@ TEST(Cli, SlurmScriptsRunByHandMergeToTheLocalRunsSummary) {
   EXPECT_EQ(WithoutTimings(ReadWholeFile(out / "summary.csv")), WithoutTimings(summary_local));
   EXPECT_EQ(WithoutTimings(ReadWholeFile(out / "cycles.csv")), WithoutTimings(ReadWholeFile(dir / "local" / "cycles.csv")));
   EXPECT_GT(std::count(summary_local.begin(), summary_local.end(), '\n'), 3);
+  // A task killed while writing (its cycles.csv cut mid-row): the merge fails naming its folder.
+  const std::string cut = ReadWholeFile(out / "job-2" / "cycles.csv");
+  std::filesystem::remove(out / "summary.csv");
+  std::ofstream(out / "job-2" / "cycles.csv", std::ios::binary | std::ios::trunc) << cut.substr(0, cut.size() / 2);
+  EXPECT_NE(std::system(merge.c_str()), 0);
+  const std::string said_cut = ReadWholeFile(dir / "merge.txt");
+  EXPECT_NE(said_cut.find((out / "job-2" / "cycles.csv").string()), std::string::npos) << said_cut;
+  EXPECT_FALSE(std::filesystem::exists(out / "summary.csv"));
+}
+
+// Two single-job runs of a two-point sweep, for the merge checks.
+struct TwoJobRuns {
+  testing::TempDir dir;
+  TwoJobRuns() {
+    std::ofstream(dir / "scene.yaml") << kScene;
+    std::ofstream(dir / "exp.yaml") << "name: e\nscene: scene.yaml\n" << testing::PressTrajectoryYaml(0.02)
+                                    << "\nsweep: {points: [64, 128]}\n";
+    for (int job : {0, 1}) {
+      const Outcome o = RunCli("run " + (dir / "exp.yaml").string() + " --job " + std::to_string(job) + " --out " +
+                               (dir / ("f" + std::to_string(job))).string() + " --cache " + (dir / "cache").string());
+      EXPECT_EQ(o.exit_code, 0) << o.output;
+    }
+  }
+  std::string Merge(const std::string& folders, const std::string& out, const std::string& more = "") const {
+    std::string args = "merge";
+    std::istringstream names(folders);
+    for (std::string f; names >> f;) args += " " + (dir / f).string();
+    return args + " --out " + (dir / out).string() + more;
+  }
+  void CopyFolder(const std::string& from, const std::string& to) const {
+    std::filesystem::copy(dir / from, dir / to, std::filesystem::copy_options::recursive);
+  }
+};
+
+// A job's cycles.csv cut short (mid-row, as by `head -c 3000`, or at a line break): the merge
+// fails naming the file and writes nothing, where it used to write a file the viewer rejects.
+TEST(CliMerge, ACutShortTableIsRefusedNamingItsFile) {
+  TwoJobRuns runs;
+  const std::filesystem::path& dir = runs.dir.path();
+  runs.CopyFolder("f1", "f1t");
+  const std::string cycles = ReadWholeFile(dir / "f1" / "cycles.csv");
+  ASSERT_GT(cycles.size(), 3000u);
+  std::ofstream(dir / "f1t" / "cycles.csv", std::ios::binary | std::ios::trunc) << cycles.substr(0, 3000);
+  Outcome o = RunCli(runs.Merge("f0 f1t", "mt"));
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find((dir / "f1t" / "cycles.csv").string()), std::string::npos) << o.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "mt"));
+  // Cut at a line break: every row well formed, but fewer than meta.json counted.
+  const std::size_t last_row = cycles.rfind('\n', cycles.size() - 2);
+  std::ofstream(dir / "f1t" / "cycles.csv", std::ios::binary | std::ios::trunc) << cycles.substr(0, last_row + 1);
+  o = RunCli(runs.Merge("f0 f1t", "mt"));
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find((dir / "f1t" / "cycles.csv").string() + ": "), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("meta.json counted"), std::string::npos) << o.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "mt"));
+  // The intact folders merge, and the viewer replays the merged job.
+  o = RunCli(runs.Merge("f0 f1", "m"));
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  o = RunCli("view " + (dir / "m").string() + " --job 1 --out " + (dir / "x.html").string());
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_TRUE(std::filesystem::exists(dir / "x.html"));
+}
+
+// A negative --job is named as such, not taken for "no --job" (which asks to choose one).
+TEST(CliMerge, ANegativeJobIsNotAJobIndex) {
+  TwoJobRuns runs;
+  const std::filesystem::path& dir = runs.dir.path();
+  ASSERT_EQ(RunCli(runs.Merge("f0 f1", "m")).exit_code, 0);
+  Outcome o = RunCli("view " + (dir / "m").string() + " --job -1 --out " + (dir / "x.html").string());
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find("--job: -1 is not a job index (jobs count from 0)"), std::string::npos) << o.output;
+  EXPECT_EQ(o.output.find("choose one with --job"), std::string::npos) << o.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.html"));
+  o = RunCli("view " + (dir / "m").string() + " --out " + (dir / "x.html").string());
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find("choose one with --job"), std::string::npos) << o.output;
+}
+
+// The same job twice, a job of the sweep missing, and a job of another config are refused
+// (naming the folder); --partial merges some of a sweep.
+TEST(CliMerge, DuplicateMissingAndForeignJobsAreRefused) {
+  TwoJobRuns runs;
+  const std::filesystem::path& dir = runs.dir.path();
+  Outcome o = RunCli(runs.Merge("f0 f0", "m00"));
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find("holds job 0, which an earlier folder holds too"), std::string::npos) << o.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "m00"));
+
+  o = RunCli(runs.Merge("f1", "m1"));
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find("the sweep has 2 jobs and 1 of them are in none of the folders (0)"), std::string::npos)
+      << o.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "m1"));
+  o = RunCli(runs.Merge("f1", "m1", " --partial"));
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(ReadWholeFile(dir / "m1" / "meta.json").find("\"partial\": true"), std::string::npos);
+
+  // Job 1 of the sweep under another config value.
+  const Outcome other = RunCli("run " + (dir / "exp.yaml").string() + " --job 1 --set trajectory.depth=0.001 --out " +
+                               (dir / "g1").string() + " --cache " + (dir / "cache").string());
+  ASSERT_EQ(other.exit_code, 0) << other.output;
+  o = RunCli(runs.Merge("f0 g1", "mg"));
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find((dir / "g1" / "meta.json").string() + ": was run with another config"), std::string::npos)
+      << o.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "mg"));
 }
 
 }  // namespace
@@ -507,6 +613,76 @@ TEST(CliDeformable, ContactAtQAndBodyExportAreConsistentAndBadQIsRefused) {
   ASSERT_EQ(session.exit_code, 0) << session.output;
   EXPECT_NE(session.output.find("beam deformable, r = 4"), std::string::npos) << session.output;
   EXPECT_NE(ReadWholeFile(dir / "session.csv").find(",step_us,q_norm,q_norm_body\n"), std::string::npos);
+}
+
+// Finite coordinates whose deformation overflows (q = 1e308: positions inf) are an input error
+// naming the option, in every command that takes them; nothing is written.
+TEST(CliDeformable, CoordinatesWhoseDeformationOverflowsAreRefusedNamingTheOption) {
+  testing::TempDir dir;
+  std::ofstream(dir / "beam.yaml") << kBeamScene;
+  std::ofstream(dir / "p.csv") << "x,y,z\n0,0,0\n0.05,0,0\n";
+  const std::string scene = (dir / "beam.yaml").string() + " --cache " + (dir / "cache").string();
+  const std::string huge = "1e308,1e308,1e308,1e308";
+  const std::string said = "(body 'beam'): these coordinates deform the body beyond finite numbers";
+  Outcome o = RunCli("body-export " + scene + " --body beam --q " + huge + " --mesh " + (dir / "o.obj").string());
+  EXPECT_EQ(o.exit_code, 1);
+  EXPECT_NE(o.output.find("--q " + said), std::string::npos) << o.output;
+  o = RunCli("body-export " + scene + " --body beam --q " + huge + " --pointshell " + (dir / "o.csv").string());
+  EXPECT_EQ(o.exit_code, 1);
+  EXPECT_NE(o.output.find("--q " + said), std::string::npos) << o.output;
+  o = RunCli("body-eval " + scene + " --body beam --q " + huge + " --points " + (dir / "p.csv").string() + " --out " +
+             (dir / "d.csv").string());
+  EXPECT_EQ(o.exit_code, 1);
+  EXPECT_NE(o.output.find("--q " + said), std::string::npos) << o.output;
+  o = RunCli("contact " + scene + " --q-a " + huge);
+  EXPECT_EQ(o.exit_code, 1);
+  EXPECT_NE(o.output.find("--q-a " + said), std::string::npos) << o.output;
+  EXPECT_EQ(o.output.find("force on"), std::string::npos) << o.output;
+  for (const char* f : {"o.obj", "o.csv", "d.csv"}) EXPECT_FALSE(std::filesystem::exists(dir / f)) << f;
+  // A quaternion too large for its norm still names a rotation (normalised without overflow).
+  o = RunCli("contact " + scene + " --pose-a 0,0,0,1e308,1e308,0,0 --json");
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+}
+
+// Messages that say what is wrong: a word among the coordinates is not a number (not a count),
+// a negative --level is out of range (not "all levels"), and an anchor that holds no vertex is
+// named by the file and line that give it.
+TEST(CliDeformable, BadCoordinatesLevelsAndAnchorsAreNamedForWhatTheyAre) {
+  testing::TempDir dir;
+  std::ofstream(dir / "beam.yaml") << kBeamScene;
+  const std::string scene = (dir / "beam.yaml").string() + " --cache " + (dir / "cache").string();
+  Outcome o = RunCli("body-export " + scene + " --body beam --q hello --mesh " + (dir / "o.obj").string());
+  EXPECT_EQ(o.exit_code, 1);
+  EXPECT_NE(o.output.find("--q (body 'beam'): value 1 'hello' is not a finite number"), std::string::npos) << o.output;
+  o = RunCli("contact " + scene + " --q-a 0,0,x");
+  EXPECT_EQ(o.exit_code, 1);
+  EXPECT_NE(o.output.find("--q-a (body 'beam'): value 3 'x' is not a finite number"), std::string::npos) << o.output;
+  o = RunCli("body-export " + scene + " --body beam --level -1 --pointshell " + (dir / "o.csv").string());
+  EXPECT_EQ(o.exit_code, 1);
+  EXPECT_NE(o.output.find("--level: -1 is out of range: the pointshell has levels 0..2"), std::string::npos) << o.output;
+  o = RunCli("body-export " + scene + " --body beam --level 3 --pointshell " + (dir / "o.csv").string());
+  EXPECT_EQ(o.exit_code, 1);
+  EXPECT_NE(o.output.find("--level: 3 is out of range"), std::string::npos) << o.output;
+  for (const char* f : {"o.obj", "o.csv"}) EXPECT_FALSE(std::filesystem::exists(dir / f)) << f;
+  // Without --level: every level (0..2), and with --level 1 levels 0..1 only.
+  ASSERT_EQ(RunCli("body-export " + scene + " --body beam --pointshell " + (dir / "all.csv").string()).exit_code, 0);
+  ASSERT_EQ(RunCli("body-export " + scene + " --body beam --level 1 --pointshell " + (dir / "l1.csv").string()).exit_code, 0);
+  const auto all = ReadNumbers(dir / "all.csv", ',', true), l1 = ReadNumbers(dir / "l1.csv", ',', true);
+  EXPECT_EQ(all.back()[6], 2.0);
+  EXPECT_EQ(l1.back()[6], 1.0);
+  EXPECT_LT(l1.size(), all.size());
+
+  // An anchor plane below the whole beam: the error names the scene file, its line and key.
+  std::string far = kBeamScene;
+  far.replace(far.find("[x, -0.09]"), 10, "[x, -5.0]");
+  std::ofstream(dir / "far.yaml") << far;
+  o = RunCli("body-export " + (dir / "far.yaml").string() + " --cache " + (dir / "cache").string() +
+             " --body beam --q 0,0,0,0 --mesh " + (dir / "o.obj").string());
+  EXPECT_EQ(o.exit_code, 1);
+  EXPECT_NE(o.output.find((dir / "far.yaml").string() + ":8: bodies[0].deformable.anchor ("), std::string::npos)
+      << o.output;
+  EXPECT_NE(o.output.find("body 'beam'"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("no vertex of the simulation mesh is anchored"), std::string::npos) << o.output;
 }
 
 TEST(CliDeformable, BodyEvalGivesTheRigidFieldAndTheDeformedFieldOnTheDeformedSurface) {

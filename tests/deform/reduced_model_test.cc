@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <fstream>
+#include <sstream>
 
 #include "deform/mode_export.h"
 #include "beam_fixture.h"
@@ -121,6 +123,33 @@ TEST(ReducedModel, VtkExportHasOneVectorFieldPerMode) {
   EXPECT_EQ(text.rfind("# vtk DataFile Version 3.0", 0), 0u);
   for (int j = 0; j < 3; ++j) EXPECT_NE(text.find("VECTORS mode_" + std::to_string(j)), std::string::npos);
   EXPECT_NE(text.find("CELLS " + std::to_string(model.mesh.num_tets())), std::string::npos);
+}
+
+// reduce-export's basis and vertices read back bit for bit (they were printed with 9 digits).
+TEST(ReducedModel, VtkExportReadsBackBitForBit) {
+  testing::TempDir dir;
+  const ReducedModel model = BuildReducedModel(MakeBeam(TetSplit::kSix, 4), BeamOptions(3, ReducedModelKind::kLinear), "beam");
+  const double scale = 1.0 / 3;
+  ExportModesVtk(model, dir / "modes.vtk", scale);
+  std::istringstream in(ReadWholeFile(dir / "modes.vtk"));
+  std::string line;
+  while (std::getline(in, line) && line.rfind("POINTS ", 0) != 0) {}
+  for (const Eigen::Vector3d& p : model.mesh.vertices) {
+    std::string x, y, z;
+    in >> x >> y >> z;
+    EXPECT_EQ(Eigen::Vector3d(std::strtod(x.c_str(), nullptr), std::strtod(y.c_str(), nullptr), std::strtod(z.c_str(), nullptr)), p);
+  }
+  int checked = 0;
+  for (int j = 0; j < model.r(); ++j) {
+    while (std::getline(in, line) && line != "VECTORS mode_" + std::to_string(j) + " double") {}
+    for (int row = 0; row < model.basis.rows(); ++row) {
+      std::string cell;
+      in >> cell;
+      EXPECT_EQ(std::strtod(cell.c_str(), nullptr), scale * model.basis(row, j)) << "mode " << j << " row " << row;
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, model.basis.size());
 }
 
 }  // namespace

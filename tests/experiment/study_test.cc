@@ -99,6 +99,29 @@ TEST(Study, ASectionOnlyAnotherStudyReadsIsRefusedNamingThatStudy) {
                {"unknown sweep axis"});
 }
 
+// A result table holding a non-finite number is refused, naming the file, the line and the
+// column, and no file of the run is written; a finite table writes its row counts to meta.json.
+TEST(Study, ResultsWithANonFiniteCellAreRefusedAndNothingWritten) {
+  TempDir dir;
+  const Study& study = *FindStudy("closed-loop");
+  ASSERT_EQ(study.tables, std::vector<std::string>{"stability.csv"});
+  for (const char* bad : {"nan", "-nan", "inf", "-inf", "NaN", "0.5 nan 1"}) {
+    const std::string table = std::string("experiment,job,q\ninfo,0,0.5 1\ninfo,0,") + bad + "\n";
+    try {
+      WriteStudyResults(study, dir / "out", {table}, nlohmann::json::object());
+      ADD_FAILURE() << "no error for " << bad;
+    } catch (const Error& e) {
+      const std::string msg = e.what();
+      EXPECT_EQ(msg.rfind((dir / "out" / "stability.csv").string() + ":3: column q is ", 0), 0u) << msg;
+    }
+    for (const std::string& f : study.Files()) EXPECT_FALSE(fs::exists(dir / "out" / f)) << f;
+  }
+  // Cells that only begin like one ("info", "nano") are text, not numbers.
+  WriteStudyResults(study, dir / "out", {"experiment,job,model\ninfo,0,nano\ninfo,1,x\n"}, nlohmann::json::object());
+  const nlohmann::json meta = nlohmann::json::parse(ReadWholeFile(dir / "out" / "meta.json"));
+  EXPECT_EQ(meta["table_rows"]["stability.csv"], 2);
+}
+
 TEST(Study, TheStudyOfAResultsFolderComesFromItsMetaJson) {
   TempDir dir;
   auto meta = [&](const std::string& text) {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <limits>
 
 #include "geometry/mesh_test_util.h"
 #include "geometry/mesh_validation.h"
@@ -239,6 +240,25 @@ TEST_P(ExactRoundTrip, SaveThenLoadGivesTheSameMesh) {
 }
 
 INSTANTIATE_TEST_SUITE_P(MeshIo, ExactRoundTrip, ::testing::Values("obj", "off", "ply"));
+
+// A vertex that is not finite (a deformation that overflowed) is refused in every format, naming
+// the file and the vertex, and nothing is written.
+TEST(MeshWriter, ANonFiniteVertexIsRefusedAndNothingWritten) {
+  TriangleMesh mesh = RoundTripSubject();
+  mesh.vertices[5].y() = std::numeric_limits<double>::infinity();
+  TempDir dir;
+  for (const char* ext : {"obj", "off", "ply", "stl"}) {
+    const auto path = dir / (std::string("bad.") + ext);
+    try {
+      SaveMesh(mesh, path);
+      ADD_FAILURE() << "no error for " << ext;
+    } catch (const Error& e) {
+      const std::string msg = e.what();
+      EXPECT_EQ(msg.rfind(path.string() + ": cannot save: vertex 5 has a non-finite coordinate", 0), 0u) << msg;
+    }
+  }
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
+}
 
 TEST(StlWriter, RoundTripKeepsEveryCornerToFloatPrecisionAndWelds) {
   const TriangleMesh mesh = RoundTripSubject();

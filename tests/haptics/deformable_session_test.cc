@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include "allocation_counter.h"
@@ -195,6 +196,53 @@ TEST(DeformableSession, ADeformationOfTheWrongSizeIsACountedFaultNotAForce) {
   good.Start(0);
   for (int i = 1; i <= cycles; ++i) good.Step(i * kMs);
   EXPECT_EQ(good.contact_faults(), 0);
+}
+
+// A deformation that left finite numbers (a diverged step, injected here mid-press) is not
+// queried: that cycle is a counted contact fault with zero force, allocates nothing, and the
+// body restarts from rest, so the following cycles render contact again.
+TEST(DeformableSession, ANonFiniteDeformationIsACountedFaultWithZeroForce) {
+  testing::TempDir dir;
+  const Scene scene = ParseScene(ConfigNode::LoadString(kBeam, "beam.yaml"));
+  AssetOptions options;
+  options.cache_dir = dir / "cache";
+  options.verbose = false;
+  SceneAssets assets(scene, options);
+  auto model = MakeSceneContactModel("pointshell", scene, assets);
+  SceneDynamics dynamics = MakeSceneDynamics(assets, 1e-3);
+  SimDevice device(SimDeviceParams{}, kPress);
+  HapticCycleConfig config;
+  config.X_WA = scene.pointshell_body.pose;
+  config.dynamics_A = dynamics.A.get();
+  HapticCycle cycle(device, model.get(), config);
+  cycle.Start(0);
+  int i = 1;
+  for (; i <= 900; ++i) cycle.Step(i * kMs);  // pressing
+  ReducedState diverged(dynamics.A->r());
+  diverged.q[1] = std::numeric_limits<double>::infinity();
+  diverged.qdot[0] = std::numeric_limits<double>::quiet_NaN();
+  dynamics.A->SetState(diverged);
+  const long before = testing::AllocationCount();
+  const CycleRecord fault = cycle.Step(i++ * kMs);
+  EXPECT_EQ(testing::AllocationCount() - before, 0);
+  EXPECT_TRUE(fault.contact_fault);
+  EXPECT_EQ(fault.contact_faults, 1);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(fault.contact_force[k], 0.0) << k;
+    EXPECT_TRUE(std::isfinite(fault.device_force[k])) << k;
+    EXPECT_TRUE(std::isfinite(fault.device_torque[k])) << k;
+  }
+  EXPECT_TRUE(dynamics.A->finite());
+  EXPECT_TRUE(std::isfinite(fault.q_norm));
+  // Back from rest: the press goes on and touches again, with no further fault.
+  double force = 0;
+  for (int k = 0; k < 50; ++k, ++i) {
+    const CycleRecord rec = cycle.Step(i * kMs);
+    EXPECT_FALSE(rec.contact_fault) << i;
+    force = std::max(force, std::abs(rec.contact_force[2]));
+  }
+  EXPECT_GT(force, 0.0);
+  EXPECT_EQ(cycle.contact_faults(), 1);
 }
 
 }  // namespace

@@ -2,7 +2,11 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <cmath>
+#include <cstdlib>
 #include <fstream>
+#include <limits>
+#include <sstream>
 
 #include "geometry/procedural_shapes.h"
 #include "sdf/build_distance_field.h"
@@ -143,6 +147,40 @@ TEST(PointsCsv, ReadsRowsWithOptionalHeaderAndWritesDistances) {
   EXPECT_EQ(points[1], Eigen::Vector3d(0.125, 1e-3, 4));
   WritePointDistancesCsv(dir / "out.csv", points, {0.5, -0.25});
   EXPECT_EQ(ReadWholeFile(dir / "out.csv"), "x,y,z,d\n1,2.5,-3,0.5\n0.125,0.001,4,-0.25\n");
+}
+
+// A distance that is not finite (a deformed field at overflowing coordinates) is refused, naming
+// the file and the row, and no file is written.
+TEST(PointsCsv, ANonFiniteDistanceIsRefusedAndNothingWritten) {
+  testing::TempDir dir;
+  const std::vector<Eigen::Vector3d> points = {{1, 2, 3}, {4, 5, 6}};
+  ExpectErrorMentioning(
+      [&] { WritePointDistancesCsv(dir / "d.csv", points, {0.5, std::numeric_limits<double>::infinity()}); },
+      {(dir / "d.csv").string(), "row 3 distance d is inf"});
+  EXPECT_FALSE(std::filesystem::exists(dir / "d.csv"));
+  ExpectErrorMentioning([&] { WritePointDistancesCsv(dir / "d.csv", {{std::nan(""), 0, 0}}, {0.5}); },
+                        {(dir / "d.csv").string(), "row 2 point is nan"});
+  EXPECT_FALSE(std::filesystem::exists(dir / "d.csv"));
+}
+
+// x, y, z and d read back bit for bit (values decimal cannot hold).
+TEST(PointsCsv, WrittenDistancesReadBackBitForBit) {
+  testing::TempDir dir;
+  const std::vector<Eigen::Vector3d> points = {{1.0 / 3, -2.0 / 7, 1e-17 / 3}, {0.1, 0.7, 123456.789012345678}};
+  const std::vector<double> d = {std::sqrt(2.0) / 1e5, -1.0 / 3};
+  WritePointDistancesCsv(dir / "d.csv", points, d);
+  std::istringstream in(ReadWholeFile(dir / "d.csv"));
+  std::string line;
+  std::getline(in, line);
+  for (std::size_t n = 0; n < points.size(); ++n) {
+    ASSERT_TRUE(std::getline(in, line));
+    std::istringstream cells(line);
+    std::string cell;
+    for (int c = 0; c < 4; ++c) {
+      std::getline(cells, cell, ',');
+      EXPECT_EQ(std::strtod(cell.c_str(), nullptr), c < 3 ? points[n][c] : d[n]) << line;
+    }
+  }
 }
 
 TEST(PointsCsv, BadRowIsRejectedNamingFileAndLine) {

@@ -75,6 +75,14 @@ TEST(ViewCli, BadInputsFailNamingTheFileAndLeaveNoOutput) {
   o = RunCli("view " + (dir / "scene.yaml").string() + " --out " + (dir / "empty").string());
   EXPECT_NE(o.exit_code, 0);
   EXPECT_NE(o.output.find("folder"), std::string::npos) << o.output;
+  // A slice position that is not a finite number: an error naming the option, no page.
+  for (const char* at : {"nan", "inf", "-inf", "ten"}) {
+    o = RunCli("view " + (dir / "scene.yaml").string() + " --slice-at " + at + out);
+    EXPECT_NE(o.exit_code, 0) << at;
+    EXPECT_NE(o.output.find(std::string("--slice-at: '") + at + "' is not a finite number"), std::string::npos)
+        << o.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "page.html")) << at;
+  }
   // Too few points for the levels.
   o = RunCli("view " + (dir / "scene.yaml").string() + " --max-points 3" + out);
   EXPECT_NE(o.exit_code, 0);
