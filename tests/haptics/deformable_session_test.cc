@@ -31,6 +31,14 @@ using testing::CosineRamp;
 // deepest), hold, lift.
 const testing::PressAndLift kPress{Eigen::Vector3d(0.07, 0, 0.03), 0.018, 0.2, 0.8, 1.6, 2.0};
 
+// Asset options that cache in DIR and print nothing.
+AssetOptions QuietCacheIn(const testing::TempDir& dir) {
+  AssetOptions options;
+  options.cache_dir = dir / "cache";
+  options.verbose = false;
+  return options;
+}
+
 struct PressResult {
   double max_contact_force = 0, max_q = 0, final_q = 0;
   long allocations = 0;
@@ -58,9 +66,7 @@ PressResult RunCycles(HapticDevice& device, ContactModel* model, const HapticCyc
 PressResult RunPress(bool deformable) {
   testing::TempDir dir;
   const Scene scene = ParseScene(ConfigNode::LoadString(kBeam, "beam.yaml"));
-  AssetOptions options;
-  options.cache_dir = dir / "cache";
-  options.verbose = false;
+  const AssetOptions options = QuietCacheIn(dir);
   SceneAssets assets(scene, options);
   Scene rigid_scene = scene;
   rigid_scene.pointshell_body.deformable.reset();
@@ -118,9 +124,7 @@ PressResult RunHeldBar(bool deformable) {
   testing::TempDir dir;
   Scene scene = ParseScene(ConfigNode::LoadString(kHeldBar, "bar.yaml"));
   if (!deformable) scene.field_body.deformable.reset();
-  AssetOptions options;
-  options.cache_dir = dir / "cache";
-  options.verbose = false;
+  const AssetOptions options = QuietCacheIn(dir);
   SceneAssets assets(scene, options);
   auto model = MakeSceneContactModel("pointshell", scene, assets);
   SceneDynamics dynamics = MakeSceneDynamics(assets, 1e-3);  // null when rigid
@@ -154,9 +158,7 @@ TEST(DeformableSession, ADeformationOfTheWrongSizeIsACountedFaultNotAForce) {
   const Scene scene = ParseScene(ConfigNode::LoadString(kBeam, "beam.yaml"));
   Scene fewer = scene;
   fewer.pointshell_body.deformable->modes = 4;
-  AssetOptions options;
-  options.cache_dir = dir / "cache";
-  options.verbose = false;
+  const AssetOptions options = QuietCacheIn(dir);
   SceneAssets assets(scene, options), fewer_assets(fewer, options);
   auto model = MakeSceneContactModel("pointshell", scene, assets);
   SceneDynamics wrong = MakeSceneDynamics(fewer_assets, 1e-3);
@@ -204,9 +206,7 @@ TEST(DeformableSession, ADeformationOfTheWrongSizeIsACountedFaultNotAForce) {
 TEST(DeformableSession, ANonFiniteDeformationIsACountedFaultWithZeroForce) {
   testing::TempDir dir;
   const Scene scene = ParseScene(ConfigNode::LoadString(kBeam, "beam.yaml"));
-  AssetOptions options;
-  options.cache_dir = dir / "cache";
-  options.verbose = false;
+  const AssetOptions options = QuietCacheIn(dir);
   SceneAssets assets(scene, options);
   auto model = MakeSceneContactModel("pointshell", scene, assets);
   SceneDynamics dynamics = MakeSceneDynamics(assets, 1e-3);
