@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <memory>
 
 #include "deform/reduced_integrator.h"
@@ -60,7 +61,7 @@ class BodyDynamics {
     ZeroForce();
   }
   // False when a step has left the state non-finite (a diverged integration): a contact query
-  // must not read it (the haptic cycle and the runner count a fault and Reset the body).
+  // must not read it (see RestartDiverged).
   bool finite() const { return state().q.allFinite() && state().qdot.allFinite(); }
   // This cycle's deformation for the contact query: the body's state in, its reduced force (and
   // stiffness) out, zeroed now. Valid until the next Prepare or Step.
@@ -103,5 +104,19 @@ class BodyDynamics {
   Eigen::VectorXd u_;  // 3#V scratch: U q
   BodyDeformation deformation_;
 };
+
+// Restarts from rest each of BODIES (null ones skipped) whose state a step has left non-finite;
+// false when any had: this cycle's contact query must not be made (no force, a counted contact
+// fault), and the following cycles go on from rest. Allocation-free, throws nothing.
+inline bool RestartDiverged(std::initializer_list<BodyDynamics*> bodies) {
+  bool finite = true;
+  for (BodyDynamics* d : bodies) {
+    if (d != nullptr && !d->finite()) {
+      d->Reset();
+      finite = false;
+    }
+  }
+  return finite;
+}
 
 }  // namespace contactlab

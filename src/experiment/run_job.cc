@@ -269,15 +269,9 @@ void RunModel(const JobSetup& setup, const std::string& name, CycleStorage& stor
     q.node_budget = scene.node_budget;
     if (dynamics.A) q.deformation_A = dynamics.A->Prepare();
     if (dynamics.B) q.deformation_B = dynamics.B->Prepare();
-    // A deformation that left finite numbers (a diverged step) is not queried: no force, a
-    // counted contact fault, and the body restarts from rest (as in the haptic cycle).
-    bool finite = true;
-    for (BodyDynamics* d : {dynamics.A.get(), dynamics.B.get()}) {
-      if (d != nullptr && !d->finite()) {
-        d->Reset();
-        finite = false;
-      }
-    }
+    // A deformation that left finite numbers (a diverged step) is not queried, as in the haptic
+    // cycle.
+    const bool finite = RestartDiverged({dynamics.A.get(), dynamics.B.get()});
     const auto t0 = std::chrono::steady_clock::now();
     ContactResult r;
     if (finite) {

@@ -56,16 +56,8 @@ CycleRecord HapticCycle::Step(std::int64_t now_ns) {
     q.node_budget = config_.node_budget;
     if (config_.dynamics_A != nullptr) q.deformation_A = config_.dynamics_A->Prepare();
     if (config_.dynamics_B != nullptr) q.deformation_B = config_.dynamics_B->Prepare();  // H deforms: its field at its q
-    // A deformation that left finite numbers (a diverged step) is not queried: no force this
-    // cycle, a counted contact fault, and the body restarts from rest (allocation-free).
-    bool finite = true;
-    for (BodyDynamics* d : {config_.dynamics_A, config_.dynamics_B}) {
-      if (d != nullptr && !d->finite()) {
-        d->Reset();
-        finite = false;
-      }
-    }
-    if (finite) {
+    // A deformation that left finite numbers (a diverged step) is not queried.
+    if (RestartDiverged({config_.dynamics_A, config_.dynamics_B})) {
       contact = model_->Evaluate(q);
       if (config_.point_marks != nullptr) config_.point_marks->Update(*model_, q, cycle_);
     } else {
