@@ -122,7 +122,8 @@ std::shared_ptr<const DistanceField> CutField(const DistanceField& rest, const D
                                                std::move(values), info);
 }
 
-// The levels 0, 1/2, 1, 2, 3 and 4 cells of FIELD (a dense domain field) with their boxes.
+// The levels 0, 1/2, 1, 2, 3 and 4 cells of FIELD (a dense domain field) up to its
+// boundary_min, with their boxes, from one pass over the samples.
 DomainLevels BoundLevels(const DistanceField& field) {
   DomainLevels lv;
   const Eigen::Vector3i n = field.dims();
@@ -130,26 +131,28 @@ DomainLevels BoundLevels(const DistanceField& field) {
   for (double cells : {0.0, 0.5, 1.0, 2.0, 3.0, 4.0}) {
     const float tau = float(cells * h);
     if (tau > field.boundary_min()) break;
-    Eigen::Vector3i lo = n, hi(-1, -1, -1);
-    for (int k = 0; k < n.z(); ++k)
-      for (int j = 0; j < n.y(); ++j)
-        for (int i = 0; i < n.x(); ++i) {
-          if (field.value(i, j, k) <= tau) {
-            lo = lo.cwiseMin(Eigen::Vector3i(i, j, k));
-            hi = hi.cwiseMax(Eigen::Vector3i(i, j, k));
-          }
+    lv.tau[lv.count++] = tau;
+  }
+  std::vector<Eigen::Vector3i> lo(std::size_t(lv.count), n), hi(std::size_t(lv.count), Eigen::Vector3i(-1, -1, -1));
+  for (int k = 0; k < n.z(); ++k)
+    for (int j = 0; j < n.y(); ++j)
+      for (int i = 0; i < n.x(); ++i) {
+        const float v = field.value(i, j, k);
+        for (int l = lv.count - 1; l >= 0 && v <= lv.tau[l]; --l) {  // the levels v is at or below
+          lo[l] = lo[l].cwiseMin(Eigen::Vector3i(i, j, k));
+          hi[l] = hi[l].cwiseMax(Eigen::Vector3i(i, j, k));
         }
-    const int l = lv.count++;
-    lv.tau[l] = tau;
+      }
+  for (int l = 0; l < lv.count; ++l) {
     for (int c = 0; c < 3; ++c) {
-      if (hi.x() < 0) {  // no sample that low: the field exceeds tau everywhere
+      if (hi[l].x() < 0) {  // no sample that low: the field exceeds tau everywhere
         lv.lo[l][c] = std::numeric_limits<float>::infinity();
         lv.hi[l][c] = -std::numeric_limits<float>::infinity();
         continue;
       }
       // The cells around those samples, grown by a little more than float rounding.
-      lv.lo[l][c] = float(field.origin()[c] + (std::max(lo[c] - 1, 0) - 1e-3) * h);
-      lv.hi[l][c] = float(field.origin()[c] + (std::min(hi[c] + 1, n[c] - 1) + 1e-3) * h);
+      lv.lo[l][c] = float(field.origin()[c] + (std::max(lo[l][c] - 1, 0) - 1e-3) * h);
+      lv.hi[l][c] = float(field.origin()[c] + (std::min(hi[l][c] + 1, n[c] - 1) + 1e-3) * h);
     }
   }
   return lv;
@@ -372,10 +375,6 @@ void DeformedFieldState::UpdateBounds(const DeformedDistanceField& field) {
                                                                                     o.lpNorm<Eigen::Infinity>()));
     b.slope = float(slope * (1 + 1e-5) + 1e-6 * A.lpNorm<Eigen::Infinity>());
   }
-}
-
-float DeformedDistanceField::DomainLowerBound(const DeformedFieldState& state, int d, const float* x) const {
-  return DomainBoundAt(state.domain_bound(d), domains_[d].levels, domains_[d].field->float_grid(), x[0], x[1], x[2]);
 }
 
 void DeformedFieldState::SetSlot(const DeformedDistanceField& field, int i, const Eigen::Vector3d& p,

@@ -103,7 +103,7 @@ class DeformedFieldState {
   // farther than that from the domain field's grid box, every pulled-back point is outside the
   // box, where the field is its conservative bound (distance to the box + boundary_min), and the
   // domain's distance, a convex combination of such values, is at least the smallest of them
-  // (DeformedDistanceField::DomainLowerBound).
+  // (DeformedFieldDomainBounds, deform/deformed_field_batch.h).
   struct DomainBound {
     float a[9], c[3], o[3];  // A row-major, c, O
     float spread, slope;
@@ -128,41 +128,6 @@ struct DomainLevels {
   float lo[kDomainBoundLevels][3], hi[kDomainBoundLevels][3], tau[kDomainBoundLevels];
   int count = 0;
 };
-
-// The lower bound DeformedDistanceField::DomainLowerBound computes, from a domain's bound B, its
-// levels LV and its field's grid G, at (X, Y, Z): every pulled-back point lies within
-// rho = spread + slope |x - O| of the mean map's image c + A x; when that ball is outside level
-// j's box, each pulled-back distance, and so their weighted mean, exceeds tau[j]; when it is
-// outside the grid, each is at least its conservative bound. -infinity when neither holds. Less
-// a margin for rounding (1e-4 of a cell and 1e-5 relative: pull-backs, lookups and weights are
-// float).
-inline float DomainBoundAt(const DeformedFieldState::DomainBound& b, const DomainLevels& lv,
-                           const DistanceField::FloatGrid& g, float x, float y, float z) {
-  const float X = b.c[0] + b.a[0] * x + b.a[1] * y + b.a[2] * z;
-  const float Y = b.c[1] + b.a[3] * x + b.a[4] * y + b.a[5] * z;
-  const float Z = b.c[2] + b.a[6] * x + b.a[7] * y + b.a[8] * z;
-  const float ex = x - b.o[0], ey = y - b.o[1], ez = z - b.o[2];
-  const float rho = b.spread + b.slope * std::sqrt(ex * ex + ey * ey + ez * ez);
-  auto box_distance = [&](float lx, float ly, float lz, float hx, float hy, float hz) {
-    const float dx = std::max(std::max(lx - X, X - hx), 0.f);
-    const float dy = std::max(std::max(ly - Y, Y - hy), 0.f);
-    const float dz = std::max(std::max(lz - Z, Z - hz), 0.f);
-    return std::sqrt(dx * dx + dy * dy + dz * dz);
-  };
-  const float margin = 1e-4f / g.inv_h;
-  float bound = -std::numeric_limits<float>::infinity();
-  const float t = box_distance(g.ox, g.oy, g.oz, g.x1, g.y1, g.z1) - rho;
-  if (t > 0.f) {
-    const float v = t + g.boundary_min;
-    bound = v - 1e-5f * std::abs(v) - margin;
-  }
-  for (int j = 0; j < lv.count; ++j) {
-    if (box_distance(lv.lo[j][0], lv.lo[j][1], lv.lo[j][2], lv.hi[j][0], lv.hi[j][1], lv.hi[j][2]) > rho) {
-      bound = std::max(bound, lv.tau[j] - 1e-5f * std::abs(lv.tau[j]) - margin);
-    }
-  }
-  return bound;
-}
 
 class DeformedDistanceField {
  public:
@@ -218,12 +183,6 @@ class DeformedDistanceField {
     return Distance(state, xf, nearest);
   }
 
-  // A lower bound on domain D's distance at X for STATE, from STATE's DomainBound and D's
-  // levels without a proxy scan or lookup (DomainBoundAt; -infinity where it bounds nothing: X
-  // near or inside the domain). The many-point query skips a domain whose bound exceeds the
-  // distance another domain already gave.
-  float DomainLowerBound(const DeformedFieldState& state, int d, const float* x) const;
-
   // The k nearest slots of domain D to X and their weights (eq. (3)), nearest first; returns k.
   int Weights(const DeformedFieldState& state, int d, const float* x, int* slots, float* weights) const;
 
@@ -234,7 +193,7 @@ class DeformedDistanceField {
   struct Domain {
     std::shared_ptr<const DistanceField> field;
     DomainRegion region;
-    DomainLevels levels;     // with several domains (DomainBoundAt)
+    DomainLevels levels;     // with several domains (DeformedFieldDomainBounds)
     int begin = 0, end = 0;  // proxy slots [begin, end)
   };
 

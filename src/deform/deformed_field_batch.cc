@@ -137,7 +137,7 @@ bool NearestAndPullBacks(const DeformedDistanceField& field, const DeformedField
         continue;
       }
       if (m == k - 1) last_weighted = true;
-      const VI base = hn::Max(hn::BitCast(di, slot[m]), hn::Zero(di)) * hn::Set(di, 12);  // -1 (a NaN point): slot 0
+      const VI base = hn::BitCast(di, slot[m]) * hn::Set(di, 12);
       auto coef = [&](int e) HWY_ATTR { return hn::GatherIndex(df, a + e, base); };
       const VF X = hn::MulAdd(coef(0), px, hn::MulAdd(coef(1), py, hn::MulAdd(coef(2), pz, coef(9))));
       const VF Y = hn::MulAdd(coef(3), px, hn::MulAdd(coef(4), py, hn::MulAdd(coef(5), pz, coef(10))));
@@ -209,8 +209,8 @@ void DomainSums(const DeformedDistanceField& field, const DeformedFieldState& st
   }
 }
 
-// DomainBoundAt (deformed_distance_field.h) for domain DOM at the NB points (X, Y, Z), a vector
-// at a time.
+// DeformedFieldDomainBounds (deformed_field_batch.h) for the NB points (X, Y, Z), NB a whole
+// number of vectors.
 void DomainBounds(const DeformedDistanceField& field, const DeformedFieldState& state, int dom, const float* x,
                   const float* y, const float* z, int nb, float* HWY_RESTRICT out) {
   const DF df;
@@ -246,6 +246,21 @@ void DomainBounds(const DeformedDistanceField& field, const DeformedFieldState& 
   }
 }
 
+void DeformedFieldDomainBoundsImpl(const DeformedDistanceField& field, const DeformedFieldState& state, int dom,
+                                   const float* x, const float* y, const float* z, int n, float* out) {
+  alignas(64) float px[kBatch], py[kBatch], pz[kBatch], bound[kBatch];
+  for (int b0 = 0; b0 < n; b0 += kBatch) {
+    const int nb = std::min(kBatch, n - b0);
+    const int padded = (nb + kLanes - 1) / kLanes * kLanes;
+    for (int b = 0; b < padded; ++b) {  // lanes past the last point repeat it
+      const int i = b0 + std::min(b, nb - 1);
+      px[b] = x[i], py[b] = y[i], pz[b] = z[i];
+    }
+    DomainBounds(field, state, dom, px, py, pz, padded, bound);
+    std::copy(bound, bound + nb, out + b0);
+  }
+}
+
 // Copies the points IDX[0, M) of (X, Y, Z) to (CX, CY, CZ), padded to whole vectors by
 // repeating the last; returns the padded count.
 int Gather(const int* idx, int m, const float* x, const float* y, const float* z, float* cx, float* cy, float* cz) {
@@ -278,12 +293,9 @@ std::int64_t DeformedFieldDistancesImpl(const DeformedDistanceField& field, cons
       best_slot[b] = -1;
       best_domain[b] = domains;
     }
-    // Domain DOM's distance at the points IDX[0, M): kept where smaller than the best so far, or
-    // equal and from an earlier domain (the one-point query keeps the first smallest).
-    auto answer = [&](int dom, int m) {
-      if (m == 0) return;
-      const int mp = Gather(idx, m, bx, by, bz, cx, cy, cz);
-      DomainSums(field, state, dom, cx, cy, cz, mp, &s, sum);
+    // Domain DOM's distances SUM at the points IDX[0, M): kept where smaller than the best so
+    // far, or equal and from an earlier domain (the one-point query keeps the first smallest).
+    auto keep = [&](int dom, int m) {
       for (int j = 0; j < m; ++j) {
         const int b = idx[j];
         if (sum[j] < best[b] || (sum[j] == best[b] && dom < best_domain[b])) {
@@ -294,18 +306,25 @@ std::int64_t DeformedFieldDistancesImpl(const DeformedDistanceField& field, cons
       }
       answered += m;
     };
+    // Domain DOM at the points IDX[0, M), gathered into whole vectors.
+    auto answer = [&](int dom, int m) {
+      if (m == 0) return;
+      DomainSums(field, state, dom, cx, cy, cz, Gather(idx, m, bx, by, bz, cx, cy, cz), &s, sum);
+      keep(dom, m);
+    };
     if (domains == 1) {
       for (int b = 0; b < nb; ++b) idx[b] = b;
-      answer(0, nb);
+      DomainSums(field, state, 0, bx, by, bz, padded, &s, sum);
+      keep(0, nb);
     } else {
       // Branch and bound over the domains: each point is first answered by the domain with the
-      // smallest lower bound (DomainBoundAt), then by each other domain whose bound does not
-      // exceed the distance it has.
+      // smallest lower bound, then by each other domain whose bound does not exceed the
+      // distance it has.
       for (int b = 0; b < padded; ++b) home[b] = 0, home_bound[b] = std::numeric_limits<float>::infinity();
       for (int dom = 0; dom < domains; ++dom) {
         DomainBounds(field, state, dom, bx, by, bz, padded, bound);
         for (int b = 0; b < nb; ++b) {
-          if (bound[b] < home_bound[b] || dom == 0) home_bound[b] = bound[b], home[b] = dom;
+          if (bound[b] < home_bound[b]) home_bound[b] = bound[b], home[b] = dom;
         }
       }
       for (int dom = 0; dom < domains; ++dom) {
@@ -340,6 +359,13 @@ HWY_AFTER_NAMESPACE();
 namespace contactlab {
 
 HWY_EXPORT(DeformedFieldDistancesImpl);
+HWY_EXPORT(DeformedFieldDomainBoundsImpl);
+
+void DeformedFieldDomainBounds(const DeformedDistanceField& field, const DeformedFieldState& state, int dom,
+                               const float* x, const float* y, const float* z, int n, float* out) {
+  if (n <= 0) return;
+  HWY_DYNAMIC_DISPATCH(DeformedFieldDomainBoundsImpl)(field, state, dom, x, y, z, n, out);
+}
 
 std::int64_t DeformedFieldDistances(const DeformedDistanceField& field, const DeformedFieldState& state,
                                     const float* x, const float* y, const float* z, int n, float* d,

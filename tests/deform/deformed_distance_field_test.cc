@@ -350,7 +350,7 @@ TEST(DeformedDistanceField, ManyPointQueryEqualsTheOnePointQuery) {
   }
 }
 
-// DomainLowerBound against each domain's distance formed independently (its k nearest slots
+// DeformedFieldDomainBounds against each domain's distance formed independently (its k nearest slots
 // and weights, the pull-backs, the domain's own rest field), under deformations up to a fifth of
 // the body's size, for points in and around the body and far away: never above it, and a real
 // bound (positive) for most domains at points around the body under small deformations.
@@ -378,7 +378,8 @@ TEST(DeformedDistanceField, DomainLowerBoundNeverExceedsTheDomainsDistance) {
                                     a[11] + a[6] * x[0] + a[7] * x[1] + a[8] * x[2]);
             if (w[m] != 0.f) expected += w[m] * field.domain_field(dom).Distance(X);
           }
-          const float bound = field.DomainLowerBound(state, dom, x);
+          float bound;
+          DeformedFieldDomainBounds(field, state, dom, &x[0], &x[1], &x[2], 1, &bound);
           ASSERT_LE(bound, expected) << "displacement " << displacement << " domain " << dom << " point " << i;
           if (bound > 0) ++bounded;
         }
