@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "haptics/rotation_math.h"
+#include "geometry/rotation_math.h"
 #include "util/error.h"
 
 namespace contactlab {

@@ -13,7 +13,7 @@
 #include "haptics/haptic_cycle.h"
 #include "haptics/plugin_device.h"
 #include "haptics/replay_device.h"
-#include "haptics/rotation_math.h"
+#include "geometry/rotation_math.h"
 #include "haptics/safety_filter.h"
 #include "haptics/sim_device.h"
 #include "haptics/spacenav_device.h"

@@ -7,7 +7,7 @@
 #include <random>
 
 #include "haptics/halfspace_contact_model.h"
-#include "haptics/rotation_math.h"
+#include "geometry/rotation_math.h"
 #include "util/error.h"
 
 namespace contactlab {

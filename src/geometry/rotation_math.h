@@ -1,5 +1,6 @@
-// SO(3) helpers for the virtual-coupling solve (Barbič & James 2008, sec. 5: "large rotation
-// terms in the static equilibrium"): rotation vectors and the inverse right Jacobian.
+// SO(3) helpers: rotation vectors and the inverse right Jacobian, for the virtual-coupling solve
+// (Barbič & James 2008, sec. 5: "large rotation terms in the static equilibrium") and the
+// proxy of continuous collision.
 #pragma once
 
 #include <Eigen/Core>

@@ -1,5 +1,5 @@
 // SO(3) helpers for the virtual-coupling solve (Barbič & James 2008, sec. 5).
-#include "haptics/rotation_math.h"
+#include "geometry/rotation_math.h"
 
 #include <cmath>
 
