@@ -84,6 +84,13 @@ class ContactModel {
     (void)query, (void)points, (void)out;
     return 0;
   }
+  // A model that keeps a proxy of B between cycles (pointshell-ccd: B's pose held back where it
+  // first touches A) writes the proxy's world pose after the latest Evaluate to *X_WB_PROXY and
+  // returns true; the others return false. For display and tests; throws nothing.
+  virtual bool Proxy(Pose* X_WB_proxy) const {
+    (void)X_WB_proxy;
+    return false;
+  }
 };
 
 }  // namespace contactlab

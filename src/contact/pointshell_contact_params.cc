@@ -36,6 +36,18 @@ const ParamTable<PointshellContactParams>& PointshellContactParamTable() {
                                                                          {"field", ContactGradient::kField}},
                     "contact gradient: the sec. 5 halfspace rule, or the field's gradient")
               .Sweepable().Example("field"),
+          P::Number("proxy_stiffness", PARAM_MEMBER(proxy_stiffness), AtLeast(0), NoUpperBound(),
+                    "pointshell-ccd: spring between its proxy and B (0: k_C L, k_C when L = 0)")
+              .Unit("N/m").Sweepable().Example("5000"),
+          P::Number("proxy_rot_stiffness", PARAM_MEMBER(proxy_rot_stiffness), AtLeast(0), NoUpperBound(),
+                    "pointshell-ccd: rotational spring (0: proxy_stiffness times the squared radius of B's field box)")
+              .Unit("N m/rad").Sweepable().Example("2"),
+          P::Number("proxy_offset", PARAM_MEMBER(proxy_offset), Above(0), AtMost(4),
+                    "pointshell-ccd: distance from B's surface at which a point of the proxy stops, in cells of B's field")
+              .Sweepable().Example("0.1"),
+          P::Integer("proxy_iterations", PARAM_MEMBER(proxy_iterations), 1, 64,
+                     "pointshell-ccd: constrained steps (active set, solve, time of impact) per cycle")
+              .Sweepable().Example("8"),
       });
   return table;
 }

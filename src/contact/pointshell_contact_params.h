@@ -18,6 +18,12 @@ struct PointshellContactParams {
   double lipschitz = 1.0;        // bound on |grad d| assumed by culling and coherence (paper: 1)
   double cold_fraction = 0.8;    // V_C = cold_fraction * V_W (sec. 3, graceful degradation)
   ContactGradient gradient = ContactGradient::kHalfspace;  // sec. 5 halfspace rule, or the field's gradient
+  // The proxy of pointshell-ccd (baselines/pointshell_ccd): the coupling between its proxy and
+  // B, how far from B's surface its points stop, and its constrained steps per cycle.
+  double proxy_stiffness = 0;      // N/m; 0: k_C L (k_C when L = 0)
+  double proxy_rot_stiffness = 0;  // N m/rad; 0: proxy_stiffness R_B^2 (R_B: B's field box radius)
+  double proxy_offset = 0.25;      // field cells of B: a point stops at this distance from B's surface
+  int proxy_iterations = 4;        // constrained steps (active set, solve, time of impact) per cycle
 };
 
 // The parameters above as a table (util/param_table.h): the scene's model section reads them

@@ -68,6 +68,13 @@ const std::vector<Recorded> kRecorded = {
     {"pointshell", "capsule/torus", 0.64, 0.042},
     {"pointshell", "sphere/box-halfspace", 0.13, 0.038},
     {"pointshell", "sphere/sphere", 0.42, 0.012},
+    // A proxy: reset at the overlapping pose, it moves B's proxy out of A (within its cycle's
+    // steps) and springs B toward it, k_C L times the separation, not the eq. (2) mean depth
+    // (2-6x the reference's magnitude); the tilted box leaves along the cheapest twist, not -∇V.
+    {"pointshell-ccd", "box-tilted/box", 51.3, 4.57},
+    {"pointshell-ccd", "capsule/torus", 4.4, 1.37},
+    {"pointshell-ccd", "sphere/box-halfspace", 2.07, 1.48},
+    {"pointshell-ccd", "sphere/sphere", 2.49, 1.26},
     {"pointshell-linear", "box-tilted/box", 2.23, 0.133},
     {"pointshell-linear", "capsule/torus", 0.64, 0.042},
     {"pointshell-linear", "sphere/box-halfspace", 0.13, 0.038},

@@ -1,0 +1,76 @@
+// "pointshell-ccd": a proxy of body B that never passes through body A (after Xu & Barbič,
+// "6-DoF Haptic Rendering Using Continuous Collision Detection between Points and Signed
+// Distance Fields", IEEE Trans. Haptics 2017), on the paper's data: A's pointshell against B's
+// distance field.
+//
+// The model keeps a proxy of B (its pose in A's frame) between cycles; Reset forgets it, and
+// the next query places it at B. Each cycle, up to `iterations` times:
+//   1. the active set: A's points within 2 l of B's surface at the proxy (l: the contact
+//      offset), each a halfspace constraint on the proxy's twist ξ = (v, w) (A's frame, rotation
+//      about B's origin): d_i - g_i·v - ((p_i - o) x g_i)·w >= l;
+//   2. the step: the twist closest to the query's pose of B in the coupling's metric
+//      M = diag(k, k, k, k_rot, k_rot, k_rot) subject to those constraints, by projected
+//      Gauss-Seidel on the multipliers (a 6-vector kept in step with them);
+//   3. the move: along that twist only as far as the earliest time any point reaches l
+//      (time_of_impact.h); when nothing is reached the step is done and so is the cycle.
+// The wrench on B is the spring between proxy and B: F = k (p_WP - p_WB), τ = k_rot φ with
+// φ = log(R_WP R_WB^T) (about B's origin), unsaturated. K_B is its derivative with the proxy
+// sliding: the proxy follows B along every direction no pushing constraint blocks, so
+// K_B = -M^½ P M^½ with P the projector onto the span of M^-½ J_a^T (J_a: the constraints
+// whose multipliers push). Free space: proxy = B, zero wrench, K_B = 0.
+//
+// Graceful degradation: the scene's node budget is shared by the cycle's searches; past it a
+// node is not expanded and stands for its subtree conservatively (the proxy stops early).
+// Allocation-free and exception-free in Evaluate. Rigid bodies only.
+#pragma once
+
+#include <memory>
+#include <string_view>
+#include <vector>
+
+#include "baselines/pointshell_ccd/time_of_impact.h"
+#include "contact/contact_model.h"
+
+namespace contactlab {
+
+struct PointshellCcdParams {
+  double stiffness = 1e4;       // k, N/m
+  double rot_stiffness = 1;     // k_rot, N m/rad
+  double offset = 1e-4;         // l, metres: points stop at this distance from B's surface
+  int iterations = 4;           // constrained steps per cycle
+  double lipschitz = 1;         // λ, bound on |∇d|
+  int max_constraints = 8192;   // active points kept per step (the nearest-first are not sorted)
+
+  // Throws Error naming WHERE when a value is out of range.
+  void Check(std::string_view where) const;
+};
+
+class PointshellCcdModel final : public ContactModel {
+ public:
+  PointshellCcdModel(std::shared_ptr<const Pointshell> shell_A, std::shared_ptr<const DistanceField> field_B,
+                     const PointshellCcdParams& params);
+
+  std::string_view name() const override { return "pointshell-ccd"; }
+  ContactResult Evaluate(const ContactQuery& query) override;
+  void Reset() override;
+  bool Proxy(Pose* X_WB_proxy) const override;
+
+  const PointshellCcdParams& params() const { return params_; }
+
+ private:
+  ImpactSearch search_;
+  PointshellCcdParams params_;
+  bool has_proxy_ = false;
+  Pose X_AP_;             // the proxy of B in A's frame
+  Pose X_WA_last_;        // A's pose in the latest query (for Proxy)
+  std::vector<NearPoint> near_;
+  std::vector<Eigen::Vector3d> moment_;  // (p_i - o) x g_i of each active point
+  std::vector<double> multiplier_, inv_diag_;
+  // The latest multiplier of each point (warm start: in steady contact one sweep suffices), and
+  // the points it was written for.
+  std::vector<double> point_multiplier_;
+  std::vector<std::int32_t> warm_points_;
+  int warm_count_ = 0;
+};
+
+}  // namespace contactlab

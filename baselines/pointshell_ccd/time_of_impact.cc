@@ -1,0 +1,275 @@
+// Continuous collision of a pointshell against a distance field (time_of_impact.h).
+#include "baselines/pointshell_ccd/time_of_impact.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "util/error.h"
+
+namespace contactlab {
+namespace {
+
+// Conservative-advancement steps a tree node takes before handing its time to its children.
+constexpr int kNodeSteps = 4;
+// Steps a point takes before it stops where it is (a safe time, earlier than its impact).
+constexpr int kPointSteps = 64;
+// Regula-falsi iterations and the bracket width (in t) at which the impact is taken.
+constexpr int kRefineSteps = 60;
+constexpr double kRefineWidth = 1e-10;
+
+// Where B is at one time of a motion: p_B = Rt (p_A - o).
+struct Frame {
+  Eigen::Matrix3d Rt;
+  Eigen::Vector3d o;
+};
+
+class MotionFrames {
+ public:
+  explicit MotionFrames(const BlendMotion& m) : m_(m), theta_(m.w.norm()) {
+    axis_ = theta_ > 0 ? Eigen::Vector3d(m.w / theta_) : Eigen::Vector3d::UnitX();
+    R0t_ = m.R0.toRotationMatrix().transpose();
+  }
+  double theta() const { return theta_; }
+  // The frame at T; the latest one is kept, since the nodes of a level often start at one time.
+  const Frame& At(double t) const {
+    if (t == last_t_) return last_;
+    last_t_ = t;
+    if (theta_ == 0) {
+      last_ = {R0t_, m_.o0 + t * m_.v};
+    } else {
+      // exp(t θ [k]) R0 by its quaternion; below 0.1 rad the half-angle's sine and cosine by
+      // their series (exact to double rounding: the first term left out is below 1e-17).
+      const double h = 0.5 * t * theta_;
+      double c, sn;
+      if (h < 0.1) {
+        const double h2 = h * h;
+        sn = h * (1 - h2 / 6 * (1 - h2 / 20 * (1 - h2 / 42 * (1 - h2 / 72))));
+        c = 1 - h2 / 2 * (1 - h2 / 12 * (1 - h2 / 30 * (1 - h2 / 56 * (1 - h2 / 90))));
+      } else {
+        sn = std::sin(h);
+        c = std::cos(h);
+      }
+      const Eigen::Quaterniond R = Eigen::Quaterniond(c, sn * axis_.x(), sn * axis_.y(), sn * axis_.z()) * m_.R0;
+      last_ = {R.toRotationMatrix().transpose(), m_.o0 + t * m_.v};
+    }
+    return last_;
+  }
+
+ private:
+  const BlendMotion& m_;
+  double theta_;
+  Eigen::Vector3d axis_;
+  Eigen::Matrix3d R0t_;
+  mutable double last_t_ = -1;
+  mutable Frame last_;
+};
+
+double DistanceAt(const DistanceField& field, const Frame& F, const Eigen::Vector3d& p_A) {
+  const Eigen::Vector3d q = F.Rt * (p_A - F.o);
+  return field.Distance(float(q.x()), float(q.y()), float(q.z()));
+}
+
+}  // namespace
+
+BlendMotion BlendMotion::Between(const Pose& X0, const Pose& X1) {
+  Eigen::Quaterniond dq = X1.rotation * X0.rotation.conjugate();
+  if (dq.w() < 0) dq.coeffs() = -dq.coeffs();
+  const Eigen::AngleAxisd aa(dq.normalized());
+  return {X0.rotation, X0.translation, X1.translation - X0.translation, aa.angle() * aa.axis()};
+}
+
+Pose BlendMotion::At(double t) const {
+  const double theta = w.norm();
+  Pose X;
+  X.rotation = theta > 0 ? (Eigen::Quaterniond(Eigen::AngleAxisd(t * theta, w / theta)) * R0).normalized() : R0;
+  X.translation = o0 + t * v;
+  return X;
+}
+
+ImpactSearch::ImpactSearch(std::shared_ptr<const Pointshell> shell, std::shared_ptr<const DistanceField> field)
+    : shell_(std::move(shell)), field_(std::move(field)) {
+  if (!shell_ || !field_ || field_->empty()) Fail("continuous collision", "needs a pointshell and a distance field");
+  const std::size_t nodes = std::size_t(shell_->num_nodes());
+  queue_.reserve(nodes);
+  next_.reserve(nodes);
+  queue_t_.reserve(nodes);
+  next_t_.reserve(nodes);
+}
+
+ImpactResult ImpactSearch::Earliest(const BlendMotion& motion, const ImpactParams& params) {
+  ImpactResult result;
+  const Pointshell& s = *shell_;
+  const DistanceField& field = *field_;
+  const MotionFrames frames(motion);
+  const double theta = frames.theta(), travel = motion.v.norm();
+  if (s.num_levels() == 0 || (theta == 0 && travel == 0)) return result;
+  const Eigen::Vector3d o1 = motion.o0 + motion.v;
+  const double lambda = params.lipschitz, level = params.level;
+  const double eps = std::max(params.slack, std::numeric_limits<double>::min());
+  double t_hit = 1;
+
+  // The earliest time in [T0, T_HIT) at which the point P_A, moving no faster than SPEED,
+  // reaches its level; T_HIT or later when it does not.
+  auto point_impact = [&](const Eigen::Vector3d& p_A, double speed, double t0) -> double {
+    double t = t0;
+    const double d0 = DistanceAt(field, frames.At(t), p_A);
+    const double lvl = t0 == 0 ? std::min(level, d0 - eps) : level;
+    // Steps may pass a dip down to the field's zero (never below it), or eps below a level
+    // that is itself below eps.
+    const double dip = std::max(eps, lvl);
+    double f = d0 - lvl;
+    if (!(f > 0)) return f <= 0 ? t0 : 2.0;  // at the level at t0 (NaN: a field without values here)
+    // Bracketed: f(a) > 0 >= f(b). Illinois regula falsi; the impact is taken at a (a time at
+    // which the point is still above its level).
+    auto refine = [&](double a, double fa, double b, double fb) {
+      int side = 0;
+      for (int it = 0; it < kRefineSteps && b - a > kRefineWidth; ++it) {
+        double m = b - fb * (b - a) / (fb - fa);
+        if (!(m > a && m < b)) m = 0.5 * (a + b);
+        const double fm = DistanceAt(field, frames.At(m), p_A) - lvl;
+        if (fm > 0) {
+          a = m, fa = fm;
+          if (side == -1) fb *= 0.5;
+          side = -1;
+        } else {
+          b = m, fb = fm;
+          if (side == 1) fa *= 0.5;
+          side = 1;
+        }
+      }
+      return a;
+    };
+    for (int step = 0; step < kPointSteps; ++step) {
+      const double t1 = t + std::max(f, dip) / (lambda * speed);
+      if (t1 >= t_hit) {
+        // The step passes the earliest impact so far. If the point may have reached its level
+        // by then and is below it there, the crossing is bracketed; otherwise it dips at most
+        // DIP below its level before t_hit.
+        if (f >= lambda * speed * (t_hit - t)) return 2.0;
+        const double fe = DistanceAt(field, frames.At(t_hit), p_A) - lvl;
+        return fe > 0 ? 2.0 : refine(t, f, t_hit, fe);
+      }
+      const double f1 = DistanceAt(field, frames.At(t1), p_A) - lvl;
+      if (f1 <= 0) return refine(t, f, t1, f1);
+      t = t1;
+      f = f1;
+    }
+    return t;  // out of steps: safe up to here
+  };
+
+  queue_.clear();
+  queue_t_.clear();
+  for (std::int32_t n = s.level_node_begin[0]; n < s.level_node_begin[1]; ++n) {
+    queue_.push_back(n);
+    queue_t_.push_back(0);
+  }
+  const int levels = s.num_levels();
+  for (int L = 0; L < levels && !queue_.empty(); ++L) {
+    const bool leaf = L == levels - 1;
+    next_.clear();
+    next_t_.clear();
+    for (std::size_t k = 0; k < queue_.size(); ++k) {
+      const std::int32_t n = queue_[k];
+      double t = queue_t_[k];
+      if (t >= t_hit) continue;
+      if (params.node_budget > 0 && result.nodes_visited >= params.node_budget) {
+        // Not expanded: its subtree reaches the level no earlier than T.
+        result.degraded = true;
+        result.hit = true;
+        result.point = -1;
+        t_hit = t;
+        continue;
+      }
+      ++result.nodes_visited;
+      const std::int32_t ip = s.node_point[n];
+      const Eigen::Vector3d c(s.x[ip], s.y[ip], s.z[ip]);
+      const double r = s.node_radius[n];
+      const double speed = theta * (std::max((c - motion.o0).norm(), (c - o1).norm()) + r) + travel;
+      if (!(speed > 0)) continue;  // a point on the rotation axis at B's origin does not move
+      if (leaf) {
+        const double ti = point_impact(c, speed, t);
+        if (ti < t_hit) {
+          t_hit = ti;
+          result.hit = true;
+          result.point = ip;
+        }
+        continue;
+      }
+      bool culled = false;
+      for (int step = 0; step < kNodeSteps; ++step) {
+        const double f = DistanceAt(field, frames.At(t), c) - lambda * r - level;
+        if (!(f > eps)) break;  // may reach the level from t on
+        t += f / (lambda * speed);
+        if (t >= t_hit) {
+          culled = true;
+          break;
+        }
+      }
+      if (culled) continue;
+      for (std::int32_t ch = s.child_begin[n]; ch < s.child_begin[n + 1]; ++ch) {
+        next_.push_back(ch);
+        next_t_.push_back(t);
+      }
+    }
+    std::swap(queue_, next_);
+    std::swap(queue_t_, next_t_);
+  }
+  result.t = t_hit;
+  return result;
+}
+
+int ImpactSearch::Near(const Pose& X_AB, double band, double lipschitz, std::int64_t node_budget, NearPoint* out,
+                       int capacity, std::int64_t* visited, bool* degraded) {
+  const Pointshell& s = *shell_;
+  const DistanceField& field = *field_;
+  if (s.num_levels() == 0) return 0;
+  const Pose X_BA = X_AB.Inverse();
+  const Eigen::Matrix3d R_BA = X_BA.R(), R_AB = X_AB.R();
+  int written = 0;
+  std::int64_t count = 0;
+  auto emit = [&](std::int32_t ip, const Eigen::Vector3d& c, const Eigen::Vector3d& q, double bound) {
+    if (written >= capacity) return;
+    Eigen::Vector3d g;
+    const double d = field.DistanceAndGradient(q, &g);
+    NearPoint& np = out[written++];
+    np.point = ip;
+    np.distance = std::min(d, bound);
+    np.p_A = c;
+    np.gradient_A = R_AB * g;
+  };
+  queue_.clear();
+  for (std::int32_t n = s.level_node_begin[0]; n < s.level_node_begin[1]; ++n) queue_.push_back(n);
+  const int levels = s.num_levels();
+  for (int L = 0; L < levels && !queue_.empty(); ++L) {
+    const bool leaf = L == levels - 1;
+    next_.clear();
+    for (const std::int32_t n : queue_) {
+      const std::int32_t ip = s.node_point[n];
+      const Eigen::Vector3d c(s.x[ip], s.y[ip], s.z[ip]);
+      const Eigen::Vector3d q = R_BA * c + X_BA.translation;
+      const double r = s.node_radius[n];
+      if (node_budget > 0 && count >= node_budget) {
+        // Not expanded: its point stands for the subtree at the subtree's lower bound.
+        if (degraded) *degraded = true;
+        const double bound = field.Distance(float(q.x()), float(q.y()), float(q.z())) - lipschitz * r;
+        if (bound <= band) emit(ip, c, q, bound);
+        continue;
+      }
+      ++count;
+      const double d = field.Distance(float(q.x()), float(q.y()), float(q.z()));
+      if (d - lipschitz * r > band) continue;
+      if (leaf) {
+        emit(ip, c, q, std::numeric_limits<double>::infinity());
+        continue;
+      }
+      for (std::int32_t ch = s.child_begin[n]; ch < s.child_begin[n + 1]; ++ch) next_.push_back(ch);
+    }
+    std::swap(queue_, next_);
+  }
+  if (visited) *visited += count;
+  return written;
+}
+
+}  // namespace contactlab
