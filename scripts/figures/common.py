@@ -224,6 +224,7 @@ MODEL_STYLES = {
     "vps-repulsion":     dict(color="#9467bd", ls=(0, (6, 2, 1.5, 2)), lw=1.3, marker="^", zorder=2.5, phase=0.65),
     "fcl":               dict(color="#d62728", ls="-", lw=1.3, marker="D", zorder=2.2, phase=0.3),
     "bullet":            dict(color="#8c564b", ls="-", lw=1.1, marker="v", zorder=2.4, phase=0.8),
+    "pointshell-ccd":    dict(color="#17becf", ls="-", lw=2.2, marker="h", zorder=2.8, phase=0.55),
     "reference":         dict(color="#000000", ls=":", lw=1.6, marker="*", zorder=2.7, phase=0.4),
     "volume":            dict(color="#555555", ls="--", lw=1.4, marker="P", zorder=2.7, phase=0.9),
     "eq2-halfspace":     dict(color="#7f7f7f", ls="-.", lw=1.4, marker="X", zorder=2.7, phase=0.9),

@@ -66,3 +66,78 @@ def hard_cases_tube_peg(results):
         {True: "tube (wall 0.5 mm) pushed into a peg: tube = pointshell",
          False: "tube (wall 0.5 mm) pushed into a peg: tube = field"},
         "hard_cases_tube_peg.png")
+
+
+# Tools driven through a plate at 0.1-20 m/s (issue 33): per tool and plate, the largest force
+# on the tool against the speed, per model and role order; a cross where the tool got through
+# (no force once wholly past), a red ring where the force ever pulled it along its motion. And
+# the counts per model and speed as a table.
+TOOL_AXIS = "scene.bodies[name=tool].mesh"
+PLATE_AXIS = "scene.bodies[name=plate].mesh"
+
+
+def tunnelling_runs(rows):
+    """(tool, plate, roles, speed, model) -> (peak |F| N, got through, pulled the wrong way)."""
+    runs = defaultdict(list)
+    for r in rows:
+        runs[(r[TOOL_AXIS], r[PLATE_AXIS], r.get("roles", "normal"), float(r["trajectory.speed"]), r["model"])].append(r)
+    out = {}
+    for key, rs in runs.items():
+        forces = [(num(r, "fx"), num(r, "fy"), num(r, "fz")) for r in rs]
+        mags = [(fx * fx + fy * fy + fz * fz) ** 0.5 for fx, fy, fz in forces]
+        wrong = any(m > 1e-6 and f[2] < -0.05 * m for f, m in zip(forces, mags))  # along the motion, -z
+        out[key] = (max(mags), mags[-1] <= 1e-9, wrong)
+    return out
+
+
+@figure(experiments=["hard-cases-tunnelling"],
+        outputs=["hard_cases_tunnelling.png", "hard_cases_tunnelling_table.png", "hard_cases_tunnelling_table.md"])
+def hard_cases_tunnelling(results):
+    rows = results.load("hard-cases-tunnelling", "cycles")
+    if not rows:
+        return False
+    runs = tunnelling_runs(rows)
+    tools = sorted({k[0] for k in runs}, key=["ball", "blade", "tube"].index)
+    plates = sorted({k[1] for k in runs})
+    models = models_in(rows)
+    fig, axes = plt.subplots(len(plates), len(tools), figsize=(4.6 * len(tools), 3.8 * len(plates)), squeeze=False)
+    for i, plate in enumerate(plates):
+        for j, tool in enumerate(tools):
+            ax = axes[i][j]
+            for model in models:
+                for roles, ls in (("normal", "-"), ("swapped", ":")):
+                    pts = sorted((k[3], v) for k, v in runs.items() if k[:3] == (tool, plate, roles) and k[4] == model)
+                    if not pts:
+                        continue
+                    speeds = [s for s, _ in pts]
+                    peaks = [max(v[0], 1e-3) for _, v in pts]
+                    kw = model_line(model, len(pts), ls=ls, marker=None, label=model if roles == "normal" else None)
+                    ax.plot(speeds, peaks, **kw)
+                    for s, (peak, through, wrong) in pts:
+                        ax.plot([s], [max(peak, 1e-3)], marker="x" if through else "o", color=kw["color"], ms=6,
+                                mfc="none" if through else kw["color"], ls="none")
+                        if wrong:
+                            ax.plot([s], [max(peak, 1e-3)], marker="o", ms=11, mfc="none", mec="red", ls="none")
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            ax.set_xlabel("speed (m/s) = mm per 1 kHz cycle")
+            ax.set_ylabel("largest force on the tool (N)")
+            ax.set_title(f"{tool} through the {plate} (solid: tool = pointshell)", fontsize=9)
+            ax.grid(True, alpha=0.3, which="both")
+    axes[0][0].legend(fontsize=7, title="x: got through, red ring: pulled through", title_fontsize=7)
+    results.save(fig, "hard_cases_tunnelling.png")
+    # Counts per model and speed over tools, plates and role orders.
+    speeds = sorted({k[3] for k in runs})
+    header = ["model"] + [f"{s:g} m/s" for s in speeds]
+    lines = []
+    for model in models:
+        line = [model]
+        for s in speeds:
+            vs = [v for k, v in runs.items() if k[4] == model and k[3] == s]
+            held = sum(1 for v in vs if not v[1])
+            wrong = sum(1 for v in vs if v[2])
+            line.append(f"held {held}/{len(vs)}, pulled {wrong}")
+        lines.append(line)
+    results.save_table(header, lines, "Tools through a 1 mm plate and a 0.5 mm wall: runs where the tool was held "
+                       "(force at the end) and where the force pulled it through", "hard_cases_tunnelling_table")
+    return True

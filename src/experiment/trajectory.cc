@@ -74,7 +74,9 @@ Trajectory MakeProceduralTrajectory(const ProceduralTrajectorySpec& s) {
     const double t = s.duration * i / (n - 1);
     const double u = t / s.duration;  // 0..1
     Pose p;
-    if (s.type == "approach-press") {
+    if (s.type == "pass") {
+      p.translation = (-s.approach + (s.approach + s.depth) * u) * dir;
+    } else if (s.type == "approach-press") {
       // Down from -approach to +depth over the first half, back up over the second.
       const double travel = -s.approach + (s.approach + s.depth) * Smoothstep(u < 0.5 ? 2 * u : 2 - 2 * u);
       p.translation = travel * dir;
@@ -93,7 +95,7 @@ Trajectory MakeProceduralTrajectory(const ProceduralTrajectorySpec& s) {
         const double phi = 2 * M_PI * a;
         p.translation += s.radius * ((std::cos(phi) - 1) * tangent + std::sin(phi) * binormal);
       } else {
-        Fail(where, "unknown type (approach-press, slide, twist, scan, circle, recorded)");
+        Fail(where, "unknown type (approach-press, slide, twist, scan, circle, pass, recorded)");
       }
     }
     times[i] = t;
@@ -248,6 +250,31 @@ const std::vector<TrajectoryType>& TrajectoryTypes() {
                                             P::Number("radius", PARAM_MEMBER(shape.radius), AtLeast(0), NoUpperBound(),
                                                       "of the circle")
                                                 .Unit("m")})});
+    {
+      // pass: no duration key; the speed sets it.
+      std::vector<P::Row> rows = {
+          Direction("the direction of travel, world frame (toward: from the moving body's start to the other body's "
+                    "origin)"),
+          Approach(), Depth(),
+          P::Number("speed", PARAM_MEMBER(shape.speed), Above(0), NoUpperBound(), "constant speed along the direction")
+              .Unit("m/s")
+              .Example("5"),
+          Timing()[1]};
+      for (P::Row& r : Touch()) rows.push_back(std::move(r));
+      t.push_back({"pass", ParamTable<TrajectorySpec>(
+                               "trajectory: {type: pass}",
+                               "Along the direction from -approach to +depth at constant speed, once, taking "
+                               "(approach + depth) / speed.",
+                               std::move(rows), [](const ConfigNode& n, TrajectorySpec* s) {
+                                 const double length = s->shape.approach + s->shape.depth;
+                                 if (!(length > 0)) n.Fail("approach + depth must be positive for a pass");
+                                 s->shape.duration = length / s->shape.speed;
+                                 if (s->shape.duration * s->shape.rate > kMaxTrajectorySamples) {
+                                   n.Get("speed").Fail("(approach + depth) / speed x rate is more than the limit of "
+                                                       "1e8 samples");
+                                 }
+                               })});
+    }
     std::vector<P::Row> recorded = {
         P::Custom("file", "text", "a CSV file on the data search path",
                   "t,x,y,z,qw,qx,qy,qz rows, e.g. a session log (required)",

@@ -41,7 +41,9 @@ class Trajectory {
 //  slide:          press to DEPTH, then slide LENGTH along a tangent, and back;
 //  twist:          press to DEPTH, then rotate by ANGLE about DIRECTION, and back;
 //  scan:           press to DEPTH, then sweep LENGTH along the tangent at constant speed;
-//  circle:         press to DEPTH, then a circle of RADIUS in the tangent plane.
+//  circle:         press to DEPTH, then a circle of RADIUS in the tangent plane;
+//  pass:           along DIRECTION from -approach to +depth at constant SPEED, once (through a
+//                  body at a set speed: the tunnelling study).
 // At most 1e8 samples (cycles: a 27-hour run at 1 kHz) in a procedural trajectory.
 inline constexpr double kMaxTrajectorySamples = 1e8;
 
@@ -54,6 +56,7 @@ struct ProceduralTrajectorySpec {
   double length = 0.02;     // m (slide, scan)
   double radius = 0.005;    // m (circle)
   double angle = 0.5;       // rad (twist)
+  double speed = 1.0;       // m/s (pass; its duration is (approach + depth) / speed)
   double duration = 2.0;    // s
   double rate = 1000;       // samples per second
 };

@@ -25,6 +25,24 @@ TEST(Trajectory, ApproachAndPressReachesTheDepthHalfwayAndReturns) {
   EXPECT_NEAR(t.At(0.5).translation.head<2>().norm(), 0, 1e-15);
 }
 
+TEST(Trajectory, PassMovesAtConstantSpeedOnceAndItsSpeedSetsTheDuration) {
+  const Trajectory t = ParseTrajectory(ConfigNode::LoadString(
+      "type: pass\ndirection: [0, 0, -2]\napproach: 0.02\ndepth: 0.02\nspeed: 5\n", "pass.yaml"));
+  EXPECT_NEAR(t.duration(), 0.04 / 5, 1e-15);
+  for (const double time : {0.0, 0.001, 0.0037, 0.008}) {
+    EXPECT_NEAR(t.At(time).translation.z(), 0.02 - 5 * time, 1e-12) << time;  // 5 mm per ms, straight down
+    EXPECT_NEAR(t.At(time).translation.head<2>().norm(), 0, 1e-15);
+  }
+  const std::string e = testing::ErrorOf([] {
+    ParseTrajectory(ConfigNode::LoadString("type: pass\napproach: 0\ndepth: 0\n", "still.yaml"));
+  });
+  EXPECT_NE(e.find("still.yaml"), std::string::npos) << e;
+  EXPECT_NE(e.find("approach + depth must be positive"), std::string::npos) << e;
+  EXPECT_NE(testing::ErrorOf([] { ParseTrajectory(ConfigNode::LoadString("type: pass\nduration: 1\n", "d.yaml")); })
+                .find("duration"),
+            std::string::npos);  // a pass has no duration key: its speed sets it
+}
+
 TEST(Trajectory, TwistRotatesAboutTheDirectionAndSlideMovesAlongTheTangent) {
   ProceduralTrajectorySpec s;
   s.type = "twist";
@@ -199,7 +217,7 @@ TEST(Trajectory, BadKeysAreErrorsNamingTheFileLineAndKey) {
             std::string::npos)
       << e;
   e = error("type: wiggle\n");
-  EXPECT_NE(e.find("t.yaml:1: type: 'wiggle' is not one of: approach-press, slide, twist, scan, circle, recorded"),
+  EXPECT_NE(e.find("t.yaml:1: type: 'wiggle' is not one of: approach-press, slide, twist, scan, circle, pass, recorded"),
             std::string::npos)
       << e;
   e = error("duration: 1\n");
@@ -226,7 +244,7 @@ TEST(Trajectory, BadKeysAreErrorsNamingTheFileLineAndKey) {
 // defaults of trajectory.h.
 TEST(Trajectory, ReferenceListsEachTypesKeysWithTheirDefaults) {
   const std::string r = TrajectoryReference();
-  EXPECT_NE(r.find("| `type` | choice | approach-press, slide, twist, scan, circle, recorded |"), std::string::npos)
+  EXPECT_NE(r.find("| `type` | choice | approach-press, slide, twist, scan, circle, pass, recorded |"), std::string::npos)
       << r;
   for (const char* type : {"approach-press", "slide", "twist", "scan", "circle", "recorded"}) {
     EXPECT_NE(r.find(std::string("### `trajectory: {type: ") + type + "}`"), std::string::npos) << type;
@@ -241,8 +259,9 @@ TEST(Trajectory, ReferenceListsEachTypesKeysWithTheirDefaults) {
     for (std::size_t at = r.find(cell); at != std::string::npos; at = r.find(cell, at + 1)) ++n;
     return n;
   };
-  EXPECT_EQ(rows("direction"), 6);  // every type
-  EXPECT_EQ(rows("touch"), 6);
+  EXPECT_EQ(rows("direction"), 7);  // every type
+  EXPECT_EQ(rows("touch"), 7);
+  EXPECT_EQ(rows("speed"), 1);      // pass
   EXPECT_EQ(rows("duration"), 5);   // the procedural ones
   EXPECT_EQ(rows("tangent"), 3);    // slide, scan, circle
   EXPECT_EQ(rows("length"), 2);     // slide, scan
