@@ -12,6 +12,7 @@
 #include <cstring>
 #include <sstream>
 
+#include "haptics/cpu_affinity.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -86,6 +87,9 @@ HapticLoop::HapticLoop(HapticCycle& cycle, const HapticLoopOptions& options, Loo
   if (!(options_.spin_seconds >= 0 && options_.spin_seconds < 1.0 / options_.rate_hz))
     Fail("haptic loop", "spin_seconds must lie in [0, 1/rate_hz)");
   if (options_.fifo_priority < 1 || options_.fifo_priority > 99) Fail("haptic loop", "fifo_priority must lie in [1, 99]");
+  if (options_.cpu < -1 || options_.cpu >= ConfiguredCpuCount())
+    Fail("haptic loop", "cpu must be -1 (not pinned) or a CPU of this machine (0.." +
+                            std::to_string(ConfiguredCpuCount() - 1) + ")");
 }
 
 HapticLoop::~HapticLoop() {
@@ -122,6 +126,11 @@ HapticLoopReport HapticLoop::Join() {
 }
 
 void HapticLoop::WatchdogMain() {
+  // Off the loop's core, when it has one: the core is the loop thread's alone.
+  if (options_.cpu >= 0) {
+    if (const int err = KeepThisThreadOffCpu(options_.cpu); err != 0)
+      std::fprintf(stderr, "warning: haptic loop: watchdog cannot leave CPU %d (%s)\n", options_.cpu, std::strerror(err));
+  }
   // Polls the loop's heartbeat every 1 ms; a stale heartbeat zeroes the device once per stall.
   const std::int64_t limit = std::int64_t(options_.watchdog_seconds * 1e9);
   bool tripped = false;
@@ -147,6 +156,16 @@ void HapticLoop::WatchdogMain() {
 
 void HapticLoop::ThreadMain() {
   HapticLoopReport& r = report_;
+  // Pinning, before the real-time setup (a clear warning and an unpinned thread when refused).
+  if (options_.cpu >= 0) {
+    const int err = PinThisThreadToCpu(options_.cpu);
+    if (err == 0) {
+      r.pinned_cpu = options_.cpu;
+    } else {
+      std::fprintf(stderr, "warning: haptic loop: cannot pin the loop thread to CPU %d (%s); running unpinned\n",
+                   options_.cpu, std::strerror(err));
+    }
+  }
   // Real-time setup, before the loop: a clear warning and a normal thread when refused.
   if (options_.try_realtime) {
     sched_param sp;
@@ -266,6 +285,7 @@ std::string FormatLoopReport(const HapticLoopReport& r) {
      << ", preempted " << r.misses_preempted << "), skipped " << r.skipped_cycles << ", watchdog zeroes "
      << r.watchdog_zeroes << (r.realtime_scheduling ? ", SCHED_FIFO" : ", normal scheduling")
      << (r.memory_locked ? ", mlocked" : ", not mlocked");
+  if (r.pinned_cpu >= 0) os << ", pinned to CPU " << r.pinned_cpu;
   os << (r.stopped_by_signal ? ", stopped by signal" : "") << "\n";
   auto line = [&](const char* name, const TimingHistogram& h) {
     os << "  " << name << " us: p50 " << us(h.QuantileSeconds(0.5)) << "  p99 " << us(h.QuantileSeconds(0.99))

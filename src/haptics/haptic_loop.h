@@ -4,8 +4,9 @@
 // lock-free ring of cycle records for a graphics or logging consumer, and a clean stop on
 // SIGINT that leaves the device at zero force. Each cycle's thread CPU time is measured beside
 // its wall time, so that a deadline miss has a cause (deadline_miss.h: overrun or preempted)
-// and the largest ten are kept. Its time comes from a LoopClock: the monotonic clock in a
-// session, simulated time in tests.
+// and the largest ten are kept. Optionally the loop thread runs pinned to one core
+// (cpu_affinity.h). Its time comes from a LoopClock: the monotonic clock in a session,
+// simulated time in tests.
 #pragma once
 
 #include <atomic>
@@ -28,6 +29,10 @@ struct HapticLoopOptions {
   double spin_seconds = 50e-6;        // sleep until this long before the deadline, then spin
   double watchdog_seconds = 0.01;     // watchdog thread zeroes the device if the loop stalls this long; <= 0 disables
   bool honour_sigint = true;          // stop when the SIGINT/SIGTERM flag is raised
+  // Core the loop thread pins itself to (pthread_setaffinity_np); -1: not pinned. The watchdog
+  // thread takes itself off it. Keeping the caller's other threads off it is the caller's
+  // part (KeepThisThreadOffCpu before it starts them; the session's --cpu does).
+  int cpu = -1;
 };
 
 struct HapticLoopReport {
@@ -41,6 +46,7 @@ struct HapticLoopReport {
   bool realtime_scheduling = false;   // SCHED_FIFO granted
   bool memory_locked = false;         // mlockall granted
   bool stopped_by_signal = false;
+  int pinned_cpu = -1;                // the core the loop thread ran pinned to; -1: not pinned
   TimingHistogram work;               // time from the cycle's start to the wrench being written
   TimingHistogram cpu;                // the loop thread's CPU time over that work
   TimingHistogram wake_latency;       // lateness of the wake-up after the release time
