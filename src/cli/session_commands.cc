@@ -9,12 +9,16 @@
 // reduced deformation takes one step at the end of every cycle (paper sec. 4.1 and 5).
 // --view [PORT] serves a live 3D view of the session on the loopback address
 // (view/live_view_server.h, docs/viewer.md); with --view-wait [N] the session starts once N
-// viewers opened the view's stream.
+// viewers opened the view's stream. The report splits deadline misses into overrun and
+// preempted and lists the largest ten; the log carries each cycle's CPU time (cpu_us).
+// --cpu N pins the loop thread to core N and keeps every other thread of the session off it
+// (docs/sessions.md).
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -28,6 +32,7 @@
 #include "experiment/contact_placement.h"
 #include "experiment/scene_assets.h"
 #include "experiment/scene.h"
+#include "haptics/cpu_affinity.h"
 #include "haptics/device_factory.h"
 #include "haptics/haptic_cycle.h"
 #include "haptics/haptic_loop.h"
@@ -61,6 +66,8 @@ struct SessionArgs {
   std::string view_port;  // its value: a port, or empty (a free one)
   bool view_wait = false;       // --view-wait given
   std::string view_wait_count;  // its value: how many viewers, or empty (one)
+  bool cpu_given = false;       // --cpu given
+  std::string cpu;              // its value: the loop thread's core
 };
 
 // Columns of the session log; the first eight are the recorded-trajectory format of the
@@ -68,50 +75,52 @@ struct SessionArgs {
 constexpr const char* kLogHeader =
     "t,x,y,z,qw,qx,qy,qz,body_x,body_y,body_z,body_qw,body_qx,body_qy,body_qz,"
     "force_x,force_y,force_z,torque_x,torque_y,torque_z,contact_fx,contact_fy,contact_fz,"
-    "points_in_contact,level_rendered,nodes_visited,work_us,safety_flags,buttons,step_us,q_norm,q_norm_body\n";
+    "points_in_contact,level_rendered,nodes_visited,work_us,safety_flags,buttons,step_us,q_norm,q_norm_body,cpu_us\n";
 
 void WriteRecord(std::ostream& out, const CycleRecord& r, std::int64_t t0_ns) {
-  char line[720];
+  char line[760];
   std::snprintf(line, sizeof line,
                 "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,"
-                "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%d,%lld,%.3f,%u,%u,%.3f,%.9g,%.9g\n",
+                "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%d,%lld,%.3f,%u,%u,%.3f,%.9g,%.9g,%.3f\n",
                 double(r.now_ns - t0_ns) * 1e-9, r.p_WD[0], r.p_WD[1], r.p_WD[2], r.q_WD[0], r.q_WD[1], r.q_WD[2],
                 r.q_WD[3], r.p_WH[0], r.p_WH[1], r.p_WH[2], r.q_WH[0], r.q_WH[1], r.q_WH[2], r.q_WH[3],
                 r.device_force[0], r.device_force[1], r.device_force[2], r.device_torque[0], r.device_torque[1],
                 r.device_torque[2], r.contact_force[0], r.contact_force[1], r.contact_force[2], r.points_in_contact,
                 r.level_rendered, static_cast<long long>(r.nodes_visited), double(r.work_ns) * 1e-3,
-                r.safety_flags, r.buttons, double(r.step_ns) * 1e-3, r.q_norm, r.q_norm_B);
+                r.safety_flags, r.buttons, double(r.step_ns) * 1e-3, r.q_norm, r.q_norm_B, double(r.cpu_ns) * 1e-3);
   out << line;
 }
 
-// The live view's options, checked before anything is built.
-struct ViewOptions {
+// The options checked before anything is built: the live view's and the loop's core.
+struct CheckedOptions {
   int port = 0;     // --view's port (0: a free one)
   int viewers = 0;  // --view-wait: the streams to wait for before the session starts (0: none)
+  int cpu = -1;     // --cpu: the loop thread's core (-1: not pinned)
 };
 
-// The log's target, --view's port and three.js, and --view-wait, checked before anything is
-// built.
-ViewOptions CheckSessionOptions(const SessionArgs& args) {
+// --cpu, the log's target, --view's port and three.js, and --view-wait, checked before
+// anything is built.
+CheckedOptions CheckSessionOptions(const SessionArgs& args) {
+  CheckedOptions checked;
+  if (args.cpu_given) checked.cpu = ParseLoopCpu(args.cpu, "--cpu");
   if (!args.log.empty()) CheckOutputTarget(args.log, "--log");  // before the session, not after it
-  ViewOptions view;
   if (args.view_wait) {
     if (!args.view) Fail("--view-wait", "needs --view");
-    view.viewers = 1;
+    checked.viewers = 1;
     if (!args.view_wait_count.empty()) {
       const std::optional<long long> n = ParseInteger(args.view_wait_count);
       if (!n || *n < 1 || *n > 64) Fail("--view-wait", QuoteToken(args.view_wait_count) + " is not a number of viewers (1..64)");
-      view.viewers = int(*n);
+      checked.viewers = int(*n);
     }
   }
-  if (!args.view) return view;
+  if (!args.view) return checked;
   if (!args.view_port.empty()) {
     const std::optional<long long> p = ParseInteger(args.view_port);
     if (!p || *p < 0 || *p > 65535) Fail("--view", QuoteToken(args.view_port) + " is not a port (0..65535; 0 or none: a free one)");
-    view.port = int(*p);
+    checked.port = int(*p);
   }
   RequireThreeJs();
-  return view;
+  return checked;
 }
 
 // Where the scene's fields and pointshells are cached (--cache).
@@ -177,12 +186,23 @@ HapticCycleConfig MakeSessionCycleConfig(const SessionArgs& args, SessionScene& 
   return config;
 }
 
-// The loop's options: --duration, and --no-realtime (no SCHED_FIFO, no mlockall).
-HapticLoopOptions SessionLoopOptions(const SessionArgs& args) {
+// The loop's options: --duration, --no-realtime (no SCHED_FIFO, no mlockall) and --cpu.
+HapticLoopOptions SessionLoopOptions(const SessionArgs& args, int cpu) {
   HapticLoopOptions options;
   options.duration_seconds = args.duration;
   options.try_realtime = !args.no_realtime;
+  options.cpu = cpu;
   return options;
+}
+
+// --cpu N: takes the calling (main) thread off core N before the session starts any other
+// thread, so that every thread it starts (field builds, device input, log consumer, viewer,
+// the loop's watchdog) inherits a mask without N; the loop thread then pins itself to N.
+void KeepSessionThreadsOffLoopCpu(int cpu) {
+  if (cpu < 0) return;
+  if (const int err = KeepThisThreadOffCpu(cpu); err != 0)
+    Fail("--cpu", "cannot move the session's other threads off CPU " + std::to_string(cpu) + ": " +
+                      std::strerror(err));
 }
 
 // The session log (--log): written to a temporary name and renamed when the session ends
@@ -247,9 +267,10 @@ SessionView StartSessionView(const SessionArgs& args, SessionScene& s, int port,
 }
 
 // The start lines on stdout: scene, model, device, length and deformable bodies; where the
-// device is (a udp device's bound port, also when udp:0 picked it); the view's address.
+// device is (a udp device's bound port, also when udp:0 picked it); the view's address; with
+// --cpu, the loop's core and the other threads' cores.
 void PrintSessionStart(const SessionArgs& args, const SessionScene& s, const SceneDynamics& dynamics,
-                       const HapticDevice& device, const LiveViewServer* server) {
+                       const HapticDevice& device, const LiveViewServer* server, int cpu) {
   std::string deformable;
   if (dynamics.A) deformable += ", " + s.scene.pointshell_body.name + " deformable, r = " + std::to_string(dynamics.A->r());
   if (dynamics.B) deformable += ", " + s.scene.field_body.name + " deformable, r = " + std::to_string(dynamics.B->r());
@@ -257,6 +278,9 @@ void PrintSessionStart(const SessionArgs& args, const SessionScene& s, const Sce
               s.model_name.c_str(), args.device.c_str(), args.duration, deformable.c_str());
   std::printf("device: %s\n", device.description().c_str());
   if (server) std::printf("view: %s\n", server->url().c_str());
+  if (cpu >= 0)
+    std::printf("cpu: loop thread pinned to CPU %d, the session's other threads on CPUs %s\n", cpu,
+                FormatCpuList(CpusOfThisThread()).c_str());
   std::fflush(stdout);
 }
 
@@ -350,25 +374,26 @@ HapticLoopReport RunSessionLoop(HapticLoop& loop, SessionLog& log, LiveSnapshotP
 // The session, step by step: options, scene and model, device, cycle and loop, log, view;
 // then the loop runs and the summary and the log close it.
 void RunSession(const SessionArgs& args) {
-  const ViewOptions view_options = CheckSessionOptions(args);
+  const CheckedOptions checked = CheckSessionOptions(args);
+  KeepSessionThreadsOffLoopCpu(checked.cpu);
   SessionScene s(args);
   SessionDevice device(args.device, s.X_WB_start);
   SceneDynamics dynamics = MakeSceneDynamics(s.assets, s.scene.model.cycle_seconds);
   std::unique_ptr<ContactPointMarks> marks = args.view ? MakeViewPointMarks(s) : nullptr;
   HapticCycle cycle(device.mapped, s.model.get(), MakeSessionCycleConfig(args, s, dynamics, marks.get()));
   InstallStopSignalHandlers();
-  const HapticLoopOptions loop_options = SessionLoopOptions(args);
+  const HapticLoopOptions loop_options = SessionLoopOptions(args, checked.cpu);
   HapticLoop loop(cycle, loop_options);
   SessionLog log(args, s);
   const SessionView view =
-      args.view ? StartSessionView(args, s, view_options.port, marks.get(), loop_options.rate_hz) : SessionView{};
-  PrintSessionStart(args, s, dynamics, *device.device, view.server.get());
+      args.view ? StartSessionView(args, s, checked.port, marks.get(), loop_options.rate_hz) : SessionView{};
+  PrintSessionStart(args, s, dynamics, *device.device, view.server.get(), checked.cpu);
   // --view-wait: the session starts once its viewers opened the stream (or Ctrl-C: it ends
   // at once), so that they see it from its first cycle.
-  if (view_options.viewers > 0) {
-    std::printf("view: waiting for %d viewer%s\n", view_options.viewers, view_options.viewers > 1 ? "s" : "");
+  if (checked.viewers > 0) {
+    std::printf("view: waiting for %d viewer%s\n", checked.viewers, checked.viewers > 1 ? "s" : "");
     std::fflush(stdout);
-    view.server->WaitForStreams(view_options.viewers, StopSignalRequested);
+    view.server->WaitForStreams(checked.viewers, StopSignalRequested);
   }
 
   const HapticLoopReport report = RunSessionLoop(loop, log, view.publisher.get(), args.quiet);
@@ -395,6 +420,9 @@ const CommandRegistration kSessionCommands([](CLI::App& app) {
   cmd->add_option("--cache", args->cache, "cache folder for fields and pointshells");
   cmd->add_flag("--no-realtime", args->no_realtime, "do not try SCHED_FIFO / mlockall");
   cmd->add_flag("--quiet", args->quiet, "no live status line");
+  CLI::Option* cpu = cmd->add_option("--cpu", args->cpu,
+                  "pin the haptic loop thread to CPU N and keep every other thread of the session off it "
+                  "(docs/sessions.md: isolate N first)");
   CLI::Option* view = cmd->add_option("--view", args->view_port,
                                       "serve a live 3D view on http://127.0.0.1:PORT/ (no PORT or 0: a free port, printed)")
                           ->expected(0, 1);
@@ -402,7 +430,8 @@ const CommandRegistration kSessionCommands([](CLI::App& app) {
       cmd->add_option("--view-wait", args->view_wait_count,
                       "with --view: start the session once N viewers (default 1) opened the live view's stream")
           ->expected(0, 1);
-  cmd->callback([args, view, view_wait] {
+  cmd->callback([args, view, view_wait, cpu] {
+    args->cpu_given = cpu->count() > 0;
     args->view = view->count() > 0;
     args->view_wait = view_wait->count() > 0;
     RunSession(*args);

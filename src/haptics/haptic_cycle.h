@@ -66,6 +66,7 @@ struct CycleRecord {
   std::int32_t level_rendered = -1;   // deepest tree level the contact model rendered
   std::int64_t nodes_visited = 0;
   std::int64_t work_ns = 0;           // time the cycle took (set by the loop), ns
+  std::int64_t cpu_ns = 0;            // the loop thread's CPU time over that work (set by the loop), ns
   std::int64_t step_ns = 0;           // the deformation steps within it (deformable A and/or H), ns
   double q_norm = 0;                  // |q| of body A after the step (deformable A)
   double q_norm_B = 0;                // |q| of H after the step (deformable H)

@@ -12,6 +12,7 @@
 #include <cstring>
 #include <sstream>
 
+#include "haptics/cpu_affinity.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -51,6 +52,12 @@ class MonotonicClock final : public LoopClock {
 
 }  // namespace
 
+std::int64_t LoopClock::ThreadCpuNs() {
+  timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return std::int64_t(ts.tv_sec) * 1000000000 + ts.tv_nsec;
+}
+
 LoopClock& MonotonicLoopClock() {
   static MonotonicClock clock;
   return clock;
@@ -80,6 +87,9 @@ HapticLoop::HapticLoop(HapticCycle& cycle, const HapticLoopOptions& options, Loo
   if (!(options_.spin_seconds >= 0 && options_.spin_seconds < 1.0 / options_.rate_hz))
     Fail("haptic loop", "spin_seconds must lie in [0, 1/rate_hz)");
   if (options_.fifo_priority < 1 || options_.fifo_priority > 99) Fail("haptic loop", "fifo_priority must lie in [1, 99]");
+  if (options_.cpu < -1 || options_.cpu >= ConfiguredCpuCount())
+    Fail("haptic loop", "cpu must be -1 (not pinned) or a CPU of this machine (0.." +
+                            std::to_string(ConfiguredCpuCount() - 1) + ")");
 }
 
 HapticLoop::~HapticLoop() {
@@ -116,6 +126,11 @@ HapticLoopReport HapticLoop::Join() {
 }
 
 void HapticLoop::WatchdogMain() {
+  // Off the loop's core, when it has one: the core is the loop thread's alone.
+  if (options_.cpu >= 0) {
+    if (const int err = KeepThisThreadOffCpu(options_.cpu); err != 0)
+      std::fprintf(stderr, "warning: haptic loop: watchdog cannot leave CPU %d (%s)\n", options_.cpu, std::strerror(err));
+  }
   // Polls the loop's heartbeat every 1 ms; a stale heartbeat zeroes the device once per stall.
   const std::int64_t limit = std::int64_t(options_.watchdog_seconds * 1e9);
   bool tripped = false;
@@ -141,6 +156,16 @@ void HapticLoop::WatchdogMain() {
 
 void HapticLoop::ThreadMain() {
   HapticLoopReport& r = report_;
+  // Pinning, before the real-time setup (a clear warning and an unpinned thread when refused).
+  if (options_.cpu >= 0) {
+    const int err = PinThisThreadToCpu(options_.cpu);
+    if (err == 0) {
+      r.pinned_cpu = options_.cpu;
+    } else {
+      std::fprintf(stderr, "warning: haptic loop: cannot pin the loop thread to CPU %d (%s); running unpinned\n",
+                   options_.cpu, std::strerror(err));
+    }
+  }
   // Real-time setup, before the loop: a clear warning and a normal thread when refused.
   if (options_.try_realtime) {
     sched_param sp;
@@ -157,6 +182,7 @@ void HapticLoop::ThreadMain() {
   }
 
   const std::int64_t period_ns = std::int64_t(1e9 / options_.rate_hz);
+  r.period_ns = period_ns;
   const std::int64_t spin_ns = std::int64_t(options_.spin_seconds * 1e9);
   const std::int64_t start_ns = clock_.NowNs();
   const std::int64_t end_ns =
@@ -177,22 +203,42 @@ void HapticLoop::ThreadMain() {
     if (t0 >= end_ns) break;
     heartbeat_ns_.store(t0);
 
+    // The work, timed twice: wall time (the loop clock) around the thread's CPU time.
+    const std::int64_t c0 = clock_.ThreadCpuNs();
     CycleRecord rec = cycle_.Step(t0);
+    const std::int64_t c1 = clock_.ThreadCpuNs();
     const std::int64_t t1 = clock_.NowNs();
     rec.work_ns = t1 - t0;
+    rec.cpu_ns = c1 - c0;
     ring_.TryPush(rec);
 
-    r.work.Add(t1 - t0);
+    r.work.Add(rec.work_ns);
+    r.cpu.Add(rec.cpu_ns);
     r.wake_latency.Add(t0 - release);
     if (prev_start >= 0) r.period.Add(t0 - prev_start);
     prev_start = t0;
     ++r.cycles;
 
     // Next release; a cycle that ends after it is a miss, and missed releases are skipped
-    // (the deadline jumps past now) instead of being run in a burst.
+    // (the deadline jumps past now) instead of being run in a burst. A miss is an overrun when
+    // its work's CPU time alone exceeds the period, else preempted (deadline_miss.h).
+    const std::int64_t this_release = release;
     release += period_ns;
     if (t1 > release) {
       ++r.deadline_misses;
+      const MissCause cause = ClassifyMiss(rec.cpu_ns, period_ns);
+      ++(cause == MissCause::kOverrun ? r.misses_overrun : r.misses_preempted);
+      r.largest_misses.Offer(MissRecord{.cycle = rec.cycle,
+                                        .at_ns = t0 - start_ns,
+                                        .wall_ns = t1 - this_release,
+                                        .wake_ns = t0 - this_release,
+                                        .work_ns = rec.work_ns,
+                                        .cpu_ns = rec.cpu_ns,
+                                        .nodes_visited = rec.nodes_visited,
+                                        .points_in_contact = rec.points_in_contact,
+                                        .level_rendered = rec.level_rendered,
+                                        .step_ns = rec.step_ns,
+                                        .cause = cause});
       const std::int64_t behind = (t1 - release) / period_ns + 1;
       r.skipped_cycles += behind;
       release += behind * period_ns;
@@ -213,17 +259,40 @@ std::string FormatDeviceInputStats(const DeviceInputStats& s) {
   return os.str();
 }
 
+std::string FormatLargestMisses(const LargestMisses& misses, std::int64_t period_ns) {
+  std::ostringstream os;
+  os << "  largest misses (wall: release to wrench written; overrun: work cpu > period " << double(period_ns) * 1e-3
+     << " us; preempted: not):\n";
+  char row[200];
+  std::snprintf(row, sizeof row, "  %9s %9s %9s %9s %9s %9s %8s %8s %5s %8s  %s\n", "cycle", "at s", "wall us",
+                "wake us", "work us", "cpu us", "nodes", "contacts", "level", "step us", "cause");
+  os << row;
+  for (const MissRecord& m : misses) {
+    std::snprintf(row, sizeof row, "  %9lld %9.3f %9.1f %9.1f %9.1f %9.1f %8lld %8d %5d %8.1f  %s\n",
+                  static_cast<long long>(m.cycle), double(m.at_ns) * 1e-9, double(m.wall_ns) * 1e-3,
+                  double(m.wake_ns) * 1e-3, double(m.work_ns) * 1e-3, double(m.cpu_ns) * 1e-3,
+                  static_cast<long long>(m.nodes_visited), m.points_in_contact, m.level_rendered,
+                  double(m.step_ns) * 1e-3, MissCauseName(m.cause));
+    os << row;
+  }
+  return os.str();
+}
+
 std::string FormatLoopReport(const HapticLoopReport& r) {
   std::ostringstream os;
   auto us = [](double s) { return s * 1e6; };
-  os << "cycles " << r.cycles << ", deadline misses " << r.deadline_misses << ", skipped " << r.skipped_cycles
-     << ", watchdog zeroes " << r.watchdog_zeroes << (r.realtime_scheduling ? ", SCHED_FIFO" : ", normal scheduling")
-     << (r.memory_locked ? ", mlocked" : ", not mlocked") << (r.stopped_by_signal ? ", stopped by signal" : "") << "\n";
+  os << "cycles " << r.cycles << ", deadline misses " << r.deadline_misses << " (overrun " << r.misses_overrun
+     << ", preempted " << r.misses_preempted << "), skipped " << r.skipped_cycles << ", watchdog zeroes "
+     << r.watchdog_zeroes << (r.realtime_scheduling ? ", SCHED_FIFO" : ", normal scheduling")
+     << (r.memory_locked ? ", mlocked" : ", not mlocked");
+  if (r.pinned_cpu >= 0) os << ", pinned to CPU " << r.pinned_cpu;
+  os << (r.stopped_by_signal ? ", stopped by signal" : "") << "\n";
   auto line = [&](const char* name, const TimingHistogram& h) {
     os << "  " << name << " us: p50 " << us(h.QuantileSeconds(0.5)) << "  p99 " << us(h.QuantileSeconds(0.99))
        << "  p99.9 " << us(h.QuantileSeconds(0.999)) << "  max " << us(h.max_seconds()) << "  (n " << h.count() << ")\n";
   };
   line("work        ", r.work);
+  line("work cpu    ", r.cpu);
   line("wake latency", r.wake_latency);
   line("period      ", r.period);
   os << "  safety: non-finite " << r.safety.non_finite << ", force clamped " << r.safety.force_clamped
@@ -234,6 +303,7 @@ std::string FormatLoopReport(const HapticLoopReport& r) {
      << "\n";
   if (r.device_input.received > 0 || r.device_input.rejected() > 0)
     os << "  device input: " << FormatDeviceInputStats(r.device_input) << "\n";
+  if (!r.largest_misses.empty()) os << FormatLargestMisses(r.largest_misses, r.period_ns);
   return os.str();
 }
 

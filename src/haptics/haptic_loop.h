@@ -2,8 +2,11 @@
 // millisecond): absolute deadlines, SCHED_FIFO and mlockall when permitted, a cycle-time
 // histogram, deadline-miss counting with a skip-ahead catch-up policy, a watchdog thread, a
 // lock-free ring of cycle records for a graphics or logging consumer, and a clean stop on
-// SIGINT that leaves the device at zero force. Its time comes from a LoopClock: the monotonic
-// clock in a session, simulated time in tests.
+// SIGINT that leaves the device at zero force. Each cycle's thread CPU time is measured beside
+// its wall time, so that a deadline miss has a cause (deadline_miss.h: overrun or preempted)
+// and the largest ten are kept. Optionally the loop thread runs pinned to one core
+// (cpu_affinity.h). Its time comes from a LoopClock: the monotonic clock in a session,
+// simulated time in tests.
 #pragma once
 
 #include <atomic>
@@ -11,6 +14,7 @@
 #include <string>
 #include <thread>
 
+#include "haptics/deadline_miss.h"
 #include "haptics/haptic_cycle.h"
 #include "haptics/spsc_ring.h"
 #include "haptics/timing_histogram.h"
@@ -25,23 +29,33 @@ struct HapticLoopOptions {
   double spin_seconds = 50e-6;        // sleep until this long before the deadline, then spin
   double watchdog_seconds = 0.01;     // watchdog thread zeroes the device if the loop stalls this long; <= 0 disables
   bool honour_sigint = true;          // stop when the SIGINT/SIGTERM flag is raised
+  // Core the loop thread pins itself to (pthread_setaffinity_np); -1: not pinned. The watchdog
+  // thread takes itself off it. Keeping the caller's other threads off it is the caller's
+  // part (KeepThisThreadOffCpu before it starts them; the session's --cpu does).
+  int cpu = -1;
 };
 
 struct HapticLoopReport {
   std::int64_t cycles = 0;            // cycles run
   std::int64_t deadline_misses = 0;   // cycles that finished after the next cycle's release
+  std::int64_t misses_overrun = 0;    // of which the work's thread CPU time exceeded the period
+  std::int64_t misses_preempted = 0;  // of which it did not: the thread was not running
+  std::int64_t period_ns = 0;         // the loop's period
   std::int64_t skipped_cycles = 0;    // releases skipped by the catch-up policy
   std::int64_t watchdog_zeroes = 0;   // times the watchdog thread zeroed the device
   bool realtime_scheduling = false;   // SCHED_FIFO granted
   bool memory_locked = false;         // mlockall granted
   bool stopped_by_signal = false;
-  TimingHistogram work;               // time from release to the wrench being written
+  int pinned_cpu = -1;                // the core the loop thread ran pinned to; -1: not pinned
+  TimingHistogram work;               // time from the cycle's start to the wrench being written
+  TimingHistogram cpu;                // the loop thread's CPU time over that work
   TimingHistogram wake_latency;       // lateness of the wake-up after the release time
   TimingHistogram period;             // time between consecutive cycle starts
   SafetyStats safety;                 // the cycle's safety counters at the end
   std::int64_t coherence_resets = 0;  // cycles where H outran max_point_speed (model reset)
   std::int64_t contact_faults = 0;    // cycles whose contact query the model refused (no force)
   DeviceInputStats device_input;      // the device's input counters at the end (udp rejections)
+  LargestMisses largest_misses;       // the ten largest misses by wall time from release
 };
 
 // Cycle records for consumers; the loop drops records (counted) when the consumer lags.
@@ -62,6 +76,10 @@ class LoopClock {
   virtual void WaitUntil(std::int64_t deadline_ns, std::int64_t spin_ns) = 0;
   // Waits about DURATION_NS (the watchdog's poll); may return early.
   virtual void Sleep(std::int64_t duration_ns) = 0;
+  // CPU time the calling thread (the loop thread) has used, ns; only differences count. The
+  // default reads CLOCK_THREAD_CPUTIME_ID (a vDSO call: no lock, no allocation); a simulated
+  // clock counts simulated work.
+  virtual std::int64_t ThreadCpuNs();
 };
 
 // CLOCK_MONOTONIC with absolute-time sleeps: the clock of every real session.
@@ -120,7 +138,14 @@ void ClearStopSignal();
 // resyncs N": the input counters of a device that can reject samples.
 std::string FormatDeviceInputStats(const DeviceInputStats& s);
 
-// A human-readable summary of REPORT (percentiles in microseconds).
+// The table of MISSES (largest first), one row each: cycle, time into the session, wall time
+// from release, wake-up lateness, work, work CPU time (us), nodes, contacts, level, step time,
+// cause; PERIOD_NS is the loop's period (the rule's threshold, printed in the title).
+std::string FormatLargestMisses(const LargestMisses& misses, std::int64_t period_ns);
+
+// A human-readable summary of REPORT (percentiles in microseconds): cycles, misses split into
+// overrun and preempted (deadline_miss.h), the timing histograms, the safety counters and the
+// table of the largest misses.
 std::string FormatLoopReport(const HapticLoopReport& report);
 
 }  // namespace contactlab

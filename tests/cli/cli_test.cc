@@ -3,6 +3,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <sched.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 
@@ -316,6 +317,36 @@ TEST(Cli, UdpSessionOnAPickedPortPrintsThePort) {
   EXPECT_NE(o.output.find("coherence resets"), std::string::npos) << o.output;
 }
 
+// --cpu that is no CPU of the machine is refused before the session, naming the option; a good
+// one pins the loop and says so, and the report splits the misses.
+TEST(Cli, SessionCpuOptionIsCheckedAndPinsTheLoop) {
+  testing::TempDir dir;
+  std::ofstream(dir / "scene.yaml") << kScene;
+  const std::string session = "session " + (dir / "scene.yaml").string() + " --device sim --duration 0.2 " +
+                              "--no-realtime --quiet --cache " + (dir / "cache").string();
+  for (const std::string bad : {"-1", "100000", "one"}) {
+    const Outcome o = RunCli(session + " --cpu " + bad);
+    EXPECT_EQ(o.exit_code, 1) << o.output;
+    EXPECT_NE(o.output.find("--cpu: "), std::string::npos) << o.output;
+    EXPECT_EQ(o.output.find("session: scene"), std::string::npos) << o.output;  // refused before it started
+  }
+  const Outcome free = RunCli(session);
+  ASSERT_EQ(free.exit_code, 0) << free.output;
+  EXPECT_NE(free.output.find(" (overrun "), std::string::npos) << free.output;
+  // Pinning needs a second CPU for the other threads (sched_getaffinity of this process).
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  ASSERT_EQ(sched_getaffinity(0, sizeof(set), &set), 0);
+  if (CPU_COUNT(&set) < 2) GTEST_SKIP() << "one CPU: --cpu has no core to leave to the other threads";
+  int last = CPU_SETSIZE - 1;
+  while (!CPU_ISSET(last, &set)) --last;
+  const Outcome pinned = RunCli(session + " --cpu " + std::to_string(last));
+  ASSERT_EQ(pinned.exit_code, 0) << pinned.output;
+  EXPECT_NE(pinned.output.find("cpu: loop thread pinned to CPU " + std::to_string(last)), std::string::npos)
+      << pinned.output;
+  EXPECT_NE(pinned.output.find("pinned to CPU " + std::to_string(last) + "\n"), std::string::npos) << pinned.output;
+}
+
 TEST(Cli, RunListsJobsOfASweep) {
   testing::TempDir dir;
   std::ofstream(dir / "scene.yaml") << kScene;
@@ -612,7 +643,7 @@ TEST(CliDeformable, ContactAtQAndBodyExportAreConsistentAndBadQIsRefused) {
                                  (dir / "session.csv").string());
   ASSERT_EQ(session.exit_code, 0) << session.output;
   EXPECT_NE(session.output.find("beam deformable, r = 4"), std::string::npos) << session.output;
-  EXPECT_NE(ReadWholeFile(dir / "session.csv").find(",step_us,q_norm,q_norm_body\n"), std::string::npos);
+  EXPECT_NE(ReadWholeFile(dir / "session.csv").find(",step_us,q_norm,q_norm_body,cpu_us\n"), std::string::npos);
 }
 
 // Finite coordinates whose deformation overflows (q = 1e308: positions inf) are an input error

@@ -1,7 +1,9 @@
 // Simulated time for tests of the real-time haptic loop (haptics/haptic_loop.h): the loop's
 // wait for a release jumps the clock to it at once, so cycles run back to back at exact
 // multiples of the period, a stall is a jump of the clock (Advance) rather than a sleep, and
-// a test can stop the loop at a chosen release (PauseAt) to look at it. What such a test
+// a test can stop the loop at a chosen release (PauseAt) to look at it. The loop thread's CPU
+// time is simulated too: it moves only when a cycle works (Work), so a stall (Advance) is a
+// cycle that was not running and a Work longer than the period is one that overran. What such a test
 // checks then never depends on how the scheduler runs the loop and watchdog threads.
 #pragma once
 
@@ -27,6 +29,8 @@ class SimulatedLoopClock final : public LoopClock {
   explicit SimulatedLoopClock(std::int64_t start_ns = 1'000'000'000) : now_(start_ns) {}
 
   std::int64_t NowNs() override { return now_.load(); }
+  // The simulated CPU time of the loop thread: the sum of its Work calls.
+  std::int64_t ThreadCpuNs() override { return cpu_ns_.load(); }
 
   // Jumps to DEADLINE_NS; before that, waits for Resume() when a pause was set at or before
   // DEADLINE_NS.
@@ -58,6 +62,13 @@ class SimulatedLoopClock final : public LoopClock {
     changed_.notify_all();
   }
 
+  // Moves the time and the loop thread's CPU time on by DURATION_NS: a cycle that computes for
+  // that long without being interrupted calls this from its model.
+  void Work(std::int64_t duration_ns) {
+    cpu_ns_.fetch_add(duration_ns);
+    Advance(duration_ns);
+  }
+
   // The loop will wait, before the first release at or after T_NS, until Resume().
   void PauseAt(std::int64_t t_ns) {
     std::lock_guard lock(mutex_);
@@ -78,6 +89,7 @@ class SimulatedLoopClock final : public LoopClock {
   std::mutex mutex_;
   std::condition_variable changed_;
   std::atomic<std::int64_t> now_;  // written under mutex_, read without it
+  std::atomic<std::int64_t> cpu_ns_{0};
   std::int64_t pause_at_ns_ = -1;
   bool paused_ = false;
 };

@@ -1,0 +1,159 @@
+// Tests of deadline misses with a cause (haptics/deadline_miss.h): the top-ten keeper against a
+// brute-force sort, and the overrun / preempted rule on hand-made records and in the loop under
+// simulated time.
+#include "haptics/deadline_miss.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "haptics/halfspace_contact_model.h"
+#include "haptics/haptic_cycle.h"
+#include "haptics/haptic_loop.h"
+#include "haptics/sim_device.h"
+#include "haptics/simulated_loop_clock.h"
+
+namespace contactlab {
+namespace {
+
+constexpr std::int64_t kMs = 1000000;
+
+// Offers COUNT misses whose wall times are drawn from [0, RANGE) (a small range: many ties)
+// and checks the keeper against a stable sort of all of them, largest first: the same cycles
+// in the same order (among equal wall times the earlier is kept and listed first).
+void CheckKeeperAgainstSort(int count, std::int64_t range, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<std::int64_t> wall(0, range - 1);
+  LargestMisses keeper;
+  std::vector<MissRecord> all;
+  for (int i = 0; i < count; ++i) {
+    MissRecord m;
+    m.cycle = i;
+    m.wall_ns = wall(rng);
+    keeper.Offer(m);
+    all.push_back(m);
+  }
+  std::stable_sort(all.begin(), all.end(), [](const MissRecord& a, const MissRecord& b) { return a.wall_ns > b.wall_ns; });
+  const int expected = std::min(count, LargestMisses::kCapacity);
+  ASSERT_EQ(keeper.size(), expected) << "count " << count << ", seed " << seed;
+  for (int i = 0; i < expected; ++i) {
+    EXPECT_EQ(keeper[i].wall_ns, all[i].wall_ns) << "rank " << i << ", count " << count << ", seed " << seed;
+    EXPECT_EQ(keeper[i].cycle, all[i].cycle) << "rank " << i << ", count " << count << ", seed " << seed;
+  }
+}
+
+TEST(LargestMisses, KeepsExactlyTheTenLargestAsASortWould) {
+  for (int count : {0, 1, 9, 10, 11, 37, 1000, 20000})
+    for (std::uint32_t seed : {1u, 2u, 3u}) {
+      CheckKeeperAgainstSort(count, 1'000'000'000, seed);  // nearly all distinct
+      CheckKeeperAgainstSort(count, 7, seed);              // mostly ties
+    }
+}
+
+TEST(LargestMisses, AscendingAndDescendingInputsKeepTheTopTen) {
+  LargestMisses up, down;
+  for (int i = 0; i < 100; ++i) {
+    up.Offer(MissRecord{.cycle = i, .wall_ns = i});
+    down.Offer(MissRecord{.cycle = 99 - i, .wall_ns = 99 - i});
+  }
+  ASSERT_EQ(up.size(), 10);
+  ASSERT_EQ(down.size(), 10);
+  for (int i = 0; i < 10; ++i) {
+    EXPECT_EQ(up[i].cycle, 99 - i);
+    EXPECT_EQ(down[i].cycle, 99 - i);
+  }
+}
+
+// The rule: overrun when the work's thread CPU time exceeds the period, whatever the wall time.
+TEST(ClassifyMiss, OverrunOnlyWhenTheWorkAloneExceedsThePeriod) {
+  constexpr std::int64_t period = 1 * kMs;
+  EXPECT_EQ(ClassifyMiss(period + 1, period), MissCause::kOverrun);
+  EXPECT_EQ(ClassifyMiss(3 * kMs, period), MissCause::kOverrun);
+  EXPECT_EQ(ClassifyMiss(period, period), MissCause::kPreempted);  // would just have made it
+  EXPECT_EQ(ClassifyMiss(0, period), MissCause::kPreempted);       // a wake-up stall
+  EXPECT_EQ(ClassifyMiss(999'999, period), MissCause::kPreempted);
+  EXPECT_EQ(ClassifyMiss(250'001, 250'000), MissCause::kOverrun);   // 4 kHz
+  EXPECT_STREQ(MissCauseName(MissCause::kOverrun), "overrun");
+  EXPECT_STREQ(MissCauseName(MissCause::kPreempted), "preempted");
+}
+
+// A contact model that, on chosen cycles, computes (Work: wall and CPU time) or loses its core
+// (Advance: wall time only) for simulated time.
+class TimedModel final : public ContactModel {
+ public:
+  TimedModel(ContactModel& inner, testing::SimulatedLoopClock& clock) : inner_(inner), clock_(clock) {}
+  std::string_view name() const override { return "timed"; }
+  ContactResult Evaluate(const ContactQuery& q) override {
+    for (const Event& e : events)
+      if (e.cycle == q.cycle) {
+        if (e.work_ns > 0) clock_.Work(e.work_ns);
+        if (e.lost_ns > 0) clock_.Advance(e.lost_ns);
+      }
+    return inner_.Evaluate(q);
+  }
+  void Reset() override { inner_.Reset(); }
+
+  struct Event {
+    std::int64_t cycle;
+    std::int64_t work_ns;  // computing
+    std::int64_t lost_ns;  // not running
+  };
+  std::vector<Event> events;
+
+ private:
+  ContactModel& inner_;
+  testing::SimulatedLoopClock& clock_;
+};
+
+// In simulated time: a cycle that computes for 3 ms overran; one that lost its core for 5 ms,
+// and one that computed 0.6 ms and lost 0.6 ms, were preempted; one that computed 0.9 ms made
+// its deadline. The report counts and lists them, largest first, with their times and work.
+TEST(HapticLoop, MissesAreSplitIntoOverrunAndPreemptedByTheCyclesCpuTime) {
+  HalfspaceContactModel inner(MakeBoxSamplePoints(Eigen::Vector3d(0.02, 0.02, 0.01), 3), 1000.0);
+  testing::SimulatedLoopClock clock;
+  TimedModel model(inner, clock);
+  model.events = {{100, 3 * kMs, 0}, {200, 0, 5 * kMs}, {300, 600'000, 600'000}, {400, 900'000, 0}};
+  SimDevice device(SimDeviceParams{}, [](double) { return Pose::FromTranslation(Eigen::Vector3d(0, 0, 0.005)); });
+  HapticCycle cycle(device, &model, HapticCycleConfig{});
+  HapticLoopOptions opt;
+  opt.try_realtime = false;
+  opt.duration_seconds = 0.5;
+  opt.watchdog_seconds = 0;  // no watchdog: nothing here is about it
+  HapticLoop loop(cycle, opt, clock);
+  const HapticLoopReport report = loop.Run();
+  std::printf("%s", FormatLoopReport(report).c_str());
+
+  EXPECT_EQ(report.deadline_misses, 3);
+  EXPECT_EQ(report.misses_overrun, 1);
+  EXPECT_EQ(report.misses_preempted, 2);
+  EXPECT_EQ(report.period_ns, kMs);
+  ASSERT_EQ(report.largest_misses.size(), 3);
+  const MissRecord& first = report.largest_misses[0];
+  EXPECT_EQ(first.cycle, 200);
+  EXPECT_EQ(first.wall_ns, 5 * kMs);
+  EXPECT_EQ(first.wake_ns, 0);
+  EXPECT_EQ(first.work_ns, 5 * kMs);
+  EXPECT_EQ(first.cpu_ns, 0);
+  EXPECT_EQ(first.cause, MissCause::kPreempted);
+  EXPECT_GT(first.points_in_contact, 0);  // what the cycle did travels with it
+  EXPECT_GT(first.nodes_visited, 0);
+  const MissRecord& second = report.largest_misses[1];
+  EXPECT_EQ(second.cycle, 100);
+  EXPECT_EQ(second.cpu_ns, 3 * kMs);
+  EXPECT_EQ(second.cause, MissCause::kOverrun);
+  const MissRecord& third = report.largest_misses[2];
+  EXPECT_EQ(third.cycle, 300);
+  EXPECT_EQ(third.wall_ns, 1'200'000);
+  EXPECT_EQ(third.cpu_ns, 600'000);
+  EXPECT_EQ(third.cause, MissCause::kPreempted);
+  // The CPU time is in the histogram beside the wall time: 3 ms is its largest sample.
+  EXPECT_EQ(report.cpu.count(), report.work.count());
+  EXPECT_DOUBLE_EQ(report.cpu.max_seconds(), 3e-3);
+  EXPECT_NE(FormatLoopReport(report).find("deadline misses 3 (overrun 1, preempted 2)"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace contactlab
