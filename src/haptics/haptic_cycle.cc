@@ -102,6 +102,13 @@ CycleRecord HapticCycle::Step(std::int64_t now_ns) {
   const Eigen::Quaterniond& qh = step.X_WH.rotation;
   rec.q_WD[0] = qd.w(), rec.q_WD[1] = qd.x(), rec.q_WD[2] = qd.y(), rec.q_WD[3] = qd.z();
   rec.q_WH[0] = qh.w(), rec.q_WH[1] = qh.x(), rec.q_WH[2] = qh.y(), rec.q_WH[3] = qh.z();
+  Pose X_WP;
+  if (model_ != nullptr && model_->Proxy(&X_WP)) {
+    rec.has_proxy = true;
+    for (int i = 0; i < 3; ++i) rec.p_WP[i] = X_WP.translation[i];
+    rec.q_WP[0] = X_WP.rotation.w(), rec.q_WP[1] = X_WP.rotation.x(), rec.q_WP[2] = X_WP.rotation.y();
+    rec.q_WP[3] = X_WP.rotation.z();
+  }
   // The deformations advance at the end of the cycle with the contact forces as external
   // loads (paper sec. 4.1 and 5): A's, and H's own, decoupled from H's rigid motion.
   if (model_ != nullptr && (config_.dynamics_A != nullptr || config_.dynamics_B != nullptr)) {

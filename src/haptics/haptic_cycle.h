@@ -74,6 +74,11 @@ struct CycleRecord {
   double q_WD[4] = {1, 0, 0, 0};      // device orientation (w, x, y, z)
   double p_WH[3] = {0, 0, 0};         // simulated body position, m
   double q_WH[4] = {1, 0, 0, 0};
+  // A contact model's proxy of H (ContactModel::Proxy, pointshell-ccd: where H is held outside
+  // the other body), world frame; has_proxy false for models without one.
+  bool has_proxy = false;
+  double p_WP[3] = {0, 0, 0};
+  double q_WP[4] = {1, 0, 0, 0};
   double contact_force[3] = {0, 0, 0};    // contact force on H, N
   double device_force[3] = {0, 0, 0};     // force written to the device (after safety), N
   double device_torque[3] = {0, 0, 0};    // torque written, N m

@@ -27,6 +27,9 @@ LiveSnapshot SnapshotOf(const CycleRecord& r, std::int64_t t0_ns) {
     s.q_WH[k] = r.q_WH[k];
     s.q_WD[k] = r.q_WD[k];
   }
+  s.has_proxy = r.has_proxy;
+  for (int k = 0; k < 3; ++k) s.p_WP[k] = r.p_WP[k];
+  for (int k = 0; k < 4; ++k) s.q_WP[k] = r.q_WP[k];
   s.points_in_contact = r.points_in_contact;
   s.level_rendered = r.level_rendered;
   s.work_us = double(r.work_ns) * 1e-3;
@@ -35,17 +38,22 @@ LiveSnapshot SnapshotOf(const CycleRecord& r, std::int64_t t0_ns) {
 }
 
 std::string SnapshotJson(const LiveSnapshot& s) {
-  char buf[1024];
+  char proxy[256] = "null";
+  if (s.has_proxy) {
+    std::snprintf(proxy, sizeof proxy, "[%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g]", s.p_WP[0], s.p_WP[1], s.p_WP[2], s.q_WP[0],
+                  s.q_WP[1], s.q_WP[2], s.q_WP[3]);
+  }
+  char buf[1280];
   std::snprintf(buf, sizeof buf,
                 "{\"t\":%.6f,\"cycle\":%lld,\"body\":[%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g],"
                 "\"device\":[%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g],\"contact_force\":[%.9g,%.9g,%.9g],"
                 "\"force\":[%.9g,%.9g,%.9g],\"torque\":[%.9g,%.9g,%.9g],\"contacts\":%d,\"level\":%d,"
-                "\"work_us\":%.3f,\"safety\":%u}",
+                "\"work_us\":%.3f,\"safety\":%u,\"proxy\":%s}",
                 s.t, static_cast<long long>(s.cycle), s.p_WH[0], s.p_WH[1], s.p_WH[2], s.q_WH[0], s.q_WH[1], s.q_WH[2],
                 s.q_WH[3], s.p_WD[0], s.p_WD[1], s.p_WD[2], s.q_WD[0], s.q_WD[1], s.q_WD[2], s.q_WD[3],
                 s.contact_force[0], s.contact_force[1], s.contact_force[2], s.device_force[0], s.device_force[1],
                 s.device_force[2], s.device_torque[0], s.device_torque[1], s.device_torque[2], s.points_in_contact,
-                s.level_rendered, s.work_us, s.safety_flags);
+                s.level_rendered, s.work_us, s.safety_flags, proxy);
   return buf;
 }
 

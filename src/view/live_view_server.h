@@ -38,6 +38,9 @@ struct LiveSnapshot {
   double q_WH[4] = {1, 0, 0, 0};    // its orientation (w, x, y, z)
   double p_WD[3] = {0, 0, 0};       // device (manipulandum) position, m
   double q_WD[4] = {1, 0, 0, 0};
+  bool has_proxy = false;           // the model's proxy of the haptic body (pointshell-ccd)
+  double p_WP[3] = {0, 0, 0};
+  double q_WP[4] = {1, 0, 0, 0};
   double contact_force[3] = {0, 0, 0};  // on the haptic body, N
   double device_force[3] = {0, 0, 0};   // written to the device, N
   double device_torque[3] = {0, 0, 0};  // N m

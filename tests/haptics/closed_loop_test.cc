@@ -255,6 +255,41 @@ TEST(ClosedLoop, NonFiniteContactWrenchNeverReachesTheDevice) {
   EXPECT_TRUE(cycle.coupling().X_WH().translation.allFinite());
 }
 
+// A model with a proxy (as pointshell-ccd keeps one): the cycle's record carries its pose, for
+// the live view; a model without one leaves has_proxy false.
+class ProxyModel final : public ContactModel {
+ public:
+  std::string_view name() const override { return "proxy-test"; }
+  ContactResult Evaluate(const ContactQuery& q) override {
+    X_WP = q.X_WB;
+    X_WP.translation.z() += 0.001 * double(q.cycle);  // a pose that differs from H's every cycle
+    return {};
+  }
+  void Reset() override {}
+  bool Proxy(Pose* X) const override {
+    *X = X_WP;
+    return true;
+  }
+  Pose X_WP;
+};
+
+TEST(ClosedLoop, TheRecordCarriesTheModelsProxy) {
+  ProxyModel model;
+  SimDevice device(SimDeviceParams{}, [](double) { return Pose::FromTranslation(Eigen::Vector3d(0, 0, 0.005)); });
+  HapticCycle cycle(device, &model, HapticCycleConfig{});
+  cycle.Start(0);
+  for (std::int64_t i = 1; i <= 5; ++i) {
+    const CycleRecord rec = cycle.Step(i * kMs);
+    ASSERT_TRUE(rec.has_proxy);
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(rec.p_WP[k], model.X_WP.translation[k]) << "cycle " << i;
+    EXPECT_EQ(rec.q_WP[0], model.X_WP.rotation.w());
+  }
+  HalfspaceContactModel plain(MakeBoxSamplePoints(Eigen::Vector3d(0.02, 0.02, 0.01), 3), 1000.0);
+  HapticCycle without(device, &plain, HapticCycleConfig{});
+  without.Start(0);
+  EXPECT_FALSE(without.Step(kMs).has_proxy);
+}
+
 // The loop runs in simulated time and waits before its 200th release; the test sees 199
 // cycles pushing on the plane, raises SIGINT and lets the loop go: the waiting cycle runs,
 // the loop stops at the next cycle boundary and leaves the device at zero.

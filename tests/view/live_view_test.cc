@@ -250,6 +250,16 @@ TEST(LiveView, ServerStreamsTheNewestSnapshotOnLoopback) {
   EXPECT_DOUBLE_EQ(j["body"][2].get<double>(), -0.25);
   EXPECT_DOUBLE_EQ(j["contact_force"][2].get<double>(), 3.0);
   EXPECT_EQ(j["level"], 2);
+  EXPECT_TRUE(j["proxy"].is_null());  // no proxy in this session's model
+  // A model with a proxy (pointshell-ccd): its pose travels with the snapshot.
+  s.has_proxy = true;
+  s.p_WP[0] = 0.125;
+  s.q_WP[0] = 0.5, s.q_WP[3] = -0.5;
+  const nlohmann::json with = nlohmann::json::parse(SnapshotJson(s));
+  ASSERT_EQ(with["proxy"].size(), 7u);
+  EXPECT_DOUBLE_EQ(with["proxy"][0].get<double>(), 0.125);
+  EXPECT_DOUBLE_EQ(with["proxy"][3].get<double>(), 0.5);
+  EXPECT_DOUBLE_EQ(with["proxy"][6].get<double>(), -0.5);
   // A stream opened now starts with the newest as an event.
   std::string got;
   client.Get("/stream", [&](const char* data, std::size_t n) {

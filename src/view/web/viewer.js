@@ -464,6 +464,13 @@
     ghost.renderOrder = 4;
     setPose(ghost, haptic.spec.pose);
     scene.add(ghost);
+    // A model's proxy of the haptic body (pointshell-ccd: where it is held outside the other
+    // body) as a cyan wireframe, shown while the snapshots carry one.
+    var proxy = new THREE.Mesh(haptic.mesh.geometry, new THREE.MeshBasicMaterial(
+        {color: 0x17becf, wireframe: true, transparent: true, opacity: 0.5, depthWrite: false}));
+    proxy.renderOrder = 5;
+    proxy.visible = false;
+    scene.add(proxy);
     var history = [];  // [t, |F|] of the last 10 s
     var liveMax = 0;
     var received = 0;
@@ -473,6 +480,8 @@
       ++received;
       setPose(haptic.group, s.body);
       setPose(ghost, s.device);
+      proxy.visible = !!s.proxy;
+      if (s.proxy) setPose(proxy, s.proxy);
       var f = new THREE.Vector3(s.force[0], s.force[1], s.force[2]);
       var fm = f.length();
       liveMax = Math.max(liveMax, fm);
