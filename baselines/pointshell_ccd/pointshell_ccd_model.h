@@ -53,6 +53,8 @@ class PointshellCcdModel final : public ContactModel {
   std::string_view name() const override { return "pointshell-ccd"; }
   ContactResult Evaluate(const ContactQuery& query) override;
   void Reset() override;
+  // The proxy is not a coherence shortcut: a motion faster than max_point_speed keeps it.
+  void ResetCoherence() override {}
   bool Proxy(Pose* X_WB_proxy) const override;
 
   const PointshellCcdParams& params() const { return params_; }

@@ -75,6 +75,12 @@ class ContactModel {
   virtual ContactResult Evaluate(const ContactQuery& query) = 0;
   // Forgets temporal state (coherence, level-of-detail hysteresis).
   virtual void Reset() = 0;
+  // The caller saw the bodies move faster than the scene's max_point_speed, which temporal
+  // coherence trusts (haptic cycle and runner, contact/coherence_guard.h): forgets what
+  // coherence assumed. By default all temporal state (Reset); a model whose state is no such
+  // shortcut keeps it (pointshell-ccd's proxy: its search holds at any speed, and forgetting it
+  // would let B jump through A).
+  virtual void ResetCoherence() { Reset(); }
   // For display: the states of body A's pointshell points POINTS (indices into the shell the
   // model traverses) in the latest Evaluate, whose query was QUERY, written to OUT[0..k).
   // Returns k, how many leading points were written: fewer than asked when a model bounds its

@@ -261,7 +261,7 @@ void RunModel(const JobSetup& setup, const std::string& name, CycleStorage& stor
   for (std::int64_t k = 0; k < motion.cycles; ++k) {
     const Pose X_moving = motion.At(k);
     // Faster than the coherence assumes: this cycle traverses in full, coherence restarts.
-    if (setup.coherence.Check(X_moving)) model->Reset();
+    if (setup.coherence.Check(X_moving)) model->ResetCoherence();
     ContactQuery q;
     q.X_WA = motion.moving_is_B ? motion.X_WA0 : X_moving;
     q.X_WB = motion.moving_is_B ? X_moving : motion.X_WB0;

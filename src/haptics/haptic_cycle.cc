@@ -46,7 +46,7 @@ CycleRecord HapticCycle::Step(std::int64_t now_ns) {
     // of its points (A is static), against the speed the model's coherence assumes.
     const Pose& X_WH = coupling_.X_WH();
     if (coherence_.Check(X_WH, &rec.point_speed)) {
-      model_->Reset();  // this cycle traverses in full; coherence restarts from it
+      model_->ResetCoherence();  // this cycle traverses in full; coherence restarts from it
       rec.coherence_reset = true;
     }
     ContactQuery q;

@@ -265,13 +265,32 @@ class ProxyModel final : public ContactModel {
     X_WP.translation.z() += 0.001 * double(q.cycle);  // a pose that differs from H's every cycle
     return {};
   }
-  void Reset() override {}
+  void Reset() override { ++resets; }
+  void ResetCoherence() override { ++coherence_resets; }
   bool Proxy(Pose* X) const override {
     *X = X_WP;
     return true;
   }
   Pose X_WP;
+  int resets = 0, coherence_resets = 0;
 };
+
+// A motion faster than max_point_speed resets what coherence assumed (ResetCoherence), not the
+// model's whole state: a proxy model keeps its proxy.
+TEST(ClosedLoop, AFastMotionResetsCoherenceNotTheProxy) {
+  ProxyModel model;
+  SimDevice device(SimDeviceParams{}, [](double t) { return Pose::FromTranslation(Eigen::Vector3d(0.05 * t, 0, 0)); });
+  HapticCycleConfig config;
+  config.max_point_speed = 1e-6;  // every motion is too fast
+  config.body_radius_H = 0.01;
+  HapticCycle cycle(device, &model, config);
+  cycle.Start(0);
+  EXPECT_EQ(model.resets, 1);  // the session's start
+  for (std::int64_t i = 1; i <= 200; ++i) cycle.Step(i * kMs);
+  EXPECT_GT(model.coherence_resets, 0);
+  EXPECT_EQ(model.coherence_resets, cycle.coherence_resets());
+  EXPECT_EQ(model.resets, 1);
+}
 
 TEST(ClosedLoop, TheRecordCarriesTheModelsProxy) {
   ProxyModel model;
