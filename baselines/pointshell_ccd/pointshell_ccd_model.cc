@@ -150,8 +150,12 @@ ContactResult PointshellCcdModel::Evaluate(const ContactQuery& query) {
     }
     warm_count_ = n;
     for (int i = 0; i < n; ++i) {
-      if (multiplier_[i] <= 0) continue;
-      ++pushing;
+      // A constraint the step ends on blocks its direction whether or not it happens to carry
+      // the multiplier (projected Gauss-Seidel puts a flat face's load on one of its points).
+      const NearPoint& c = near_[i];
+      const double slack = (c.distance - l) - (c.gradient_A.dot(v) + moment_[i].dot(w));
+      if (multiplier_[i] <= 0 && slack > kViolationTolerance * l) continue;
+      if (multiplier_[i] > 0) ++pushing;
       Vector6d u;
       u << near_[i].gradient_A / std::sqrt(k), moment_[i] / std::sqrt(kr);
       G.noalias() += u * u.transpose();
@@ -173,7 +177,7 @@ ContactResult PointshellCcdModel::Evaluate(const ContactQuery& query) {
   out.on_B.force = k * (X_WP.translation - X_WB.translation);
   out.on_B.torque = kr * phi;
   if (pushing > 0) {
-    const Eigen::SelfAdjointEigenSolver<Matrix6d> eig(G);
+    const Eigen::SelfAdjointEigenSolver<Matrix6d> eig(G);  // (G over every tight constraint)
     const Vector6d ev = eig.eigenvalues();
     const double top = ev.maxCoeff();
     Matrix6d P = Matrix6d::Zero();

@@ -17,7 +17,7 @@
 // φ = log(R_WP R_WB^T) (about B's origin), unsaturated. K_B is its derivative with the proxy
 // sliding: the proxy follows B along every direction no pushing constraint blocks, so
 // K_B = -M^½ P M^½ with P the projector onto the span of M^-½ J_a^T (J_a: the constraints
-// whose multipliers push). Free space: proxy = B, zero wrench, K_B = 0.
+// the step ends on, pushing or tight). Free space: proxy = B, zero wrench, K_B = 0.
 //
 // Graceful degradation: the scene's node budget is shared by the cycle's searches; past it a
 // node is not expanded and stands for its subtree conservatively (the proxy stops early).
