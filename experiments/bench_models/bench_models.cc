@@ -124,19 +124,27 @@ ContactModel* GetModel(Prepared& p, const std::string& name, std::string* error)
   }
 }
 
-void BM_ModelQuery(benchmark::State& state, std::string scene_file, std::string model_name, int depth) {
+// The model MODEL_NAME of SCENE_FILE's prepared scene and its configuration DEPTH, or null with
+// STATE skipped (the bodies could not be placed, or the model refused the scene).
+ContactModel* PreparedModel(benchmark::State& state, const std::string& scene_file, const std::string& model_name,
+                            int depth, const Configuration** config) {
   Prepared& p = Prepare(scene_file);
-  const Configuration& c = p.config[depth];
-  if (!c.placed) {
+  *config = &p.config[depth];
+  if (!(*config)->placed) {
     state.SkipWithError("could not place the bodies in contact");
-    return;
+    return nullptr;
   }
   std::string error;
   ContactModel* model = GetModel(p, model_name, &error);
-  if (!model) {
-    state.SkipWithError(error.c_str());
-    return;
-  }
+  if (!model) state.SkipWithError(error.c_str());
+  return model;
+}
+
+void BM_ModelQuery(benchmark::State& state, std::string scene_file, std::string model_name, int depth) {
+  const Configuration* config = nullptr;
+  ContactModel* model = PreparedModel(state, scene_file, model_name, depth, &config);
+  if (!model) return;
+  const Configuration& c = *config;
   ContactQuery q;
   q.X_WA = c.X_WA;
   q.X_WB = c.X_WB;
@@ -173,18 +181,10 @@ double Triangle(std::int64_t k, double step, double amplitude) {
 // the bodies' origins: the cost of a moving contact, where coherence and a proxy's sliding do
 // their work. Counters p50_us, p99_us, p999_us: per-cycle times measured around each query.
 void BM_ModelAtSpeed(benchmark::State& state, std::string scene_file, std::string model_name, double speed) {
-  Prepared& p = Prepare(scene_file);
-  const Configuration& c = p.config[1];
-  if (!c.placed) {
-    state.SkipWithError("could not place the bodies in contact");
-    return;
-  }
-  std::string error;
-  ContactModel* model = GetModel(p, model_name, &error);
-  if (!model) {
-    state.SkipWithError(error.c_str());
-    return;
-  }
+  const Configuration* config = nullptr;
+  ContactModel* model = PreparedModel(state, scene_file, model_name, 1, &config);
+  if (!model) return;
+  const Configuration& c = *config;
   const Eigen::Vector3d n = (c.X_WB.translation - c.X_WA.translation).normalized();
   const Eigen::Vector3d tangent = n.unitOrthogonal();
   constexpr std::size_t kKept = 1 << 16;
