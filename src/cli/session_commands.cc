@@ -54,6 +54,7 @@ namespace {
 struct SessionArgs {
   std::string scene;
   std::string device = "sim";
+  std::vector<std::string> device_peers;  // --device-peer: senders a udp device off the loopback accepts
   std::string model;
   std::string log;
   std::string cache;
@@ -156,7 +157,8 @@ struct SessionScene {
 
 // The device of --device, its workspace centred on the haptic body's start pose.
 struct SessionDevice {
-  SessionDevice(const std::string& spec, const Pose& X_WB_start) : device(MakeDevice(spec)), mapped(*device, X_WB_start) {}
+  SessionDevice(const std::string& spec, const DeviceOptions& options, const Pose& X_WB_start)
+      : device(MakeDevice(spec, options)), mapped(*device, X_WB_start) {}
 
   std::unique_ptr<HapticDevice> device;
   WorkspaceMappedDevice mapped;
@@ -377,7 +379,7 @@ void RunSession(const SessionArgs& args) {
   const CheckedOptions checked = CheckSessionOptions(args);
   KeepSessionThreadsOffLoopCpu(checked.cpu);
   SessionScene s(args);
-  SessionDevice device(args.device, s.X_WB_start);
+  SessionDevice device(args.device, DeviceOptions{args.device_peers}, s.X_WB_start);
   SceneDynamics dynamics = MakeSceneDynamics(s.assets, s.scene.model.cycle_seconds);
   std::unique_ptr<ContactPointMarks> marks = args.view ? MakeViewPointMarks(s) : nullptr;
   HapticCycle cycle(device.mapped, s.model.get(), MakeSessionCycleConfig(args, s, dynamics, marks.get()));
@@ -409,7 +411,10 @@ const CommandRegistration kSessionCommands([](CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("session", "Run a live haptic session on a scene with a device at 1 kHz");
   cmd->add_option("SCENE", args->scene, "scene YAML file (its field body is the haptic body)")->required();
   cmd->add_option("--device", args->device,
-                  "sim | sim:circle[:R[:PERIOD]] | replay:FILE.csv | udp:PORT[:PEER] | spacenav | plugin:LIB.so");
+                  "sim | sim:circle[:R[:PERIOD]] | replay:FILE.csv | udp:[ADDRESS:]PORT[:PEER] | spacenav | plugin:LIB.so");
+  cmd->add_option("--device-peer", args->device_peers,
+                  "IPv4 address of a device computer a udp device bound off the loopback accepts (repeatable; "
+                  "required with udp:ADDRESS:PORT)");
   cmd->add_option("--duration", args->duration, "session length, seconds")->check(CLI::PositiveNumber);
   cmd->add_option("--log", args->log, "CSV log of poses, wrenches and timings (replayable trajectory)");
   cmd->add_option("--model", args->model, "contact model (default: the scene's first)");

@@ -53,12 +53,13 @@ bool SpacenavAvailable() {
 #endif
 }
 
-std::unique_ptr<HapticDevice> MakeDevice(const std::string& spec) {
+std::unique_ptr<HapticDevice> MakeDevice(const std::string& spec, const DeviceOptions& options) {
   const std::size_t colon = spec.find(':');
   const std::string kind = spec.substr(0, colon);
   const std::string rest = colon == std::string::npos ? "" : spec.substr(colon + 1);
   const std::string where = "device spec '" + spec + "'";
 
+  if (kind != "udp" && !options.peers.empty()) Fail("--device-peer", "applies to udp devices only, not '" + spec + "'");
   if (kind == "sim") {
     const std::vector<std::string> f = rest.empty() ? std::vector<std::string>{} : Split(rest, ':');
     if (f.empty()) return std::make_unique<SimDevice>(SimDeviceParams{}, [](double) { return Pose{}; });
@@ -76,11 +77,21 @@ std::unique_ptr<HapticDevice> MakeDevice(const std::string& spec) {
     return std::make_unique<ReplayDevice>(ReadTrajectoryCsv(rest), SimDeviceParams::DefaultCapabilities());
   }
   if (kind == "udp") {
-    const std::vector<std::string> f = Split(rest, ':');
-    if (rest.empty() || f.size() > 2) Fail(where, "expected udp:LISTEN_PORT[:PEER_PORT]");
+    std::vector<std::string> f = Split(rest, ':');
     UdpDeviceParams p;
+    // udp:ADDRESS:... when the first field is an address (it has dots).
+    if (!f.empty() && f[0].find('.') != std::string::npos) {
+      if (!ParseIpv4(f[0], &p.bind_address)) Fail(where, "'" + f[0] + "' is not an IPv4 address (a.b.c.d)");
+      f.erase(f.begin());
+    }
+    if (f.empty() || f[0].empty() || f.size() > 2) Fail(where, "expected udp:[ADDRESS:]LISTEN_PORT[:PEER_PORT]");
     p.listen_port = ParsePort(f[0], spec);
     if (f.size() > 1) p.peer_port = ParsePort(f[1], spec);
+    for (const std::string& peer : options.peers) {
+      std::uint32_t a = 0;
+      if (!ParseIpv4(peer, &a)) Fail("--device-peer", "'" + peer + "' is not an IPv4 address (a.b.c.d)");
+      p.allowed_peers.push_back(a);
+    }
     p.capabilities = SimDeviceParams::DefaultCapabilities();
     return std::make_unique<UdpDevice>(p);
   }

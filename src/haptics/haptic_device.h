@@ -45,7 +45,9 @@ struct DeviceInputStats {
   std::int64_t stale = 0;         // too old
   std::int64_t future = 0;        // timestamp ahead of what the local clock allows
   std::int64_t resyncs = 0;       // stream restarts accepted (after a silence or a sender restart)
-  std::int64_t rejected() const { return malformed + duplicate + out_of_order + stale + future; }
+  std::int64_t foreign = 0;       // from a sender not allowed (udp: not loopback, or not a --device-peer)
+  std::uint32_t last_foreign_address = 0;  // the latest such sender's IPv4 address (host order)
+  std::int64_t rejected() const { return malformed + duplicate + out_of_order + stale + future + foreign; }
 };
 
 // One pose sample. Timestamps are nanoseconds on the device's clock (see each backend).

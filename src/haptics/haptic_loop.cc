@@ -256,6 +256,11 @@ std::string FormatDeviceInputStats(const DeviceInputStats& s) {
   os << "received " << s.received << ", accepted " << s.accepted << ", rejected " << s.rejected() << " (malformed "
      << s.malformed << ", duplicate " << s.duplicate << ", out of order " << s.out_of_order << ", stale " << s.stale
      << ", future " << s.future << "), resyncs " << s.resyncs;
+  if (s.foreign > 0) {
+    os << "; refused " << s.foreign << " from senders not allowed (latest " << (s.last_foreign_address >> 24) << "."
+       << ((s.last_foreign_address >> 16) & 255) << "." << ((s.last_foreign_address >> 8) & 255) << "."
+       << (s.last_foreign_address & 255) << ")";
+  }
   return os.str();
 }
 

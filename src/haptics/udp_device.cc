@@ -27,8 +27,29 @@ std::int64_t SatSub(std::int64_t a, std::int64_t b) {
 
 }  // namespace
 
+std::string Ipv4Text(std::uint32_t address) {
+  return std::to_string(address >> 24) + "." + std::to_string((address >> 16) & 255) + "." +
+         std::to_string((address >> 8) & 255) + "." + std::to_string(address & 255);
+}
+
+bool ParseIpv4(const std::string& text, std::uint32_t* address) {
+  in_addr a{};
+  if (::inet_pton(AF_INET, text.c_str(), &a) != 1) return false;
+  *address = ntohl(a.s_addr);
+  return true;
+}
+
+namespace {
+bool IsLoopback(std::uint32_t address) { return (address >> 24) == 127; }
+}  // namespace
+
 UdpDevice::UdpDevice(const UdpDeviceParams& params) : params_(params) {
-  const std::string where = "udp device 127.0.0.1:" + std::to_string(params.listen_port);
+  const std::string where = "udp device " + Ipv4Text(params.bind_address) + ":" + std::to_string(params.listen_port);
+  if (!IsLoopback(params.bind_address) && params.allowed_peers.empty()) {
+    Fail(where, "binding " + Ipv4Text(params.bind_address) +
+                    " (off the loopback) needs the senders to accept: --device-peer ADDRESS, once per device computer");
+  }
+  if (params.allowed_peers.size() == 1) peer_address_.store(params.allowed_peers.front());
   if (!(params.stale_seconds > 0 && params.stale_seconds < 1e6)) Fail(where, "stale_seconds must lie in (0, 1e6)");
   if (!(params.resync_seconds > 0 && params.resync_seconds < 1e6)) Fail(where, "resync_seconds must lie in (0, 1e6)");
   fd_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
@@ -36,7 +57,7 @@ UdpDevice::UdpDevice(const UdpDeviceParams& params) : params_(params) {
   sockaddr_in addr{};
   addr.sin_family = AF_INET;
   addr.sin_port = htons(params.listen_port);
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  addr.sin_addr.s_addr = htonl(params.bind_address);
   if (::bind(fd_, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)) != 0) {
     const int e = errno;
     ::close(fd_);
@@ -61,6 +82,15 @@ bool UdpDevice::Read(std::int64_t now_ns, DeviceState* out) {
     const ssize_t n = ::recvfrom(fd_, buf, sizeof(buf), MSG_TRUNC, reinterpret_cast<sockaddr*>(&from), &from_len);
     if (n < 0) break;  // EAGAIN: drained (other errors: nothing to act on this cycle)
     ++stats_.datagrams;
+    // Only the senders allowed: loopback ones, or the listed peers.
+    const std::uint32_t sender = ntohl(from.sin_addr.s_addr);
+    bool allowed = params_.allowed_peers.empty() && IsLoopback(sender);
+    for (const std::uint32_t a : params_.allowed_peers) allowed = allowed || a == sender;
+    if (!allowed) {
+      ++stats_.foreign;
+      stats_.last_foreign_address = sender;
+      continue;
+    }
     // Decode and classify; a rejected packet changes nothing but its counter.
     udp::PosePacket p;
     const udp::DecodeStatus s = udp::DecodePose(buf, std::size_t(n) > sizeof(buf) ? sizeof(buf) + 1 : std::size_t(n), &p);
@@ -113,6 +143,7 @@ bool UdpDevice::Read(std::int64_t now_ns, DeviceState* out) {
     last_.buttons = p.buttons;
     last_.sequence = p.sequence;
     if (params_.peer_port == 0) peer_port_.store(ntohs(from.sin_port), std::memory_order_relaxed);
+    peer_address_.store(sender, std::memory_order_relaxed);
     ++stats_.accepted;
     fresh = true;
   }
@@ -149,7 +180,7 @@ bool UdpDevice::Send(const Wrench& w, std::int64_t now_ns, std::uint32_t flags, 
   sockaddr_in to{};
   to.sin_family = AF_INET;
   to.sin_port = htons(std::uint16_t(port));
-  to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  to.sin_addr.s_addr = htonl(peer_address_.load(std::memory_order_relaxed));
   return ::sendto(fd_, bytes.data(), bytes.size(), 0, reinterpret_cast<sockaddr*>(&to), sizeof(to)) ==
          ssize_t(bytes.size());
 }
@@ -174,12 +205,21 @@ DeviceInputStats UdpDevice::input_stats() const {
   d.stale = stats_.stale;
   d.future = stats_.future;
   d.resyncs = stats_.resyncs;
+  d.foreign = stats_.foreign;
+  d.last_foreign_address = stats_.last_foreign_address;
   return d;
 }
 
 std::string UdpDevice::description() const {
-  std::string s = "udp on 127.0.0.1:" + std::to_string(bound_port_) + ", wrenches to ";
-  s += params_.peer_port != 0 ? "127.0.0.1:" + std::to_string(params_.peer_port) : "the sender of the poses";
+  std::string s = "udp on " + Ipv4Text(params_.bind_address) + ":" + std::to_string(bound_port_) + ", wrenches to ";
+  const std::string to = params_.allowed_peers.size() == 1 ? Ipv4Text(params_.allowed_peers.front()) : "the sender";
+  s += params_.peer_port != 0 ? to + ":" + std::to_string(params_.peer_port) : "the sender of the poses";
+  if (params_.allowed_peers.empty()) {
+    s += ", accepting loopback senders only";
+  } else {
+    s += ", accepting only";
+    for (const std::uint32_t a : params_.allowed_peers) s += " " + Ipv4Text(a);
+  }
   return s;
 }
 

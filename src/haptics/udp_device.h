@@ -1,10 +1,15 @@
-// A haptic device reached over UDP on the loopback interface (Barbič & James 2008, sec. 5: pose
-// in, coupling wrench out); packets in udp_protocol.h / UDP_PROTOCOL.md. Short, malformed,
-// duplicated, out-of-order and stale packets are rejected and counted, never acted on.
+// A haptic device reached over UDP (Barbič & James 2008, sec. 5: pose in, coupling wrench out);
+// packets in udp_protocol.h / UDP_PROTOCOL.md. Short, malformed, duplicated, out-of-order and
+// stale packets are rejected and counted, never acted on. It binds the loopback interface
+// unless told another address, as an explicit opt-in with an allow-list of the senders it
+// accepts (a device computer beside the simulation computer); a datagram from any other sender
+// is refused and counted with its address.
 #pragma once
 
 #include <atomic>
 #include <cstdint>
+#include <string>
+#include <vector>
 
 #include "haptics/haptic_device.h"
 #include "haptics/udp_protocol.h"
@@ -12,8 +17,14 @@
 namespace contactlab {
 
 struct UdpDeviceParams {
-  std::uint16_t listen_port = 0;   // port bound on 127.0.0.1; 0 picks a free one (see bound_port())
-  std::uint16_t peer_port = 0;     // where wrench packets go on 127.0.0.1; 0: the sender of the last accepted pose
+  // The IPv4 address bound (host order): 127.0.0.1, or another address of this machine
+  // (0.0.0.0: every interface), which then needs allowed_peers.
+  std::uint32_t bind_address = 0x7f000001;
+  // Senders accepted (IPv4, host order). Empty: loopback senders (127.0.0.0/8) only.
+  std::vector<std::uint32_t> allowed_peers;
+  std::uint16_t listen_port = 0;   // port bound; 0 picks a free one (see bound_port())
+  std::uint16_t peer_port = 0;     // where wrench packets go (at the sender's address, or the one allowed
+                                   // peer before any pose); 0: the port of the last accepted pose's sender
   double stale_seconds = 0.05;     // a packet whose one-way delay exceeds the smallest seen by more is stale,
                                    // one whose delay is below it by more is from the future
   double resync_seconds = 0.25;    // no packet accepted for longer: the next valid one starts a new stream
@@ -33,17 +44,24 @@ struct UdpStats {
   std::int64_t stale = 0;              // too old (see UdpDeviceParams::stale_seconds)
   std::int64_t future = 0;             // timestamp ahead of the local clock's elapsed time (same bound)
   std::int64_t resyncs = 0;            // new streams started (after a silence or a sender restart)
+  std::int64_t foreign = 0;            // from a sender not allowed (UdpDeviceParams::allowed_peers)
+  std::uint32_t last_foreign_address = 0;  // its IPv4 address, host order
   std::int64_t wrenches_sent = 0;
   std::int64_t send_errors = 0;
   std::int64_t rejected() const {
-    return bad_length + bad_header + bad_checksum + non_finite + duplicate + out_of_order + stale + future;
+    return bad_length + bad_header + bad_checksum + non_finite + duplicate + out_of_order + stale + future + foreign;
   }
 };
 
+// An IPv4 address as text ("a.b.c.d", host order in), and back: false when TEXT is not one.
+std::string Ipv4Text(std::uint32_t address);
+bool ParseIpv4(const std::string& text, std::uint32_t* address);
+
 class UdpDevice final : public HapticDevice {
  public:
-  // Opens a non-blocking UDP socket bound to 127.0.0.1:listen_port. Throws Error naming the
-  // port when the socket cannot be opened or bound.
+  // Opens a non-blocking UDP socket bound to bind_address:listen_port. Throws Error naming the
+  // address and port when the socket cannot be opened or bound, or when an address off the
+  // loopback comes without allowed peers.
   explicit UdpDevice(const UdpDeviceParams& params);
   ~UdpDevice() override;
   UdpDevice(const UdpDevice&) = delete;
@@ -64,7 +82,8 @@ class UdpDevice final : public HapticDevice {
   void Write(const Wrench& wrench, std::int64_t now_ns, std::uint32_t safety_flags) override;
   void EmergencyZero() noexcept override;
   DeviceInputStats input_stats() const override;
-  // "udp on 127.0.0.1:PORT, ..." with the bound port (the one picked when listen_port is 0).
+  // "udp on ADDRESS:PORT, ..." with the bound port (the one picked when listen_port is 0) and
+  // the senders it accepts.
   std::string description() const override;
 
   // Blocks until a datagram is queued on the socket (Read would see it) or TIMEOUT_SECONDS
@@ -85,6 +104,7 @@ class UdpDevice final : public HapticDevice {
   int fd_ = -1;
   std::uint16_t bound_port_ = 0;
   std::atomic<std::uint32_t> peer_port_{0};
+  std::atomic<std::uint32_t> peer_address_{0x7f000001};  // host order: where wrenches go
   std::atomic<std::uint64_t> wrench_sequence_{0};
   std::atomic<std::int64_t> emergency_zeroes_{0};
   bool have_pose_ = false;

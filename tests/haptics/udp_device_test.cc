@@ -26,11 +26,13 @@ constexpr std::int64_t kMs = 1000000;
 // The device side of the protocol: a loopback socket talking to the UdpDevice's port.
 class Peer {
  public:
-  explicit Peer(std::uint16_t device_port) {
+  // A sender from SOURCE (host order; every address of 127.0.0.0/8 is this machine on Linux, so
+  // 127.0.0.2 and 127.0.0.3 stand for two other computers).
+  explicit Peer(std::uint16_t device_port, std::uint32_t source = INADDR_LOOPBACK) {
     fd_ = ::socket(AF_INET, SOCK_DGRAM, 0);
     sockaddr_in self{};
     self.sin_family = AF_INET;
-    self.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    self.sin_addr.s_addr = htonl(source);
     ::bind(fd_, reinterpret_cast<sockaddr*>(&self), sizeof(self));
     timeval tv{30, 0};  // a hang guard for Receive, far above any loopback delay
     ::setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof(tv));
@@ -269,6 +271,69 @@ TEST(UdpDevice, WrenchPacketsGoBackToTheSenderAndEmergencyZeroIsFlagged) {
   EXPECT_EQ(got.force[1], 0.0);
   EXPECT_TRUE(got.flags & UdpDevice::kEmergencyZeroFlag);
   EXPECT_EQ(dev.emergency_zeroes(), 1);
+}
+
+TEST(UdpDevice, OffTheLoopbackOnlyTheListedPeersAreAcceptedAndOthersAreNamed) {
+  UdpDeviceParams p = WithForceOutput();
+  p.bind_address = 0;                // 0.0.0.0: every interface
+  p.allowed_peers = {0x7f000002};    // 127.0.0.2
+  UdpDevice dev(p);
+  EXPECT_NE(dev.description().find("udp on 0.0.0.0:"), std::string::npos) << dev.description();
+  EXPECT_NE(dev.description().find("accepting only 127.0.0.2"), std::string::npos) << dev.description();
+  Peer allowed(dev.bound_port(), 0x7f000002), other(dev.bound_port(), 0x7f000003);
+  DeviceState s;
+  other.SendPose(1, 0, 0.5);
+  EXPECT_FALSE(ReadWhenArrived(dev, other, kMs, &s));
+  EXPECT_EQ(dev.stats().foreign, 1);
+  EXPECT_EQ(dev.stats().last_foreign_address, 0x7f000003u);
+  EXPECT_EQ(dev.stats().accepted, 0);
+  allowed.SendPose(1, 0, 0.25);
+  while (dev.stats().datagrams < other.sent() + allowed.sent()) {
+    ASSERT_TRUE(dev.WaitForInput(kArrivalGuardSeconds)) << "the allowed peer's pose did not arrive";
+    dev.Read(kMs, &s);
+  }
+  EXPECT_EQ(dev.stats().accepted, 1);
+  EXPECT_EQ(s.X_WD.translation.x(), 0.25);
+  // The wrench goes back to the accepted sender.
+  Wrench w;
+  w.force = Eigen::Vector3d(0, 0, 1.5);
+  dev.Write(w, 2 * kMs, 0);
+  std::uint8_t buf[256];
+  const ssize_t n = allowed.Receive(buf, sizeof(buf));
+  udp::WrenchPacket got;
+  ASSERT_EQ(udp::DecodeWrench(buf, std::size_t(n), &got), udp::DecodeStatus::kOk);
+  EXPECT_EQ(got.force[2], 1.5);
+  // The refusals reach the report, with the sender's address.
+  EXPECT_EQ(dev.input_stats().foreign, 1);
+  const std::string report = FormatDeviceInputStats(dev.input_stats());
+  EXPECT_NE(report.find("refused 1 from senders not allowed (latest 127.0.0.3)"), std::string::npos) << report;
+}
+
+TEST(UdpDevice, AnAddressOffTheLoopbackNeedsItsPeersAndTheSpecSaysSo) {
+  UdpDeviceParams p;
+  p.bind_address = 0;
+  try {
+    UdpDevice dev(p);
+    ADD_FAILURE() << "bound 0.0.0.0 with no peers";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("--device-peer"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("0.0.0.0"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(MakeDevice("udp:0.0.0.0:0", DeviceOptions{{"127.0.0.2"}})->name(), "udp");
+  auto error_of = [](const std::string& spec, const std::vector<std::string>& peers) {
+    try {
+      MakeDevice(spec, DeviceOptions{peers});
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(error_of("udp:0.0.0.0:0", {}).find("--device-peer"), std::string::npos);
+  EXPECT_NE(error_of("udp:1.2.3:0", {}).find("'1.2.3' is not an IPv4 address"), std::string::npos);
+  EXPECT_NE(error_of("udp:0.0.0.0:0", {"nope"}).find("--device-peer: 'nope' is not an IPv4 address"), std::string::npos)
+      << error_of("udp:0.0.0.0:0", {"nope"});
+  EXPECT_NE(error_of("sim", {"127.0.0.2"}).find("--device-peer: applies to udp devices only"), std::string::npos);
+  EXPECT_NE(error_of("udp:127.0.0.1:", {}).find("expected udp:[ADDRESS:]LISTEN_PORT[:PEER_PORT]"), std::string::npos);
 }
 
 TEST(UdpDevice, PortInUseIsReportedWithThePort) {
