@@ -17,17 +17,10 @@ namespace {
 constexpr int kSweeps = 40;
 constexpr double kViolationTolerance = 1e-2;
 
-// POSE with a unit quaternion: the given one scaled to unit length (a zero quaternion gives the
-// identity). False when POSE is not finite.
+// POSE with a unit quaternion (UnitQuaternion). False when POSE is not finite.
 bool UnitPose(const Pose& pose, Pose* out) {
   if (!pose.translation.allFinite() || !pose.rotation.coeffs().allFinite()) return false;
-  out->translation = pose.translation;
-  const double m = pose.rotation.coeffs().cwiseAbs().maxCoeff();
-  if (!(m > 0)) {
-    out->rotation = Eigen::Quaterniond::Identity();
-  } else {
-    out->rotation = Eigen::Quaterniond(pose.rotation.coeffs() / m).normalized();
-  }
+  *out = {UnitQuaternion(pose.rotation), pose.translation};
   return true;
 }
 
@@ -102,6 +95,7 @@ ContactResult PointshellCcdModel::Evaluate(const ContactQuery& query) {
     G.setZero();
     pushing = 0;
     deepest = 0;
+    double deepest_violation = 0;  // largest l - d_i
     for (int i = 0; i < n; ++i) {
       const NearPoint& c = near_[i];
       moment_[i] = (c.p_A - o).cross(c.gradient_A);
@@ -115,6 +109,7 @@ ContactResult PointshellCcdModel::Evaluate(const ContactQuery& query) {
         w -= (mu / kr) * moment_[i];
       }
       deepest = std::max(deepest, -c.distance);
+      deepest_violation = std::max(deepest_violation, l - c.distance);
     }
     // min 1/2 (ξ - ξ_goal)^T M (ξ - ξ_goal) subject to J_i ξ <= d_i - l: projected Gauss-Seidel
     // on the multipliers, ξ = ξ_goal - M^-1 sum J_i^T μ_i kept up to date.
@@ -138,8 +133,6 @@ ContactResult PointshellCcdModel::Evaluate(const ContactQuery& query) {
     // drive the multipliers up without bound: the correction to the straight step is kept
     // within the straight step's length plus twice the deepest violation (a consistent set
     // never needs more: undoing the step and backing out of the deepest point).
-    double deepest_violation = 0;
-    for (int i = 0; i < n; ++i) deepest_violation = std::max(deepest_violation, l - near_[i].distance);
     const double reach = goal.v.norm() + goal.w.norm() * radius + 2 * deepest_violation;
     if (const double dv = (v - goal.v).norm(); dv > reach) v = goal.v + (reach / dv) * (v - goal.v);
     if (const double dw = (w - goal.w).norm() * radius; dw > reach) w = goal.w + (reach / dw) * (w - goal.w);

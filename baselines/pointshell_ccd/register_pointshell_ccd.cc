@@ -22,13 +22,9 @@ void RegisterPointshellCcdContactModels() {
     auto field = in.B.field();
     PointshellCcdParams p;
     p.stiffness = m.proxy_stiffness > 0 ? m.proxy_stiffness : m.penalty.k_C * std::max(1, m.penalty.L);
-    double radius = 0;  // B's field box, farthest corner from B's origin
+    // B's field box, its farthest corner from B's origin (per axis the farther face).
     const Aabb box = field->box();
-    for (int i = 0; i < 8; ++i) {
-      const Eigen::Vector3d c((i & 1) ? box.max.x() : box.min.x(), (i & 2) ? box.max.y() : box.min.y(),
-                              (i & 4) ? box.max.z() : box.min.z());
-      radius = std::max(radius, c.norm());
-    }
+    const double radius = box.min.cwiseAbs().cwiseMax(box.max.cwiseAbs()).norm();
     p.rot_stiffness = m.proxy_rot_stiffness > 0 ? m.proxy_rot_stiffness : p.stiffness * radius * radius;
     p.offset = m.proxy_offset * field->spacing();
     p.iterations = m.proxy_iterations;

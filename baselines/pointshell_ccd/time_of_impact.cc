@@ -6,6 +6,7 @@
 #include <limits>
 #include <utility>
 
+#include "geometry/rotation_math.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -74,19 +75,12 @@ double DistanceAt(const DistanceField& field, const Frame& F, const Eigen::Vecto
 }  // namespace
 
 BlendMotion BlendMotion::Between(const Pose& X0, const Pose& X1) {
-  Eigen::Quaterniond dq = X1.rotation * X0.rotation.conjugate();
-  if (dq.w() < 0) dq.coeffs() = -dq.coeffs();
-  const Eigen::AngleAxisd aa(dq.normalized());
-  return {X0.rotation, X0.translation, X1.translation - X0.translation, aa.angle() * aa.axis()};
+  // The rotation vector of X1 X0^-1, angle in [0, pi]: the shorter way round.
+  return {X0.rotation, X0.translation, X1.translation - X0.translation,
+          CalcRotationVector((X1.rotation * X0.rotation.conjugate()).normalized())};
 }
 
-Pose BlendMotion::At(double t) const {
-  const double theta = w.norm();
-  Pose X;
-  X.rotation = theta > 0 ? (Eigen::Quaterniond(Eigen::AngleAxisd(t * theta, w / theta)) * R0).normalized() : R0;
-  X.translation = o0 + t * v;
-  return X;
-}
+Pose BlendMotion::At(double t) const { return {(RotationFromVector(t * w) * R0).normalized(), o0 + t * v}; }
 
 ImpactSearch::ImpactSearch(std::shared_ptr<const Pointshell> shell, std::shared_ptr<const DistanceField> field)
     : shell_(std::move(shell)), field_(std::move(field)) {

@@ -246,16 +246,23 @@ void DomainBounds(const DeformedDistanceField& field, const DeformedFieldState& 
   }
 }
 
+// Copies the NB points from B0 of (X, Y, Z) to (PX, PY, PZ), padded to whole vectors by
+// repeating the last (lanes past the last point repeat it); returns the padded count.
+int CopyBatch(const float* x, const float* y, const float* z, int b0, int nb, float* px, float* py, float* pz) {
+  const int padded = (nb + kLanes - 1) / kLanes * kLanes;
+  for (int b = 0; b < padded; ++b) {
+    const int i = b0 + std::min(b, nb - 1);
+    px[b] = x[i], py[b] = y[i], pz[b] = z[i];
+  }
+  return padded;
+}
+
 void DeformedFieldDomainBoundsImpl(const DeformedDistanceField& field, const DeformedFieldState& state, int dom,
                                    const float* x, const float* y, const float* z, int n, float* out) {
   alignas(64) float px[kBatch], py[kBatch], pz[kBatch], bound[kBatch];
   for (int b0 = 0; b0 < n; b0 += kBatch) {
     const int nb = std::min(kBatch, n - b0);
-    const int padded = (nb + kLanes - 1) / kLanes * kLanes;
-    for (int b = 0; b < padded; ++b) {  // lanes past the last point repeat it
-      const int i = b0 + std::min(b, nb - 1);
-      px[b] = x[i], py[b] = y[i], pz[b] = z[i];
-    }
+    const int padded = CopyBatch(x, y, z, b0, nb, px, py, pz);
     DomainBounds(field, state, dom, px, py, pz, padded, bound);
     std::copy(bound, bound + nb, out + b0);
   }
@@ -285,10 +292,8 @@ std::int64_t DeformedFieldDistancesImpl(const DeformedDistanceField& field, cons
   std::int64_t answered = 0;
   for (int b0 = 0; b0 < n; b0 += kBatch) {
     const int nb = std::min(kBatch, n - b0);
-    const int padded = (nb + kLanes - 1) / kLanes * kLanes;
-    for (int b = 0; b < padded; ++b) {  // lanes past the last point repeat it
-      const int i = b0 + std::min(b, nb - 1);
-      bx[b] = x[i], by[b] = y[i], bz[b] = z[i];
+    const int padded = CopyBatch(x, y, z, b0, nb, bx, by, bz);
+    for (int b = 0; b < padded; ++b) {
       best[b] = std::numeric_limits<float>::infinity();
       best_slot[b] = -1;
       best_domain[b] = domains;

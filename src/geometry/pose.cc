@@ -23,11 +23,13 @@ Pose ParsePose(const std::string& text, const std::string& where) {
   if (v.size() != 7) Fail(where, "a pose needs 7 numbers x,y,z,qw,qx,qy,qz; got " + std::to_string(v.size()));
   Eigen::Quaterniond q(v[3], v[4], v[5], v[6]);
   if (q.norm() < 1e-12) Fail(where, "pose quaternion is zero");
-  // Scaled by its largest component first, so that a large quaternion (1e308) normalises
-  // without overflowing its norm.
-  q.coeffs() /= q.coeffs().cwiseAbs().maxCoeff();
-  q.normalize();
-  return {q, Eigen::Vector3d(v[0], v[1], v[2])};
+  return {UnitQuaternion(q), Eigen::Vector3d(v[0], v[1], v[2])};
+}
+
+Eigen::Quaterniond UnitQuaternion(const Eigen::Quaterniond& q) {
+  const double m = q.coeffs().cwiseAbs().maxCoeff();
+  if (!(m > 0)) return Eigen::Quaterniond::Identity();
+  return Eigen::Quaterniond(q.coeffs() / m).normalized();
 }
 
 }  // namespace contactlab

@@ -35,6 +35,10 @@ struct Pose {
 // Interpolates between poses: linear in translation, slerp in rotation, S in [0, 1].
 Pose Interpolate(const Pose& a, const Pose& b, double s);
 
+// Q scaled to unit length, by its largest component first so that a huge quaternion (1e308)
+// does not overflow its norm; a zero quaternion gives the identity. Q must be finite.
+Eigen::Quaterniond UnitQuaternion(const Eigen::Quaterniond& q);
+
 // Rotation by the rotation vector W (axis times angle, radians).
 Eigen::Quaterniond RotationFromVector(const Eigen::Vector3d& w);
 

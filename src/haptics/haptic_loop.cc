@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "haptics/cpu_affinity.h"
+#include "haptics/udp_device.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -257,9 +258,7 @@ std::string FormatDeviceInputStats(const DeviceInputStats& s) {
      << s.malformed << ", duplicate " << s.duplicate << ", out of order " << s.out_of_order << ", stale " << s.stale
      << ", future " << s.future << "), resyncs " << s.resyncs;
   if (s.foreign > 0) {
-    os << "; refused " << s.foreign << " from senders not allowed (latest " << (s.last_foreign_address >> 24) << "."
-       << ((s.last_foreign_address >> 16) & 255) << "." << ((s.last_foreign_address >> 8) & 255) << "."
-       << (s.last_foreign_address & 255) << ")";
+    os << "; refused " << s.foreign << " from senders not allowed (latest " << Ipv4Text(s.last_foreign_address) << ")";
   }
   return os.str();
 }
