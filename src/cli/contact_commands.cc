@@ -75,6 +75,8 @@ void RunContact(const ContactArgs& args) {
     j["level_rendered"] = r.stats.level_rendered;
     j["max_penetration"] = r.stats.max_penetration;
     j["stiffness_scale"] = r.stats.stiffness_scale;
+    j["contact_area"] = r.stats.contact_area;
+    j["patches"] = r.stats.patches;
     j["evaluate_microseconds"] = micros;
     nlohmann::json K = nlohmann::json::array();
     for (int i = 0; i < 6; ++i) {
@@ -100,6 +102,10 @@ void RunContact(const ContactArgs& args) {
   std::printf("points in contact %d, nodes visited %lld, level rendered %d, max penetration %.3g m, %.1f us\n",
               r.stats.points_in_contact, static_cast<long long>(r.stats.nodes_visited), r.stats.level_rendered,
               r.stats.max_penetration, micros);
+  if (r.stats.patches > 0) {
+    std::printf("contact surface %.6g m^2 in %d patch%s\n", r.stats.contact_area, r.stats.patches,
+                r.stats.patches == 1 ? "" : "es");
+  }
   if (q.deformation_A != nullptr) {
     std::printf("reduced contact force on %s (U^T F, r = %d):", scene.pointshell_body.name.c_str(),
                 int(reduced_force.size()));

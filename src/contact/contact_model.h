@@ -37,6 +37,10 @@ struct ContactStats {
   std::int32_t nodes_skipped_coherence = 0;
   double max_penetration = 0;          // largest |d| over contributing points, metres
   double stiffness_scale = 1;          // L / l when l >= L points touch, else 1
+  // Volumetric models (pressure-field): the contact surface's area (m^2) and its connected
+  // pieces; 0 for models without a contact surface.
+  double contact_area = 0;
+  std::int32_t patches = 0;
   // 1 when the model refused the query and gave no force: a deformation whose size does not
   // fit its body. The haptic cycle and the runners count it as a fault.
   std::int32_t faults = 0;

@@ -6,12 +6,14 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "contact/body_contact_params.h"
 #include "contact/contact_model.h"
 #include "contact/pointshell_contact_params.h"
 
@@ -39,6 +41,19 @@ class ContactBody {
   virtual std::shared_ptr<const DeformablePointshell> deformable_pointshell() { return nullptr; }
   // The deformed distance field of a deformable body in the field role (paper sec. 4.2).
   virtual std::shared_ptr<const DeformedDistanceField> deformed_field() { return nullptr; }
+  // Its parameters in the volumetric models (pressure modulus, sphere packing).
+  virtual const BodyContactParams& contact_params() const {
+    static const BodyContactParams defaults;
+    return defaults;
+  }
+  // Where a model may keep data it derives from the body's field (an inner-sphere packing): a
+  // file unique to the field's cache key and KEY (the model's kind, parameters and builder
+  // version, as text), or empty when the caller keeps no cache. The model reads the file when
+  // it is there and good, and otherwise writes it (atomically).
+  virtual std::filesystem::path DerivedCachePath(std::string_view key) {
+    (void)key;
+    return {};
+  }
 };
 
 // What a model reads of the two bodies (A: pointshell role, B: field role).

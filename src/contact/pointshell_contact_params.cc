@@ -48,6 +48,10 @@ const ParamTable<PointshellContactParams>& PointshellContactParamTable() {
           P::Integer("proxy_iterations", PARAM_MEMBER(proxy_iterations), 1, 64,
                      "pointshell-ccd: constrained steps (active set, solve, time of impact) per cycle")
               .Sweepable().Example("8"),
+          P::Integer("pressure_lattice", PARAM_MEMBER(pressure_lattice), 1, 16,
+                     "pressure-field: spacing of the lattice the contact surface is extracted on, in cells of the "
+                     "finer field (1: its grid)")
+              .Sweepable().Example("2"),
       });
   return table;
 }

@@ -24,6 +24,9 @@ struct PointshellContactParams {
   double proxy_rot_stiffness = 0;  // N m/rad; 0: proxy_stiffness R_B^2 (R_B: B's field box radius)
   double proxy_offset = 0.25;      // field cells of B: a point stops at this distance from B's surface
   int proxy_iterations = 4;        // constrained steps (active set, solve, time of impact) per cycle
+  // pressure-field (baselines/pressure_field): the spacing of the lattice its contact surface is
+  // extracted on, in cells of the finer of the two fields.
+  int pressure_lattice = 1;
 };
 
 // The parameters above as a table (util/param_table.h): the scene's model section reads them

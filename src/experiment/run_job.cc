@@ -293,6 +293,8 @@ void RunModel(const JobSetup& setup, const std::string& name, CycleStorage& stor
     row.level = r.stats.level_rendered;
     row.max_penetration = r.stats.max_penetration;
     row.depth_voxels = spacing > 0 ? r.stats.max_penetration / spacing : 0.0;
+    row.contact_area = r.stats.contact_area;
+    row.patches = r.stats.patches;
     row.time_us = us;
     trace->contact_faults += r.stats.faults > 0 ? 1 : 0;  // the model refused the query: no force
     if (setup.reference.Due(k)) {

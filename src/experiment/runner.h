@@ -45,6 +45,8 @@ struct CycleRow {
   int level = -1;
   double max_penetration = 0;   // m
   double depth_voxels = 0;      // max_penetration / spacing of the field body's field (pointshell models)
+  double contact_area = 0;      // m^2, models with a contact surface (pressure-field)
+  int patches = 0;              // its connected pieces
   double time_us = 0;
   bool has_reference = false;
   Eigen::Vector3d reference_force = Eigen::Vector3d::Zero();

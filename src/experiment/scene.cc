@@ -298,6 +298,10 @@ const ParamTable<BodySpec>& BodyParams() {
                     "pointshell (body A) or field (body B); the two bodies take different roles (required)"),
           P::Block("field", PARAM_MEMBER(field), FieldParams(), "its distance field"),
           P::Block("pointshell", PARAM_MEMBER(pointshell), PointshellParams(), "its pointshell"),
+          P::Block("pressure_field", PARAM_MEMBER(contact.pressure_field), PressureFieldParams(),
+                   "its pressure field in the pressure-field model"),
+          P::Block("inner_spheres", PARAM_MEMBER(contact.inner_spheres), InnerSphereParams(),
+                   "its sphere packing in the inner-spheres model"),
           P::Custom("deformable", "block", "see `bodies[].deformable`", "a reduced deformable model (absent: rigid)",
                     [](const ConfigNode& v, BodySpec* b) { b->deformable = DeformableParams().Parse(v); },
                     [](const BodySpec& b, Hasher* h) {
@@ -417,6 +421,24 @@ const std::vector<SceneBlock>& SceneBlocks() {
        [](const Scene& s, const std::string& k) {
          return s.field_body.deformable ? ShowKey(DeformedFieldParams(), s.field_body.deformable->field, k)
                                         : std::string();
+       }},
+      {"scene.bodies[role=field].pressure_field.", "", PressureFieldParams().SweepKeys(),
+       PressureFieldParams().Reference("bodies[].pressure_field"),
+       [](const Scene& s, const std::string& k) {
+         return ShowKey(PressureFieldParams(), s.field_body.contact.pressure_field, k);
+       }},
+      {"scene.bodies[role=pointshell].pressure_field.", "pointshell_", PressureFieldParams().SweepKeys(), "",
+       [](const Scene& s, const std::string& k) {
+         return ShowKey(PressureFieldParams(), s.pointshell_body.contact.pressure_field, k);
+       }},
+      {"scene.bodies[role=field].inner_spheres.", "", InnerSphereParams().SweepKeys(),
+       InnerSphereParams().Reference("bodies[].inner_spheres"),
+       [](const Scene& s, const std::string& k) {
+         return ShowKey(InnerSphereParams(), s.field_body.contact.inner_spheres, k);
+       }},
+      {"scene.bodies[role=pointshell].inner_spheres.", "pointshell_", InnerSphereParams().SweepKeys(), "",
+       [](const Scene& s, const std::string& k) {
+         return ShowKey(InnerSphereParams(), s.pointshell_body.contact.inner_spheres, k);
        }},
       {"scene.model.", "", ModelSectionParams().SweepKeys(), ModelSectionParams().Reference("model"),
        [](const Scene& s, const std::string& k) { return ShowKey(ModelSectionParams(), s, k); }},

@@ -12,6 +12,8 @@
 //       role: pointshell          # pointshell | field
 //       pointshell: {points: 16000, levels: 4, method: repulsion, seed: 1, offset: 0}
 //       field: {resolution: 128, mode: auto}
+//       pressure_field: {modulus: 1e5}   # pressure-field model: E (Pa), or {rigid: true}
+//       inner_spheres: {spheres: 2000}   # inner-spheres model: its packing (count, coverage)
 //       deformable:               # optional: a reduced deformable model (paper sec. 4.1)
 //         model: stvk             # stvk | linear (modal)
 //         modes: 15               # r
@@ -41,6 +43,7 @@
 #include <string>
 #include <vector>
 
+#include "contact/body_contact_params.h"
 #include "contact/pointshell_contact_params.h"
 #include "deform/anchoring.h"
 #include "deform/deformed_distance_field.h"
@@ -107,6 +110,7 @@ struct BodySpec {
   FieldSpec field;
   PointshellSpec pointshell;
   std::optional<DeformableSpec> deformable;  // none: rigid
+  BodyContactParams contact;         // pressure_field and inner_spheres blocks (volumetric models)
 };
 
 

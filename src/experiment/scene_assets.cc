@@ -169,6 +169,7 @@ std::shared_ptr<const DistanceField> BodyAssets::field() {
   h.Text("field");
   FieldParams().Hash(f, kShapesField, &h);
   HashBuilderVersion("field-builder", options_.builders.field, &h);
+  field_key_ = h.Hex();
   field_ = CachedOrBuilt<DistanceField>(
       options_.cache_dir / ("field-" + h.Hex() + ".sdf"), options_,
       "the " + std::to_string(f.resolution) + "-cell field of " + spec_.name, LoadDistanceField, SaveDistanceField,
@@ -183,6 +184,17 @@ std::shared_ptr<const DistanceField> BodyAssets::field() {
         return BuildDistanceField(*mesh(), o);
       });
   return field_;
+}
+
+fs::path BodyAssets::DerivedCachePath(std::string_view key) {
+  if (!options_.use_cache) return {};
+  (void)field();
+  Hasher h;
+  h.Text(field_key_);
+  h.Text(std::string(key));
+  std::error_code ec;
+  fs::create_directories(options_.cache_dir, ec);
+  return options_.cache_dir / ("derived-" + h.Hex() + ".bin");
 }
 
 std::shared_ptr<const Pointshell> BodyAssets::pointshell() {

@@ -75,6 +75,10 @@ class BodyAssets final : public ContactBody {
   // The body's deformed distance field (paper sec. 4.2): proxies fitted to its field, embedded
   // in its reduced model, with the scene's deformable.field options (built in memory).
   std::shared_ptr<const DeformedDistanceField> deformed_field() override;
+  const BodyContactParams& contact_params() const override { return spec_.contact; }
+  // OPTIONS' cache folder / "derived-HASH.bin", HASH of the field's key and KEY; empty when
+  // caching is off.
+  std::filesystem::path DerivedCachePath(std::string_view key) override;
   // A key of the mesh content and load parameters (hex), part of every cache key.
   const std::string& mesh_key();
 
@@ -88,6 +92,7 @@ class BodyAssets final : public ContactBody {
   std::shared_ptr<const DeformablePointshell> deformable_pointshell_;
   std::shared_ptr<const DeformedDistanceField> deformed_field_;
   std::string mesh_key_;
+  std::string field_key_;  // the field's cache key (hex), set by field()
 };
 
 // Body A (pointshell role) and body B (field role) of a scene.

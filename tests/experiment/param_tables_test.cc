@@ -95,6 +95,8 @@ TEST(ParamTable, EverySweepableSceneKeyIsASweepAxis) {
       find(DeformableParams());
       find(DeformedFieldParams());
       find(PointshellContactParamTable());
+      find(PressureFieldParams());
+      find(InnerSphereParams());
       if (key == "node_budget") example = "500";
       ASSERT_FALSE(example.empty()) << key << " has no example value";
       const std::string axis = block.alias_prefix + key;

@@ -129,6 +129,8 @@ struct TwoJobs {
     rigid.level = -1;
     rigid.max_penetration = 0.00125;
     rigid.depth_voxels = 0.25;
+    rigid.contact_area = 3.5e-4;
+    rigid.patches = 2;
     rigid.time_us = 12.5;
     CycleRow referenced = rigid;
     referenced.cycle = 1;
@@ -199,6 +201,8 @@ TEST(ResultCsv, CyclesReadBackAreTheRowsWritten) {
     EXPECT_EQ(v.level, w.level);
     EXPECT_EQ(v.max_penetration, 0.00125);
     EXPECT_EQ(v.depth_voxels, 0.25);
+    EXPECT_EQ(v.contact_area, 3.5e-4);
+    EXPECT_EQ(v.patches, 2);
     EXPECT_EQ(v.time_us, 12.5);
     EXPECT_EQ(v.has_reference, w.has_reference);
     if (w.has_reference) {
