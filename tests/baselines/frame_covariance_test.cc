@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <map>
 #include <memory>
 #include <random>
 #include <string>
@@ -71,6 +72,7 @@ TEST(FrameCovariance, EveryModelTurnsItsWrenchWithTheScene) {
   testing::TempDir cache;
   const AssetOptions options = testing::Assets(cache);
   const std::vector<Pose>& motions = Motions();
+  std::map<std::string, int> touched;  // contacts each model was checked on
   for (const Contact& c : Contacts()) {
     for (int order = 0; order < 2; ++order) {
       const Scene base = ParseScene(ConfigNode::LoadString(SceneText(c), std::string(c.name) + ".yaml"));
@@ -83,7 +85,18 @@ TEST(FrameCovariance, EveryModelTurnsItsWrenchWithTheScene) {
         q.X_WA = X_WA;
         q.X_WB = X_WB;
         const ContactResult r = model->Evaluate(q);
-        ASSERT_GT(r.on_B.force.norm(), 0) << name << " " << c.name << " order " << order << ": no contact";
+        if (r.on_B.force.norm() == 0) {
+          // Inner spheres stop short of the bars' edges (1 mm deep): no sphere pair meets there.
+          // Every other model and contact must touch, or the check would be empty.
+          const bool shallow = name == "inner-spheres" && std::string(c.name) == "crossed-bars";
+          if (shallow) {
+            std::printf("covariance %s %s %s: no contact (no sphere pair reaches the edges)\n", name.c_str(), c.name,
+                        order == 0 ? "AB" : "BA");
+            continue;
+          }
+          FAIL() << name << " " << c.name << " order " << order << ": no contact";
+        }
+        ++touched[name];
         double worst = 0;
         for (const Pose& G : motions) {
           model->Reset();
@@ -113,6 +126,7 @@ TEST(FrameCovariance, EveryModelTurnsItsWrenchWithTheScene) {
       }
     }
   }
+  for (const std::string& name : ContactModelNames()) EXPECT_GE(touched[name], 4) << name;
 }
 
 // The paper's model in its four combinations of (rigid | deformable pointshell) x (grid |

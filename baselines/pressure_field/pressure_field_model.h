@@ -1,0 +1,120 @@
+// "pressure-field": hydroelastic contact (Elandt, Drumwright, Sherman & Ruina, "A pressure
+// field model for fast, robust approximation of net contact force and moment between nominally
+// rigid objects", IROS 2019; Drake's compliant contact), on ContactLab's signed distance fields.
+//
+// Each body carries a pressure field inside its volume, p_i(x) = E_i e_i(x), with the extent
+// e_i = -phi_i(x) / max(-phi_i): 0 on the surface, 1 at the deepest sample of its field. The
+// contact surface is where both bodies overlap and p_A = p_B; the wrench on B is
+//     F_B = ∫ p n dA,   τ_B = ∫ (x - o_B) × p n dA,
+// n the unit normal along -∇(p_A - p_B) (from A's side toward B's). A rigid body (infinite
+// modulus) makes the contact surface its own boundary inside the other body, carrying the
+// other's pressure.
+//
+// Extraction. A lattice of spacing h (`lattice` cells of the finer field; 1 by default), on the
+// grid of the body with the finer field (B's on a tie) and in its frame, covers the overlap of the two fields' boxes. An octree over it culls
+// every block whose centre proves, by the fields' Lipschitz bound, that the block lies outside a
+// body or holds no zero of g = p_A - p_B (-phi_A for a rigid A, phi_B for a rigid B). Surviving
+// 4x4x4-cell blocks sample both fields at their 125 vertices; each cell is split into six
+// tetrahedra (Kuhn), on which g and the fields are linear: the zero set of g is a triangle or
+// quad, clipped to phi <= 0 of each compliant body, and the pressure, linear on it, is
+// integrated exactly. The integrand is symmetric in the two bodies (g changes sign, the normal
+// flips, the pressures trade places), so exchanging the roles changes the result only through
+// the lattice, and not at all when one field is finer: the wrench on A is then exactly the
+// opposite, by Newton's third law, of the wrench on B.
+
+// K_B by forward differences of the wrench (six re-evaluations of the blocks that carry surface,
+// the lattice body's samples reused), so it is the derivative of this discretisation, up to
+// O(step) and to surface that a step would carry into a block that had none.
+// Stats: contact_area, patches (connected pieces, by cells sharing a face, edge or corner),
+// max_penetration (largest -(phi_A + phi_B) on the surface: the local overlap), points_in_contact
+// (cells carrying surface), nodes_visited (octree nodes and cells examined).
+// Allocation-free and exception-free in Evaluate; rigid bodies only.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string_view>
+#include <vector>
+
+#include "contact/contact_model.h"
+#include "sdf/distance_field.h"
+
+namespace contactlab {
+
+struct PressureFieldSide {
+  std::shared_ptr<const DistanceField> field;  // body frame; a closed body's field
+  double modulus = 1e5;                        // E, Pa (ignored when rigid)
+  bool rigid = false;
+};
+
+struct PressureFieldOptions {
+  double lipschitz = 1;       // bound on |∇phi| of the fields, for culling
+  int lattice = 1;            // lattice spacing, in cells of the finer field
+  double fd_step = 0.01;      // K_B's difference step, in lattice cells (rotation: cells / radius)
+  bool stiffness = true;      // compute K_B (six more surface evaluations)
+  std::int64_t max_blocks = 1 << 16;  // 4^3-cell blocks kept per query (beyond: not rendered)
+};
+
+class PressureFieldModel final : public ContactModel {
+ public:
+  // Throws Error naming the model when a field is empty, both sides are rigid, or a field is a
+  // soup's (its inside is an offset band, not a volume).
+  PressureFieldModel(PressureFieldSide A, PressureFieldSide B, const PressureFieldOptions& options = {});
+
+  std::string_view name() const override { return "pressure-field"; }
+  ContactResult Evaluate(const ContactQuery& query) override;
+  void Reset() override {}
+
+  double depth_A() const { return depth_A_; }  // max(-phi_A), metres
+  double depth_B() const { return depth_B_; }
+  double spacing() const { return h_; }       // the lattice spacing
+
+  // The contact surface of the latest Evaluate as triangles (three corners each, in the frame
+  // surface_frame() places in the world) with the pressure at each corner, for display; at most
+  // MAX_TRIANGLES (0: no record kept).
+  void RecordSurface(int max_triangles);
+  const std::vector<Eigen::Vector3f>& surface_triangles() const { return surface_; }
+  const std::vector<float>& surface_pressure() const { return surface_pressure_; }
+  const Pose& surface_frame() const { return X_WL_; }
+
+ private:
+  struct Sums;
+  // The wrench on the lattice body L (L's frame, about L's origin) from the blocks found, with
+  // the other body M at X_LM. RECORD: also the cells with surface and the surface record.
+  void Integrate(const Pose& X_LM, bool record, Sums* sums);
+  // Keeps the blocks that carried surface (block_surface_), in front.
+  void KeepSurfaceBlocks();
+  // Finds the blocks that may hold surface with M at X_LM; false when there is none.
+  bool FindBlocks(const Pose& X_LM, std::int64_t* nodes);
+  int CountPatches();
+  // The wrench on B (world, about B's origin) of SUMS, the lattice body's, at the poses.
+  Wrench OnB(const Sums& sums, const Pose& X_WA, const Pose& X_WB) const;
+  Pose LatticeToOther(const Pose& X_WA, const Pose& X_WB) const {
+    return lattice_is_A_ ? X_WA.Inverse() * X_WB : X_WB.Inverse() * X_WA;
+  }
+
+  PressureFieldOptions options_;
+  bool lattice_is_A_ = false;  // A's field is strictly finer
+  PressureFieldSide L_, M_;    // the lattice body and the other
+  double depth_A_ = 0, depth_B_ = 0, h_ = 0, radius_B_ = 0;
+  double kL_ = 0, kM_ = 0;  // E / D of each (pressure per metre of depth); 0 for a rigid side
+  // The lattice of the latest query: origin (L's frame) and cells per axis.
+  Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3i cells_ = Eigen::Vector3i::Zero();
+  // Surviving blocks: their first cell, and phi_L at their 125 vertices.
+  std::vector<std::array<std::int32_t, 3>> blocks_;
+  std::vector<float> block_phi_L_;
+  std::vector<std::uint8_t> block_surface_;  // the block carried surface in the latest Evaluate
+  std::int64_t num_blocks_ = 0;
+  // Cells carrying surface (linear index in the lattice), for patches.
+  std::vector<std::int64_t> surface_cells_;
+  std::int64_t num_surface_cells_ = 0;
+  std::vector<std::int32_t> parent_;
+  int record_capacity_ = 0;
+  std::vector<Eigen::Vector3f> surface_;
+  std::vector<float> surface_pressure_;
+  Pose X_WL_;  // the lattice body's pose in the latest query
+};
+
+}  // namespace contactlab

@@ -1,0 +1,276 @@
+// The pressure-field (hydroelastic) model (baselines/pressure_field) against closed forms:
+// a compliant sphere on a rigid halfspace, two equal compliant spheres, two compliant cubes
+// pressed face to face; Newton's third law and frame covariance; K_B against central
+// differences of the wrench; what it refuses.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <cstdio>
+#include <random>
+
+#include "baselines/pressure_field/pressure_field_model.h"
+#include "contact/test_shells.h"
+#include "geometry/pose.h"
+#include "util/error.h"
+
+namespace contactlab {
+namespace {
+
+using testing::SampleField;
+constexpr double kPi = std::numbers::pi;
+
+// A ball of radius R at the origin, sampled with a grid node at its centre.
+std::shared_ptr<DistanceField> Ball(double R, double h) {
+  const double m = std::ceil((R + 4 * h) / h) * h;
+  return SampleField([R](const Eigen::Vector3d& p) { return p.norm() - R; }, Eigen::Vector3d::Constant(-m),
+                     Eigen::Vector3d::Constant(m), h);
+}
+
+// The halfspace z < 0 (exact under trilinear interpolation).
+std::shared_ptr<DistanceField> Halfspace(double h) {
+  return SampleField([](const Eigen::Vector3d& p) { return p.z(); }, Eigen::Vector3d(-0.05, -0.05, -0.03),
+                     Eigen::Vector3d(0.05, 0.05, 0.03), h);
+}
+
+// A cube of half-size A at the origin (exact signed distance of a box).
+std::shared_ptr<DistanceField> Cube(double a, double h) {
+  const double m = std::ceil((a + 4 * h) / h) * h;
+  return SampleField(
+      [a](const Eigen::Vector3d& p) {
+        const Eigen::Vector3d q = p.cwiseAbs() - Eigen::Vector3d::Constant(a);
+        return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
+      },
+      Eigen::Vector3d::Constant(-m), Eigen::Vector3d::Constant(m), h);
+}
+
+// Elandt et al.'s compliant sphere (radius R, modulus E) against a rigid halfspace at depth
+// DELTA, with the contact plane at height H above the centre: (E/R)[R π a² - (2π/3)(R³ - H³)].
+double SphereForce(double E, double R, double H) {
+  const double a2 = R * R - H * H;
+  return E / R * (R * kPi * a2 - 2 * kPi / 3 * (R * R * R - H * H * H));
+}
+
+ContactQuery At(const Pose& X_WA, const Pose& X_WB) {
+  ContactQuery q;
+  q.X_WA = X_WA;
+  q.X_WB = X_WB;
+  return q;
+}
+
+Pose Translation(double x, double y, double z) { return Pose::FromTranslation(Eigen::Vector3d(x, y, z)); }
+
+TEST(PressureField, CompliantSphereOnRigidHalfspaceMatchesTheClosedForm) {
+  const double R = 0.02, E = 1e5;
+  // A's field finer than B's (the lattice on A) and equal (the lattice on B).
+  for (const double h_B : {0.002, 0.001}) {
+    PressureFieldModel model({Ball(R, 0.001), E, false}, {Halfspace(h_B), 0, true});
+    for (const double delta : {0.001, 0.004, 0.01}) {
+      const ContactResult r = model.Evaluate(At(Translation(0.0003, -0.0002, R - delta), Pose::Identity()));
+      const double H = R - delta;
+      const double expected = SphereForce(E, R, H);
+      SCOPED_TRACE(::testing::Message() << "h_B " << h_B << " delta " << delta);
+      // Trilinear interpolation of the ball's distance overestimates it by up to h²/R inside, a
+      // few per cent of the pressure when the depth is one cell; 1 % from two cells on.
+      std::printf("sphere on rigid halfspace, h_B %g, depth %g: force error %+.2f%%\n", h_B, delta,
+                  100 * (-r.on_B.force.z() / expected - 1));
+      EXPECT_NEAR(-r.on_B.force.z(), expected, (delta < 0.002 ? 0.04 : 0.01) * expected);  // pushes B down
+      EXPECT_LT(r.on_B.force.head<2>().norm(), 1e-3 * expected);
+      EXPECT_NEAR(r.stats.contact_area, kPi * (R * R - H * H), 0.02 * kPi * (R * R - H * H));
+      EXPECT_EQ(r.stats.patches, 1);
+      EXPECT_NEAR(r.stats.max_penetration, delta, 0.05 * delta);
+      // The pressure's centre is under A's centre: torque about B's origin is c x F.
+      const Eigen::Vector3d c(0.0003, -0.0002, 0);
+      EXPECT_LT((r.on_B.torque - c.cross(r.on_B.force)).norm(), 1e-3 * expected * R);
+    }
+  }
+}
+
+TEST(PressureField, EqualCompliantSpheresMeetOnTheMidPlane) {
+  const double R = 0.015, E = 2e5;
+  PressureFieldModel model({Ball(R, 0.001), E, false}, {Ball(R, 0.001), E, false});
+  for (const double delta : {0.002, 0.006}) {
+    const ContactResult r = model.Evaluate(At(Pose::Identity(), Translation(0, 0, 2 * R - delta)));
+    const double expected = SphereForce(E, R, R - delta / 2);
+    SCOPED_TRACE(::testing::Message() << "delta " << delta);
+    std::printf("equal spheres, overlap %g: force error %+.2f%%\n", delta, 100 * (r.on_B.force.z() / expected - 1));
+    EXPECT_NEAR(r.on_B.force.z(), expected, (delta < 0.004 ? 0.03 : 0.015) * expected);  // B above A is pushed up
+    EXPECT_LT(r.on_B.force.head<2>().norm(), 1e-3 * expected);
+    EXPECT_EQ(r.stats.patches, 1);
+  }
+}
+
+// A box of half-sizes HALF at the origin (exact signed distance).
+std::shared_ptr<DistanceField> Box(const Eigen::Vector3d& half, double h) {
+  const Eigen::Vector3d m = ((half.array() + 4 * h) / h).ceil().matrix() * h;
+  return SampleField(
+      [half](const Eigen::Vector3d& p) {
+        const Eigen::Vector3d q = p.cwiseAbs() - half;
+        return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
+      },
+      -m, m, h);
+}
+
+TEST(PressureField, CubeFacePressedIntoAWiderBlockMatchesTheRimIntegral) {
+  // A cube of half-size a under a block B twice as wide (same depth a, same modulus, so the
+  // same pressure per metre of depth k = E/a), overlapping by delta. On the surface the
+  // pressure is k times A's depth there, min(c, a - |x|, a - |y|) with c = delta/2 (a mid-plane
+  // chamfered at 45 degrees toward A's side faces), so F_z = k ∫∫ min(c, a-|x|, a-|y|) dx dy =
+  // k (4/3)(a³ - (a - c)³) and the area is (2a - 2c)² + √2 (4a² - (2a - 2c)²).
+  const double a = 0.01, E = 1e5, h = 0.0005;
+  PressureFieldModel model({Cube(a, h), E, false}, {Box(Eigen::Vector3d(2 * a, 2 * a, a), h), E, false});
+  for (const double delta : {0.002, 0.004}) {
+    const ContactResult r = model.Evaluate(At(Pose::Identity(), Translation(0, 0, 2 * a - delta)));
+    const double c = delta / 2;
+    const double expected = E / a * 4.0 / 3.0 * (a * a * a - (a - c) * (a - c) * (a - c));
+    const double inner = (2 * a - 2 * c) * (2 * a - 2 * c);
+    const double area = inner + std::sqrt(2.0) * (4 * a * a - inner);
+    SCOPED_TRACE(::testing::Message() << "delta " << delta);
+    std::printf("cube into block, overlap %g: force error %+.2f%%, area error %+.2f%%\n", delta,
+                100 * (r.on_B.force.z() / expected - 1), 100 * (r.stats.contact_area / area - 1));
+    EXPECT_NEAR(r.on_B.force.z(), expected, 0.02 * expected);
+    EXPECT_LT(r.on_B.force.head<2>().norm(), 1e-3 * expected);
+    EXPECT_NEAR(r.stats.contact_area, area, 0.03 * area);
+    EXPECT_EQ(r.stats.patches, 1);
+  }
+}
+
+TEST(PressureField, TwoSeparateContactsAreTwoPatches) {
+  // A bar resting on two balls: two contact surfaces.
+  const double R = 0.01;
+  auto two_balls = SampleField(
+      [R](const Eigen::Vector3d& p) {
+        return std::min((p - Eigen::Vector3d(-0.02, 0, 0)).norm(), (p - Eigen::Vector3d(0.02, 0, 0)).norm()) - R;
+      },
+      Eigen::Vector3d(-0.035, -0.015, -0.015), Eigen::Vector3d(0.035, 0.015, 0.015), 0.001);
+  PressureFieldModel model({two_balls, 1e5, false}, {Halfspace(0.001), 0, true});
+  const ContactResult r = model.Evaluate(At(Translation(0, 0, R - 0.003), Pose::Identity()));
+  EXPECT_EQ(r.stats.patches, 2);
+  EXPECT_NEAR(-r.on_B.force.z(), 2 * SphereForce(1e5, R, R - 0.003), 0.02 * 2 * SphereForce(1e5, R, R - 0.003));
+}
+
+// Random poses with the two bodies overlapping: a sphere into a rounded cube.
+struct Overlap {
+  Pose X_WA, X_WB;
+};
+std::vector<Overlap> RandomOverlaps(int n, double distance) {
+  std::mt19937 rng(11);
+  std::normal_distribution<double> g(0, 1);
+  std::vector<Overlap> out;
+  for (int i = 0; i < n; ++i) {
+    Overlap o;
+    o.X_WA = Pose{Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized(), Eigen::Vector3d(g(rng), g(rng), g(rng)) * 0.01};
+    Eigen::Vector3d dir(g(rng), g(rng), g(rng));
+    o.X_WB = Pose{Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized(),
+                  o.X_WA.translation + distance * dir.normalized()};
+    out.push_back(o);
+  }
+  return out;
+}
+
+TEST(PressureField, NewtonsThirdLawHoldsExactlyWhenTheRolesAreExchanged) {
+  auto ball = Ball(0.012, 0.0008);
+  auto cube = Cube(0.01, 0.001);
+  PressureFieldModel ab({ball, 1e5, false}, {cube, 3e5, false});
+  PressureFieldModel ba({cube, 3e5, false}, {ball, 1e5, false});
+  int touching = 0;
+  for (const Overlap& o : RandomOverlaps(12, 0.018)) {
+    const ContactResult r = ab.Evaluate(At(o.X_WA, o.X_WB));
+    const ContactResult s = ba.Evaluate(At(o.X_WB, o.X_WA));
+    if (r.stats.contact_area == 0) continue;
+    ++touching;
+    const double scale = r.on_B.force.norm();
+    EXPECT_LT((s.on_B.force + r.on_B.force).norm(), 1e-12 * scale);
+    // Torques about each body's origin: tau_A = -(tau_B + (o_B - o_A) x F_B).
+    const Eigen::Vector3d expected = -(r.on_B.torque + (o.X_WB.translation - o.X_WA.translation).cross(r.on_B.force));
+    EXPECT_LT((s.on_B.torque - expected).norm(), 1e-9 * scale * 0.02);
+    EXPECT_DOUBLE_EQ(s.stats.contact_area, r.stats.contact_area);
+  }
+  EXPECT_GE(touching, 8);
+}
+
+TEST(PressureField, WrenchIsFrameCovariant) {
+  auto ball = Ball(0.012, 0.001);
+  auto cube = Cube(0.01, 0.001);
+  PressureFieldModel model({ball, 1e5, false}, {cube, 1e5, false});
+  const Pose T{Eigen::Quaterniond(0.3, -0.5, 0.7, 0.2).normalized(), Eigen::Vector3d(0.3, -0.1, 0.2)};
+  for (const Overlap& o : RandomOverlaps(8, 0.018)) {
+    const ContactResult r = model.Evaluate(At(o.X_WA, o.X_WB));
+    const ContactResult s = model.Evaluate(At(T * o.X_WA, T * o.X_WB));
+    const double scale = std::max(r.on_B.force.norm(), 1e-9);
+    EXPECT_LT((s.on_B.force - T.rotation * r.on_B.force).norm(), 1e-5 * scale);
+    EXPECT_LT((s.on_B.torque - T.rotation * r.on_B.torque).norm(), 1e-5 * scale * 0.02);
+    EXPECT_NEAR(s.stats.contact_area, r.stats.contact_area, 1e-5 * r.stats.contact_area + 1e-12);
+  }
+}
+
+TEST(PressureField, StiffnessMatchesCentralDifferencesOfTheWrench) {
+  auto ball = Ball(0.012, 0.001);
+  auto cube = Cube(0.01, 0.001);
+  PressureFieldModel model({ball, 1e5, false}, {cube, 2e5, false});
+  PressureFieldOptions plain;
+  plain.stiffness = false;
+  PressureFieldModel wrench_only({ball, 1e5, false}, {cube, 2e5, false}, plain);
+  int checked = 0;
+  for (const Overlap& o : RandomOverlaps(10, 0.016)) {
+    const ContactResult r = model.Evaluate(At(o.X_WA, o.X_WB));
+    if (r.stats.contact_area < 2e-5) continue;
+    ++checked;
+    Matrix6d K;
+    const double dx = 2e-5, dw = 2e-3;
+    for (int c = 0; c < 6; ++c) {
+      Vector6d w[2];
+      for (int s = 0; s < 2; ++s) {
+        Pose X = o.X_WB;
+        const double sign = s == 0 ? 1 : -1;
+        if (c < 3) {
+          X.translation[c] += sign * dx;
+        } else {
+          Eigen::Vector3d v = Eigen::Vector3d::Zero();
+          v[c - 3] = sign * dw;
+          X.rotation = (RotationFromVector(v) * X.rotation).normalized();
+        }
+        w[s] = wrench_only.Evaluate(At(o.X_WA, X)).on_B.AsVector();
+      }
+      K.col(c) = (w[0] - w[1]) / (2 * (c < 3 ? dx : dw));
+    }
+    // Rows in N and N m, columns per metre and per radian: compare each block on its own scale.
+    for (int bi = 0; bi < 2; ++bi) {
+      for (int bj = 0; bj < 2; ++bj) {
+        const Eigen::Matrix3d a = r.K_B.block<3, 3>(3 * bi, 3 * bj), b = K.block<3, 3>(3 * bi, 3 * bj);
+        const double scale = std::max(a.norm(), b.norm());
+        SCOPED_TRACE(::testing::Message() << "block " << bi << bj << "\n" << a << "\nvs\n" << b);
+        EXPECT_LT((a - b).norm(), 0.1 * scale + 1e-9);
+      }
+    }
+  }
+  EXPECT_GE(checked, 5);
+}
+
+TEST(PressureField, RefusesSoupsAndTwoRigidBodies) {
+  auto soup = Ball(0.01, 0.001);
+  std::const_pointer_cast<DistanceField>(soup)->mutable_info().mode = "soup";
+  try {
+    PressureFieldModel({soup, 1e5, false}, {Ball(0.01, 0.001), 1e5, false});
+    FAIL() << "a soup's field was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("soup"), std::string::npos) << e.what();
+  }
+  try {
+    PressureFieldModel({Ball(0.01, 0.001), 1e5, true}, {Ball(0.01, 0.001), 1e5, true});
+    FAIL() << "two rigid bodies were accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("both bodies are rigid"), std::string::npos) << e.what();
+  }
+}
+
+TEST(PressureField, ApartGivesNothing) {
+  PressureFieldModel model({Ball(0.01, 0.001), 1e5, false}, {Ball(0.01, 0.001), 1e5, false});
+  const ContactResult r = model.Evaluate(At(Pose::Identity(), Translation(0, 0, 0.0205)));
+  EXPECT_EQ(r.on_B.force, Eigen::Vector3d::Zero());
+  EXPECT_EQ(r.stats.contact_area, 0);
+  EXPECT_EQ(r.stats.patches, 0);
+}
+
+}  // namespace
+}  // namespace contactlab
