@@ -27,17 +27,29 @@ if [ ${#experiments[@]} -eq 0 ]; then
                scale-points scale-resolution)
 fi
 
+# One progress line per experiment on stderr: its share of the suite and the time left, both from
+# measured wall times (scripts/suite-progress.sh says why not from the configs' sizes), kept per
+# profile in results/.suite-times.tsv (written after each experiment that succeeds).
+source scripts/suite-progress.sh
+suite_progress_begin results/.suite-times.tsv "${profile[1]:-default}" "${experiments[@]}"
+
 failed=()
 start=$(date +%s)
+index=0
 for name in "${experiments[@]}"; do
+  index=$(( index + 1 ))
   config="experiments/$name.yaml"
   if [ ! -f "$config" ]; then
     echo "run: no experiment config $config" >&2
     failed+=("$name")
     continue
   fi
-  echo "=== $name"
-  if ! ./build/bin/contactlab run "$config" --out "results/$name" "${profile[@]}"; then
+  suite_progress_line "$index" $(( $(date +%s) - start )) >&2
+  began=$(date +%s)
+  if ./build/bin/contactlab run "$config" --out "results/$name" "${profile[@]}"; then
+    suite_progress_record "$index" $(( $(date +%s) - began ))
+    suite_progress_save  # now, so that an interrupted suite keeps the times it measured
+  else
     failed+=("$name")
   fi
 done

@@ -3,7 +3,8 @@
 // shows a scene's two bodies at their start poses with the pointshell body's points coloured by
 // level and a slice of the field body's distance field (Barbič & James 2008, sec. 2.2-2.4), or
 // replays an experiment's run: per-cycle poses and forces of each model, a time slider and a
-// force plot.
+// force plot; of a results folder with several jobs (a sweep) every job, with a job selector,
+// unless --job picks one.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -99,12 +100,30 @@ void RunView(const ViewArgs& args) {
     // A results folder: replay one job.
     CheckOutputIsNotInput(args.out, fs::path(args.input) / "cycles.csv", "--out");
     CheckOutputIsNotInput(args.out, fs::path(args.input) / "meta.json", "--out");
-    const Replay replay = ReadReplay(args.input, args.job,
-                                     args.max_frames);
-    SceneAssets assets(replay.scene, assets_options);
-    data = ReplayViewData(replay, assets, options);
-    what = "replay of " + args.input + ", job " + std::to_string(replay.job) + ", " +
-           std::to_string(replay.tracks.size()) + " model(s)";
+    if (args.job) {
+      const Replay replay = ReadReplay(args.input, args.job, args.max_frames);
+      SceneAssets assets(replay.scene, assets_options);
+      data = ReplayViewData(replay, assets, options);
+      what = "replay of " + args.input + ", job " + std::to_string(replay.job) + ", " +
+             std::to_string(replay.tracks.size()) + " model(s)";
+    } else {
+      // Without --job: every job the folder holds, the first shown, a selector for the others.
+      const std::vector<Replay> replays = ReadReplays(args.input, args.max_frames);
+      std::vector<nlohmann::json> job_data;
+      for (const Replay& replay : replays) {
+        SceneAssets assets(replay.scene, assets_options);
+        job_data.push_back(ReplayViewData(replay, assets, options));
+      }
+      if (replays.size() == 1) {
+        data = std::move(job_data.front());
+        what = "replay of " + args.input + ", job " + std::to_string(replays.front().job) + ", " +
+               std::to_string(replays.front().tracks.size()) + " model(s)";
+      } else {
+        data = SeveralJobsViewData(replays, std::move(job_data));
+        what = "replay of " + args.input + ", " + std::to_string(replays.size()) + " jobs (job " +
+               std::to_string(replays.front().job) + " shown first, the others by the page's job selector)";
+      }
+    }
   } else {
     // A scene file.
     if (args.job) Fail("--job", "applies to a results folder, not to the scene " + args.input);
@@ -128,11 +147,11 @@ const CommandRegistration kView([](CLI::App& app) {
   auto args = std::make_shared<ViewArgs>();
   CLI::App* cmd = app.add_subcommand(
       "view", "Write a self-contained HTML page with a 3D view: of a scene (bodies at their start poses, the "
-              "pointshell by level, a slice of the distance field) or of a results folder (a replay of one job: "
-              "poses, forces, time slider, force plot)");
+              "pointshell by level, a slice of the distance field) or of a results folder (a replay of its jobs: "
+              "poses, forces, time slider, force plot, job selector)");
   cmd->add_option("INPUT", args->input, "scene YAML file, or a results folder of `contactlab run`")->required();
   cmd->add_option("--out", args->out, "the HTML file to write")->required();
-  cmd->add_option("--job", args->job, "results folder: the job to replay (needed when it holds several)");
+  cmd->add_option("--job", args->job, "results folder: the only job to replay (default: every job, the first shown, a job selector in the page)");
   cmd->add_option("--max-points", args->max_points, "pointshell points drawn at most, split over the levels (default 50000)");
   cmd->add_option("--max-triangles", args->max_triangles,
                   "triangles drawn per body at most, larger meshes thinned by edge collapse (default 50000; 0: all)");

@@ -181,26 +181,29 @@ ResolvedConfig ReadResolvedConfig(const fs::path& meta_file) {
 
 // One cycle of one model, as the replay keeps it.
 struct ReplayRow {
+  int job = 0;
   std::string model;
   double v[16];  // t, pose x,y,z,qw,qx,qy,qz, force (3), torque (3), level, contacts
   std::vector<float> q, q_B;  // deformable bodies' reduced coordinates (empty when rigid)
 };
 
 // The rows of cycles.csv kept for the replay: those of JOB (of every job when none is asked
-// for), with the jobs the file holds and the experiment's name (of the first row kept).
+// for), with the jobs the file holds and the experiment's name of each job kept (of its first
+// row).
 struct CycleRows {
   std::vector<ReplayRow> rows;
   std::set<int> jobs;
-  std::string experiment;
+  std::map<int, std::string> experiment;
 };
 CycleRows ReadCycleRows(const fs::path& cycles_file, std::optional<int> job) {
   CycleRows out;
   ReadCyclesCsv(cycles_file, [&](const CyclesCsvRow& c) {
     out.jobs.insert(c.job);
     if (job && c.job != *job) return;
-    if (out.experiment.empty()) out.experiment = c.experiment;
+    out.experiment.try_emplace(c.job, c.experiment);
     const CycleRow& x = c.values;
     ReplayRow r;
+    r.job = c.job;
     r.model = c.model;
     r.v[0] = x.t;
     for (int k = 0; k < 3; ++k) r.v[1 + k] = x.position[k];
@@ -234,11 +237,13 @@ int PickJob(const std::set<int>& jobs, std::optional<int> job, const fs::path& c
   return *job;
 }
 
-// ROWS by model, the models in order of first appearance.
-std::vector<std::pair<std::string, std::vector<const ReplayRow*>>> RowsByModel(const std::vector<ReplayRow>& rows) {
+// The ROWS of job JOB by model, the models in order of first appearance.
+std::vector<std::pair<std::string, std::vector<const ReplayRow*>>> RowsByModel(const std::vector<ReplayRow>& rows,
+                                                                               int job) {
   std::vector<std::pair<std::string, std::vector<const ReplayRow*>>> models;
   std::map<std::string, std::size_t> index;
   for (const ReplayRow& r : rows) {
+    if (r.job != job) continue;
     const auto [it, added] = index.try_emplace(r.model, models.size());
     if (added) models.emplace_back(r.model, std::vector<const ReplayRow*>{});
     models[it->second].second.push_back(&r);
@@ -298,22 +303,42 @@ void SetJobScene(const ResolvedConfig& resolved, const fs::path& meta_file, Repl
 
 }  // namespace
 
+namespace {
+
+// The replay of job JOB of results folder DIR from its CYCLES rows and its resolved CONFIG.
+Replay MakeReplay(const fs::path& dir, const ResultsFiles& files, const ResolvedConfig& config,
+                  const CycleRows& cycles, int job, int max_frames) {
+  Replay replay;
+  replay.dir = dir;
+  if (const auto it = cycles.experiment.find(job); it != cycles.experiment.end()) replay.experiment = it->second;
+  replay.job = job;
+  // One track per model, thinned to MAX_FRAMES.
+  const auto models = RowsByModel(cycles.rows, job);
+  replay.stride = StrideFor(models, max_frames);
+  for (const auto& [name, rows] : models) replay.tracks.push_back(MakeTrack(name, rows, replay.stride));
+  SetJobScene(config, files.meta, &replay);
+  return replay;
+}
+
+}  // namespace
+
 Replay ReadReplay(const fs::path& dir, std::optional<int> job, int max_frames) {
   const ResultsFiles files = CheckResultsFolder(dir);
   if (max_frames < 2) Fail("--max-frames", "must be at least 2, got " + std::to_string(max_frames));
   const ResolvedConfig config = ReadResolvedConfig(files.meta);
   const CycleRows cycles = ReadCycleRows(files.cycles, job);
+  return MakeReplay(dir, files, config, cycles, PickJob(cycles.jobs, job, files.cycles), max_frames);
+}
 
-  Replay replay;
-  replay.dir = dir;
-  replay.experiment = cycles.experiment;
-  replay.job = PickJob(cycles.jobs, job, files.cycles);
-  // One track per model, thinned to MAX_FRAMES.
-  const auto models = RowsByModel(cycles.rows);
-  replay.stride = StrideFor(models, max_frames);
-  for (const auto& [name, rows] : models) replay.tracks.push_back(MakeTrack(name, rows, replay.stride));
-  SetJobScene(config, files.meta, &replay);
-  return replay;
+std::vector<Replay> ReadReplays(const fs::path& dir, int max_frames) {
+  const ResultsFiles files = CheckResultsFolder(dir);
+  if (max_frames < 2) Fail("--max-frames", "must be at least 2, got " + std::to_string(max_frames));
+  const ResolvedConfig config = ReadResolvedConfig(files.meta);
+  const CycleRows cycles = ReadCycleRows(files.cycles, std::nullopt);
+  if (cycles.jobs.empty()) Fail(files.cycles.string(), "has no rows");
+  std::vector<Replay> replays;
+  for (int job : cycles.jobs) replays.push_back(MakeReplay(dir, files, config, cycles, job, max_frames));
+  return replays;
 }
 
 nlohmann::json ReplayViewData(const Replay& replay, SceneAssets& assets, const SceneViewOptions& options) {
@@ -391,6 +416,48 @@ nlohmann::json ReplayViewData(const Replay& replay, SceneAssets& assets, const S
                  {"stride", replay.stride},
                  {"models", models}};
   return j;
+}
+
+namespace {
+
+// Strings of the page data at least this long (base64 arrays: meshes, pointshells, slices) are
+// embedded once however many jobs hold them.
+constexpr std::size_t kMinSharedString = 1024;
+
+// Replaces every string of J of at least kMinSharedString characters by {"$blob": N}, N its
+// index in *BLOBS (added there the first time that text is met; *INDEX: text -> N).
+void ShareLongStrings(nlohmann::json* j, std::vector<std::string>* blobs, std::map<std::string, int>* index) {
+  if (j->is_string()) {
+    const std::string& text = j->get_ref<const std::string&>();
+    if (text.size() < kMinSharedString) return;
+    const auto [it, added] = index->try_emplace(text, int(blobs->size()));
+    if (added) blobs->push_back(text);
+    *j = nlohmann::json{{"$blob", it->second}};
+  } else if (j->is_structured()) {
+    for (nlohmann::json& item : *j) ShareLongStrings(&item, blobs, index);
+  }
+}
+
+}  // namespace
+
+nlohmann::json SeveralJobsViewData(const std::vector<Replay>& replays, std::vector<nlohmann::json> job_data) {
+  if (replays.empty() || replays.size() != job_data.size()) {
+    Fail("view", "SeveralJobsViewData needs one page data per replay, got " + std::to_string(job_data.size()) +
+                     " for " + std::to_string(replays.size()));
+  }
+  nlohmann::json jobs = nlohmann::json::array();
+  std::vector<std::string> blobs;
+  std::map<std::string, int> index;
+  for (std::size_t i = 0; i < replays.size(); ++i) {
+    jobs.push_back({{"job", replays[i].job},
+                    {"label", replays[i].job_label},
+                    {"title", job_data[i].value("title", replays[i].experiment)}});
+    ShareLongStrings(&job_data[i], &blobs, &index);
+  }
+  return {{"title", replays.front().experiment},
+          {"jobs", std::move(jobs)},
+          {"blobs", std::move(blobs)},
+          {"job_data", std::move(job_data)}};
 }
 
 }  // namespace contactlab

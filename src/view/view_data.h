@@ -79,6 +79,10 @@ struct Replay {
 // no JOB, an unknown JOB.
 Replay ReadReplay(const std::filesystem::path& dir, std::optional<int> job, int max_frames = 10000);
 
+// Every job of results folder DIR, in job order, each as ReadReplay(DIR, job, MAX_FRAMES) reads
+// it, from one pass over cycles.csv. Throws as ReadReplay does (but never for several jobs).
+std::vector<Replay> ReadReplays(const std::filesystem::path& dir, int max_frames = 10000);
+
 // SceneViewData of the replay's scene at its first frame, plus
 // "replay": {"experiment", "job", "label", "moving": 0|1, "stride", "models": [{"name",
 // "cycles", "t": f32, "pose": f32, "force": f32, "torque": f32, "level": i32, "contacts": i32,
@@ -87,5 +91,13 @@ Replay ReadReplay(const std::filesystem::path& dir, std::optional<int> job, int 
 // basis at its mesh vertices (u = U q, sec. 4.1), so the page deforms its mesh per frame;
 // bodies with more than 16 million basis entries are shown at rest ("basis_omitted": true).
 nlohmann::json ReplayViewData(const Replay& replay, SceneAssets& assets, const SceneViewOptions& options);
+
+// The page data of several jobs of one results folder, JOB_DATA[i] the ReplayViewData of
+// REPLAYS[i]: {"title": the experiment, "jobs": [{"job", "label", "title"}], "blobs": [text],
+// "job_data": [each job's data with every string of at least 1024 characters replaced by
+// {"$blob": N}, N its index in "blobs"]}, so that meshes, pointshells and slices the jobs share
+// are embedded once. The page (viewer.js) shows the job of #job=I (default the first) and a job
+// selector. Throws Error unless there is one page data per replay, and at least one.
+nlohmann::json SeveralJobsViewData(const std::vector<Replay>& replays, std::vector<nlohmann::json> job_data);
 
 }  // namespace contactlab

@@ -3,7 +3,8 @@
 # program on a small procedural scene, loads each in headless Chromium (software WebGL), and
 # checks with check_page.py that the page drew its first frame (data-ready on <html>), logged no
 # JavaScript error (data-errors on <html>, Chromium's console log), and that the screenshot is
-# not blank and shows both bodies in their colours.
+# not blank and shows both bodies in their colours. A sweep's results give one page of every job:
+# opened at #job=1 it shows that job, and choosing another job in its selector shows that one.
 # Usage: browser_test.sh CONTACTLAB WORKDIR CHROMIUM PYTHON3. Exit 77 (ctest: skipped) only when
 # Chromium or Python with numpy and matplotlib is absent or Chromium cannot start at all.
 set -uo pipefail
@@ -55,6 +56,18 @@ YAML
 "$cli" view scene.yaml --out scene.html --cache cache || { echo "FAILED: contactlab view scene.yaml"; exit 1; }
 "$cli" run exp.yaml --out results/view-test-run --cache cache > run.log 2>&1 || { cat run.log; echo "FAILED: contactlab run"; exit 1; }
 "$cli" view results/view-test-run --out replay.html --cache cache || { echo "FAILED: contactlab view results"; exit 1; }
+# A sweep of two jobs, viewed without --job: one page, a job selector.
+cat > jobs.yaml <<'YAML'
+name: view-test-jobs
+scene: scene.yaml
+models: [pointshell]
+moving_body: ball
+trajectory: {type: twist, direction: [0, 0, -1], depth: 0.002, angle: 0.4, duration: 0.1}
+reference: ''
+sweep: {k_C: [500, 1500]}
+YAML
+"$cli" run jobs.yaml --out results/view-test-jobs --cache cache > jobs-run.log 2>&1 || { cat jobs-run.log; echo "FAILED: contactlab run (sweep)"; exit 1; }
+"$cli" view results/view-test-jobs --out jobs.html --cache cache || { echo "FAILED: contactlab view results of two jobs"; exit 1; }
 
 status=0
 for page in scene replay; do
@@ -67,6 +80,21 @@ for page in scene replay; do
   "$python" "$here/check_page.py" --page "$page" --dom "$page.dom" --png "$page.png" \
       --logs "$page.dom.log" "$page.shot.log" "${extra[@]}" || status=1
 done
+
+# The page of two jobs at #job=1: job 1 drawn (its title, data-job), both jobs in the selector.
+browse --dump-dom "file://$work/jobs.html#job=1&t=0.05" jobs.dom.log > jobs.dom
+browse "--screenshot=$work/jobs.png" "file://$work/jobs.html#job=1&t=0.05" jobs.shot.log > /dev/null
+"$python" "$here/check_page.py" --page jobs --dom jobs.dom --png jobs.png --logs jobs.dom.log jobs.shot.log --replay \
+    --expect-text "<h1 id=\"title\">view-test-jobs — k_C=1500</h1>" --expect-attr data-job=1 --expect-attr data-jobs=2 || status=1
+grep -q '<option value="0">job 0: k_C=500</option><option value="1">job 1: k_C=1500</option>' jobs.dom ||
+  { echo "FAILED: the job selector does not list both jobs"; status=1; }
+# Choosing job 1 in the selector of a page opened on job 0 (a script added to the page does what a
+# user would) shows job 1.
+sed 's|</body>|<script>if (document.documentElement.getAttribute("data-job") === "0" \&\& !sessionStorage.getItem("switched")) { sessionStorage.setItem("switched", "1"); var s = document.getElementById("job"); s.value = "1"; s.dispatchEvent(new Event("change")); }</script></body>|' \
+  jobs.html > switch.html
+browse --dump-dom "file://$work/switch.html" switch.dom.log > switch.dom
+"$python" "$here/check_page.py" --page switch --dom switch.dom --png jobs.png --logs switch.dom.log --replay \
+    --expect-text "<h1 id=\"title\">view-test-jobs — k_C=1500</h1>" --expect-attr data-job=1 || status=1
 
 # The checks must see a broken page: the scene page with a script error added must fail them.
 sed 's|</body>|<script>undefinedViewerFunction();</script></body>|' scene.html > broken.html

@@ -33,6 +33,8 @@ def main():
     ap.add_argument("--logs", nargs="*", default=[])
     ap.add_argument("--replay", action="store_true")
     ap.add_argument("--expect-text", default=None, help="text the page's DOM must contain")
+    ap.add_argument("--expect-attr", action="append", default=[], metavar="NAME=VALUE",
+                    help="an attribute <html> must hold with that value (repeatable)")
     ap.add_argument("--min-red", type=int, default=0,
                     help="pixels of the contact red the screenshot must hold outside the panel (data-panel)")
     a = ap.parse_args()
@@ -49,6 +51,11 @@ def main():
     elif errors.group(1) != "0":
         shown = re.search(r'<pre id="errors"[^>]*>(.*?)</pre>', dom, re.S)
         failures.append("JavaScript errors: " + (shown.group(1) if shown else errors.group(1)))
+    for pair in a.expect_attr:
+        name, _, value = pair.partition("=")
+        got = re.search(r'\b%s="([^"]*)"' % re.escape(name), tag)
+        if not got or got.group(1) != value:
+            failures.append("<html> has %s=%s, expected %s" % (name, got.group(1) if got else "(none)", value))
     if a.expect_text and a.expect_text not in dom:
         failures.append("the page does not show '%s'" % a.expect_text)
     if a.replay and 'id="readout"></span>' in dom:

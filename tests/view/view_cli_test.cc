@@ -45,6 +45,44 @@ TEST(ViewCli, ScenePageIsOneSelfContainedFile) {
   EXPECT_EQ(page.find("@DATA@"), std::string::npos);
 }
 
+TEST(ViewCli, ResultsOfSeveralJobsGiveOnePageWithAJobSelectorUnlessJobPicksOne) {
+  TempDir dir;
+  std::ofstream(dir / "scene.yaml") << kScene;
+  std::ofstream(dir / "exp.yaml") << "name: view-jobs\n"
+                                     "scene: scene.yaml\n"
+                                     "models: [pointshell]\n"
+                                     "moving_body: ball\n"
+                                     "trajectory: {type: twist, direction: [0, 0, -1], depth: 0.002, angle: 0.4, "
+                                     "duration: 0.03}\n"
+                                     "reference: ''\n"
+                                     "sweep: {k_C: [500, 1500, 2500]}\n";
+  const std::string cache = " --cache " + (dir / "cache").string();
+  Outcome o = RunCli("run " + (dir / "exp.yaml").string() + " --out " + (dir / "results").string() + cache);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  // No --job: every job, the first shown, a job selector.
+  o = RunCli("view " + (dir / "results").string() + " --out " + (dir / "all.html").string() + cache);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("3 jobs (job 0 shown first"), std::string::npos) << o.output;
+  const std::string all = ReadWholeFile(dir / "all.html");
+  EXPECT_NE(all.find("<select id=\"job\">"), std::string::npos);
+  EXPECT_NE(all.find("\"job_data\":["), std::string::npos);
+  EXPECT_NE(all.find("\"label\":\"k_C=2500\""), std::string::npos);
+  EXPECT_NE(all.find("\"$blob\":"), std::string::npos);
+  EXPECT_EQ(all.find("<script src"), std::string::npos);  // still self-contained
+  // --job 2: that job alone, no job list.
+  o = RunCli("view " + (dir / "results").string() + " --job 2 --out " + (dir / "two.html").string() + cache);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("job 2, 1 model(s)"), std::string::npos) << o.output;
+  const std::string two = ReadWholeFile(dir / "two.html");
+  EXPECT_EQ(two.find("\"job_data\""), std::string::npos);
+  EXPECT_NE(two.find("\"label\":\"k_C=2500\""), std::string::npos);
+  // A job the folder does not hold is an error listing those it does.
+  o = RunCli("view " + (dir / "results").string() + " --job 5 --out " + (dir / "five.html").string() + cache);
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find("has no job 5 (it holds 0, 1, 2)"), std::string::npos) << o.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "five.html"));
+}
+
 TEST(ViewCli, BadInputsFailNamingTheFileAndLeaveNoOutput) {
   TempDir dir;
   std::ofstream(dir / "scene.yaml") << kScene;

@@ -252,6 +252,83 @@ TEST(Replay, SeveralJobsNeedAJobNumber) {
   EXPECT_NE(e2.find("has no job 7 (it holds 0, 1)"), std::string::npos) << e2;
 }
 
+// The long strings of DATA taken back from BLOBS (the inverse of SeveralJobsViewData's sharing).
+nlohmann::json ResolveBlobs(const nlohmann::json& data, const nlohmann::json& blobs) {
+  if (data.is_object() && data.size() == 1 && data.contains("$blob")) return blobs.at(data["$blob"].get<std::size_t>());
+  if (!data.is_structured()) return data;
+  nlohmann::json out = data;
+  for (auto it = out.begin(); it != out.end(); ++it) *it = ResolveBlobs(*it, blobs);
+  return out;
+}
+
+// The longest string in DATA.
+std::size_t LongestString(const nlohmann::json& data) {
+  if (data.is_string()) return data.get_ref<const std::string&>().size();
+  std::size_t longest = 0;
+  if (data.is_structured())
+    for (const auto& item : data) longest = std::max(longest, LongestString(item));
+  return longest;
+}
+
+TEST(Replay, EveryJobIsReadInOnePassAsReadReplayReadsEach) {
+  TempDir dir;
+  RunTiny(dir, {"sweep={k_C: [500, 1500]}"});
+  const std::vector<Replay> all = ReadReplays(dir / "out", 40);
+  ASSERT_EQ(all.size(), 2u);
+  for (int job = 0; job < 2; ++job) {
+    const Replay one = ReadReplay(dir / "out", job, 40);
+    const Replay& r = all[std::size_t(job)];
+    EXPECT_EQ(r.job, job);
+    EXPECT_EQ(r.job_label, one.job_label);
+    EXPECT_EQ(r.experiment, "view-tiny");
+    EXPECT_DOUBLE_EQ(r.scene.model.penalty.k_C, one.scene.model.penalty.k_C);
+    EXPECT_EQ(r.stride, one.stride);
+    ASSERT_EQ(r.tracks.size(), one.tracks.size());
+    for (std::size_t m = 0; m < r.tracks.size(); ++m) {
+      EXPECT_EQ(r.tracks[m].model, one.tracks[m].model);
+      EXPECT_EQ(r.tracks[m].cycles, one.tracks[m].cycles);
+      EXPECT_EQ(r.tracks[m].force, one.tracks[m].force) << "job " << job << ", model " << r.tracks[m].model;
+    }
+  }
+  EXPECT_EQ(all[1].job_label, "k_C=1500");
+  // The two jobs differ in k_C only, so they press with different forces.
+  EXPECT_NE(all[0].tracks[0].force, all[1].tracks[0].force);
+}
+
+TEST(Replay, SeveralJobsPageDataEmbedsSharedArraysOnce) {
+  TempDir dir;
+  RunTiny(dir, {"sweep={k_C: [500, 1500]}"});
+  const std::vector<Replay> replays = ReadReplays(dir / "out", 40);
+  ASSERT_EQ(replays.size(), 2u);
+  AssetOptions asset_options;
+  asset_options.cache_dir = dir / "cache";
+  asset_options.verbose = false;
+  std::vector<nlohmann::json> each;
+  for (const Replay& r : replays) {
+    SceneAssets assets(r.scene, asset_options);
+    each.push_back(ReplayViewData(r, assets, SceneViewOptions{}));
+  }
+  const nlohmann::json page = SeveralJobsViewData(replays, each);
+  ASSERT_EQ(page["jobs"].size(), 2u);
+  EXPECT_EQ(page["title"], "view-tiny");
+  EXPECT_EQ(page["jobs"][1]["job"], 1);
+  EXPECT_EQ(page["jobs"][1]["label"], "k_C=1500");
+  EXPECT_EQ(page["jobs"][1]["title"], each[1]["title"]);
+  // Each job's data comes back whole from the shared strings, and none of them is left inline.
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_LT(LongestString(page["job_data"][i]), 1024u) << "job " << i;
+    EXPECT_EQ(ResolveBlobs(page["job_data"][i], page["blobs"]), each[i]) << "job " << i;
+  }
+  // The meshes, pointshell and slice, equal in both jobs (only k_C differs), are held once: the
+  // page is well under the two jobs' data side by side.
+  EXPECT_EQ(page["job_data"][0]["bodies"][0]["positions"], page["job_data"][1]["bodies"][0]["positions"]);
+  const std::size_t both = each[0].dump().size() + each[1].dump().size(), shared = page.dump().size();
+  EXPECT_LT(shared, 0.75 * double(both)) << shared << " bytes against " << both;
+  // A mismatch of replays and data is an error.
+  const std::string e = ErrorOf([&] { SeveralJobsViewData(replays, {each[0]}); });
+  EXPECT_NE(e.find("one page data per replay"), std::string::npos) << e;
+}
+
 TEST(Replay, BadResultsFolderIsAClearErrorNamingTheFile) {
   TempDir dir;
   // No folder.

@@ -17,7 +17,44 @@
   var EVALUATED_COLOUR = '#38c8ff', UNEVALUATED_COLOUR = '#5a5e64';
   var FORCE_COLOUR = 0xff3030;
 
-  var data = JSON.parse(document.getElementById('contactlab-data').textContent);
+  // --- Options in the address's fragment: #job=I, #t=SECONDS, #model=NAME, #play (joined with &).
+  var options = {};
+  location.hash.replace(/^#/, '').split('&').forEach(function (kv) {
+    if (!kv) return;
+    var parts = kv.split('=');
+    options[decodeURIComponent(parts[0])] = parts.length > 1 ? decodeURIComponent(parts[1]) : '';
+  });
+
+  // --- The data. A results folder of several jobs (view_data.h, SeveralJobsViewData) holds
+  // every job's data, their long strings in shared "blobs": the page shows the job of #job=I
+  // (the first when absent or not among them) and a selector that reloads it with another.
+  var pageData = JSON.parse(document.getElementById('contactlab-data').textContent);
+  var data = pageData, jobIndex = 0;
+  function resolveBlobs(x, blobs) {
+    if (Array.isArray(x)) return x.map(function (item) { return resolveBlobs(item, blobs); });
+    if (x === null || typeof x !== 'object') return x;
+    var keys = Object.keys(x);
+    if (keys.length === 1 && keys[0] === '$blob') return blobs[x.$blob];
+    var out = {};
+    keys.forEach(function (k) { out[k] = resolveBlobs(x[k], blobs); });
+    return out;
+  }
+  if (pageData.job_data) {
+    pageData.jobs.forEach(function (j, i) { if (String(j.job) === options.job) jobIndex = i; });
+    data = resolveBlobs(pageData.job_data[jobIndex], pageData.blobs);
+    var jobSelect = document.getElementById('job');
+    pageData.jobs.forEach(function (j) {
+      jobSelect.appendChild(el('option', {value: String(j.job)}, 'job ' + j.job + (j.label ? ': ' + j.label : '')));
+    });
+    jobSelect.value = String(pageData.jobs[jobIndex].job);
+    jobSelect.addEventListener('change', function () {
+      location.hash = 'job=' + encodeURIComponent(jobSelect.value);
+      location.reload();
+    });
+    document.getElementById('job-choice').hidden = false;
+    document.documentElement.setAttribute('data-jobs', String(pageData.jobs.length));
+  }
+  if (data.replay) document.documentElement.setAttribute('data-job', String(data.replay.job));
 
   // Base64 text of little-endian bytes -> typed array of TYPE.
   function decode(text, Type) {
@@ -434,13 +471,6 @@
     g.stroke();
   }
 
-  // --- Options in the address's fragment: #t=SECONDS, #model=NAME, #play (joined with &).
-  var options = {};
-  location.hash.replace(/^#/, '').split('&').forEach(function (kv) {
-    if (!kv) return;
-    var parts = kv.split('=');
-    options[decodeURIComponent(parts[0])] = parts.length > 1 ? decodeURIComponent(parts[1]) : '';
-  });
   if (replay && tracks.length > 0) {
     if (options.model !== undefined) {
       tracks.forEach(function (tr, i) { if (tr.name === options.model) current = i; });
