@@ -66,3 +66,19 @@ def test_models_lists_the_command_line_models(cli):
     assert set(contactlab.models()) <= set(listed)
     assert set(contactlab.models(references=True)) == set(listed)
     assert "pointshell" in contactlab.models()
+
+
+def test_deformable_query_equals_command_line(cli_json, data_dir):
+    """A deformable pointshell body held at reduced coordinates q_A, as `contact --q-a`."""
+    scene_file = data_dir / "scenes" / "cantilever-probe.yaml"
+    q_A = [0.001, -0.0002 / 3, 0, 0.0001, 0, 0, 0, 0, 0, 0]
+    expected = cli_json("contact", scene_file, "--q-a", ",".join(repr(q) for q in q_A), "--json")
+    scene = contactlab.Scene.load(str(scene_file))
+    assert scene.A.deformable
+    r = scene.model().query(scene.A.pose, scene.B.pose, q_A=np.array(q_A))
+    assert r["stats"]["points_in_contact"] > 0
+    assert r["force"].tolist() == expected["force"]
+    assert r["K_B"].tolist() == expected["K_B"]
+    assert r["reduced_force_A"].tolist() == expected["reduced_force_A"]
+    with pytest.raises(contactlab.Error, match="q_A"):
+        scene.model().query(scene.A.pose, scene.B.pose, q_A=np.zeros(3))
