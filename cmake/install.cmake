@@ -10,6 +10,8 @@
 #   baselines/ as they are included: "contact/contact_model.h", "baselines/register_baselines.h")
 #   and PREFIX/lib/cmake/ContactLab/: the CMake package, find_package(ContactLab) ->
 #   ContactLab::contactlab (examples/cpp uses it)
+#   PREFIX/lib/python3/dist-packages/contactlab/ (the Python module, when built: Debian's folder
+#   for the prefix /usr, python/install_dir.py) and PREFIX/share/doc/contactlab/examples/python
 # `cpack -G DEB` in the build folder makes a .deb of the same files.
 install(TARGETS contactlab-cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/data/ DESTINATION ${CONTACTLAB_INSTALL_SHAREDIR}/data)
@@ -19,6 +21,29 @@ install(PROGRAMS ${PROJECT_SOURCE_DIR}/scripts/make_figures.py DESTINATION ${CON
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/scripts/figures DESTINATION ${CONTACTLAB_INSTALL_SHAREDIR}/scripts
         FILES_MATCHING PATTERN "*.py" PATTERN "__pycache__" EXCLUDE)
 install(FILES ${PROJECT_SOURCE_DIR}/README.md ${PROJECT_SOURCE_DIR}/LICENSE DESTINATION ${CMAKE_INSTALL_DOCDIR})
+if(TARGET contactlab_python)
+  # The package folder depends on the prefix installed to, which cpack changes (/usr for the
+  # .deb): asked of the interpreter at install time unless CONTACTLAB_INSTALL_PYTHONDIR names it.
+  file(GLOB _contactlab_python_files CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/python/contactlab/*.py)
+  install(CODE "
+    set(_pythondir [[${CONTACTLAB_INSTALL_PYTHONDIR}]])
+    if(_pythondir STREQUAL \"\")
+      execute_process(COMMAND [[${Python_EXECUTABLE}]] [[${PROJECT_SOURCE_DIR}/python/install_dir.py]]
+                              \"\${CMAKE_INSTALL_PREFIX}\"
+                      OUTPUT_VARIABLE _pythondir RESULT_VARIABLE _result)
+      if(NOT _result EQUAL 0 OR _pythondir STREQUAL \"\")
+        message(FATAL_ERROR \"cannot ask ${Python_EXECUTABLE} for its package folder; set CONTACTLAB_INSTALL_PYTHONDIR\")
+      endif()
+    endif()
+    if(NOT IS_ABSOLUTE \"\${_pythondir}\")
+      set(_pythondir \"\${CMAKE_INSTALL_PREFIX}/\${_pythondir}\")
+    endif()
+    file(INSTALL DESTINATION \"\${_pythondir}/contactlab\" TYPE MODULE FILES [[$<TARGET_FILE:contactlab_python>]])
+    file(INSTALL DESTINATION \"\${_pythondir}/contactlab\" TYPE FILE FILES ${_contactlab_python_files})
+  ")
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples/python/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/examples/python
+          FILES_MATCHING PATTERN "*.py" PATTERN "__pycache__" EXCLUDE)
+endif()
 
 # --- The library and its CMake package. Exported: the umbrella `contactlab` and every
 # contactlab_* library it links, found by walking its link interface (static libraries' private
@@ -85,6 +110,13 @@ if(CONTACTLAB_WITH_CGAL)
   set(_contactlab_cgal_dev ", libcgal-dev, libgmp-dev, libmpfr-dev, libboost-dev")
 endif()
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "libeigen3-dev, libtbb-dev, libyaml-cpp-dev, nlohmann-json3-dev, zlib1g-dev, libnanoflann-dev, libhwy-dev, libspectra-dev, liboctomap-dev, libfcl-dev, libccd-dev, libbullet-dev, libspnav-dev, pkg-config${_contactlab_cgal_dev}")
+if(TARGET contactlab_python)
+  # The module is built for Debian's python3 and returns NumPy arrays; load_results reads pandas.
+  math(EXPR _python_next_minor "${Python_VERSION_MINOR} + 1")
+  set(CPACK_DEBIAN_PACKAGE_DEPENDS
+      "python3 (>= ${Python_VERSION_MAJOR}.${Python_VERSION_MINOR}), python3 (<< ${Python_VERSION_MAJOR}.${_python_next_minor}), python3-numpy")
+  string(APPEND CPACK_DEBIAN_PACKAGE_RECOMMENDS ", python3-pandas")
+endif()
 if(CONTACTLAB_WITH_CGAL)
   set(CPACK_DEBIAN_PACKAGE_DESCRIPTION "${CPACK_PACKAGE_DESCRIPTION_SUMMARY}\n Built with CGAL: the binary is covered by the GPL-3.0-or-later.")
 endif()

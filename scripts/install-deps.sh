@@ -4,7 +4,8 @@
 # slurm-wlm and munge for the single-node Slurm cluster test, tests/slurm/; clang with its
 # runtime libraries, which hold libFuzzer, for the fuzz targets, tests/fuzz/; cpp-httplib, three.js
 # and Chromium for the 3D viewer and its browser tests, src/view/; OpenVDB for the reference
-# field that cross-checks our field builder, baselines/reference/, and its benchmark). Does nothing when
+# field that cross-checks our field builder, baselines/reference/, and its benchmark; pybind11, pytest
+# and pandas for the Python module, python/). Does nothing when
 # everything is present; uses sudo when not root.
 set -euo pipefail
 
@@ -19,6 +20,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-14-dev
   python3 python3-numpy python3-matplotlib python3-yaml
+  pybind11-dev python3-pybind11 python3-pytest python3-pandas
   libcpp-httplib-dev libjs-three chromium
   slurm-wlm munge
 )

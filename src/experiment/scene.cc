@@ -378,6 +378,8 @@ Scene ParseScene(const ConfigNode& n) {
 
 Scene LoadScene(const std::filesystem::path& file) { return ParseScene(ConfigNode::LoadFile(file)); }
 
+Scene WithModelSection(Scene scene, const ConfigNode& node) { return ModelSectionParams().Parse(node, std::move(scene)); }
+
 Scene Scene::Swapped() const {
   Scene s = *this;
   std::swap(s.pointshell_body, s.field_body);

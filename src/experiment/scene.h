@@ -155,6 +155,10 @@ std::string SceneReference();
 // Reads a scene from a YAML node (a whole file, or the "scene" key of an experiment).
 Scene ParseScene(const ConfigNode& node);
 Scene LoadScene(const std::filesystem::path& file);
+// SCENE with the keys that NODE, a model section ("model:" keys), gives replacing its own: the
+// model parameters and node_budget, each value checked as in a scene file. What the Python
+// module's Scene.model(name, k_C=...) applies. Throws Error naming NODE's file, line and key.
+Scene WithModelSection(Scene scene, const ConfigNode& node);
 
 // Reads a pose given as [x,y,z,qw,qx,qy,qz] or {position: [..], rotation: [qw,qx,qy,qz]}
 // or {position: [..], rotation_vector: [..]} (radians).

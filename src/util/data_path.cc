@@ -27,8 +27,16 @@ bool IsFile(const fs::path& p) {
   return fs::is_regular_file(p, ec);
 }
 
-// share/contactlab beside the running program (the build tree mirrors it), canonical.
+// SetInstalledRoot's folder, canonical (empty: none).
+fs::path& HostInstalledRoot() {
+  static fs::path root;
+  return root;
+}
+
+// share/contactlab beside the running program (the build tree mirrors it), or the one a host
+// program named (SetInstalledRoot), canonical.
 std::optional<fs::path> InstalledRoot() {
+  if (!HostInstalledRoot().empty()) return HostInstalledRoot();
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (ec || exe.empty()) return std::nullopt;
@@ -53,6 +61,11 @@ std::optional<fs::path> FindIn(const fs::path& dir, const fs::path& name) {
 }
 
 }  // namespace
+
+void SetInstalledRoot(const fs::path& root) {
+  std::error_code ec;
+  if (IsFolder(root / "data")) HostInstalledRoot() = fs::weakly_canonical(root, ec);
+}
 
 std::optional<fs::path> InstalledDataDir() {
   if (auto root = InstalledRoot()) return *root / "data";

@@ -6,7 +6,9 @@
 //   4. $CONTACTLAB_DATA;
 //   5. the installed data folder: <folder of the running program>/../share/contactlab/data
 //      (the build tree mirrors this layout: build/share/contactlab/data is the repository's
-//      data/), then its parent share/contactlab (experiments/ and scripts/ live there);
+//      data/), then its parent share/contactlab (experiments/ and scripts/ live there); in a
+//      program that is not ContactLab's own (the Python module), the share/contactlab folder
+//      it names with SetInstalledRoot;
 //   6. ../shared/data beside the working folder and beside the repository, when present.
 // In each data folder a bare name is also looked for under meshes/, and "NAME" also matches
 // "NAME.gz" (meshes ship gzip-compressed: "dragon.obj" finds meshes/dragon.obj.gz).
@@ -26,6 +28,11 @@ std::vector<std::filesystem::path> DataSearchPath();
 // The installed data folder of step 5 (it holds meshes/, scenes/, trajectories/), or nullopt
 // when it does not exist beside the running program.
 std::optional<std::filesystem::path> InstalledDataDir();
+
+// Step 5's share/contactlab folder for a host program that is not ContactLab's own: the Python
+// module finds it above its package (PREFIX/share/contactlab, or build/share/contactlab in a
+// build tree) and names it here at import. Ignored unless ROOT/data is a folder.
+void SetInstalledRoot(const std::filesystem::path& root);
 
 // Resolves NAME as above. BASE_DIR: the folder of the file that names NAME (empty: none).
 // Returns nullopt when nothing is found.

@@ -1,0 +1,53 @@
+"""ContactLab from Python: scenes, contact models and experiments of the C++ library.
+
+    import contactlab
+    scene = contactlab.Scene.load("scenes/sphere-on-plate.yaml")
+    model = scene.model("pointshell", k_C=2000)
+    r = model.query(scene.A.pose, scene.B.pose)        # r["wrench"], r["K_B"], r["stats"]
+    batch = model.query_many(poses_A, poses_B)          # (N, 7) arrays -> (N, 6), (N, 6, 6)
+    out = contactlab.run("experiments/continuity-models.yaml", out="/tmp/run", set={"models": ["pointshell"]})
+    results = contactlab.load_results(out)              # results.summary, results.cycles: DataFrames
+
+Units are SI (metres, newtons); poses are (x, y, z, qw, qx, qy, qz) 7-vectors or 4x4 matrices.
+Errors raise contactlab.Error (a RuntimeError) with the library's message (file, line, key).
+"""
+
+from ._core import (  # noqa: F401
+    Body,
+    Error,
+    Mesh,
+    Model,
+    Pointshell,
+    Scene,
+    __version__,
+    model_description,
+    models,
+    register_model,
+)
+from .results import Results, load_results  # noqa: F401
+from . import _core as _core_module
+
+
+def _find_installed_root():
+    """share/contactlab above the package: PREFIX/share/contactlab when installed,
+    build/share/contactlab in a build tree (its data/ links to the checkout's)."""
+    from pathlib import Path
+
+    for parent in Path(__file__).resolve().parents:
+        if (parent / "share" / "contactlab" / "data").is_dir():
+            return parent / "share" / "contactlab"
+    return None
+
+
+# The data search path's installed folder (util/data_path.h, step 5) is found from the package,
+# not from the running program (python3).
+_root = _find_installed_root()
+if _root is not None:
+    _core_module._set_installed_root(str(_root))
+del _root
+from .run import run  # noqa: F401
+
+__all__ = [
+    "Body", "Error", "Mesh", "Model", "Pointshell", "Results", "Scene", "load_results", "model_description",
+    "models", "register_model", "run",
+]

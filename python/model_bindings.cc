@@ -1,0 +1,253 @@
+// contactlab.Model: a registered contact model (contact/model_registry.h) between a scene's
+// bodies, queried at poses given as NumPy arrays, one at a time or in batches (the GIL released
+// for the batch). contactlab.models(): the registered names.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "bindings.h"
+#include "contact/model_registry.h"
+#include "experiment/reduced_coordinates.h"
+#include "experiment/scene.h"
+#include "experiment/scene_assets.h"
+#include "poses.h"
+#include "scene_handle.h"
+#include "util/config_node.h"
+#include "util/error.h"
+
+namespace py = pybind11;
+
+namespace contactlab::python {
+namespace {
+
+// A model and what it evaluates with. Queries lock MUTEX after releasing the GIL, so a model
+// written in Python (which takes the GIL in Evaluate) cannot deadlock against another thread.
+struct ModelHandle {
+  std::shared_ptr<SceneHandle> scene_handle;  // keeps the bodies' data alive
+  Scene scene;                                // the scene with the keyword overrides applied
+  std::string name;
+  std::unique_ptr<ContactModel> model;
+  std::mutex mutex;
+  std::int64_t cycle = 0;  // the next query's cycle when queries are not reset
+};
+
+// Evaluates one query at X_WA, X_WB: from a fresh state (Reset, cycle 0: what the command's
+// `contact` does) when RESET, else as the next haptic cycle. Holds H.mutex.
+ContactResult EvaluateLocked(ModelHandle& h, const Pose& X_WA, const Pose& X_WB, bool reset,
+                             const BodyDeformation* deformation_A, const BodyDeformation* deformation_B) {
+  ContactQuery q;
+  q.X_WA = X_WA;
+  q.X_WB = X_WB;
+  q.node_budget = h.scene.node_budget;
+  q.deformation_A = deformation_A;
+  q.deformation_B = deformation_B;
+  if (reset) {
+    h.model->Reset();
+    h.cycle = 0;
+  }
+  q.cycle = h.cycle++;
+  return h.model->Evaluate(q);
+}
+
+py::dict StatsDict(const ContactStats& s) {
+  py::dict d;
+  d["points_in_contact"] = s.points_in_contact;
+  d["nodes_visited"] = s.nodes_visited;
+  d["level_rendered"] = s.level_rendered;
+  d["nodes_skipped_coherence"] = s.nodes_skipped_coherence;
+  d["max_penetration"] = s.max_penetration;
+  d["stiffness_scale"] = s.stiffness_scale;
+  d["faults"] = s.faults;
+  return d;
+}
+
+py::array_t<double> Vector(const double* v, py::ssize_t n) {
+  py::array_t<double> a(n);
+  std::copy(v, v + n, a.mutable_data());
+  return a;
+}
+
+py::array_t<double> Matrix6(const Matrix6d& K) {
+  py::array_t<double> a({6, 6});
+  Eigen::Map<Eigen::Matrix<double, 6, 6, Eigen::RowMajor>>(a.mutable_data()) = K;
+  return a;
+}
+
+// Reduced coordinates Q for BODY, checked as the command's --q-a / --q-b are (their count, finite
+// values, a finite deformation U q), with WHERE naming the argument.
+ReducedState ReducedFrom(const DoubleArray& q, BodyAssets& body, const std::string& where) {
+  if (q.ndim() != 1) Fail(where, "reduced coordinates are a 1-D array (r,)");
+  std::ostringstream text;
+  text.precision(17);
+  for (py::ssize_t i = 0; i < q.shape(0); ++i) text << (i ? "," : "") << q.data()[i];
+  return ParseReducedCoordinates(text.str(), body, where);
+}
+
+py::dict Query(ModelHandle& h, const DoubleArray& X_WA, const DoubleArray& X_WB, bool reset,
+               std::optional<DoubleArray> q_A, std::optional<DoubleArray> q_B) {
+  const Pose pose_A = PoseFromArray(X_WA, "X_WA");
+  const Pose pose_B = PoseFromArray(X_WB, "X_WB");
+  SceneAssets& assets = h.scene_handle->assets;
+  std::unique_ptr<ReducedState> state_A, state_B;
+  if (q_A) state_A = std::make_unique<ReducedState>(ReducedFrom(*q_A, assets.A, "q_A"));
+  if (q_B) state_B = std::make_unique<ReducedState>(ReducedFrom(*q_B, assets.B, "q_B"));
+  ReducedVector force_A, force_B;
+  const BodyDeformation deformation_A{state_A.get(), &force_A}, deformation_B{state_B.get(), &force_B};
+  const bool deform_A = assets.A.deformable(), deform_B = assets.B.deformable();
+  ContactResult r;
+  {
+    py::gil_scoped_release release;
+    std::lock_guard<std::mutex> lock(h.mutex);
+    r = EvaluateLocked(h, pose_A, pose_B, reset, deform_A ? &deformation_A : nullptr,
+                       deform_B ? &deformation_B : nullptr);
+  }
+  // As the command: a refused query or a non-finite result is an error, never a result.
+  if (r.stats.faults > 0) Fail(h.name, "refused the query (a deformation that does not fit its body); no wrench");
+  if (!r.on_B.force.allFinite() || !r.on_B.torque.allFinite() || !r.K_B.allFinite()) {
+    Fail(h.name, "gave a non-finite wrench or stiffness at these poses and coordinates");
+  }
+  py::dict d;
+  d["model"] = h.name;
+  d["force"] = Vector(r.on_B.force.data(), 3);
+  d["torque"] = Vector(r.on_B.torque.data(), 3);
+  const Vector6d w = r.on_B.AsVector();
+  d["wrench"] = Vector(w.data(), 6);
+  d["K_B"] = Matrix6(r.K_B);
+  d["stats"] = StatsDict(r.stats);
+  if (deform_A) d["reduced_force_A"] = Vector(force_A.data(), force_A.size());
+  if (deform_B) d["reduced_force_B"] = Vector(force_B.data(), force_B.size());
+  return d;
+}
+
+py::dict QueryMany(ModelHandle& h, const DoubleArray& poses_A, const DoubleArray& poses_B, bool reset) {
+  const std::vector<Pose> A = PosesFromArray(poses_A, "poses_A");
+  const std::vector<Pose> B = PosesFromArray(poses_B, "poses_B");
+  if (A.size() != B.size() && A.size() != 1 && B.size() != 1) {
+    Fail("query_many", "poses_A has " + std::to_string(A.size()) + " poses and poses_B " + std::to_string(B.size()) +
+                           "; give as many of each, or one pose for either");
+  }
+  const py::ssize_t n = py::ssize_t(std::max(A.size(), B.size()));
+  py::array_t<double> wrench({n, py::ssize_t(6)});
+  py::array_t<double> K({n, py::ssize_t(6), py::ssize_t(6)});
+  py::array_t<std::int32_t> contacts(n), level(n), skipped(n), faults(n);
+  py::array_t<std::int64_t> nodes(n);
+  py::array_t<double> depth(n), scale(n);
+  double* w = wrench.mutable_data();
+  double* k = K.mutable_data();
+  std::int32_t *c = contacts.mutable_data(), *l = level.mutable_data(), *s = skipped.mutable_data(),
+               *f = faults.mutable_data();
+  std::int64_t* v = nodes.mutable_data();
+  double *p = depth.mutable_data(), *sc = scale.mutable_data();
+  // Deformable bodies are queried at rest, as the command's `contact` without --q-a / --q-b.
+  SceneAssets& assets = h.scene_handle->assets;
+  ReducedVector force_A, force_B;
+  const BodyDeformation deformation_A{nullptr, &force_A}, deformation_B{nullptr, &force_B};
+  const BodyDeformation* dA = assets.A.deformable() ? &deformation_A : nullptr;
+  const BodyDeformation* dB = assets.B.deformable() ? &deformation_B : nullptr;
+  {
+    py::gil_scoped_release release;
+    std::lock_guard<std::mutex> lock(h.mutex);
+    for (py::ssize_t i = 0; i < n; ++i) {
+      const ContactResult r = EvaluateLocked(h, A[A.size() == 1 ? 0 : i], B[B.size() == 1 ? 0 : i], reset, dA, dB);
+      Eigen::Map<Vector6d>(w + 6 * i) = r.on_B.AsVector();
+      Eigen::Map<Eigen::Matrix<double, 6, 6, Eigen::RowMajor>>(k + 36 * i) = r.K_B;
+      c[i] = r.stats.points_in_contact, v[i] = r.stats.nodes_visited, l[i] = r.stats.level_rendered;
+      s[i] = r.stats.nodes_skipped_coherence, p[i] = r.stats.max_penetration, sc[i] = r.stats.stiffness_scale;
+      f[i] = r.stats.faults;
+    }
+  }
+  py::dict stats;
+  stats["points_in_contact"] = contacts;
+  stats["nodes_visited"] = nodes;
+  stats["level_rendered"] = level;
+  stats["nodes_skipped_coherence"] = skipped;
+  stats["max_penetration"] = depth;
+  stats["stiffness_scale"] = scale;
+  stats["faults"] = faults;
+  py::dict d;
+  d["model"] = h.name;
+  d["wrench"] = wrench;
+  d["force"] = wrench[py::make_tuple(py::ellipsis(), py::slice(0, 3, 1))];
+  d["torque"] = wrench[py::make_tuple(py::ellipsis(), py::slice(3, 6, 1))];
+  d["K_B"] = K;
+  d["stats"] = stats;
+  return d;
+}
+
+}  // namespace
+
+py::object MakeModel(const std::shared_ptr<SceneHandle>& scene, const std::string& name, const py::kwargs& params) {
+  auto h = std::make_shared<ModelHandle>();
+  h->scene_handle = scene;
+  h->scene = scene->scene;
+  h->name = name.empty() ? scene->scene.models.front() : name;
+  if (params.size() > 0) {
+    // The keyword arguments as a model section (JSON is YAML), read by the scene's own table.
+    py::dict section;
+    section["model"] = params;
+    const std::string text = py::module_::import("json").attr("dumps")(section).cast<std::string>();
+    h->scene = WithModelSection(h->scene, ConfigNode::LoadString(text, "Scene.model() keyword arguments").Get("model"));
+  }
+  h->model = MakeSceneContactModel(h->name, h->scene, scene->assets);
+  return py::cast(h);
+}
+
+void BindModel(py::module_& m) {
+  py::class_<ModelHandle, std::shared_ptr<ModelHandle>>(
+      m, "Model",
+      "A contact model between a scene's bodies (Scene.model). Results are the wrench on body B about its "
+      "origin, world frame, SI units, and K_B = d(wrench on B)/d(pose of B), ordered (dx, dtheta).")
+      .def_property_readonly("name", [](const ModelHandle& h) { return h.name; })
+      .def_property_readonly("node_budget", [](const ModelHandle& h) { return h.scene.node_budget; })
+      .def("query", &Query, py::arg("X_WA"), py::arg("X_WB"), py::kw_only(), py::arg("reset") = true,
+           py::arg("q_A") = py::none(), py::arg("q_B") = py::none(),
+           "One contact query at the world poses X_WA, X_WB of bodies A and B, each a (7,) array (x, y, z, "
+           "qw, qx, qy, qz; metres) or a (4, 4) matrix. RESET (default): from a fresh state, as `contactlab "
+           "contact` evaluates; False: as the next haptic cycle (temporal coherence). Q_A / Q_B: reduced "
+           "coordinates (r,) of a deformable body (default: at rest). Returns a dict: force (3,), torque "
+           "(3,), wrench (6,), K_B (6, 6), stats (dict of the ContactStats fields), and reduced_force_A / "
+           "_B for deformable bodies. Raises contactlab.Error when the model refuses the query.")
+      .def("query_many", &QueryMany, py::arg("poses_A"), py::arg("poses_B"), py::kw_only(), py::arg("reset") = true,
+           "N queries: POSES_A and POSES_B are (N, 7) or (N, 4, 4) arrays (either may be one pose, used for "
+           "every query). The GIL is released while they run. Returns a dict: wrench (N, 6), force and "
+           "torque (N, 3) views of it, K_B (N, 6, 6), stats (dict of (N,) arrays; faults counts refused "
+           "queries, which give zero). Each row equals query() at the same poses.")
+      .def("reset", [](ModelHandle& h) {
+        py::gil_scoped_release release;
+        std::lock_guard<std::mutex> lock(h.mutex);
+        h.model->Reset();
+        h.cycle = 0;
+      }, "Forgets temporal state (coherence, level-of-detail hysteresis).")
+      .def("__repr__", [](const ModelHandle& h) { return "<contactlab.Model " + h.name + " on " + h.scene.name + ">"; });
+
+  m.def(
+      "models",
+      [](bool references) {
+        std::vector<std::string> names = ContactModelNames();
+        if (references) {
+          for (const std::string& n : ReferenceModelNames()) names.push_back(n);
+        }
+        return names;
+      },
+      py::arg("references") = false,
+      "The registered contact model names, sorted (with REFERENCES: the reference-only ones after them).");
+  m.def(
+      "model_description",
+      [](const std::string& name) {
+        const ContactModelEntry* e = FindContactModel(name);
+        if (e == nullptr) Fail("model_description", "unknown contact model '" + name + "'");
+        return e->description;
+      },
+      py::arg("name"), "The one-line description of registered model NAME.");
+}
+
+}  // namespace contactlab::python

@@ -1,0 +1,36 @@
+// contactlab._core: the C++ half of the `contactlab` Python package (pybind11). NumPy arrays in
+// and out; contactlab::Error raised as contactlab.Error with its message (file, line, key).
+#include <pybind11/pybind11.h>
+
+#include "baselines/register_baselines.h"
+#include "bindings.h"
+#include "util/error.h"
+
+namespace py = pybind11;
+
+namespace contactlab::python {
+
+void BindErrors(py::module_& m) {
+  static py::exception<Error> error(m, "Error", PyExc_RuntimeError);
+  error.doc() = "An error of ContactLab: its message names the file (line, key) and what is wrong.";
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const Error& e) {
+      error(e.what());
+    }
+  });
+}
+
+}  // namespace contactlab::python
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "ContactLab's C++ library: scenes, contact models, experiments (see the contactlab package).";
+  // The baselines register their models as the command does at start-up.
+  contactlab::RegisterBaselineContactModels();
+  contactlab::python::BindErrors(m);
+  contactlab::python::BindScene(m);
+  contactlab::python::BindModel(m);
+  contactlab::python::BindRun(m);
+  m.attr("__version__") = CONTACTLAB_VERSION;
+}

@@ -1,0 +1,82 @@
+// Poses from NumPy arrays (python/poses.h).
+#include "poses.h"
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "util/error.h"
+
+namespace py = pybind11;
+
+namespace contactlab::python {
+namespace {
+
+std::string ShapeText(const DoubleArray& a) {
+  std::string s = "(";
+  for (py::ssize_t i = 0; i < a.ndim(); ++i) s += (i ? ", " : "") + std::to_string(a.shape(i));
+  return s + (a.ndim() == 1 ? ",)" : ")");
+}
+
+// The pose of the 7 numbers at V, as ParsePose reads them from a command line.
+Pose PoseFrom7(const double* v, const std::string& where) {
+  for (int i = 0; i < 7; ++i) {
+    if (!std::isfinite(v[i])) Fail(where, "pose component " + std::to_string(i) + " is not finite");
+  }
+  const Eigen::Quaterniond q(v[3], v[4], v[5], v[6]);
+  if (q.norm() < 1e-12) Fail(where, "pose quaternion is zero");
+  return {UnitQuaternion(q), Eigen::Vector3d(v[0], v[1], v[2])};
+}
+
+// The pose of the row-major 4x4 matrix at V.
+Pose PoseFrom4x4(const double* v, const std::string& where) {
+  Eigen::Matrix4d X;
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) X(r, c) = v[4 * r + c];
+  }
+  if (!X.allFinite()) Fail(where, "pose matrix has a value that is not finite");
+  if ((X.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).cwiseAbs().maxCoeff() > 1e-12) {
+    Fail(where, "pose matrix: the last row must be 0 0 0 1");
+  }
+  const Eigen::Matrix3d R = X.topLeftCorner<3, 3>();
+  if ((R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-6 || R.determinant() < 0) {
+    Fail(where, "pose matrix: the upper-left 3x3 block is not a rotation (orthonormal, determinant +1)");
+  }
+  return {Eigen::Quaterniond(R).normalized(), X.topRightCorner<3, 1>()};
+}
+
+}  // namespace
+
+Pose PoseFromArray(const DoubleArray& a, const std::string& where) {
+  if (a.ndim() == 1 && a.shape(0) == 7) return PoseFrom7(a.data(), where);
+  if (a.ndim() == 2 && a.shape(0) == 4 && a.shape(1) == 4) return PoseFrom4x4(a.data(), where);
+  Fail(where, "a pose is a 7-vector (x, y, z, qw, qx, qy, qz) or a 4x4 matrix; got shape " + ShapeText(a));
+}
+
+std::vector<Pose> PosesFromArray(const DoubleArray& a, const std::string& where) {
+  std::vector<Pose> poses;
+  if ((a.ndim() == 1 && a.shape(0) == 7) || (a.ndim() == 2 && a.shape(0) == 4 && a.shape(1) == 4)) {
+    poses.push_back(PoseFromArray(a, where));
+  } else if (a.ndim() == 2 && a.shape(1) == 7) {
+    for (py::ssize_t i = 0; i < a.shape(0); ++i) {
+      poses.push_back(PoseFrom7(a.data() + 7 * i, where + "[" + std::to_string(i) + "]"));
+    }
+  } else if (a.ndim() == 3 && a.shape(1) == 4 && a.shape(2) == 4) {
+    for (py::ssize_t i = 0; i < a.shape(0); ++i) {
+      poses.push_back(PoseFrom4x4(a.data() + 16 * i, where + "[" + std::to_string(i) + "]"));
+    }
+  } else {
+    Fail(where, "poses are an (N, 7) array of (x, y, z, qw, qx, qy, qz) rows or an (N, 4, 4) array of matrices; "
+                "got shape " + ShapeText(a));
+  }
+  return poses;
+}
+
+py::array_t<double> PoseToArray(const Pose& pose) {
+  py::array_t<double> out(7);
+  double* v = out.mutable_data();
+  v[0] = pose.translation.x(), v[1] = pose.translation.y(), v[2] = pose.translation.z();
+  v[3] = pose.rotation.w(), v[4] = pose.rotation.x(), v[5] = pose.rotation.y(), v[6] = pose.rotation.z();
+  return out;
+}
+
+}  // namespace contactlab::python

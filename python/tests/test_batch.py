@@ -1,0 +1,81 @@
+"""query_many equals a loop of single queries bit for bit, whatever form the poses take."""
+
+import numpy as np
+import pytest
+from rotation_helpers import quaternion_to_matrix, random_poses
+
+import contactlab
+
+
+@pytest.fixture(scope="module")
+def plate_scene(plate_scene_file):
+    return contactlab.Scene.load(str(plate_scene_file))
+
+
+@pytest.mark.parametrize("model_name", ["pointshell", "pointshell-linear", "vps"])
+def test_batch_equals_single_queries(plate_scene, model_name):
+    model = plate_scene.model(model_name)
+    poses_A = random_poses(np.random.default_rng(7), 40, center=[0, 0, 0.0478], spread=0.004, tilt=0.1)
+    poses_B = random_poses(np.random.default_rng(8), 40, center=[0, 0, -0.02], spread=0.002, tilt=0.05)
+    batch = model.query_many(poses_A, poses_B)
+    assert batch["wrench"].shape == (40, 6)
+    assert batch["K_B"].shape == (40, 6, 6)
+    touching = 0
+    for i in range(40):
+        r = model.query(poses_A[i], poses_B[i])
+        assert np.array_equal(batch["wrench"][i], r["wrench"]), i
+        assert np.array_equal(batch["K_B"][i], r["K_B"]), i
+        for key, value in r["stats"].items():
+            assert batch["stats"][key][i] == value, (i, key)
+        touching += r["stats"]["points_in_contact"] > 0
+    assert touching >= 10  # the batch is mostly in contact
+    assert np.array_equal(batch["force"], batch["wrench"][:, :3])
+    assert np.array_equal(batch["torque"], batch["wrench"][:, 3:])
+
+
+def test_one_pose_is_used_for_every_query(plate_scene):
+    model = plate_scene.model("pointshell")
+    poses_A = random_poses(np.random.default_rng(3), 12, center=[0, 0, 0.0478], spread=0.003, tilt=0.1)
+    pose_B = plate_scene.B.pose
+    batch = model.query_many(poses_A, pose_B)
+    full = model.query_many(poses_A, np.tile(pose_B, (12, 1)))
+    assert np.array_equal(batch["wrench"], full["wrench"])
+    assert np.array_equal(batch["K_B"], full["K_B"])
+
+
+def test_matrices_give_the_poses_of_their_quaternions(plate_scene):
+    model = plate_scene.model("pointshell")
+    poses_A = random_poses(np.random.default_rng(5), 10, center=[0, 0, 0.0478], spread=0.003, tilt=0.2)
+    X = np.zeros((10, 4, 4))
+    X[:, 3, 3] = 1
+    for i, p in enumerate(poses_A):
+        X[i, :3, :3] = quaternion_to_matrix(p[3:])
+        X[i, :3, 3] = p[:3]
+    from_quaternions = model.query_many(poses_A, plate_scene.B.pose)["wrench"]
+    from_matrices = model.query_many(X, plate_scene.B.pose)["wrench"]
+    scale = np.abs(from_quaternions).max()
+    assert scale > 0
+    np.testing.assert_allclose(from_matrices, from_quaternions, rtol=0, atol=1e-6 * scale)
+    single = model.query(X[0], plate_scene.B.pose)
+    np.testing.assert_allclose(single["wrench"], from_quaternions[0], rtol=0, atol=1e-6 * scale)
+
+
+def test_queries_release_the_gil(plate_scene):
+    """Two threads querying two models at once give what each gives alone."""
+    import threading
+
+    models = [plate_scene.model("pointshell"), plate_scene.model("pointshell-linear")]
+    poses_A = random_poses(np.random.default_rng(11), 200, center=[0, 0, 0.0478], spread=0.003, tilt=0.1)
+    alone = [m.query_many(poses_A, plate_scene.B.pose)["wrench"] for m in models]
+    together = [None, None]
+
+    def work(i):
+        together[i] = models[i].query_many(poses_A, plate_scene.B.pose)["wrench"]
+
+    threads = [threading.Thread(target=work, args=(i,)) for i in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for a, b in zip(alone, together):
+        assert np.array_equal(a, b)

@@ -1,0 +1,20 @@
+"""README.md's Python example runs as written (its results folder moved to a temporary one)."""
+
+import os
+import re
+import subprocess
+import sys
+
+from conftest import SOURCE_DIR
+
+
+def test_readme_python_example_runs(tmp_path):
+    text = (SOURCE_DIR / "README.md").read_text()
+    example = re.search(r"```python\n(# PYTHONPATH=build/python python3\n.*?)```", text, re.S).group(1)
+    assert '"/tmp/contactlab-run"' in example
+    example = example.replace('"/tmp/contactlab-run"', repr(str(tmp_path / "run")))
+    p = subprocess.run([sys.executable, "-c", example], capture_output=True, text=True, cwd=tmp_path,
+                       env=dict(os.environ), timeout=120)
+    assert p.returncode == 0, p.stderr
+    assert (tmp_path / "run" / "summary.csv").exists()
+    assert "pointshell" in p.stdout and "vps" in p.stdout
