@@ -208,7 +208,7 @@ void PressureFieldModel::Integrate(const Pose& X_LM, bool record, Sums* sums) {
           PolyVertex corner[8];
           double g[8];
           int positive = 0;
-          bool outside_M = true, outside_L = true;
+          bool outside_M = true, outside_L = true, inside_M = true, inside_L = true;
           for (int c = 0; c < 8; ++c) {
             const int di = c & 1, dj = (c >> 1) & 1, dk = (c >> 2) & 1;
             const int v = VertexIndex(ci + di, cj + dj, ck + dk);
@@ -218,6 +218,8 @@ void PressureFieldModel::Integrate(const Pose& X_LM, bool record, Sums* sums) {
             positive += g[c] > 0;
             outside_M = outside_M && corner[c].phi_M > 0;
             outside_L = outside_L && corner[c].phi_L > 0;
+            inside_M = inside_M && corner[c].phi_M <= 0;
+            inside_L = inside_L && corner[c].phi_L <= 0;
           }
           if (positive == 0 || positive == 8 || (clip_M && outside_M) || (clip_L && outside_L)) continue;
           for (int c = 0; c < 8; ++c) {
@@ -241,11 +243,13 @@ void PressureFieldModel::Integrate(const Pose& X_LM, bool record, Sums* sums) {
               poly[m++] = cut(pos[1], neg[1]);
               poly[m++] = cut(pos[1], neg[0]);
             }
-            if (clip_M) {
+            // A cell inside a body at every corner is inside it throughout (the fields are linear
+            // on each tetrahedron): nothing to clip.
+            if (clip_M && !inside_M) {
               m = ClipInside(poly, m, [](const PolyVertex& v) { return v.phi_M; }, clipped);
               std::copy(clipped, clipped + m, poly);
             }
-            if (clip_L) {
+            if (clip_L && !inside_L) {
               m = ClipInside(poly, m, [](const PolyVertex& v) { return v.phi_L; }, clipped);
               std::copy(clipped, clipped + m, poly);
             }
