@@ -365,6 +365,11 @@ class HardCaseRunner {
     ReducedMatrix K_A, K_B;
 
     for (const std::string& name : ContactModelNames()) {
+#if defined(__SANITIZE_ADDRESS__)
+      // Milliseconds a query in Release, ten times that here: its own tests (PressureField.*)
+      // run under the sanitizers; the Release suite runs it through every hard case.
+      if (name == "pressure-field") continue;
+#endif
       if (name == "reference" && steps.size() > 12) {
         std::printf("skip %s %s %s: offline reference (ms-s per query) on a %zu-cycle path\n", name.c_str(),
                     c.name.c_str(), order_name.c_str(), steps.size());
@@ -1053,6 +1058,9 @@ TEST(HardCases, TunnellingAtSpeed) {
         SceneAssets assets(scene, options);
         for (const std::string& name : ContactModelNames()) {
           if (name == "reference") continue;  // offline (ms-s per query)
+          // The volumetric models are not in this experiment's comparison (README, Tunnelling at
+          // speed); like every discrete model they pull the ball through (hard-cases-medial-axis).
+          if (name == "pressure-field" || name == "inner-spheres") continue;
           std::unique_ptr<ContactModel> model;
           try {
             model = MakeSceneContactModel(name, scene, assets);
