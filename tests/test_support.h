@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -44,11 +45,12 @@ inline std::filesystem::path TestMesh(const std::string& name) {
 // A fresh temporary folder under the system temp dir, removed at destruction.
 class TempDir {
  public:
+  // mkdtemp makes the name unique across processes: tests run in parallel, and a name made from
+  // the seed and an address collides under ASan (same millisecond seed, same heap address).
   TempDir() {
-    path_ = std::filesystem::temp_directory_path() /
-            ("contactlab-test-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "-" +
-             std::to_string(reinterpret_cast<std::uintptr_t>(this)) + "-" + std::to_string(counter_++));
-    std::filesystem::create_directories(path_);
+    std::string name = (std::filesystem::temp_directory_path() / "contactlab-test-XXXXXX").string();
+    if (::mkdtemp(name.data()) == nullptr) throw Error(name + ": cannot create a temporary folder");
+    path_ = name;
   }
   ~TempDir() {
     std::error_code ec;
@@ -59,7 +61,6 @@ class TempDir {
 
  private:
   std::filesystem::path path_;
-  static inline int counter_ = 0;
 };
 
 // What a shell command printed (stdout and stderr together) and its exit code (-1 when it

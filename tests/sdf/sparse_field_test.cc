@@ -19,6 +19,7 @@
 #include "sdf/build_distance_field.h"
 #include "sdf/mesh_signed_distance.h"
 #include "sdf/signed_distance_grid.h"
+#include "test_support.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -190,8 +191,7 @@ TEST(SparseField, BatchLookupsEqualTheScalarOnEveryInstructionSet) {
 
 TEST(SparseField, FileRoundTripKeepsEveryLookupAndACorruptSlotIsRefused) {
   const TorusFields& t = Torus();
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "contactlab_sparse_field_test";
-  std::filesystem::create_directories(dir);
+  const testing::TempDir dir;
   const std::filesystem::path file = dir / "torus.sdf";
   SaveDistanceField(t.sparse, file);
   const DistanceField back = LoadDistanceField(file);
@@ -209,7 +209,6 @@ TEST(SparseField, FileRoundTripKeepsEveryLookupAndACorruptSlotIsRefused) {
   SparseFieldStorage bad = *t.sparse.sparse();
   bad.slot[0] = std::int32_t(bad.num_stored());
   EXPECT_THROW(DistanceField(t.sparse.origin(), t.h, bad), Error);
-  std::filesystem::remove_all(dir);
 }
 
 TEST(SparseField, RefusesWhatItCannotBuild) {
