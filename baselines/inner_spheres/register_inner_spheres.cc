@@ -4,13 +4,13 @@
 // building one reports how much of the body's volume it fills.
 #include <cmath>
 #include <cstdio>
-#include <iostream>
 #include <memory>
 #include <string>
 
 #include "baselines/inner_spheres/inner_sphere_model.h"
 #include "contact/model_registry.h"
 #include "geometry/triangle_mesh.h"
+#include "util/cached_or_built.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -27,21 +27,14 @@ std::shared_ptr<const SpherePacking> PackingOf(ContactBody& body) {
   char key[160];
   std::snprintf(key, sizeof key, "inner-spheres v%d spheres=%d coverage=%.17g min_radius_cells=%.17g",
                 kSpherePackingVersion, o.max_spheres, o.coverage, o.min_radius_cells);
-  const std::filesystem::path cached = body.DerivedCachePath(key);
-  std::error_code ec;
-  if (!cached.empty() && std::filesystem::exists(cached, ec)) {
-    try {
-      return std::make_shared<const SpherePacking>(LoadSpherePacking(cached));
-    } catch (const Error& e) {
-      std::cerr << "warning: ignoring a bad cache entry: " << e.what() << "\n";
-    }
-  }
-  const double volume = std::abs(body.mesh()->SignedVolume());
-  auto packing = std::make_shared<const SpherePacking>(BuildSpherePacking(*field, volume, o, where));
-  std::fprintf(stderr, "built %zu inner spheres of %s filling %.1f%% of its volume\n", packing->radii.size(),
-               std::string(body.body_name()).c_str(), 100 * packing->Coverage());
-  if (!cached.empty()) SaveSpherePacking(*packing, cached);
-  return packing;
+  return CachedOrBuilt<SpherePacking>(
+      body.DerivedCachePath(key), false, "the inner spheres of " + std::string(body.body_name()), LoadSpherePacking,
+      SaveSpherePacking, [&] {
+        SpherePacking packing = BuildSpherePacking(*field, std::abs(body.mesh()->SignedVolume()), o, where);
+        std::fprintf(stderr, "built %zu inner spheres of %s filling %.1f%% of its volume\n", packing.radii.size(),
+                     std::string(body.body_name()).c_str(), 100 * packing.Coverage());
+        return packing;
+      });
 }
 
 }  // namespace
@@ -56,10 +49,8 @@ void RegisterInnerSphereContactModels() {
   e.needs.mesh_B = true;
   e.make = [](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
     // The volume reference's stiffness (baselines/reference/volume_reference.h).
-    const PenaltyParams& penalty = in.params.penalty;
-    CheckPenaltyParams(penalty, "inner-spheres");
-    const double L = penalty.L > 0 ? penalty.L : PenaltyParams::kDefaultManyPointThreshold;
-    const double k_V = penalty.k_C * L / std::sqrt(in.A.mesh()->SurfaceArea());
+    CheckPenaltyParams(in.params.penalty, "inner-spheres");
+    const double k_V = in.params.penalty.VolumeStiffness(in.A.mesh()->SurfaceArea());
     return std::make_unique<InnerSphereModel>(PackingOf(in.A), PackingOf(in.B), k_V);
   };
   RegisterContactModel(std::move(e));

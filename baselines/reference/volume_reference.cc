@@ -25,8 +25,7 @@ VolumeReference::VolumeReference(std::shared_ptr<const TriangleMesh> mesh_A, std
     Fail("volume reference", "needs two non-empty closed meshes");
   }
   volume_ = std::make_unique<PenetrationVolume>(*mesh_A_, *mesh_B_);
-  const double L = penalty.L > 0 ? penalty.L : PenaltyParams::kDefaultManyPointThreshold;
-  k_V_ = penalty.k_C * L / std::sqrt(mesh_A_->SurfaceArea());
+  k_V_ = penalty.VolumeStiffness(mesh_A_->SurfaceArea());
   step_ = 1e-3 * mesh_B_->Bounds().size().norm();
 }
 

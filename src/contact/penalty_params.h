@@ -4,6 +4,7 @@
 // the references all embed this one type; its defaults are written here and nowhere else.
 #pragma once
 
+#include <cmath>
 #include <string_view>
 
 namespace contactlab {
@@ -22,6 +23,16 @@ struct PenaltyParams {
     if (L > 0 && count >= L) s = double(L) / double(count);
     if (scale != nullptr) *scale = s;
     return k_C * s;
+  }
+
+  // The volume law's stiffness k_V (force -k_V grad V, N/m^2) for a first body of surface area
+  // AREA_A (m^2): k_C L / sqrt(AREA_A). A flat face of area A_c pressed in feels k_V A_c at
+  // every depth, and scaling the whole scene by s scales the force by s, as in the penalty
+  // laws. L = 0 counts as the default L. The volume reference and inner-spheres both use it, so
+  // their forces compare directly.
+  double VolumeStiffness(double area_A) const {
+    const int l = L > 0 ? L : kDefaultManyPointThreshold;
+    return k_C * l / std::sqrt(area_A);
   }
 };
 

@@ -11,6 +11,7 @@
 #include "pointshell/build_pointshell.h"
 #include "pointshell/pointshell_io.h"
 #include "sdf/build_distance_field.h"
+#include "util/cached_or_built.h"
 #include "util/data_path.h"
 #include "util/error.h"
 #include "util/hasher.h"
@@ -128,28 +129,9 @@ const std::string& BodyAssets::mesh_key() {
 
 namespace {
 
-// Reads T from CACHED when caching is on and the entry is good; else BUILDs it and saves it.
-// A bad entry (truncated, corrupt, from another version) is reported and rebuilt.
-template <typename T, typename Load, typename Save, typename Build>
-std::shared_ptr<const T> CachedOrBuilt(const fs::path& cached, const AssetOptions& options, const std::string& what,
-                                       Load load, Save save, Build build) {
-  std::error_code ec;
-  if (options.use_cache && fs::exists(cached, ec)) {
-    try {
-      auto value = std::make_shared<const T>(load(cached));
-      if (options.verbose) std::cerr << "reusing " << what << " from " << cached.string() << "\n";
-      return value;
-    } catch (const Error& e) {
-      std::cerr << "warning: ignoring a bad cache entry: " << e.what() << "\n";
-    }
-  }
-  if (options.verbose) std::cerr << "building " << what << "\n";
-  auto value = std::make_shared<const T>(build());
-  if (options.use_cache) {
-    fs::create_directories(options.cache_dir, ec);
-    save(*value, cached);
-  }
-  return value;
+// The cache file NAME in OPTIONS' cache folder, or empty (no cache) when caching is off.
+fs::path CacheFile(const AssetOptions& options, const std::string& name) {
+  return options.use_cache ? options.cache_dir / name : fs::path();
 }
 
 // A builder's version in a cache key; version 1 adds nothing (AssetOptions::builders).
@@ -171,7 +153,7 @@ std::shared_ptr<const DistanceField> BodyAssets::field() {
   HashBuilderVersion("field-builder", options_.builders.field, &h);
   field_key_ = h.Hex();
   field_ = CachedOrBuilt<DistanceField>(
-      options_.cache_dir / ("field-" + h.Hex() + ".sdf"), options_,
+      CacheFile(options_, "field-" + h.Hex() + ".sdf"), options_.verbose,
       "the " + std::to_string(f.resolution) + "-cell field of " + spec_.name, LoadDistanceField, SaveDistanceField,
       [&] {
         DistanceFieldOptions o;
@@ -209,7 +191,7 @@ std::shared_ptr<const Pointshell> BodyAssets::pointshell() {
   HashBuilderVersion("field-builder", options_.builders.field, &h);
   HashBuilderVersion("pointshell-builder", options_.builders.pointshell, &h);
   pointshell_ = CachedOrBuilt<Pointshell>(
-      options_.cache_dir / ("pointshell-" + h.Hex() + ".ps"), options_,
+      CacheFile(options_, "pointshell-" + h.Hex() + ".ps"), options_.verbose,
       "the " + std::to_string(s.points) + "-point pointshell of " + spec_.name, LoadPointshell, SavePointshell, [&] {
         PointshellOptions o;
         o.method = ParsePointshellMethod(s.method, "body '" + spec_.name + "' pointshell.method");
@@ -236,7 +218,7 @@ std::shared_ptr<const ReducedModel> BodyAssets::reduced_model() {
   HashBuilderVersion("reduced-model-builder", options_.builders.reduced_model, &h);
   const std::string where = "body '" + spec_.name + "' deformable";
   reduced_model_ = CachedOrBuilt<ReducedModel>(
-      options_.cache_dir / ("reduced-" + h.Hex() + ".rm"), options_,
+      CacheFile(options_, "reduced-" + h.Hex() + ".rm"), options_.verbose,
       "the r = " + std::to_string(d.modes) + " reduced model of " + spec_.name, LoadReducedModel, SaveReducedModel,
       [&] {
         VoxelMeshOptions vo;

@@ -102,5 +102,21 @@ TEST(PointshellContactParams, ParseChecksEveryValueWhereItIsDefined) {
   }
 }
 
+// k_V = k_C L / sqrt(area of A): a face of area A_c pressed into a halfspace by any depth d has
+// V = A_c d, so it feels k_V A_c; a cube of side a (area 6a²) pressed flat feels k_C L a² /
+// (sqrt(6) a), linear in a as a penalty force is when the scene scales.
+TEST(PenaltyParams, VolumeStiffnessGivesAFaceTheForceOfLPointsAndScalesWithTheScene) {
+  PenaltyParams p;
+  p.k_C = 2000;
+  p.L = 10;
+  const double a = 0.1, face = a * a, area = 6 * a * a;
+  const double force = p.VolumeStiffness(area) * face;  // |grad V| = A_c for a flat face
+  EXPECT_NEAR(force, 2000 * 10 * a / std::sqrt(6.0), 1e-9 * force);
+  const double scaled = p.VolumeStiffness(area * 9) * face * 9;  // the scene three times larger
+  EXPECT_NEAR(scaled, 3 * force, 1e-9 * force);
+  p.L = 0;  // the default L
+  EXPECT_EQ(p.VolumeStiffness(area), 2000 * PenaltyParams::kDefaultManyPointThreshold / std::sqrt(area));
+}
+
 }  // namespace
 }  // namespace contactlab

@@ -1,0 +1,42 @@
+// A value read from its cache file when a good one is there, and otherwise built and saved:
+// the scene's fields, pointshells and reduced models (experiment/scene_assets.cc) and what
+// models derive from a field (an inner-sphere packing, ContactBody::DerivedCachePath).
+#pragma once
+
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <system_error>
+
+#include "util/error.h"
+
+namespace contactlab {
+
+// Reads T from CACHED with LOAD when CACHED is not empty and names a good entry; otherwise
+// BUILDs it and, when CACHED is not empty, SAVEs it there (its folder made first). A bad entry
+// (truncated, corrupt, from another version: LOAD throws Error) is reported on stderr and
+// rebuilt. VERBOSE: says on stderr which it did, naming WHAT.
+template <typename T, typename Load, typename Save, typename Build>
+std::shared_ptr<const T> CachedOrBuilt(const std::filesystem::path& cached, bool verbose, const std::string& what,
+                                       Load load, Save save, Build build) {
+  std::error_code ec;
+  if (!cached.empty() && std::filesystem::exists(cached, ec)) {
+    try {
+      auto value = std::make_shared<const T>(load(cached));
+      if (verbose) std::cerr << "reusing " << what << " from " << cached.string() << "\n";
+      return value;
+    } catch (const Error& e) {
+      std::cerr << "warning: ignoring a bad cache entry: " << e.what() << "\n";
+    }
+  }
+  if (verbose) std::cerr << "building " << what << "\n";
+  auto value = std::make_shared<const T>(build());
+  if (!cached.empty()) {
+    std::filesystem::create_directories(cached.parent_path(), ec);
+    save(*value, cached);
+  }
+  return value;
+}
+
+}  // namespace contactlab
