@@ -92,10 +92,17 @@ PressureFieldModel::PressureFieldModel(PressureFieldSide A, PressureFieldSide B,
   parent_.resize(surface_cells_.size());
 }
 
-void PressureFieldModel::RecordSurface(int max_triangles) {
+bool PressureFieldModel::KeepContactSurface(int max_triangles) {
   record_capacity_ = std::max(0, max_triangles);
   surface_.reserve(std::size_t(record_capacity_) * 3);
   surface_pressure_.reserve(std::size_t(record_capacity_) * 3);
+  return true;
+}
+
+void PressureFieldModel::LatestContactSurface(ContactSurface* out) const {
+  out->corners.resize(surface_.size());
+  for (std::size_t i = 0; i < surface_.size(); ++i) out->corners[i] = (X_WL_ * surface_[i].cast<double>()).cast<float>();
+  out->pressure = surface_pressure_;
 }
 
 bool PressureFieldModel::FindBlocks(const Pose& X_LM, std::int64_t* nodes) {
@@ -120,6 +127,8 @@ bool PressureFieldModel::FindBlocks(const Pose& X_LM, std::int64_t* nodes) {
     origin_[d] = o_L[d] + h_ * std::floor((lo[d] - o_L[d]) / h_);
     cells_[d] = std::max(1, int(std::ceil((hi[d] - origin_[d]) / h_)));
   }
+  stride_j_ = std::int64_t(cells_.x()) + kBlock;
+  stride_k_ = stride_j_ * (cells_.y() + kBlock);
   int root = kBlock;
   while (root < cells_.maxCoeff()) root *= 2;
 
@@ -181,7 +190,6 @@ void PressureFieldModel::Integrate(const Pose& X_LM, bool record, Sums* sums) {
     const double p = M_.rigid ? pL : L_.rigid ? pM : 0.5 * (pM + pL);
     return std::max(0.0, p);
   };
-  const std::int64_t stride_j = std::int64_t(cells_.x()) + kBlock, stride_k = stride_j * (cells_.y() + kBlock);
   if (record) {
     num_surface_cells_ = 0;
     surface_.clear();
@@ -230,7 +238,8 @@ void PressureFieldModel::Integrate(const Pose& X_LM, bool record, Sums* sums) {
             int pos[4], neg[4], np = 0, nn = 0;
             for (int t = 0; t < 4; ++t) (g[tet[t]] > 0 ? pos[np++] : neg[nn++]) = tet[t];
             if (np == 0 || nn == 0) continue;
-            PolyVertex poly[8], clipped[8];
+            PolyVertex buffers[2][8];
+            PolyVertex* poly = buffers[0];
             int m = 0;
             auto cut = [&](int p, int q) { return Lerp(corner[p], corner[q], g[p] / (g[p] - g[q])); };
             if (np == 1) {
@@ -245,13 +254,16 @@ void PressureFieldModel::Integrate(const Pose& X_LM, bool record, Sums* sums) {
             }
             // A cell inside a body at every corner is inside it throughout (the fields are linear
             // on each tetrahedron): nothing to clip.
+            // Each clip writes into the other buffer, which then holds the polygon.
             if (clip_M && !inside_M) {
-              m = ClipInside(poly, m, [](const PolyVertex& v) { return v.phi_M; }, clipped);
-              std::copy(clipped, clipped + m, poly);
+              PolyVertex* out = poly == buffers[0] ? buffers[1] : buffers[0];
+              m = ClipInside(poly, m, [](const PolyVertex& v) { return v.phi_M; }, out);
+              poly = out;
             }
             if (clip_L && !inside_L) {
-              m = ClipInside(poly, m, [](const PolyVertex& v) { return v.phi_L; }, clipped);
-              std::copy(clipped, clipped + m, poly);
+              PolyVertex* out = poly == buffers[0] ? buffers[1] : buffers[0];
+              m = ClipInside(poly, m, [](const PolyVertex& v) { return v.phi_L; }, out);
+              poly = out;
             }
             if (m < 3) continue;
             // Toward decreasing g: from the positive corners to the others.
@@ -290,7 +302,7 @@ void PressureFieldModel::Integrate(const Pose& X_LM, bool record, Sums* sums) {
           if (record && cell_area > 0) block_surface_[std::size_t(bi)] = 1;
           if (record && cell_area > 0 && num_surface_cells_ < std::int64_t(surface_cells_.size())) {
             const std::int64_t i = blk[0] + ci, j = blk[1] + cj, k = blk[2] + ck;
-            surface_cells_[std::size_t(num_surface_cells_++)] = i + stride_j * j + stride_k * k;
+            surface_cells_[std::size_t(num_surface_cells_++)] = i + stride_j_ * j + stride_k_ * k;
           }
         }
       }
@@ -324,7 +336,6 @@ int PressureFieldModel::CountPatches() {
     }
     return x;
   };
-  const std::int64_t stride_j = std::int64_t(cells_.x()) + kBlock, stride_k = stride_j * (cells_.y() + kBlock);
   int patches = int(n);
   for (std::int64_t a = 0; a < n; ++a) {
     // The 13 neighbours sharing a face, edge or corner that come later in index order.
@@ -332,7 +343,7 @@ int PressureFieldModel::CountPatches() {
       for (int dj = -1; dj <= 1; ++dj) {
         for (int di = -1; di <= 1; ++di) {
           if (dk == 0 && (dj < 0 || (dj == 0 && di <= 0))) continue;
-          const std::int64_t key = cells[a] + di + stride_j * dj + stride_k * dk;
+          const std::int64_t key = cells[a] + di + stride_j_ * dj + stride_k_ * dk;
           const std::int64_t* it = std::lower_bound(cells, cells + n, key);
           if (it == cells + n || *it != key) continue;
           const std::int32_t ra = find(std::int32_t(a)), rb = find(std::int32_t(it - cells));

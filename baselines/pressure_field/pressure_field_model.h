@@ -70,13 +70,10 @@ class PressureFieldModel final : public ContactModel {
   double depth_B() const { return depth_B_; }
   double spacing() const { return h_; }       // the lattice spacing
 
-  // The contact surface of the latest Evaluate as triangles (three corners each, in the frame
-  // surface_frame() places in the world) with the pressure at each corner, for display; at most
-  // MAX_TRIANGLES (0: no record kept).
-  void RecordSurface(int max_triangles);
-  const std::vector<Eigen::Vector3f>& surface_triangles() const { return surface_; }
-  const std::vector<float>& surface_pressure() const { return surface_pressure_; }
-  const Pose& surface_frame() const { return X_WL_; }
+  // The contact surface of the latest Evaluate: the triangles the wrench was integrated over,
+  // clipped to both insides, with the pressure at each corner.
+  bool KeepContactSurface(int max_triangles) override;
+  void LatestContactSurface(ContactSurface* out) const override;
 
  private:
   struct Sums;
@@ -102,6 +99,9 @@ class PressureFieldModel final : public ContactModel {
   // The lattice of the latest query: origin (L's frame) and cells per axis.
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
   Eigen::Vector3i cells_ = Eigen::Vector3i::Zero();
+  // Linear cell index i + stride_j_ j + stride_k_ k, with a block's margin on each axis (a
+  // block may reach past the last cell), for the cells with surface.
+  std::int64_t stride_j_ = 0, stride_k_ = 0;
   // Surviving blocks: their first cell, and phi_L at their 125 vertices.
   std::vector<std::array<std::int32_t, 3>> blocks_;
   std::vector<float> block_phi_L_;

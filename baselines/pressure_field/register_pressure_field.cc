@@ -14,6 +14,7 @@ void RegisterPressureFieldContactModels() {
   e.description = "hydroelastic contact: pressure fields inside both bodies, wrench over the equal-pressure surface (Elandt et al. 2019)";
   e.needs.field_A = true;
   e.needs.field_B = true;
+  e.contact_surface = true;
   e.make = [](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
     // k_C does not enter this model, but a scene's penalty parameters are checked by every model.
     CheckPenaltyParams(in.params.penalty, "pressure-field");

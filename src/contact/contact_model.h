@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <span>
 #include <string_view>
+#include <vector>
 
 #include "reduced/reduced_state.h"
 #include "geometry/pose.h"
@@ -64,6 +65,13 @@ struct ContactResult {
   ContactStats stats;
 };
 
+// A contact surface for display: triangles, three world corners each (metres), and the
+// pressure at each corner (Pa).
+struct ContactSurface {
+  std::vector<Eigen::Vector3f> corners;
+  std::vector<float> pressure;
+};
+
 // What one pointshell point did in a model's latest query (for display, as the paper's Fig. 2).
 enum class PointState : std::uint8_t {
   kNotEvaluated = 0,  // culled with its subtree, asleep under coherence, or below the level rendered
@@ -100,6 +108,19 @@ class ContactModel {
   virtual bool Proxy(Pose* X_WB_proxy) const {
     (void)X_WB_proxy;
     return false;
+  }
+  // For display: a model whose contact is a surface (pressure-field) keeps up to MAX_TRIANGLES
+  // triangles of the contact surface of every later Evaluate (0: none) and returns true; the
+  // others return false. Call it outside the haptic cycle: it reserves the memory.
+  virtual bool KeepContactSurface(int max_triangles) {
+    (void)max_triangles;
+    return false;
+  }
+  // The surface kept of the latest Evaluate, in the world, replacing OUT's contents; empty when
+  // the model keeps none. For display, not for the haptic cycle: it may allocate.
+  virtual void LatestContactSurface(ContactSurface* out) const {
+    out->corners.clear();
+    out->pressure.clear();
   }
 };
 

@@ -92,6 +92,9 @@ struct ContactModelEntry {
   // A reference for comparisons (an experiment's `reference:`), not a model to compare: made by
   // name like any other, but left out of ContactModelNames().
   bool reference_only = false;
+  // Its contact is a surface it keeps for display (ContactModel::KeepContactSurface): the viewer
+  // draws it, and makes no other model to ask.
+  bool contact_surface = false;
   // What the model refuses of the scene's parameters given which bodies deform, checked before
   // any body data is built: throws Error naming WHERE. Null: nothing beyond `needs`.
   std::function<void(const PointshellContactParams&, bool deformable_A, bool deformable_B, std::string_view where)>

@@ -12,6 +12,7 @@
 
 #include "baselines/inner_spheres/inner_sphere_model.h"
 #include "baselines/inner_spheres/sphere_packing.h"
+#include "baselines/volumetric_cases.h"
 #include "contact/test_shells.h"
 #include "geometry/pose.h"
 #include "util/error.h"
@@ -20,14 +21,13 @@
 namespace contactlab {
 namespace {
 
+using testing::At;
+using testing::Overlap;
 using testing::SampleField;
+using testing::Translation;
 constexpr double kPi = std::numbers::pi;
 
-std::shared_ptr<DistanceField> Ball(double R, double h) {
-  const double m = std::ceil((R + 3 * h) / h) * h;
-  return SampleField([R](const Eigen::Vector3d& p) { return p.norm() - R; }, Eigen::Vector3d::Constant(-m),
-                     Eigen::Vector3d::Constant(m), h);
-}
+std::shared_ptr<DistanceField> Ball(double R, double h) { return testing::BallField(R, h, 3); }
 
 // A slab of half-thickness 0.02 below z = 0, wide in x and y: a halfspace where a ball meets it.
 std::shared_ptr<DistanceField> Slab(double h) {
@@ -45,15 +45,6 @@ std::shared_ptr<const SpherePacking> Pack(const DistanceField& f, double volume,
   return std::make_shared<const SpherePacking>(BuildSpherePacking(f, volume, o, "test"));
 }
 
-ContactQuery At(const Pose& X_WA, const Pose& X_WB, std::int64_t budget = 0) {
-  ContactQuery q;
-  q.X_WA = X_WA;
-  q.X_WB = X_WB;
-  q.node_budget = budget;
-  return q;
-}
-
-Pose Translation(double x, double y, double z) { return Pose::FromTranslation(Eigen::Vector3d(x, y, z)); }
 
 TEST(SpherePacking, SpheresAreInsideDisjointAndLargestFirst) {
   auto f = Ball(0.02, 0.001);
@@ -137,22 +128,7 @@ TEST(InnerSpheres, BallIntoHalfspaceApproachesTheCapVolumeAsCoverageRises) {
   EXPECT_LT(last_error, 0.6);
 }
 
-struct Overlap {
-  Pose X_WA, X_WB;
-};
-std::vector<Overlap> RandomOverlaps(int n, double distance) {
-  std::mt19937 rng(5);
-  std::normal_distribution<double> g(0, 1);
-  std::vector<Overlap> out;
-  for (int i = 0; i < n; ++i) {
-    Overlap o;
-    o.X_WA = Pose{Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized(), Eigen::Vector3d(g(rng), g(rng), g(rng)) * 0.01};
-    const Eigen::Vector3d dir(g(rng), g(rng), g(rng));
-    o.X_WB = Pose{Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized(), o.X_WA.translation + distance * dir.normalized()};
-    out.push_back(o);
-  }
-  return out;
-}
+std::vector<testing::Overlap> RandomOverlaps(int n, double distance) { return testing::RandomOverlaps(n, distance, 5); }
 
 class InnerSpherePair : public ::testing::Test {
  protected:
@@ -173,24 +149,8 @@ TEST_F(InnerSpherePair, StiffnessIsTheDerivativeOfTheWrench) {
     const ContactResult r = model.Evaluate(At(p.X_WA, p.X_WB));
     if (r.stats.points_in_contact == 0) continue;
     ++checked;
-    Matrix6d K;
-    const double dx = 1e-7, dw = 1e-6;
-    for (int c = 0; c < 6; ++c) {
-      Vector6d w[2];
-      for (int s = 0; s < 2; ++s) {
-        Pose X = p.X_WB;
-        const double sign = s == 0 ? 1 : -1;
-        if (c < 3) {
-          X.translation[c] += sign * dx;
-        } else {
-          Eigen::Vector3d v = Eigen::Vector3d::Zero();
-          v[c - 3] = sign * dw;
-          X.rotation = (RotationFromVector(v) * X.rotation).normalized();
-        }
-        w[s] = model.Evaluate(At(p.X_WA, X)).on_B.AsVector();
-      }
-      K.col(c) = (w[0] - w[1]) / (2 * (c < 3 ? dx : dw));
-    }
+    const Matrix6d K = testing::CentralDifferenceStiffness(
+        [&](const Pose& X) { return model.Evaluate(At(p.X_WA, X)).on_B.AsVector(); }, p.X_WB, 1e-7, 1e-6);
     EXPECT_LT((r.K_B - K).norm(), 1e-4 * K.norm()) << r.K_B << "\nvs\n" << K;
   }
   EXPECT_GE(checked, 5);

@@ -10,6 +10,7 @@
 #include <random>
 
 #include "baselines/pressure_field/pressure_field_model.h"
+#include "baselines/volumetric_cases.h"
 #include "contact/test_shells.h"
 #include "geometry/pose.h"
 #include "util/error.h"
@@ -17,15 +18,14 @@
 namespace contactlab {
 namespace {
 
+using testing::At;
+using testing::Overlap;
 using testing::SampleField;
+using testing::Translation;
 constexpr double kPi = std::numbers::pi;
 
 // A ball of radius R at the origin, sampled with a grid node at its centre.
-std::shared_ptr<DistanceField> Ball(double R, double h) {
-  const double m = std::ceil((R + 4 * h) / h) * h;
-  return SampleField([R](const Eigen::Vector3d& p) { return p.norm() - R; }, Eigen::Vector3d::Constant(-m),
-                     Eigen::Vector3d::Constant(m), h);
-}
+std::shared_ptr<DistanceField> Ball(double R, double h) { return testing::BallField(R, h, 4); }
 
 // The halfspace z < 0 (exact under trilinear interpolation).
 std::shared_ptr<DistanceField> Halfspace(double h) {
@@ -51,14 +51,6 @@ double SphereForce(double E, double R, double H) {
   return E / R * (R * kPi * a2 - 2 * kPi / 3 * (R * R * R - H * H * H));
 }
 
-ContactQuery At(const Pose& X_WA, const Pose& X_WB) {
-  ContactQuery q;
-  q.X_WA = X_WA;
-  q.X_WB = X_WB;
-  return q;
-}
-
-Pose Translation(double x, double y, double z) { return Pose::FromTranslation(Eigen::Vector3d(x, y, z)); }
 
 TEST(PressureField, CompliantSphereOnRigidHalfspaceMatchesTheClosedForm) {
   const double R = 0.02, E = 1e5;
@@ -84,6 +76,53 @@ TEST(PressureField, CompliantSphereOnRigidHalfspaceMatchesTheClosedForm) {
       EXPECT_LT((r.on_B.torque - c.cross(r.on_B.force)).norm(), 1e-3 * expected * R);
     }
   }
+}
+
+// The surface kept for display (KeepContactSurface) is the one integrated, placed in the world:
+// on a rigid plane turned and moved in the world, a disc of radius a = sqrt(R² - H²) in the
+// plane, the pressure at each corner the sphere's E (1 - r/R), and the linear pressure over the
+// triangles sums to the force.
+TEST(PressureField, TheKeptSurfaceIsTheDiscOnTheRigidPlaneWithTheSpheresPressure) {
+  const double R = 0.02, E = 1e5, delta = 0.006, H = R - delta;
+  PressureFieldModel model({Ball(R, 0.001), E, false}, {Halfspace(0.001), 0, true});
+  ContactSurface kept;
+  model.LatestContactSurface(&kept);
+  EXPECT_TRUE(kept.corners.empty());
+  ASSERT_TRUE(model.KeepContactSurface(100000));
+  const Pose X_WB{Eigen::Quaterniond(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 0.5).normalized())),
+                  Eigen::Vector3d(0.3, -0.1, 0.2)};
+  const Pose X_WA = X_WB * Translation(0.0004, 0.0003, H);
+  const ContactResult r = model.Evaluate(At(X_WA, X_WB));
+  model.LatestContactSurface(&kept);
+  ASSERT_GT(kept.corners.size(), 30u);
+  ASSERT_EQ(kept.corners.size() % 3, 0u);
+  ASSERT_EQ(kept.pressure.size(), kept.corners.size());
+  const Eigen::Vector3d n = X_WB.R().col(2), o = X_WB.translation, c = X_WA.translation;
+  double area = 0, force = 0;
+  for (std::size_t i = 0; i < kept.corners.size(); ++i) {
+    const Eigen::Vector3d x = kept.corners[i].cast<double>();
+    EXPECT_NEAR((x - o).dot(n), 0, 1e-6);                   // in B's plane
+    EXPECT_LE((x - c).norm(), R + 1e-3);                     // inside A
+    EXPECT_NEAR(kept.pressure[i], E * (1 - (x - c).norm() / R), 0.02 * E);
+  }
+  for (std::size_t i = 0; i < kept.corners.size(); i += 3) {
+    const Eigen::Vector3d a = kept.corners[i].cast<double>(), b = kept.corners[i + 1].cast<double>(),
+                          d = kept.corners[i + 2].cast<double>();
+    const double t = 0.5 * (b - a).cross(d - a).norm();
+    area += t;
+    force += t * (kept.pressure[i] + kept.pressure[i + 1] + kept.pressure[i + 2]) / 3;
+  }
+  EXPECT_NEAR(area, kPi * (R * R - H * H), 0.02 * kPi * (R * R - H * H));
+  EXPECT_NEAR(area, r.stats.contact_area, 1e-5 * area);
+  EXPECT_NEAR(force, r.on_B.force.norm(), 1e-4 * force);
+  // At most the triangles asked for; none once apart.
+  model.KeepContactSurface(10);
+  model.Evaluate(At(X_WA, X_WB));
+  model.LatestContactSurface(&kept);
+  EXPECT_EQ(kept.corners.size(), 30u);
+  model.Evaluate(At(X_WB * Translation(0, 0, 2 * R), X_WB));
+  model.LatestContactSurface(&kept);
+  EXPECT_TRUE(kept.corners.empty());
 }
 
 TEST(PressureField, EqualCompliantSpheresMeetOnTheMidPlane) {
@@ -150,23 +189,7 @@ TEST(PressureField, TwoSeparateContactsAreTwoPatches) {
 }
 
 // Random poses with the two bodies overlapping: a sphere into a rounded cube.
-struct Overlap {
-  Pose X_WA, X_WB;
-};
-std::vector<Overlap> RandomOverlaps(int n, double distance) {
-  std::mt19937 rng(11);
-  std::normal_distribution<double> g(0, 1);
-  std::vector<Overlap> out;
-  for (int i = 0; i < n; ++i) {
-    Overlap o;
-    o.X_WA = Pose{Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized(), Eigen::Vector3d(g(rng), g(rng), g(rng)) * 0.01};
-    Eigen::Vector3d dir(g(rng), g(rng), g(rng));
-    o.X_WB = Pose{Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized(),
-                  o.X_WA.translation + distance * dir.normalized()};
-    out.push_back(o);
-  }
-  return out;
-}
+std::vector<testing::Overlap> RandomOverlaps(int n, double distance) { return testing::RandomOverlaps(n, distance, 11); }
 
 TEST(PressureField, NewtonsThirdLawHoldsExactlyWhenTheRolesAreExchanged) {
   auto ball = Ball(0.012, 0.0008);
@@ -216,24 +239,8 @@ TEST(PressureField, StiffnessMatchesCentralDifferencesOfTheWrench) {
     const ContactResult r = model.Evaluate(At(o.X_WA, o.X_WB));
     if (r.stats.contact_area < 2e-5) continue;
     ++checked;
-    Matrix6d K;
-    const double dx = 2e-5, dw = 2e-3;
-    for (int c = 0; c < 6; ++c) {
-      Vector6d w[2];
-      for (int s = 0; s < 2; ++s) {
-        Pose X = o.X_WB;
-        const double sign = s == 0 ? 1 : -1;
-        if (c < 3) {
-          X.translation[c] += sign * dx;
-        } else {
-          Eigen::Vector3d v = Eigen::Vector3d::Zero();
-          v[c - 3] = sign * dw;
-          X.rotation = (RotationFromVector(v) * X.rotation).normalized();
-        }
-        w[s] = wrench_only.Evaluate(At(o.X_WA, X)).on_B.AsVector();
-      }
-      K.col(c) = (w[0] - w[1]) / (2 * (c < 3 ? dx : dw));
-    }
+    const Matrix6d K = testing::CentralDifferenceStiffness(
+        [&](const Pose& X) { return wrench_only.Evaluate(At(o.X_WA, X)).on_B.AsVector(); }, o.X_WB, 2e-5, 2e-3);
     // Rows in N and N m, columns per metre and per radian: compare each block on its own scale.
     for (int bi = 0; bi < 2; ++bi) {
       for (int bj = 0; bj < 2; ++bj) {
