@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/command_registry.h"
+#include "contact/model_registry.h"
 #include "experiment/scene.h"
 #include "experiment/scene_assets.h"
 #include "util/atomic_file.h"
@@ -67,6 +68,8 @@ struct ViewArgs {
   int max_points = 50000;
   int max_triangles = 50000;
   int max_frames = 10000;
+  int max_surface_frames = 200;
+  std::vector<std::string> models;  // --model: the scene's models to draw the contact surface of
   std::string slice_axis = "auto";
   std::string slice_at;  // empty: automatic
   std::string cache;
@@ -84,6 +87,10 @@ void RunView(const ViewArgs& args) {
     Fail("--max-triangles", "must be at least 4 (or 0: every triangle), got " + std::to_string(args.max_triangles));
   }
   options.max_triangles = args.max_triangles;
+  if (args.max_surface_frames < 0) {
+    Fail("--max-surface-frames", "must be at least 0, got " + std::to_string(args.max_surface_frames));
+  }
+  options.max_surface_frames = args.max_surface_frames;
   options.slice_axis = args.slice_axis == "auto" ? -1 : args.slice_axis == "x" ? 0 : args.slice_axis == "y" ? 1 : 2;
   if (!args.slice_at.empty()) {
     const std::optional<double> at = ParseDouble(args.slice_at);
@@ -127,9 +134,19 @@ void RunView(const ViewArgs& args) {
   } else {
     // A scene file.
     if (args.job) Fail("--job", "applies to a results folder, not to the scene " + args.input);
+    if (!args.models.empty()) {
+      for (const std::string& m : args.models) {
+        if (FindContactModel(m) == nullptr) {
+          std::string known;
+          for (const std::string& n : ContactModelNames()) known += (known.empty() ? "" : ", ") + n;
+          Fail("--model", "unknown contact model '" + QuoteToken(m) + "' (known: " + known + ")");
+        }
+      }
+    }
     const fs::path scene_file = RequireDataFile(args.input);
     CheckOutputIsNotInput(args.out, scene_file, "--out");
-    const Scene scene = LoadScene(scene_file);
+    Scene scene = LoadScene(scene_file);
+    if (!args.models.empty()) scene.models = args.models;
     for (const BodySpec* b : {&scene.field_body, &scene.pointshell_body}) {
       if (const auto mesh_file = FindDataFile(b->mesh, FolderOf(scene_file))) CheckOutputIsNotInput(args.out, *mesh_file, "--out");
     }
@@ -156,6 +173,12 @@ const CommandRegistration kView([](CLI::App& app) {
   cmd->add_option("--max-triangles", args->max_triangles,
                   "triangles drawn per body at most, larger meshes thinned by edge collapse (default 50000; 0: all)");
   cmd->add_option("--max-frames", args->max_frames, "replay: frames per model at most, every k-th cycle kept (default 10000)");
+  cmd->add_option("--max-surface-frames", args->max_surface_frames,
+                  "replay: frames per model whose contact surface (pressure-field) is drawn, evenly spaced "
+                  "(default 200; 0: none)");
+  cmd->add_option("--model", args->models,
+                  "scene: draw the contact surface of this model at the start poses (pressure-field; repeatable; "
+                  "default: the scene's models)");
   cmd->add_option("--slice-axis", args->slice_axis, "normal of the field slice in the field body's frame (default: auto)")
       ->check(CLI::IsMember({"auto", "x", "y", "z"}));
   cmd->add_option("--slice-at", args->slice_at, "the slice's coordinate along its axis, field body frame, metres "

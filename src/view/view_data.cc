@@ -9,6 +9,7 @@
 #ifdef CONTACTLAB_HAVE_CGAL
 #include "baselines/reference/simplify_mesh.h"
 #endif
+#include "contact/model_registry.h"
 #include "deform/embedded_points.h"
 #include "experiment/experiment_config.h"
 #include "experiment/result_csv.h"
@@ -128,13 +129,93 @@ nlohmann::json SceneViewDataAndMeshes(const Scene& scene, SceneAssets& assets, c
   return j;
 }
 
+// Contact surfaces per model page data: at most this many triangles in all.
+constexpr int kSurfaceTrianglesPerModel = 200000;
+
+// Whether model NAME keeps a contact surface for display (its registry entry says so).
+bool KeepsContactSurface(const std::string& name) {
+  const ContactModelEntry* entry = FindContactModel(name);
+  return entry != nullptr && entry->contact_surface;
+}
+
+// Appends S's corners and pressures to *CORNERS and *PRESSURE.
+void AppendSurface(const ContactSurface& s, std::vector<float>* corners, std::vector<float>* pressure) {
+  for (const Eigen::Vector3f& c : s.corners) corners->insert(corners->end(), {c.x(), c.y(), c.z()});
+  pressure->insert(pressure->end(), s.pressure.begin(), s.pressure.end());
+}
+
+float MaxOf(const std::vector<float>& v) { return v.empty() ? 0.0f : *std::max_element(v.begin(), v.end()); }
+
 }  // namespace
 
 nlohmann::json SceneViewData(const Scene& scene, SceneAssets& assets, const SceneViewOptions& options,
                              const std::optional<BodyPoses>& poses) {
   std::array<TriangleMesh, 2> meshes;
-  return SceneViewDataAndMeshes(scene, assets, options, poses, &meshes);
+  nlohmann::json j = SceneViewDataAndMeshes(scene, assets, options, poses, &meshes);
+  j["surfaces"] = nlohmann::json::array();
+  for (const std::string& name : scene.models) {
+    if (!KeepsContactSurface(name)) continue;
+    const auto model = MakeSceneContactModel(name, scene, assets);
+    const int cap = std::max(1, options.max_surface_triangles);
+    model->KeepContactSurface(cap);
+    ContactQuery q;
+    q.X_WA = poses ? poses->X_WA : scene.pointshell_body.pose;
+    q.X_WB = poses ? poses->X_WB : scene.field_body.pose;
+    model->Evaluate(q);
+    ContactSurface s;
+    model->LatestContactSurface(&s);
+    std::vector<float> corners, pressure;
+    AppendSurface(s, &corners, &pressure);
+    j["surfaces"].push_back({{"model", name},
+                             {"triangles", s.corners.size() / 3},
+                             {"max_triangles", cap},
+                             {"corners", EncodeArray(corners)},
+                             {"pressure", EncodeArray(pressure)},
+                             {"pmax", MaxOf(pressure)}});
+  }
+  return j;
 }
+
+namespace {
+
+// The contact surface of TRACK's model at up to OPTIONS.max_surface_frames of its frames (evenly
+// spaced, the first and the last among them), the model evaluated again at the recorded poses
+// with the other body where the scene puts it; null when the model keeps no surface.
+nlohmann::json TrackSurface(const Replay& replay, const ReplayTrack& track, bool moving_is_B, SceneAssets& assets,
+                            const SceneViewOptions& options) {
+  const int frames = int(track.t.size());
+  if (!KeepsContactSurface(track.model) || frames == 0 || options.max_surface_frames <= 0) return nullptr;
+  const auto model = MakeSceneContactModel(track.model, replay.scene, assets);
+  const int n = std::min(frames, options.max_surface_frames);
+  const int cap = std::max(1, std::min(options.max_surface_triangles, kSurfaceTrianglesPerModel / n));
+  model->KeepContactSurface(cap);
+  std::vector<std::int32_t> kept;
+  std::vector<std::uint32_t> start{0};
+  std::vector<float> corners, pressure;
+  ContactSurface s;
+  for (int k = 0; k < n; ++k) {
+    const int f = n == 1 ? 0 : int(std::llround(double(k) * (frames - 1) / (n - 1)));
+    const float* p = track.pose.data() + 7 * std::size_t(f);
+    const Pose X{Eigen::Quaterniond(p[3], p[4], p[5], p[6]).normalized(), Eigen::Vector3d(p[0], p[1], p[2])};
+    ContactQuery q;
+    q.X_WA = moving_is_B ? replay.scene.pointshell_body.pose : X;
+    q.X_WB = moving_is_B ? X : replay.scene.field_body.pose;
+    q.cycle = f;
+    model->Evaluate(q);
+    model->LatestContactSurface(&s);
+    AppendSurface(s, &corners, &pressure);
+    kept.push_back(f);
+    start.push_back(std::uint32_t(corners.size() / 9));
+  }
+  return {{"frames", EncodeArray(kept)},
+          {"start", EncodeArray(start)},
+          {"corners", EncodeArray(corners)},
+          {"pressure", EncodeArray(pressure)},
+          {"pmax", MaxOf(pressure)},
+          {"max_triangles", cap}};
+}
+
+}  // namespace
 
 namespace {
 
@@ -406,6 +487,9 @@ nlohmann::json ReplayViewData(const Replay& replay, SceneAssets& assets, const S
                       {"q", EncodeArray(t.q)},
                       {"r_B", t.r_B},
                       {"q_B", EncodeArray(t.q_B)}});
+    if (nlohmann::json surface = TrackSurface(replay, t, moving_is_B, assets, options); !surface.is_null()) {
+      models.back()["surface"] = std::move(surface);
+    }
   }
   j["replay"] = {{"experiment", replay.experiment},
                  {"folder", replay.dir.string()},

@@ -25,6 +25,13 @@ struct SceneViewOptions {
   std::optional<double> slice_at;  // the slice's coordinate along slice_axis (body frame, metres);
                                    // none: through the pointshell body's origin
   int max_slice_side = 512;        // slice samples per side at most
+  // Contact surfaces (models whose registry entry has contact_surface: pressure-field): the
+  // scene page draws those of the scene's models at its poses; a replay keeps each such model's
+  // surface at up to MAX_SURFACE_FRAMES of its frames, evenly spaced, evaluated again at the
+  // recorded poses. At most MAX_SURFACE_TRIANGLES triangles per surface, and 200,000 per model
+  // in all (fewer per frame when many frames are kept); the rest of a larger surface is not drawn.
+  int max_surface_frames = 200;
+  int max_surface_triangles = 20000;
 };
 
 // Start poses of the bodies when they differ from the scene's (a replay's first cycle).
@@ -39,7 +46,11 @@ struct BodyPoses {
 // "in_contact": points of the whole shell with d < 0 in B's field at these poses, "contact": u8
 // per drawn point (1: d < 0)},
 // "slice": {"body": 1, "axis", "at", "width", "height", "corner", "u", "v", "values": f32,
-// "min", "max", "spacing"}}. Builds (or reads from the cache) A's pointshell and B's field.
+// "min", "max", "spacing"},
+// "surfaces": [{"model", "triangles", "max_triangles", "corners": f32 (#T x 3 x 3, world),
+// "pressure": f32 (#T x 3, Pa), "pmax"}] of the scene's models that keep one (empty for the
+// others)}. Builds (or reads from the cache) A's pointshell and B's field, and what those models
+// need.
 nlohmann::json SceneViewData(const Scene& scene, SceneAssets& assets, const SceneViewOptions& options,
                              const std::optional<BodyPoses>& poses = std::nullopt);
 
@@ -86,7 +97,10 @@ std::vector<Replay> ReadReplays(const std::filesystem::path& dir, int max_frames
 // SceneViewData of the replay's scene at its first frame, plus
 // "replay": {"experiment", "job", "label", "moving": 0|1, "stride", "models": [{"name",
 // "cycles", "t": f32, "pose": f32, "force": f32, "torque": f32, "level": i32, "contacts": i32,
-// and for deformable bodies "r", "q": f32, "r_B", "q_B": f32}]}. A deformable body whose
+// and for deformable bodies "r", "q": f32, "r_B", "q_B": f32, and for a model that keeps a
+// contact surface "surface": {"frames": i32 (#S frame indices, ascending), "start": u32 (#S + 1,
+// each frame's first triangle), "corners": f32 (world), "pressure": f32, "pmax",
+// "max_triangles"}}]} (no scene-page "surfaces"). A deformable body whose
 // coordinates were recorded also gets "modes": r and "basis": f32 (#V x 3 x r), the reduced
 // basis at its mesh vertices (u = U q, sec. 4.1), so the page deforms its mesh per frame;
 // bodies with more than 16 million basis entries are shown at rest ("basis_omitted": true).

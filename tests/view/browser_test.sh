@@ -96,6 +96,21 @@ browse --dump-dom "file://$work/switch.html" switch.dom.log > switch.dom
 "$python" "$here/check_page.py" --page switch --dom switch.dom --png jobs.png --logs switch.dom.log --replay \
     --expect-text "<h1 id=\"title\">view-test-jobs — k_C=1500</h1>" --expect-attr data-job=1 || status=1
 
+# The pressure field's contact surface: a rigid ball pressed 4 mm into the plate, drawn with and
+# without it. Every corner and pixel count of the surface's data is checked by view_data_test; here,
+# that the page draws it: the legend names it and the screenshots differ where it is.
+sed -e 's|pose: \[0, 0, 0.0205,|pose: [0, 0, 0.016,|' -e '/deformable:/,/anchor: none}/d' scene.yaml > pressed.yaml
+"$cli" view pressed.yaml --out pressed.html --cache cache || { echo "FAILED: contactlab view pressed.yaml"; exit 1; }
+"$cli" view pressed.yaml --model pressure-field --out surface.html --cache cache ||
+  { echo "FAILED: contactlab view pressed.yaml --model pressure-field"; exit 1; }
+for page in pressed surface; do
+  browse --dump-dom "file://$work/$page.html" "$page.dom.log" > "$page.dom"
+  browse "--screenshot=$work/$page.png" "file://$work/$page.html" "$page.shot.log" > /dev/null
+done
+"$python" "$here/check_page.py" --page pressed --dom pressed.dom --png pressed.png --logs pressed.dom.log pressed.shot.log || status=1
+"$python" "$here/check_page.py" --page surface --dom surface.dom --png surface.png --logs surface.dom.log surface.shot.log \
+    --expect-text "contact surface of pressure-field" --differs-from pressed.png --min-differing 500 || status=1
+
 # The checks must see a broken page: the scene page with a script error added must fail them.
 sed 's|</body>|<script>undefinedViewerFunction();</script></body>|' scene.html > broken.html
 browse --dump-dom "file://$work/broken.html" broken.dom.log > broken.dom

@@ -5,7 +5,8 @@ DOM (--dump-dom after the virtual-time budget): <html data-ready="1" data-errors
 Logs (Chromium's stderr with --enable-logging): no uncaught error or console error of the page.
 PNG (--screenshot): not blank (pixel variance above a threshold), body A's orange and body B's
 blue each cover enough pixels (src/view/web/viewer.js keeps other colours off those hues), and
-with --min-red the contact red covers at least that many.
+with --min-red the contact red covers at least that many; with --differs-from, at least
+--min-differing pixels differ from another screenshot of the same view (what it adds is drawn).
 """
 import argparse
 import re
@@ -35,6 +36,10 @@ def main():
     ap.add_argument("--expect-text", default=None, help="text the page's DOM must contain")
     ap.add_argument("--expect-attr", action="append", default=[], metavar="NAME=VALUE",
                     help="an attribute <html> must hold with that value (repeatable)")
+    ap.add_argument("--differs-from", default=None, metavar="PNG",
+                    help="a screenshot of the same view without something: with --min-differing, how many "
+                         "pixels must differ from it")
+    ap.add_argument("--min-differing", type=int, default=0)
     ap.add_argument("--min-red", type=int, default=0,
                     help="pixels of the contact red the screenshot must hold outside the panel (data-panel)")
     a = ap.parse_args()
@@ -82,6 +87,18 @@ def main():
     red = int(red_mask.sum())
     print("%s: %dx%d, pixel variance %.4f, orange (body A) %d px, blue (body B) %d px, red (contact) %d px"
           % (a.page, img.shape[1], img.shape[0], variance, orange, blue, red))
+    if a.differs_from:
+        other = matplotlib.image.imread(a.differs_from)[..., :3].astype(float)
+        if other.max() > 1.0:
+            other /= 255.0
+        if other.shape != img.shape:
+            failures.append("%s is %s, the screenshot %s" % (a.differs_from, other.shape, img.shape))
+        else:
+            differing = int((np.abs(img - other).max(axis=-1) > 0.1).sum())
+            print("%s: %d pixels differ from %s" % (a.page, differing, a.differs_from))
+            if differing < a.min_differing:
+                failures.append("only %d pixels differ from %s (at least %d expected)"
+                                % (differing, a.differs_from, a.min_differing))
     if red < a.min_red:
         failures.append("points in contact (red) cover only %d pixels" % red)
     if variance < 0.002:

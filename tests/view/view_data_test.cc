@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "baselines/register_baselines.h"
 #include "experiment/result_csv.h"
 #include "experiment/runner.h"
 #include "scene_fixtures.h"
@@ -157,6 +158,90 @@ TEST(SceneView, PointsInContactAreThoseInsideTheFieldBody) {
   }
   EXPECT_GT(flagged, 0);
   EXPECT_EQ(j["pointshell"]["in_contact"].get<int>(), flagged);  // every point is drawn here
+}
+
+// A contact surface (pressure-field) drawn on the scene page: of the scene's models that keep
+// one, at the start poses, every corner inside both bodies; none for the other models.
+TEST(SceneView, ThePressureFieldsContactSurfaceLiesInsideBothBodies) {
+  RegisterBaselineContactModels();
+  TempDir dir;
+  std::ofstream(dir / "config.yaml") << kConfig;
+  Scene scene = LoadExperimentConfig(dir / "config.yaml").scene;
+  scene.pointshell_body.pose.translation.z() = 0.017;  // 3 mm into the plate
+  AssetOptions o;
+  o.cache_dir = dir / "cache";
+  o.verbose = false;
+  SceneAssets assets(scene, o);
+  scene.models = {"pointshell"};
+  EXPECT_TRUE(SceneViewData(scene, assets, SceneViewOptions{})["surfaces"].empty());
+  scene.models = {"pointshell", "pressure-field"};
+  const nlohmann::json j = SceneViewData(scene, assets, SceneViewOptions{});
+  ASSERT_EQ(j["surfaces"].size(), 1u);
+  const nlohmann::json& s = j["surfaces"][0];
+  EXPECT_EQ(s["model"], "pressure-field");
+  const auto corners = DecodeArray<float>(s["corners"].get<std::string>(), "corners");
+  const auto pressure = DecodeArray<float>(s["pressure"].get<std::string>(), "pressure");
+  ASSERT_GT(corners.size(), 0u);
+  ASSERT_EQ(corners.size(), 9 * s["triangles"].get<std::size_t>());
+  ASSERT_EQ(pressure.size() * 3, corners.size());
+  const double h = std::max(assets.A.field()->spacing(), assets.B.field()->spacing());
+  const Eigen::Vector3d c = scene.pointshell_body.pose.translation;
+  for (std::size_t i = 0; i < corners.size() / 3; ++i) {
+    const Eigen::Vector3d x(corners[3 * i], corners[3 * i + 1], corners[3 * i + 2]);
+    EXPECT_LE((x - c).norm(), 0.02 + h) << i;  // inside the ball
+    EXPECT_LE(x.z(), h) << i;                  // inside the plate (top face z = 0)
+    EXPECT_GE(pressure[i], 0.0f);
+    EXPECT_LE(pressure[i], s["pmax"].get<float>());
+  }
+}
+
+// A replay keeps a pressure-field model's surface at evenly spaced frames, the first and the
+// last among them, each evaluated at that frame's recorded pose: it lies inside the ball where
+// the ball was then, and is empty while the ball is clear of the plate.
+TEST(Replay, APressureFieldTrackCarriesItsSurfaceAtEvenlySpacedFrames) {
+  RegisterBaselineContactModels();
+  TempDir dir;
+  RunTiny(dir, {"models=[pointshell, pressure-field]", "trajectory.depth=0.005"});
+  const Replay r = ReadReplay(dir / "out", std::nullopt);
+  AssetOptions o;
+  o.cache_dir = dir / "cache";
+  o.verbose = false;
+  SceneAssets assets(r.scene, o);
+  SceneViewOptions options;
+  options.max_surface_frames = 10;
+  const nlohmann::json j = ReplayViewData(r, assets, options);
+  ASSERT_EQ(j["replay"]["models"].size(), 2u);
+  EXPECT_FALSE(j["replay"]["models"][0].contains("surface"));  // pointshell
+  const nlohmann::json& m = j["replay"]["models"][1];
+  ASSERT_EQ(m["name"], "pressure-field");
+  ASSERT_TRUE(m.contains("surface"));
+  const nlohmann::json& s = m["surface"];
+  const auto frames = DecodeArray<std::int32_t>(s["frames"].get<std::string>(), "frames");
+  const auto start = DecodeArray<std::uint32_t>(s["start"].get<std::string>(), "start");
+  const auto corners = DecodeArray<float>(s["corners"].get<std::string>(), "corners");
+  const ReplayTrack& t = r.tracks[1];
+  ASSERT_EQ(frames.size(), 10u);
+  EXPECT_EQ(frames.front(), 0);
+  EXPECT_EQ(frames.back(), std::int32_t(t.t.size()) - 1);
+  EXPECT_TRUE(std::is_sorted(frames.begin(), frames.end()));
+  ASSERT_EQ(start.size(), frames.size() + 1);
+  EXPECT_TRUE(std::is_sorted(start.begin(), start.end()));
+  ASSERT_EQ(corners.size(), 9 * std::size_t(start.back()));
+  const double h = std::max(assets.A.field()->spacing(), assets.B.field()->spacing());
+  int touching = 0;
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    const float* p = t.pose.data() + 7 * frames[k];
+    const Eigen::Vector3d c(p[0], p[1], p[2]);
+    const double depth = 0.02 - c.z();  // of the ball's lowest point below the plate's top
+    if (depth < -h) EXPECT_EQ(start[k + 1], start[k]) << "frame " << frames[k];
+    if (start[k + 1] > start[k]) ++touching;
+    for (std::uint32_t i = 3 * start[k]; i < 3 * start[k + 1]; ++i) {
+      const Eigen::Vector3d x(corners[3 * i], corners[3 * i + 1], corners[3 * i + 2]);
+      EXPECT_LE((x - c).norm(), 0.02 + h) << "frame " << frames[k];
+      EXPECT_LE(x.z(), h) << "frame " << frames[k];
+    }
+  }
+  EXPECT_GE(touching, 3);
 }
 
 // A deformable ball pressed onto a plate: the replay carries its reduced coordinates per frame

@@ -222,6 +222,41 @@
     bodies[s.body].group.add(slice);
   }
 
+  // --- Contact surfaces (pressure-field): triangles in the world, coloured by pressure from
+  // dark teal (0) through green to pale yellow (the largest), hues clear of the bodies' and the
+  // contact red, drawn over the bodies.
+  var PRESSURE_STOPS = [[0, 80, 70], [120, 200, 60], [255, 240, 120]];
+  function pressureColour(t, out, o) {
+    t = Math.max(0, Math.min(1, t));
+    var a = t < 0.5 ? PRESSURE_STOPS[0] : PRESSURE_STOPS[1], b = t < 0.5 ? PRESSURE_STOPS[1] : PRESSURE_STOPS[2];
+    var u = t < 0.5 ? 2 * t : 2 * t - 1;
+    for (var k = 0; k < 3; ++k) out[o + k] = (a[k] + u * (b[k] - a[k])) / 255;
+  }
+  function surfaceMesh() {
+    var g = new THREE.BufferGeometry();
+    g.setAttribute('position', new THREE.BufferAttribute(new Float32Array(0), 3));
+    g.setAttribute('color', new THREE.BufferAttribute(new Float32Array(0), 3));
+    var m = new THREE.Mesh(g, new THREE.MeshBasicMaterial({vertexColors: THREE.VertexColors, side: THREE.DoubleSide,
+                                                           depthTest: false, transparent: true, opacity: 0.9}));
+    m.renderOrder = 4;
+    scene.add(m);
+    return m;
+  }
+  // Shows triangles FIRST..END of CORNERS (9 floats each) and PRESSURE (3 each) on MESH.
+  function setSurface(mesh, corners, pressure, pmax, first, end) {
+    var pos = corners.slice(9 * first, 9 * end), col = new Float32Array(pos.length);
+    for (var i = 0; i < pos.length / 3; ++i) pressureColour(pressure[3 * first + i] / Math.max(pmax, 1e-30), col, 3 * i);
+    mesh.geometry.setAttribute('position', new THREE.BufferAttribute(pos, 3));
+    mesh.geometry.setAttribute('color', new THREE.BufferAttribute(col, 3));
+    mesh.geometry.computeBoundingSphere();
+  }
+  var surfaces = (data.surfaces || []).map(function (sf) {
+    var mesh = surfaceMesh(), corners = decode(sf.corners, Float32Array);
+    setSurface(mesh, corners, decode(sf.pressure, Float32Array), sf.pmax, 0, corners.length / 9);
+    return {spec: sf, mesh: mesh};
+  });
+  var replaySurface = null;  // the current track's surface in a replay
+
   // --- Replay: per-cycle poses and wrenches of each model.
   var replay = data.replay || null;
   var tracks = [];
@@ -296,6 +331,21 @@
                                                     ' m (outside, purple); black: d = 0; isolines every ' +
                                                     fmt(4 * s2.spacing) + ' m'));
   }
+  function surfaceLegend(text) {
+    legend.appendChild(el('div', {'class': 'colorbar', style:
+        'background: linear-gradient(to right, ' + PRESSURE_STOPS.map(function (c) { return 'rgb(' + c.join(',') + ')'; }).join(', ') + ')'}));
+    legend.appendChild(el('div', {'class': 'small surface-legend'}, text));
+  }
+  surfaces.forEach(function (sf) {
+    surfaceLegend('contact surface of ' + sf.spec.model + ': ' + sf.spec.triangles + ' triangles' +
+                  (sf.spec.triangles >= sf.spec.max_triangles ? ' (the first ' + sf.spec.max_triangles + ')' : '') +
+                  ', pressure 0 to ' + fmt(sf.spec.pmax) + ' Pa');
+  });
+  if (replay && replay.models.some(function (m) { return m.surface; })) {
+    surfaceLegend('contact surface (pressure-field models), at ' + replay.models.filter(function (m) { return m.surface; })
+                  .map(function (m) { return m.name + ': ' + decode(m.surface.frames, Int32Array).length; }).join(', ') +
+                  ' frames, each at the kept frame at or before the one shown; pressure 0 to the model\'s largest');
+  }
   var toggles = document.getElementById('toggles');
   function toggle(label, objects, on) {
     var box = el('input', {type: 'checkbox'});
@@ -311,6 +361,7 @@
   if (points) toggle('points', [points], true);
   if (contactPoints) toggle('contact', [contactPoints], true);
   if (slice) toggle('slice', [slice], true);
+  surfaces.forEach(function (sf) { toggle(sf.spec.model + ' surface', [sf.mesh], true); });
   var solid = el('input', {type: 'checkbox'});
   solid.addEventListener('change', function () {
     bodies.forEach(function (b) {
@@ -341,8 +392,15 @@
               torque: decode(m.torque, Float32Array), level: decode(m.level, Int32Array),
               contacts: decode(m.contacts, Int32Array), fmag: fmag, fmax: fmax,
               r: m.r || 0, q: m.r ? decode(m.q, Float32Array) : null,
-              r_B: m.r_B || 0, q_B: m.r_B ? decode(m.q_B, Float32Array) : null};
+              r_B: m.r_B || 0, q_B: m.r_B ? decode(m.q_B, Float32Array) : null,
+              surface: m.surface ? {frames: decode(m.surface.frames, Int32Array), start: decode(m.surface.start, Uint32Array),
+                                    corners: decode(m.surface.corners, Float32Array),
+                                    pressure: decode(m.surface.pressure, Float32Array), pmax: m.surface.pmax} : null};
     });
+    if (tracks.some(function (tr) { return tr.surface; })) {
+      replaySurface = surfaceMesh();
+      toggle('contact surface', [replaySurface], true);
+    }
     var select = document.getElementById('model');
     tracks.forEach(function (tr, i) { select.appendChild(el('option', {value: String(i)}, tr.name)); });
     if (tracks.length < 2) document.getElementById('model-choice').hidden = true;
@@ -398,11 +456,24 @@
       arrow.setDirection(f.multiplyScalar(1 / fm));
       arrow.setLength(Math.max(len, 1e-6), 0.25 * len, 0.12 * len);
     }
+    if (replaySurface) showSurface(tr);
     var torque = Math.hypot(tr.torque[3 * frameIndex], tr.torque[3 * frameIndex + 1], tr.torque[3 * frameIndex + 2]);
     document.getElementById('readout').textContent =
         't = ' + tr.t[frameIndex].toFixed(3) + ' s   |F| = ' + fmt(fm) + ' N   |T| = ' + fmt(torque) + ' N m' +
         (tr.level[frameIndex] >= 0 ? '   level ' + tr.level[frameIndex] : '') + '   contacts ' + tr.contacts[frameIndex];
     drawPlot();
+  }
+
+  // The contact surface of TR at the last kept frame at or before the one shown (none for a
+  // model without one).
+  function showSurface(tr) {
+    var sf = tr.surface;
+    replaySurface.userData.model = sf ? tr.name : '';
+    if (!sf) { setSurface(replaySurface, new Float32Array(0), new Float32Array(0), 1, 0, 0); return; }
+    var lo = 0, hi = sf.frames.length - 1;
+    while (lo < hi) { var mid = (lo + hi + 1) >> 1; if (sf.frames[mid] <= frameIndex) lo = mid; else hi = mid - 1; }
+    setSurface(replaySurface, sf.corners, sf.pressure, sf.pmax, sf.start[lo], sf.start[lo + 1]);
+    replaySurface.userData.frame = sf.frames[lo];
   }
 
   // |F| against t of every model (the current one bright), with a cursor at the current frame.
