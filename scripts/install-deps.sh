@@ -5,7 +5,8 @@
 # runtime libraries, which hold libFuzzer, for the fuzz targets, tests/fuzz/; cpp-httplib, three.js
 # and Chromium for the 3D viewer and its browser tests, src/view/; OpenVDB for the reference
 # field that cross-checks our field builder, baselines/reference/, and its benchmark; pybind11, pytest
-# and pandas for the Python module, python/). Does nothing when
+# and pandas for the Python module, python/; MkDocs with the Material theme for the documentation
+# site, mkdocs.yml and docs/, built by the test Docs.MkdocsStrict). Does nothing when
 # everything is present; uses sudo when not root.
 set -euo pipefail
 
@@ -23,6 +24,7 @@ packages=(
   pybind11-dev python3-pybind11 python3-pytest python3-pandas
   libcpp-httplib-dev libjs-three chromium
   slurm-wlm munge
+  mkdocs mkdocs-material
 )
 
 missing=()

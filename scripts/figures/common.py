@@ -1,7 +1,7 @@
 """What every figure module shares: reading results, saving figures and tables, and the look.
 
 A figure module (any other module in this package) declares its figures with @figure; see
-__init__.py for how they are found and README.md ("Figures") for how to add one.
+__init__.py for how they are found and docs/experiments.md ("Adding a figure") for how to add one.
 """
 import csv
 import math

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Tests of scripts/make_figures.py and its figures/ package: discovery, the outputs of a run on
-tiny synthetic results, README.md's example of adding a figure, tables sized to their text,
+tiny synthetic results, docs/experiments.md's example of adding a figure, tables sized to their text,
 and the per-model style table.
 
 Usage: make_figures_test.py [PATH/TO/scripts/make_figures.py]  (exit 77: matplotlib missing)
@@ -111,9 +111,9 @@ class Run(unittest.TestCase):
             self.assertNotIn("table1_statistics: no results", run.stderr)
 
 
-    # README.md's example: adding one file to figures/ adds a figure, with no other change.
-    def test_readme_example_figure_is_found_and_drawn(self):
-        with open(os.path.join(os.path.dirname(SCRIPT), "..", "README.md")) as f:
+    # docs/experiments.md's example: adding one file to figures/ adds a figure, with no other change.
+    def test_docs_example_figure_is_found_and_drawn(self):
+        with open(os.path.join(os.path.dirname(SCRIPT), "..", "docs", "experiments.md")) as f:
             example = re.search(r"```python\n(# scripts/figures/my_figure.py\n.*?)```", f.read(), re.S).group(1)
         with tempfile.TemporaryDirectory() as root:
             scripts = os.path.join(root, "scripts")

@@ -1,4 +1,4 @@
-"""README.md's Python example runs as written (its results folder moved to a temporary one)."""
+"""The Python example of docs/python.md runs as written (its results folder moved to a temporary one)."""
 
 import os
 import re
@@ -8,8 +8,8 @@ import sys
 from conftest import SOURCE_DIR
 
 
-def test_readme_python_example_runs(tmp_path):
-    text = (SOURCE_DIR / "README.md").read_text()
+def test_docs_python_example_runs(tmp_path):
+    text = (SOURCE_DIR / "docs" / "python.md").read_text()
     example = re.search(r"```python\n(# PYTHONPATH=build/python python3\n.*?)```", text, re.S).group(1)
     assert '"/tmp/contactlab-run"' in example
     example = example.replace('"/tmp/contactlab-run"', repr(str(tmp_path / "run")))
