@@ -1058,7 +1058,7 @@ TEST(HardCases, TunnellingAtSpeed) {
         SceneAssets assets(scene, options);
         for (const std::string& name : ContactModelNames()) {
           if (name == "reference") continue;  // offline (ms-s per query)
-          // The volumetric models are not in this experiment's comparison (README, Tunnelling at
+          // The volumetric models are not in this experiment's comparison (docs/results-hard-cases.md, Tunnelling at
           // speed); like every discrete model they pull the ball through (hard-cases-medial-axis).
           if (name == "pressure-field" || name == "inner-spheres") continue;
           std::unique_ptr<ContactModel> model;
