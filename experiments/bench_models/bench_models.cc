@@ -116,7 +116,14 @@ ContactModel* GetModel(Prepared& p, const std::string& name, std::string* error)
     return nullptr;
   }
   try {
-    return (p.models[name] = MakeSceneContactModel(name, p.scene, *p.assets)).get();
+    // "MODEL@pressure_lattice=N": the model with the scene's model block at that lattice.
+    Scene scene = p.scene;
+    std::string model = name;
+    if (const auto at = name.find("@pressure_lattice="); at != std::string::npos) {
+      model = name.substr(0, at);
+      scene.model.pressure_lattice = std::stoi(name.substr(at + std::string("@pressure_lattice=").size()));
+    }
+    return (p.models[name] = MakeSceneContactModel(model, scene, *p.assets)).get();
   } catch (const Error& err) {
     p.models.erase(name);
     *error = p.model_errors[name] = err.what();
@@ -239,8 +246,18 @@ void RegisterAll() {
     // Moving contact: the paper's model against the proxy of pointshell-ccd at 1 and 20 m/s, and
     // against the volumetric models, FCL and Bullet on the same poses at 1 m/s (per-cycle
     // percentiles: the 1 kHz budget is the p99.9).
+    // The pressure field also on a coarser lattice (every 2nd and 4th grid line): what its
+    // speed costs in accuracy (dir_err_deg, force_N of the model/ runs).
+    for (const std::string& model : {"pressure-field@pressure_lattice=2", "pressure-field@pressure_lattice=4"}) {
+      for (int depth = 0; depth < 2; ++depth) {
+        const std::string name =
+            "model/" + std::filesystem::path(scene).stem().string() + "/" + model + "/" + kDepthNames[depth];
+        benchmark::RegisterBenchmark(name.c_str(), BM_ModelQuery, scene, model, depth)->Unit(benchmark::kMicrosecond);
+      }
+    }
     for (const std::string& model :
-         {"pointshell", "pointshell-ccd", "pressure-field", "inner-spheres", "fcl", "bullet"}) {
+         {"pointshell", "pointshell-ccd", "pressure-field", "pressure-field@pressure_lattice=2",
+          "pressure-field@pressure_lattice=4", "inner-spheres", "fcl", "bullet"}) {
       const bool proxy_pair = model == "pointshell" || model == "pointshell-ccd";
       for (const double speed : {1.0, 20.0}) {
         if (speed > 1 && !proxy_pair) continue;
