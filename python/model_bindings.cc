@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "bindings.h"
+#include "contact/contact_stats_fields.h"
 #include "contact/model_registry.h"
 #include "experiment/reduced_coordinates.h"
 #include "experiment/scene.h"
@@ -58,15 +59,16 @@ ContactResult EvaluateLocked(ModelHandle& h, const Pose& X_WA, const Pose& X_WB,
   return h.model->Evaluate(q);
 }
 
+// Every ContactStats field (contact/contact_stats_fields.h): counts as int, the rest as float.
 py::dict StatsDict(const ContactStats& s) {
   py::dict d;
-  d["points_in_contact"] = s.points_in_contact;
-  d["nodes_visited"] = s.nodes_visited;
-  d["level_rendered"] = s.level_rendered;
-  d["nodes_skipped_coherence"] = s.nodes_skipped_coherence;
-  d["max_penetration"] = s.max_penetration;
-  d["stiffness_scale"] = s.stiffness_scale;
-  d["faults"] = s.faults;
+  for (const ContactStatField& f : kContactStatFields) {
+    if (f.count) {
+      d[f.name] = std::int64_t(f.value(s));
+    } else {
+      d[f.name] = f.value(s);
+    }
+  }
   return d;
 }
 
@@ -138,15 +140,10 @@ py::dict QueryMany(ModelHandle& h, const DoubleArray& poses_A, const DoubleArray
   const py::ssize_t n = py::ssize_t(std::max(A.size(), B.size()));
   py::array_t<double> wrench({n, py::ssize_t(6)});
   py::array_t<double> K({n, py::ssize_t(6), py::ssize_t(6)});
-  py::array_t<std::int32_t> contacts(n), level(n), skipped(n), faults(n);
-  py::array_t<std::int64_t> nodes(n);
-  py::array_t<double> depth(n), scale(n);
   double* w = wrench.mutable_data();
   double* k = K.mutable_data();
-  std::int32_t *c = contacts.mutable_data(), *l = level.mutable_data(), *s = skipped.mutable_data(),
-               *f = faults.mutable_data();
-  std::int64_t* v = nodes.mutable_data();
-  double *p = depth.mutable_data(), *sc = scale.mutable_data();
+  constexpr std::size_t kFields = kContactStatFields.size();
+  std::vector<double> values(std::size_t(n) * kFields);  // per query, every stats field
   // Deformable bodies are queried at rest, as the command's `contact` without --q-a / --q-b.
   SceneAssets& assets = h.scene_handle->assets;
   ReducedVector force_A, force_B;
@@ -160,19 +157,22 @@ py::dict QueryMany(ModelHandle& h, const DoubleArray& poses_A, const DoubleArray
       const ContactResult r = EvaluateLocked(h, A[A.size() == 1 ? 0 : i], B[B.size() == 1 ? 0 : i], reset, dA, dB);
       Eigen::Map<Vector6d>(w + 6 * i) = r.on_B.AsVector();
       Eigen::Map<Eigen::Matrix<double, 6, 6, Eigen::RowMajor>>(k + 36 * i) = r.K_B;
-      c[i] = r.stats.points_in_contact, v[i] = r.stats.nodes_visited, l[i] = r.stats.level_rendered;
-      s[i] = r.stats.nodes_skipped_coherence, p[i] = r.stats.max_penetration, sc[i] = r.stats.stiffness_scale;
-      f[i] = r.stats.faults;
+      for (std::size_t f = 0; f < kFields; ++f) values[std::size_t(i) * kFields + f] = kContactStatFields[f].value(r.stats);
     }
   }
+  // One array per field: int64 for the counts, float64 for the rest.
   py::dict stats;
-  stats["points_in_contact"] = contacts;
-  stats["nodes_visited"] = nodes;
-  stats["level_rendered"] = level;
-  stats["nodes_skipped_coherence"] = skipped;
-  stats["max_penetration"] = depth;
-  stats["stiffness_scale"] = scale;
-  stats["faults"] = faults;
+  for (std::size_t f = 0; f < kFields; ++f) {
+    if (kContactStatFields[f].count) {
+      py::array_t<std::int64_t> a(n);
+      for (py::ssize_t i = 0; i < n; ++i) a.mutable_data()[i] = std::int64_t(values[std::size_t(i) * kFields + f]);
+      stats[kContactStatFields[f].name] = a;
+    } else {
+      py::array_t<double> a(n);
+      for (py::ssize_t i = 0; i < n; ++i) a.mutable_data()[i] = values[std::size_t(i) * kFields + f];
+      stats[kContactStatFields[f].name] = a;
+    }
+  }
   py::dict d;
   d["model"] = h.name;
   d["wrench"] = wrench;

@@ -154,8 +154,7 @@ bool PressureFieldModel::FindBlocks(const Pose& X_LM, std::int64_t* nodes) {
     const double phi_M = fM.Distance(X_ML * c);
     const double reach = lip * r + margin;
     if (phi_M > reach || phi_L > reach) continue;
-    const double g = M_.rigid ? -phi_M : L_.rigid ? phi_L : -kM_ * phi_M + kL_ * phi_L;
-    if (std::abs(g) > lip_g * (r + margin)) continue;
+    if (std::abs(Gap(phi_M, phi_L)) > lip_g * (r + margin)) continue;
     if (n.size > kBlock) {
       const std::int32_t s = n.size / 2;
       for (int q = 0; q < 8; ++q) {
@@ -194,8 +193,8 @@ void PressureFieldModel::Integrate(const Pose& X_LM, bool record, Sums* sums) {
     num_surface_cells_ = 0;
     surface_.clear();
     surface_pressure_.clear();
+    std::fill(block_surface_.begin(), block_surface_.begin() + num_blocks_, std::uint8_t(0));
   }
-  if (record) std::fill(block_surface_.begin(), block_surface_.begin() + num_blocks_, std::uint8_t(0));
   float phi_M[kBlockVerts];
   for (std::int64_t bi = 0; bi < num_blocks_; ++bi) {
     const auto& blk = blocks_[std::size_t(bi)];
@@ -222,7 +221,7 @@ void PressureFieldModel::Integrate(const Pose& X_LM, bool record, Sums* sums) {
             const int v = VertexIndex(ci + di, cj + dj, ck + dk);
             corner[c].phi_M = phi_M[v];
             corner[c].phi_L = phi_L[v];
-            g[c] = M_.rigid ? -corner[c].phi_M : L_.rigid ? corner[c].phi_L : -kM_ * corner[c].phi_M + kL_ * corner[c].phi_L;
+            g[c] = Gap(corner[c].phi_M, corner[c].phi_L);
             positive += g[c] > 0;
             outside_M = outside_M && corner[c].phi_M > 0;
             outside_L = outside_L && corner[c].phi_L > 0;

@@ -14,7 +14,7 @@ CASES = [
     ("small_scene_file", [0.001, -0.002, 0.0113, 0.9659258262890683, 0.0, 0.25881904510283985, 0.0],
      [0.0, 0.001 / 3, -0.0099, 1.0, 0.0, 0.0, 0.0]),
 ]
-MODELS = ["pointshell", "pointshell-linear", "vps", "fcl"]
+MODELS = ["pointshell", "pointshell-linear", "vps", "fcl", "pressure-field"]
 
 
 @pytest.mark.parametrize("model_name", MODELS)
@@ -32,7 +32,11 @@ def test_query_equals_command_line(request, cli_json, model_name, case):
     assert r["force"].tolist() == expected["force"]
     assert r["torque"].tolist() == expected["torque"]
     assert r["K_B"].tolist() == expected["K_B"]
+    # Every stats field, the command's and the module's from one list (contact_stats_fields.h).
+    assert set(r["stats"]) <= set(expected), set(r["stats"]) - set(expected)
     for key in ("points_in_contact", "nodes_visited", "level_rendered", "max_penetration", "stiffness_scale"):
+        assert r["stats"][key] == expected[key], key
+    for key in r["stats"]:
         assert r["stats"][key] == expected[key], key
     assert r["wrench"].tolist() == expected["force"] + expected["torque"]
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cli/command_registry.h"
+#include "contact/contact_stats_fields.h"
 #include "contact/model_registry.h"
 #include "experiment/reduced_coordinates.h"
 #include "experiment/scene_assets.h"
@@ -70,13 +71,13 @@ void RunContact(const ContactArgs& args) {
     j["model"] = model_name;
     j["force"] = {r.on_B.force.x(), r.on_B.force.y(), r.on_B.force.z()};
     j["torque"] = {r.on_B.torque.x(), r.on_B.torque.y(), r.on_B.torque.z()};
-    j["points_in_contact"] = r.stats.points_in_contact;
-    j["nodes_visited"] = r.stats.nodes_visited;
-    j["level_rendered"] = r.stats.level_rendered;
-    j["max_penetration"] = r.stats.max_penetration;
-    j["stiffness_scale"] = r.stats.stiffness_scale;
-    j["contact_area"] = r.stats.contact_area;
-    j["patches"] = r.stats.patches;
+    for (const ContactStatField& f : kContactStatFields) {
+      if (f.count) {
+        j[f.name] = std::int64_t(f.value(r.stats));
+      } else {
+        j[f.name] = f.value(r.stats);
+      }
+    }
     j["evaluate_microseconds"] = micros;
     nlohmann::json K = nlohmann::json::array();
     for (int i = 0; i < 6; ++i) {

@@ -138,10 +138,15 @@ bool KeepsContactSurface(const std::string& name) {
   return entry != nullptr && entry->contact_surface;
 }
 
-// Appends S's corners and pressures to *CORNERS and *PRESSURE.
-void AppendSurface(const ContactSurface& s, std::vector<float>* corners, std::vector<float>* pressure) {
-  for (const Eigen::Vector3f& c : s.corners) corners->insert(corners->end(), {c.x(), c.y(), c.z()});
-  pressure->insert(pressure->end(), s.pressure.begin(), s.pressure.end());
+// Evaluates MODEL (keeping its surface) at QUERY and appends the surface's corners and
+// pressures to *CORNERS and *PRESSURE; *SCRATCH holds it on the way. Returns its triangles.
+std::size_t AppendSurfaceAt(ContactModel& model, const ContactQuery& query, ContactSurface* scratch,
+                            std::vector<float>* corners, std::vector<float>* pressure) {
+  model.Evaluate(query);
+  model.LatestContactSurface(scratch);
+  for (const Eigen::Vector3f& c : scratch->corners) corners->insert(corners->end(), {c.x(), c.y(), c.z()});
+  pressure->insert(pressure->end(), scratch->pressure.begin(), scratch->pressure.end());
+  return scratch->corners.size() / 3;
 }
 
 float MaxOf(const std::vector<float>& v) { return v.empty() ? 0.0f : *std::max_element(v.begin(), v.end()); }
@@ -161,13 +166,11 @@ nlohmann::json SceneViewData(const Scene& scene, SceneAssets& assets, const Scen
     ContactQuery q;
     q.X_WA = poses ? poses->X_WA : scene.pointshell_body.pose;
     q.X_WB = poses ? poses->X_WB : scene.field_body.pose;
-    model->Evaluate(q);
-    ContactSurface s;
-    model->LatestContactSurface(&s);
+    ContactSurface scratch;
     std::vector<float> corners, pressure;
-    AppendSurface(s, &corners, &pressure);
+    const std::size_t triangles = AppendSurfaceAt(*model, q, &scratch, &corners, &pressure);
     j["surfaces"].push_back({{"model", name},
-                             {"triangles", s.corners.size() / 3},
+                             {"triangles", triangles},
                              {"max_triangles", cap},
                              {"corners", EncodeArray(corners)},
                              {"pressure", EncodeArray(pressure)},
@@ -201,9 +204,7 @@ nlohmann::json TrackSurface(const Replay& replay, const ReplayTrack& track, bool
     q.X_WA = moving_is_B ? replay.scene.pointshell_body.pose : X;
     q.X_WB = moving_is_B ? X : replay.scene.field_body.pose;
     q.cycle = f;
-    model->Evaluate(q);
-    model->LatestContactSurface(&s);
-    AppendSurface(s, &corners, &pressure);
+    AppendSurfaceAt(*model, q, &s, &corners, &pressure);
     kept.push_back(f);
     start.push_back(std::uint32_t(corners.size() / 9));
   }
