@@ -100,10 +100,7 @@ TEST(Replay, PageDataHoldsBothBodiesThePointshellAndEveryTrack) {
   TempDir dir;
   RunTiny(dir);
   const Replay r = ReadReplay(dir / "out", std::nullopt);
-  AssetOptions o;
-  o.cache_dir = dir / "cache";
-  o.verbose = false;
-  SceneAssets assets(r.scene, o);
+  SceneAssets assets(r.scene, Options(dir).assets);
   SceneViewOptions options;
   options.max_points = 100;
   const nlohmann::json j = ReplayViewData(r, assets, options);
@@ -137,10 +134,7 @@ TEST(SceneView, PointsInContactAreThoseInsideTheFieldBody) {
   Scene scene = config.scene;
   scene.pointshell_body.pose.translation.z() = 0.018;  // 2 mm into the plate
   scene.pointshell_body.pose.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()));
-  AssetOptions o;
-  o.cache_dir = dir / "cache";
-  o.verbose = false;
-  SceneAssets assets(scene, o);
+  SceneAssets assets(scene, Options(dir).assets);
   const nlohmann::json j = SceneViewData(scene, assets, SceneViewOptions{});
   const auto xyz = DecodeArray<float>(j["pointshell"]["positions"].get<std::string>(), "positions");
   const auto contact = DecodeArray<std::uint8_t>(j["pointshell"]["contact"].get<std::string>(), "contact");
@@ -168,10 +162,7 @@ TEST(SceneView, ThePressureFieldsContactSurfaceLiesInsideBothBodies) {
   std::ofstream(dir / "config.yaml") << kConfig;
   Scene scene = LoadExperimentConfig(dir / "config.yaml").scene;
   scene.pointshell_body.pose.translation.z() = 0.017;  // 3 mm into the plate
-  AssetOptions o;
-  o.cache_dir = dir / "cache";
-  o.verbose = false;
-  SceneAssets assets(scene, o);
+  SceneAssets assets(scene, Options(dir).assets);
   scene.models = {"pointshell"};
   EXPECT_TRUE(SceneViewData(scene, assets, SceneViewOptions{})["surfaces"].empty());
   scene.models = {"pointshell", "pressure-field"};
@@ -203,10 +194,7 @@ TEST(Replay, APressureFieldTrackCarriesItsSurfaceAtEvenlySpacedFrames) {
   TempDir dir;
   RunTiny(dir, {"models=[pointshell, pressure-field]", "trajectory.depth=0.005"});
   const Replay r = ReadReplay(dir / "out", std::nullopt);
-  AssetOptions o;
-  o.cache_dir = dir / "cache";
-  o.verbose = false;
-  SceneAssets assets(r.scene, o);
+  SceneAssets assets(r.scene, Options(dir).assets);
   SceneViewOptions options;
   options.max_surface_frames = 10;
   const nlohmann::json j = ReplayViewData(r, assets, options);
@@ -275,10 +263,7 @@ model: {k_C: 1000, L: 10}
   EXPECT_EQ(t.r, 6);
   EXPECT_EQ(t.r_B, 0);
   ASSERT_EQ(t.q.size(), 6 * t.t.size());
-  AssetOptions o;
-  o.cache_dir = dir / "cache";
-  o.verbose = false;
-  SceneAssets assets(r.scene, o);
+  SceneAssets assets(r.scene, Options(dir).assets);
   const nlohmann::json j = ReplayViewData(r, assets, SceneViewOptions{});
   ASSERT_EQ(j["bodies"][0]["modes"], 6);
   EXPECT_FALSE(j["bodies"][1].contains("basis"));  // the plate is rigid
