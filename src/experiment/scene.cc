@@ -1,8 +1,10 @@
 #include "experiment/scene.h"
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 
 #include "sdf/sparse_field.h"
 #include "util/error.h"
@@ -398,16 +400,32 @@ std::string ShowKey(const ParamTable<Spec>& table, const Spec& spec, const std::
   return row ? row->show(spec) : std::string();
 }
 
+// A block every body carries, KEY in the scene, MEMBER of BodySpec, parsed by TABLE: two scene
+// blocks, the field body's (its keys sweep alone; the reference shows its table) and the
+// pointshell body's (its keys sweep with the prefix "pointshell_").
+template <class Spec>
+std::array<SceneBlock, 2> EveryBodyBlock(const std::string& key, const ParamTable<Spec>& table,
+                                         std::type_identity_t<const Spec& (*)(const BodySpec&)> member) {
+  return {SceneBlock{"scene.bodies[role=field]." + key + ".", "", table.SweepKeys(), table.Reference("bodies[]." + key),
+                     [&table, member](const Scene& s, const std::string& k) {
+                       return ShowKey(table, member(s.field_body), k);
+                     }},
+          SceneBlock{"scene.bodies[role=pointshell]." + key + ".", "pointshell_", table.SweepKeys(), "",
+                     [&table, member](const Scene& s, const std::string& k) {
+                       return ShowKey(table, member(s.pointshell_body), k);
+                     }}};
+}
+
 }  // namespace
 
 const std::vector<SceneBlock>& SceneBlocks() {
   const auto none = [](const Scene&, const std::string&) { return std::string(); };
-  static const std::vector<SceneBlock> blocks = {
-      {"", "", {}, BodyParams().Reference("bodies[]"), none},
-      {"scene.bodies[role=field].field.", "", FieldParams().SweepKeys(), FieldParams().Reference("bodies[].field"),
-       [](const Scene& s, const std::string& k) { return ShowKey(FieldParams(), s.field_body.field, k); }},
-      {"scene.bodies[role=pointshell].field.", "pointshell_", FieldParams().SweepKeys(), "",
-       [](const Scene& s, const std::string& k) { return ShowKey(FieldParams(), s.pointshell_body.field, k); }},
+  static const std::vector<SceneBlock> blocks = [&] {
+    std::vector<SceneBlock> b;
+    const auto add = [&b](std::array<SceneBlock, 2> both) { b.insert(b.end(), both.begin(), both.end()); };
+    b.push_back({"", "", {}, BodyParams().Reference("bodies[]"), none});
+    add(EveryBodyBlock("field", FieldParams(), [](const BodySpec& body) -> const FieldSpec& { return body.field; }));
+    b.insert(b.end(), {
       {"scene.bodies[role=pointshell].pointshell.", "", PointshellParams().SweepKeys(),
        PointshellParams().Reference("bodies[].pointshell"),
        [](const Scene& s, const std::string& k) { return ShowKey(PointshellParams(), s.pointshell_body.pointshell, k); }},
@@ -424,27 +442,16 @@ const std::vector<SceneBlock>& SceneBlocks() {
          return s.field_body.deformable ? ShowKey(DeformedFieldParams(), s.field_body.deformable->field, k)
                                         : std::string();
        }},
-      {"scene.bodies[role=field].pressure_field.", "", PressureFieldParams().SweepKeys(),
-       PressureFieldParams().Reference("bodies[].pressure_field"),
-       [](const Scene& s, const std::string& k) {
-         return ShowKey(PressureFieldParams(), s.field_body.contact.pressure_field, k);
-       }},
-      {"scene.bodies[role=pointshell].pressure_field.", "pointshell_", PressureFieldParams().SweepKeys(), "",
-       [](const Scene& s, const std::string& k) {
-         return ShowKey(PressureFieldParams(), s.pointshell_body.contact.pressure_field, k);
-       }},
-      {"scene.bodies[role=field].inner_spheres.", "", InnerSphereParams().SweepKeys(),
-       InnerSphereParams().Reference("bodies[].inner_spheres"),
-       [](const Scene& s, const std::string& k) {
-         return ShowKey(InnerSphereParams(), s.field_body.contact.inner_spheres, k);
-       }},
-      {"scene.bodies[role=pointshell].inner_spheres.", "pointshell_", InnerSphereParams().SweepKeys(), "",
-       [](const Scene& s, const std::string& k) {
-         return ShowKey(InnerSphereParams(), s.pointshell_body.contact.inner_spheres, k);
-       }},
+    });
+    add(EveryBodyBlock("pressure_field", PressureFieldParams(),
+                       [](const BodySpec& body) -> const PressureFieldSpec& { return body.contact.pressure_field; }));
+    add(EveryBodyBlock("inner_spheres", InnerSphereParams(),
+                       [](const BodySpec& body) -> const InnerSphereSpec& { return body.contact.inner_spheres; }));
+    b.push_back(
       {"scene.model.", "", ModelSectionParams().SweepKeys(), ModelSectionParams().Reference("model"),
-       [](const Scene& s, const std::string& k) { return ShowKey(ModelSectionParams(), s, k); }},
-  };
+       [](const Scene& s, const std::string& k) { return ShowKey(ModelSectionParams(), s, k); }});
+    return b;
+  }();
   return blocks;
 }
 
