@@ -1,4 +1,4 @@
-# The layering rule of DESIGN.md, checked on the sources: nothing in src/contact or baselines
+# Layering (docs/architecture.md "Layers"), checked on the sources: nothing in src/contact or baselines
 # includes a header of the experiment harness or the command line, nor of deform/ other than
 # where deformed points are (the kinematics: embedded points and their vector batches, the
 # deformable pointshell, the deformed distance field, the tet mesh they live in);

@@ -1,4 +1,4 @@
-// Safety filter before the device (DESIGN.md "Errors and safety").
+// Safety filter before the device (docs/architecture.md "Errors and safety").
 #include "haptics/safety_filter.h"
 
 #include <algorithm>

@@ -1,7 +1,7 @@
-// The last stage before the device (DESIGN.md "Errors and safety"; Barbič & James 2008, sec. 5
-// saturation): replaces a non-finite wrench by zero, clamps force and torque to the device's
-// limits, ramps force in over the first second of a session and after any fault, and zeroes
-// output when a watchdog sees the device fall silent or the loop stall.
+// The last stage before the device (docs/architecture.md "Errors and safety"; Barbič & James
+// 2008, sec. 5 saturation): replaces a non-finite wrench by zero, clamps force and torque to the
+// device's limits, ramps force in over the first second of a session and after any fault, and
+// zeroes output when a watchdog sees the device fall silent or the loop stall.
 #pragma once
 
 #include <cstdint>

@@ -1,5 +1,5 @@
-// The data search path of DESIGN.md. A name ("dragon.obj", "scenes/dragon-bunny.yaml") is
-// resolved, first hit wins, from:
+// The data search path (docs/architecture.md "Data search path and cache"). A name
+// ("dragon.obj", "scenes/dragon-bunny.yaml") is resolved, first hit wins, from:
 //   1. the name as given when it is absolute;
 //   2. the folder of the scene or config file that names it (BASE_DIR), when there is one;
 //   3. the name as given, relative to the working folder;

@@ -1,5 +1,5 @@
-// Tests of the safety filter before the device (DESIGN.md "Errors and safety"): clamps, ramp,
-// non-finite replacement, device-silence and loop-stall watchdogs.
+// Tests of the safety filter before the device (docs/architecture.md "Errors and safety"):
+// clamps, ramp, non-finite replacement, device-silence and loop-stall watchdogs.
 #include "haptics/safety_filter.h"
 
 #include <gtest/gtest.h>
