@@ -7,7 +7,7 @@
 #   PREFIX/share/contactlab/scripts/make_figures.py and its figures/ package
 #   PREFIX/share/doc/contactlab/{README.md,LICENSE}
 #   PREFIX/lib/libcontactlab_*.a, PREFIX/include/contactlab/ (the headers of src/ and
-#   baselines/ as they are included: "contact/contact_model.h", "baselines/register_baselines.h")
+#   baselines/ as they are included: "contact/contact_model.h", "contact/register_contact_models.h")
 #   and PREFIX/lib/cmake/ContactLab/: the CMake package, find_package(ContactLab) ->
 #   ContactLab::contactlab (examples/cpp uses it)
 #   PREFIX/lib/python3/dist-packages/contactlab/ (the Python module, when built: Debian's folder

@@ -2,7 +2,7 @@
 // and out; contactlab::Error raised as contactlab.Error with its message (file, line, key).
 #include <pybind11/pybind11.h>
 
-#include "baselines/register_baselines.h"
+#include "contact/register_contact_models.h"
 #include "bindings.h"
 #include "util/error.h"
 
@@ -27,7 +27,7 @@ void BindErrors(py::module_& m) {
 PYBIND11_MODULE(_core, m) {
   m.doc() = "ContactLab's C++ library: scenes, contact models, experiments (see the contactlab package).";
   // The baselines register their models as the command does at start-up.
-  contactlab::RegisterBaselineContactModels();
+  contactlab::RegisterContactModels();
   contactlab::python::BindErrors(m);
   contactlab::python::BindScene(m);
   contactlab::python::BindModel(m);

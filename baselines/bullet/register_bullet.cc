@@ -8,17 +8,15 @@
 namespace contactlab {
 
 void RegisterBulletContactModels() {
-  ContactModelEntry e;
-  e.name = "bullet";
-  e.description = "Bullet GImpact contact manifolds as penalty contacts";
-  e.needs.mesh_A = true;
-  e.needs.mesh_B = true;
-  e.make = [](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
-    BulletContactParams p;
-    p.penalty = in.params.penalty;
-    return std::make_unique<BulletContactModel>(in.A.mesh(), in.B.mesh(), p);
-  };
-  RegisterContactModel(std::move(e));
+  RegisterContactModel({
+      .name = "bullet",
+      .description = "Bullet GImpact contact manifolds as penalty contacts",
+      .needs = {.mesh_A = true, .mesh_B = true},
+      .make = [](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
+        return std::make_unique<BulletContactModel>(in.A.mesh(), in.B.mesh(),
+                                                    BulletContactParams{.penalty = in.params.penalty});
+      },
+  });
 }
 
 }  // namespace contactlab

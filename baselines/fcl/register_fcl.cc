@@ -8,17 +8,14 @@
 namespace contactlab {
 
 void RegisterFclContactModels() {
-  ContactModelEntry e;
-  e.name = "fcl";
-  e.description = "FCL 0.7 mesh-mesh contacts (OBBRSS) as penalty contacts";
-  e.needs.mesh_A = true;
-  e.needs.mesh_B = true;
-  e.make = [](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
-    FclContactParams p;
-    p.penalty = in.params.penalty;
-    return std::make_unique<FclContactModel>(in.A.mesh(), in.B.mesh(), p);
-  };
-  RegisterContactModel(std::move(e));
+  RegisterContactModel({
+      .name = "fcl",
+      .description = "FCL 0.7 mesh-mesh contacts (OBBRSS) as penalty contacts",
+      .needs = {.mesh_A = true, .mesh_B = true},
+      .make = [](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
+        return std::make_unique<FclContactModel>(in.A.mesh(), in.B.mesh(), FclContactParams{.penalty = in.params.penalty});
+      },
+  });
 }
 
 }  // namespace contactlab

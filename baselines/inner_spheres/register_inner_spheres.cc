@@ -16,8 +16,32 @@
 namespace contactlab {
 namespace {
 
+// The body's inner-sphere packing: greedy largest empty spheres inside its field until SPHERES
+// are placed or their volume reaches COVERAGE of the body's.
+struct InnerSphereSpec {
+  int spheres = 2000;    // at most this many spheres
+  double coverage = 0;   // stop once this fraction of the volume is covered (0: no target)
+};
+
+constexpr int kMaxInnerSpheres = 1 << 20;
+
+const ParamTable<InnerSphereSpec>& InnerSphereParams() {
+  using P = ParamRows<InnerSphereSpec>;
+  static const ParamTable<InnerSphereSpec> table(
+      "bodies[].inner_spheres",
+      "The body's inner-sphere packing in the inner-spheres model: greedy largest empty spheres inside its field.",
+      {
+          P::Integer("spheres", PARAM_MEMBER(spheres), 1, kMaxInnerSpheres, "at most this many spheres")
+              .Sweepable().Example("500"),
+          P::Number("coverage", PARAM_MEMBER(coverage), AtLeast(0), AtMost(1),
+                    "stop once the spheres fill this fraction of the body's volume (0: no target)")
+              .Sweepable().Example("0.8"),
+      });
+  return table;
+}
+
 std::shared_ptr<const SpherePacking> PackingOf(ContactBody& body) {
-  const InnerSphereSpec& spec = body.contact_params().inner_spheres;
+  const InnerSphereSpec& spec = body.model_blocks().Get(InnerSphereParams());
   const std::string where = "inner-spheres: body '" + std::string(body.body_name()) + "'";
   const auto field = body.field();
   if (field->info().mode == "soup") Fail(where, "its field is a polygon soup's offset band, not a volume to fill");
@@ -37,23 +61,24 @@ std::shared_ptr<const SpherePacking> PackingOf(ContactBody& body) {
       });
 }
 
+std::unique_ptr<ContactModel> MakeInnerSpheres(const ContactModelInputs& in) {
+  // The volume reference's stiffness (baselines/reference/volume_reference.h).
+  CheckPenaltyParams(in.params.penalty, "inner-spheres");
+  const double k_V = in.params.penalty.VolumeStiffness(in.A.mesh()->SurfaceArea());
+  return std::make_unique<InnerSphereModel>(PackingOf(in.A), PackingOf(in.B), k_V);
+}
+
 }  // namespace
 
 void RegisterInnerSphereContactModels() {
-  ContactModelEntry e;
-  e.name = "inner-spheres";
-  e.description = "Inner Sphere Trees: penetration volume of the two bodies' inner-sphere packings, force -k_V grad V (Weller & Zachmann 2009)";
-  e.needs.field_A = true;
-  e.needs.field_B = true;
-  e.needs.mesh_A = true;
-  e.needs.mesh_B = true;
-  e.make = [](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
-    // The volume reference's stiffness (baselines/reference/volume_reference.h).
-    CheckPenaltyParams(in.params.penalty, "inner-spheres");
-    const double k_V = in.params.penalty.VolumeStiffness(in.A.mesh()->SurfaceArea());
-    return std::make_unique<InnerSphereModel>(PackingOf(in.A), PackingOf(in.B), k_V);
-  };
-  RegisterContactModel(std::move(e));
+  RegisterContactModel({
+      .name = "inner-spheres",
+      .description = "Inner Sphere Trees: penetration volume of the two bodies' inner-sphere packings, force -k_V "
+                     "grad V (Weller & Zachmann 2009)",
+      .needs = {.field_A = true, .field_B = true, .mesh_A = true, .mesh_B = true},
+      .make = MakeInnerSpheres,
+      .body_blocks = {ParamBlock(InnerSphereParams(), "inner_spheres", "its sphere packing in the inner-spheres model")},
+  });
 }
 
 }  // namespace contactlab

@@ -14,42 +14,35 @@
 namespace contactlab {
 
 void RegisterReferenceContactModels() {
-  ContactModelEntry e;
-  e.name = "reference";
-  e.description = "eq. (2) limit of the pointshell model: dense quadrature on A, exact CGAL distances to B (offline)";
-  e.needs.mesh_A = true;
-  e.needs.mesh_B = true;
-  e.needs.closed_mesh_B = true;
-  e.make = [](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
-    QuadratureReferenceParams p;
-    p.penalty = in.params.penalty;
-    if (p.penalty.L <= 0) p.penalty.L = PenaltyParams::kDefaultManyPointThreshold;
-    return std::make_unique<QuadratureReference>(in.A.mesh(), in.B.mesh(), p);
-  };
-  RegisterContactModel(std::move(e));
-
-  ContactModelEntry v;
-  v.name = "volume";
-  v.description = "volume law -k_V grad V on the exact overlap volume of the two meshes (CGAL, offline reference)";
-  v.needs.mesh_A = true;
-  v.needs.mesh_B = true;
-  v.needs.closed_mesh_B = true;
-  v.reference_only = true;
-  v.make = [](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
-    return std::make_unique<VolumeReference>(in.A.mesh(), in.B.mesh(), in.params.penalty);
-  };
-  RegisterContactModel(std::move(v));
-
-  ContactModelEntry h;
-  h.name = "eq2-halfspace";
-  h.description = "eq. (2) limit in closed form: a sphere or polyhedron A against B's top face as a halfspace (B a box)";
-  h.needs.mesh_A = true;
-  h.needs.mesh_B = true;
-  h.reference_only = true;
-  h.make = [](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
-    return std::make_unique<HalfspaceLimitReference>(in.A.mesh(), in.B.mesh(), in.params.penalty);
-  };
-  RegisterContactModel(std::move(h));
+  RegisterContactModel({
+      .name = "reference",
+      .description = "eq. (2) limit of the pointshell model: dense quadrature on A, exact CGAL distances to B (offline)",
+      .needs = {.mesh_A = true, .mesh_B = true, .closed_mesh_B = true},
+      .make = [](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
+        QuadratureReferenceParams p;
+        p.penalty = in.params.penalty;
+        if (p.penalty.L <= 0) p.penalty.L = PenaltyParams::kDefaultManyPointThreshold;
+        return std::make_unique<QuadratureReference>(in.A.mesh(), in.B.mesh(), p);
+      },
+  });
+  RegisterContactModel({
+      .name = "volume",
+      .description = "volume law -k_V grad V on the exact overlap volume of the two meshes (CGAL, offline reference)",
+      .needs = {.mesh_A = true, .mesh_B = true, .closed_mesh_B = true},
+      .make = [](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
+        return std::make_unique<VolumeReference>(in.A.mesh(), in.B.mesh(), in.params.penalty);
+      },
+      .reference_only = true,
+  });
+  RegisterContactModel({
+      .name = "eq2-halfspace",
+      .description = "eq. (2) limit in closed form: a sphere or polyhedron A against B's top face as a halfspace (B a box)",
+      .needs = {.mesh_A = true, .mesh_B = true},
+      .make = [](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
+        return std::make_unique<HalfspaceLimitReference>(in.A.mesh(), in.B.mesh(), in.params.penalty);
+      },
+      .reference_only = true,
+  });
 }
 
 }  // namespace contactlab

@@ -14,7 +14,7 @@
 namespace contactlab {
 namespace {
 
-VpsContactParams VpsParams(const PointshellContactParams& m) {
+VpsContactParams VpsParams(const ContactParams& m) {
   VpsContactParams p;
   p.penalty = m.penalty;
   p.coherence = m.coherence;
@@ -23,34 +23,32 @@ VpsContactParams VpsParams(const PointshellContactParams& m) {
   return p;
 }
 
+// "vps": A's pointshell of surface-voxel centres at B's voxel size.
+std::unique_ptr<ContactModel> MakeVps(const ContactModelInputs& in) {
+  const VpsContactParams params = VpsParams(in.params);
+  auto field_B = in.B.field();
+  const double v = params.voxel_size > 0 ? params.voxel_size : field_B->spacing();
+  auto shell = std::make_shared<const Pointshell>(BuildVpsPointshell(*in.A.field(), v, in.A.sampling_seed()));
+  return std::make_unique<VpsContactModel>("vps", std::move(shell), std::move(field_B), params);
+}
+
 }  // namespace
 
 void RegisterVpsContactModels() {
-  ContactModelEntry vps;
-  vps.name = "vps";
-  vps.description = "Voxmap-PointShell (McNeely et al. 1999/2006): voxel-centre pointshell, tangent-plane forces";
-  vps.needs.field_A = true;
-  vps.needs.field_B = true;
-  vps.needs.depth_in_field_voxels = true;
-  vps.make = [](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
-    const VpsContactParams params = VpsParams(in.params);
-    auto field_B = in.B.field();
-    const double v = params.voxel_size > 0 ? params.voxel_size : field_B->spacing();
-    auto shell = std::make_shared<const Pointshell>(BuildVpsPointshell(*in.A.field(), v, in.A.sampling_seed()));
-    return std::make_unique<VpsContactModel>("vps", std::move(shell), std::move(field_B), params);
-  };
-  RegisterContactModel(std::move(vps));
-
-  ContactModelEntry repulsion;
-  repulsion.name = "vps-repulsion";
-  repulsion.description = "VPS tangent-plane forces on the scene's own (repulsion) pointshell of A";
-  repulsion.needs.pointshell_A = true;
-  repulsion.needs.field_B = true;
-  repulsion.needs.depth_in_field_voxels = true;
-  repulsion.make = [](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
-    return std::make_unique<VpsContactModel>("vps-repulsion", in.A.pointshell(), in.B.field(), VpsParams(in.params));
-  };
-  RegisterContactModel(std::move(repulsion));
+  RegisterContactModel({
+      .name = "vps",
+      .description = "Voxmap-PointShell (McNeely et al. 1999/2006): voxel-centre pointshell, tangent-plane forces",
+      .needs = {.field_A = true, .field_B = true, .depth_in_field_voxels = true},
+      .make = MakeVps,
+  });
+  RegisterContactModel({
+      .name = "vps-repulsion",
+      .description = "VPS tangent-plane forces on the scene's own (repulsion) pointshell of A",
+      .needs = {.pointshell_A = true, .field_B = true, .depth_in_field_voxels = true},
+      .make = [](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
+        return std::make_unique<VpsContactModel>("vps-repulsion", in.A.pointshell(), in.B.field(), VpsParams(in.params));
+      },
+  });
 }
 
 }  // namespace contactlab

@@ -3,13 +3,13 @@
 #include <cstdio>
 #include <exception>
 
-#include "baselines/register_baselines.h"
+#include "contact/register_contact_models.h"
 #include "experiment/scene.h"
 #include "experiment/scene_assets.h"
 
 int main(int argc, char** argv) try {
   if (argc < 2) return std::fprintf(stderr, "usage: %s SCENE.yaml [MODEL]\n", argv[0]), 2;
-  contactlab::RegisterBaselineContactModels();  // "fcl", "bullet", "vps", ... beside "pointshell"
+  contactlab::RegisterContactModels();  // "fcl", "bullet", "vps", ... beside "pointshell"
   const contactlab::Scene scene = contactlab::LoadScene(argv[1]);
   contactlab::SceneAssets assets(scene, contactlab::AssetOptions{});  // builds or reads the field and pointshell
   const auto model = contactlab::MakeSceneContactModel(argc > 2 ? argv[2] : scene.models.front(), scene, assets);

@@ -26,7 +26,7 @@
 #include "bench_common.h"
 #include "placed_scene.h"
 #include "roofline.h"
-#include "contact/pointshell_contact_model.h"
+#include "pointshell_contact/pointshell_contact_model.h"
 #include "experiment/contact_placement.h"
 #include "experiment/scene_assets.h"
 #include "experiment/scene.h"
@@ -48,7 +48,7 @@ void BM_ContactCycle(benchmark::State& state, std::string scene_file, int points
     state.SkipWithError("could not place the bodies in contact");
     return;
   }
-  PointshellContactParams params = p.scene.model;
+  PointshellContactParams params = PaperModelParams(p.scene);
   params.coherence = variant >= kTreeCoherence;
   params.max_point_speed = 0.5;
   PointshellContactModel model(variant == kLinear ? PointshellContactModel::Variant::kLinear

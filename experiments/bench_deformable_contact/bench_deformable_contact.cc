@@ -44,8 +44,8 @@
 #include <time.h>
 
 #include "bench_common.h"
-#include "contact/deformable_contact_models.h"
-#include "contact/pointshell_contact_model.h"
+#include "pointshell_contact/deformable_contact_models.h"
+#include "pointshell_contact/pointshell_contact_model.h"
 #include "deform/reduced_integrator.h"
 #include "deform/reduced_point_batch.h"
 #include "experiment/contact_placement.h"
@@ -178,7 +178,7 @@ Prepared& Prepare(const SceneCase& c, int r, ReducedModelKind kind = ReducedMode
   // Settle the coupled loop at the pressed pose (2 s of simulated time).
   const auto model = p.assets->A.reduced_model();
   DeformablePointshellContactModel contact(DeformablePointshellContactModel::Variant::kTree,
-                                           p.assets->A.deformable_pointshell(), p.assets->B.field(), p.scene.model);
+                                           p.assets->A.deformable_pointshell(), p.assets->B.field(), PaperModelParams(p.scene));
   ReducedIntegrator integrator(model->forces, IntegratorFor(p.scene));
   ReducedVector f = ReducedVector::Zero(r);
   ReducedMatrix K = ReducedMatrix::Zero(r, r);
@@ -231,10 +231,10 @@ void BM_PerNode(benchmark::State& state, SceneCase c, int r, Shell shell, Points
   Prepared& p = *prepared;
   std::unique_ptr<ContactModel> model;
   if (shell == kRigid) {
-    model = std::make_unique<PointshellContactModel>(variant, p.assets->A.pointshell(), p.assets->B.field(), p.scene.model);
+    model = std::make_unique<PointshellContactModel>(variant, p.assets->A.pointshell(), p.assets->B.field(), PaperModelParams(p.scene));
   } else {
     model = std::make_unique<DeformablePointshellContactModel>(variant, p.assets->A.deformable_pointshell(),
-                                                               p.assets->B.field(), p.scene.model);
+                                                               p.assets->B.field(), PaperModelParams(p.scene));
   }
   // The cycle's query: reduced force and stiffness wanted from the deformable model.
   const ReducedState rest(r);
@@ -352,7 +352,7 @@ void BM_Cycle(benchmark::State& state, SceneCase c, int r, std::int64_t budget, 
   if (prepared == nullptr) return;
   Prepared& p = *prepared;
   const auto reduced = p.assets->A.reduced_model();
-  PointshellContactParams params = p.scene.model;
+  PointshellContactParams params = PaperModelParams(p.scene);
   params.coherence = coherence;
   DeformablePointshellContactModel model(DeformablePointshellContactModel::Variant::kTree,
                                          p.assets->A.deformable_pointshell(), p.assets->B.field(), params);

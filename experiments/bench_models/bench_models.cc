@@ -23,10 +23,10 @@
 #include <string>
 #include <vector>
 
-#include "baselines/register_baselines.h"
+#include "contact/register_contact_models.h"
 #include "bench_common.h"
 #include "placed_scene.h"
-#include "contact/pointshell_contact_model.h"
+#include "pointshell_contact/pointshell_contact_model.h"
 #include "experiment/contact_placement.h"
 #include "experiment/scene_assets.h"
 #include "experiment/scene.h"
@@ -116,12 +116,15 @@ ContactModel* GetModel(Prepared& p, const std::string& name, std::string* error)
     return nullptr;
   }
   try {
-    // "MODEL@pressure_lattice=N": the model with the scene's model block at that lattice.
+    // "MODEL@KEY=VALUE": the model with that key of the scene's model section (e.g. its own
+    // pressure_lattice), read as a scene file reads it.
     Scene scene = p.scene;
     std::string model = name;
-    if (const auto at = name.find("@pressure_lattice="); at != std::string::npos) {
+    if (const auto at = name.find('@'); at != std::string::npos) {
       model = name.substr(0, at);
-      scene.model.pressure_lattice = std::stoi(name.substr(at + std::string("@pressure_lattice=").size()));
+      std::string key_value = name.substr(at + 1);
+      key_value.replace(key_value.find('='), 1, ": ");
+      scene = WithModelSection(scene, ConfigNode::LoadString("{" + key_value + "}", name));
     }
     return (p.models[name] = MakeSceneContactModel(model, scene, *p.assets)).get();
   } catch (const Error& err) {
@@ -224,7 +227,7 @@ void BM_ModelAtSpeed(benchmark::State& state, std::string scene_file, std::strin
 }
 
 void RegisterAll() {
-  RegisterBaselineContactModels();
+  RegisterContactModels();
   std::vector<std::string> scenes;
   if (bench::QuickRun()) {
     scenes = {"scenes/sphere-on-plate.yaml"};

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "baselines/register_baselines.h"
+#include "contact/register_contact_models.h"
 #include "bench_common.h"
 #include "experiment/scene.h"
 #include "experiment/scene_assets.h"
@@ -37,7 +37,7 @@ std::vector<Pose> PathPoses(const Pose& X_WA, int n) {
 }
 
 void BM_QueryLoop(benchmark::State& state) {
-  RegisterBaselineContactModels();
+  RegisterContactModels();
   const std::string model_name = kModels[state.range(0)];
   const int n = bench::QuickRun() ? 100 : int(state.range(1));
   const Scene scene = LoadScene(RequireDataFile("scenes/sphere-on-plate.yaml"));

@@ -17,11 +17,11 @@
 #include <string>
 #include <vector>
 
-#include "baselines/register_baselines.h"
+#include "contact/register_contact_models.h"
 #include "baselines/vps/vps_contact_model.h"
 #include "bench_common.h"
 #include "placed_scene.h"
-#include "contact/pointshell_contact_model.h"
+#include "pointshell_contact/pointshell_contact_model.h"
 #include "experiment/contact_placement.h"
 #include "experiment/scene.h"
 #include "experiment/scene_assets.h"
@@ -60,7 +60,7 @@ void BM_Cycle(benchmark::State& state, std::string scene_file, int points, int l
 }
 
 void RegisterAll() {
-  RegisterBaselineContactModels();
+  RegisterContactModels();
   struct SceneCase {
     std::string file;
     int points, levels;

@@ -2,7 +2,7 @@
 #include <exception>
 #include <iostream>
 
-#include "baselines/register_baselines.h"
+#include "contact/register_contact_models.h"
 #include "cli/command_registry.h"
 #include "util/error.h"
 #include "util/temporary_files.h"
@@ -19,7 +19,7 @@ std::vector<CommandAdder>& CommandRegistry() {
 int main(int argc, char** argv) {
   // SIGINT/SIGTERM while an output is being written removes its temporary file.
   contactlab::InstallTemporaryFileCleanupOnSignals();
-  contactlab::RegisterBaselineContactModels();
+  contactlab::RegisterContactModels();
   CLI::App app{"ContactLab: a testbed for 6-DoF haptic contact (Barbič & James 2008 and baselines)"};
   app.set_version_flag("--version", std::string("contactlab ") + CONTACTLAB_VERSION);
   app.require_subcommand(1);

@@ -1,65 +1,29 @@
 #include "contact/model_registry.h"
 
 #include <algorithm>
+#include <atomic>
 #include <map>
-#include <type_traits>
 
-#include "contact/deformable_contact_models.h"
-#include "contact/pointshell_contact_model.h"
 #include "util/error.h"
 
 namespace contactlab {
 namespace {
 
-// What each side of the paper's model is made from (contact/rigid_sides.h, deformable_sides.h).
-RigidShell::Source SideSource(ContactBody& A, std::type_identity<RigidShell>) { return A.pointshell(); }
-DeformableShell::Source SideSource(ContactBody& A, std::type_identity<DeformableShell>) {
-  return A.deformable_pointshell();
-}
-GridField::Source SideSource(ContactBody& B, std::type_identity<GridField>) { return B.field(); }
-DeformedField::Source SideSource(ContactBody& B, std::type_identity<DeformedField>) { return B.deformed_field(); }
-
-// The paper's model for the bodies' sides: the shell side from A, the field side from B.
-template <class Shell, class Field>
-std::unique_ptr<ContactModel> MakePaperModel(PointshellVariant variant, const ContactModelInputs& in) {
-  return std::make_unique<PointshellFieldModel<Shell, Field>>(variant, SideSource(in.A, std::type_identity<Shell>{}),
-                                                               SideSource(in.B, std::type_identity<Field>{}), in.params);
-}
-template <class Shell>
-std::unique_ptr<ContactModel> MakePaperModelFor(PointshellVariant variant, const ContactModelInputs& in) {
-  return in.B.deformable() ? MakePaperModel<Shell, DeformedField>(variant, in) : MakePaperModel<Shell, GridField>(variant, in);
-}
-
-ContactModelEntry PaperModel(PointshellVariant variant) {
-  const bool linear = variant == PointshellVariant::kLinear;
-  ContactModelEntry e;
-  e.name = linear ? "pointshell-linear" : "pointshell";
-  e.description = linear ? "Barbič & James 2008: every point of one pointshell level against B's field"
-                         : "Barbič & James 2008: breadth-first pointshell tree against B's field";
-  e.needs.pointshell_A = true;
-  e.needs.field_B = true;
-  e.needs.depth_in_field_voxels = true;
-  e.needs.deformable_A = true;
-  e.needs.deformable_B = true;
-  e.check = [variant](const PointshellContactParams& params, bool, bool deformable_B, std::string_view where) {
-    CheckPointshellCoherence(params, variant, deformable_B, where);
-  };
-  e.make = [variant](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
-    return in.A.deformable() ? MakePaperModelFor<DeformableShell>(variant, in) : MakePaperModelFor<RigidShell>(variant, in);
-  };
-  return e;
-}
-
 std::map<std::string, ContactModelEntry, std::less<>>& Registry() {
-  static std::map<std::string, ContactModelEntry, std::less<>> registry = [] {
-    std::map<std::string, ContactModelEntry, std::less<>> r;
-    for (auto v : {PointshellVariant::kTree, PointshellVariant::kLinear}) {
-      ContactModelEntry e = PaperModel(v);
-      r[e.name] = std::move(e);
-    }
-    return r;
-  }();
+  static std::map<std::string, ContactModelEntry, std::less<>> registry;
   return registry;
+}
+
+std::atomic<std::uint64_t> registry_version{0};
+
+// The registered names whose entry's NEEDS member says it renders that body's deformation, as
+// a list for messages.
+std::string ModelsThatDeform(bool ContactModelNeeds::*renders) {
+  std::string list;
+  for (const auto& [n, e] : Registry()) {
+    if (e.needs.*renders) list += (list.empty() ? "" : ", ") + n;
+  }
+  return list.empty() ? "none" : list;
 }
 
 }  // namespace
@@ -68,6 +32,15 @@ void RegisterContactModel(ContactModelEntry entry) {
   if (entry.name.empty() || !entry.make) Fail("contact model registry", "an entry needs a name and a factory");
   std::string name = entry.name;
   Registry()[name] = std::move(entry);
+  ++registry_version;
+}
+
+std::uint64_t ContactModelRegistryVersion() { return registry_version.load(); }
+
+std::vector<const ContactModelEntry*> ContactModelEntries() {
+  std::vector<const ContactModelEntry*> entries;
+  for (const auto& [n, e] : Registry()) entries.push_back(&e);
+  return entries;
 }
 
 const ContactModelEntry* FindContactModel(std::string_view name) {
@@ -76,8 +49,9 @@ const ContactModelEntry* FindContactModel(std::string_view name) {
   return it == registry.end() ? nullptr : &it->second;
 }
 
-void CheckContactModel(std::string_view name, const PointshellContactParams& params, std::string_view body_A,
-                       bool deformable_A, std::string_view body_B, bool deformable_B, std::string_view where) {
+void CheckContactModel(std::string_view name, const ContactParams& params, const ParamValues& model_params,
+                       std::string_view body_A, bool deformable_A, std::string_view body_B, bool deformable_B,
+                       std::string_view where) {
   const ContactModelEntry* entry = FindContactModel(name);
   if (entry == nullptr) {
     std::string known;
@@ -87,18 +61,18 @@ void CheckContactModel(std::string_view name, const PointshellContactParams& par
   }
   if (deformable_A && !entry->needs.deformable_A) {
     Fail(where, "contact model '" + std::string(name) + "' treats body A as rigid, but '" + std::string(body_A) +
-                    "' is deformable (models that deform it: pointshell, pointshell-linear)");
+                    "' is deformable (models that deform it: " + ModelsThatDeform(&ContactModelNeeds::deformable_A) + ")");
   }
   if (deformable_B && !entry->needs.deformable_B) {
     Fail(where, "contact model '" + std::string(name) + "' treats body B as rigid, but '" + std::string(body_B) +
-                    "' is deformable (models that deform it: pointshell, pointshell-linear)");
+                    "' is deformable (models that deform it: " + ModelsThatDeform(&ContactModelNeeds::deformable_B) + ")");
   }
-  if (entry->check) entry->check(params, deformable_A, deformable_B, where);
+  if (entry->check) entry->check(params, model_params, deformable_A, deformable_B, where);
 }
 
 std::unique_ptr<ContactModel> MakeContactModel(std::string_view name, const ContactModelInputs& inputs,
                                                std::string_view where) {
-  CheckContactModel(name, inputs.params, inputs.A.body_name(), inputs.A.deformable(), inputs.B.body_name(),
+  CheckContactModel(name, inputs.params, inputs.model_params, inputs.A.body_name(), inputs.A.deformable(), inputs.B.body_name(),
                     inputs.B.deformable(), where);
   return FindContactModel(name)->make(inputs);
 }

@@ -1,21 +1,24 @@
-// Contact models made by name (DESIGN.md), so a scene or an experiment config can list several
-// and compare them. The paper's two models register here; every baseline folder registers its
-// own through contactlab_contact_model() in its CMakeLists (baselines/README.md, "adding a
-// model"). A model declares what it needs from the two bodies, so callers build only that and
-// never guess from a model's name.
+// Contact models made by name (docs/architecture.md, "The contact interface"), so a scene or an
+// experiment config can list several and compare them. Every model, the paper's included,
+// registers from its own folder through contactlab_contact_model() in its CMakeLists
+// (docs/architecture.md, "Adding a model"). An entry is the model's whole face to the rest: its
+// name, what it needs from the two bodies (so callers build only that and never guess from a
+// model's name), its own keys under the scene's `model:` section and its blocks under
+// `bodies[]`, each a parameter table; contact/ names no model and no model's keys.
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "contact/body_contact_params.h"
 #include "contact/contact_model.h"
-#include "contact/pointshell_contact_params.h"
+#include "contact/contact_params.h"
+#include "util/param_values.h"
 
 namespace contactlab {
 
@@ -41,9 +44,10 @@ class ContactBody {
   virtual std::shared_ptr<const DeformablePointshell> deformable_pointshell() { return nullptr; }
   // The deformed distance field of a deformable body in the field role (paper sec. 4.2).
   virtual std::shared_ptr<const DeformedDistanceField> deformed_field() { return nullptr; }
-  // Its parameters in the volumetric models (pressure modulus, sphere packing).
-  virtual const BodyContactParams& contact_params() const {
-    static const BodyContactParams defaults;
+  // Its blocks of the models' per-body parameters (ContactModelEntry::body_blocks: a pressure
+  // modulus, a sphere packing), each read by its model as values.Get(ITS_TABLE).
+  virtual const ParamValues& model_blocks() const {
+    static const ParamValues defaults;
     return defaults;
   }
   // Where a model may keep data it derives from the body's field (an inner-sphere packing): a
@@ -75,12 +79,33 @@ struct ContactModelNeeds {
   bool deformable_B = false;
 };
 
-// What a factory is given: the two bodies and the scene's model parameters.
+// What a factory is given: the two bodies and the scene's model section.
 struct ContactModelInputs {
   ContactBody& A;
   ContactBody& B;
-  const PointshellContactParams& params;  // the scene's "model:" section
+  const ContactParams& params;      // the keys every model shares
+  const ParamValues& model_params;  // each model's own keys (ContactModelEntry::pair_params)
+
+  // The model's own keys, read by the table its entry carries (defaults when the scene gave none).
+  template <class Spec>
+  const Spec& Params(const ParamTable<Spec>& table) const {
+    return model_params.Get(table);
+  }
 };
+
+// A model's block of parameters as the registry carries it: TABLE's rows over a ParamValues
+// (util/param_values.h), so scenes read, check, sweep and document it without knowing its
+// struct. KEY is where a per-body block sits under bodies[] ("pressure_field"; "" for a pair
+// block, whose keys sit in `model:` itself), DOC its meaning there.
+struct ModelParamBlock {
+  std::string key;
+  std::string doc;
+  std::shared_ptr<const ParamTable<ParamValues>> table;
+};
+template <class Spec>
+ModelParamBlock ParamBlock(const ParamTable<Spec>& table, std::string key = {}, std::string doc = {}) {
+  return {std::move(key), std::move(doc), std::make_shared<const ParamTable<ParamValues>>(ErasedTable(table))};
+}
 
 using ContactModelFactory = std::function<std::unique_ptr<ContactModel>(const ContactModelInputs&)>;
 
@@ -95,9 +120,15 @@ struct ContactModelEntry {
   // Its contact is a surface it keeps for display (ContactModel::KeepContactSurface): the viewer
   // draws it, and makes no other model to ask.
   bool contact_surface = false;
+  // Its own keys under the scene's `model:` section (ParamBlock(ITS_TABLE)); none when it has
+  // none. Entries of one folder may carry the same table: its keys are read once.
+  std::optional<ModelParamBlock> pair_params;
+  // Its blocks under each of the scene's bodies (ParamBlock(ITS_TABLE, "key", "meaning")).
+  std::vector<ModelParamBlock> body_blocks;
   // What the model refuses of the scene's parameters given which bodies deform, checked before
   // any body data is built: throws Error naming WHERE. Null: nothing beyond `needs`.
-  std::function<void(const PointshellContactParams&, bool deformable_A, bool deformable_B, std::string_view where)>
+  std::function<void(const ContactParams& params, const ParamValues& model_params, bool deformable_A,
+                     bool deformable_B, std::string_view where)>
       check;
 };
 
@@ -111,11 +142,19 @@ const ContactModelEntry* FindContactModel(std::string_view name);
 // as DEFORMABLE_A and DEFORMABLE_B with PARAMS, without building anything: throws
 // Error("WHERE: unknown contact model 'x' (known: ...)") when NAME is unknown, Error when a body
 // deforms and the model does not render it, and the entry's check's errors.
-void CheckContactModel(std::string_view name, const PointshellContactParams& params, std::string_view body_A,
-                       bool deformable_A, std::string_view body_B, bool deformable_B, std::string_view where);
+void CheckContactModel(std::string_view name, const ContactParams& params, const ParamValues& model_params,
+                       std::string_view body_A, bool deformable_A, std::string_view body_B, bool deformable_B,
+                       std::string_view where);
 // Makes model NAME from INPUTS, after CheckContactModel; the factory's errors otherwise.
 std::unique_ptr<ContactModel> MakeContactModel(std::string_view name, const ContactModelInputs& inputs,
                                                std::string_view where);
+
+// Counts the registrations so far: a table built from the entries (a scene's model section, its
+// body blocks) is rebuilt when it changed.
+std::uint64_t ContactModelRegistryVersion();
+
+// Every registered entry, sorted by name (references included).
+std::vector<const ContactModelEntry*> ContactModelEntries();
 
 // Every registered name but the references-only ones, sorted.
 std::vector<std::string> ContactModelNames();

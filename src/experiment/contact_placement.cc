@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "contact/pointshell_contact_model.h"
+#include "pointshell_contact/pointshell_contact_model.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -47,10 +47,14 @@ Placement PlaceAtDepth(ContactModel& model, const Pose& X_WA_start, const Pose& 
   return out;
 }
 
+PointshellContactParams PaperModelParams(const Scene& scene) {
+  return PointshellParamsOf(scene.model, scene.model_params.Get(PointshellOwnParamTable()));
+}
+
 Pose TouchAlong(const Scene& scene, SceneAssets& assets, bool move_B, const Pose& X_WA, const Pose& X_WB,
                 const Eigen::Vector3d& direction, double depth, const std::string& where) {
   const Eigen::Vector3d dir = direction.normalized();
-  PointshellContactParams params = scene.model;
+  PointshellContactParams params = PaperModelParams(scene);
   params.level = -1;
   PointshellContactModel probe(PointshellContactModel::Variant::kLinear, assets.A.pointshell(), assets.B.field(), params);
   // Moving B by s along DIR is moving A by s against it; start a full reach back.

@@ -467,7 +467,7 @@ void CheckModelsAgainstScenes(const ExperimentConfig& c, const std::vector<Job>&
     const std::string where = c.file + (c.sweep.empty() ? std::string() : " (job " + job.Label() + ")");
     for (const std::string& name : job.models) {
       if (FindContactModel(name) == nullptr) continue;
-      CheckContactModel(name, s.model, s.pointshell_body.name, s.pointshell_body.deformable.has_value(),
+      CheckContactModel(name, s.model, s.model_params, s.pointshell_body.name, s.pointshell_body.deformable.has_value(),
                         s.field_body.name, s.field_body.deformable.has_value(), where);
     }
   }

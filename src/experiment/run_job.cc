@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "contact/coherence_guard.h"
+#include "pointshell_contact/pointshell_contact_params.h"
 #include "experiment/contact_placement.h"
 #include "experiment/metrics.h"
 #include "experiment/runner.h"
@@ -37,7 +38,7 @@ std::unique_ptr<ContactModel> MakeReference(const ExperimentConfig& config, cons
   if (config.reference_points > 0) ref_scene.pointshell_body.pointshell.points = config.reference_points;
   if (config.reference_levels > 0) ref_scene.pointshell_body.pointshell.levels = config.reference_levels;
   if (config.reference_resolution > 0) ref_scene.field_body.field.resolution = config.reference_resolution;
-  ref_scene.model.level = -1;
+  ref_scene.model_params.Mutable(PointshellOwnParamTable()).level = -1;  // the paper's model at its deepest level
   ref_scene.node_budget = 0;
   *assets = std::make_unique<SceneAssets>(ref_scene, options.assets);
   return MakeSceneContactModel(config.reference_model, ref_scene, **assets);

@@ -1,11 +1,17 @@
 #include "experiment/scene.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
 #include <type_traits>
 
+#include "contact/model_registry.h"
+#include "contact/register_contact_models.h"
 #include "sdf/sparse_field.h"
 #include "util/error.h"
 #include "util/hasher.h"
@@ -97,23 +103,87 @@ const ParamTable<DeformableSpec>& DampingParams() {
   return table;
 }
 
+// A value built from the registered contact models (their keys and blocks), built again when a
+// model registers after it was built (a test's model, a Python model). Earlier versions are
+// kept, so a reference handed out stays valid.
+template <class T, class Build>
+const T& BuiltFromRegistry(Build build) {
+  static std::mutex mutex;
+  static std::vector<std::unique_ptr<const T>> versions;
+  static std::uint64_t built_at = 0;
+  RegisterContactModels();
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (versions.empty() || built_at != ContactModelRegistryVersion()) {
+    built_at = ContactModelRegistryVersion();
+    versions.push_back(std::make_unique<const T>(build()));
+  }
+  return *versions.back();
+}
+
+// The registered models' blocks of one kind (MEMBER: a pair block, or each body block), each
+// table once however many entries carry it, with the models that carry it.
+struct RegisteredBlock {
+  const ModelParamBlock* block;
+  std::string models;
+};
+std::vector<RegisteredBlock> RegisteredBlocks(bool body) {
+  std::vector<RegisteredBlock> blocks;
+  for (const ContactModelEntry* e : ContactModelEntries()) {
+    std::vector<const ModelParamBlock*> own;
+    if (!body && e->pair_params) own.push_back(&*e->pair_params);
+    if (body) {
+      for (const ModelParamBlock& b : e->body_blocks) own.push_back(&b);
+    }
+    for (const ModelParamBlock* b : own) {
+      const auto same = std::find_if(blocks.begin(), blocks.end(), [b](const RegisteredBlock& r) {
+        return r.block->table->name() == b->table->name() && r.block->key == b->key;
+      });
+      if (same == blocks.end()) {
+        blocks.push_back({b, e->name});
+      } else {
+        same->models += ", " + e->name;
+      }
+    }
+  }
+  return blocks;
+}
+
+// Fails when KEY is already one of ROWS, naming the model that brings it again.
+template <class Spec>
+void ExpectNewKey(const std::vector<ParamRow<Spec>>& rows, const std::string& key, const std::string& section,
+                  const std::string& models) {
+  for (const auto& r : rows) {
+    if (r.key == key) {
+      throw std::logic_error("contact model(s) " + models + ": key '" + key + "' of " + section + " is taken");
+    }
+  }
+}
+
 const ParamTable<Scene>& ModelSectionParams() {
-  using P = ParamRows<Scene>;
-  static const ParamTable<Scene> table = [] {
-    std::vector<ParamRow<Scene>> rows = P::Lifted(PointshellContactParamTable(), PARAM_MEMBER(model));
+  return BuiltFromRegistry<ParamTable<Scene>>([] {
+    using P = ParamRows<Scene>;
+    std::vector<ParamRow<Scene>> rows = P::Lifted(ContactParamTable(), PARAM_MEMBER(model));
     rows.push_back(P::Integer("node_budget", PARAM_MEMBER(node_budget), 0, P::kNoLimit,
                               "warm threshold V_W: nodes per cycle before graceful degradation (0: unlimited)")
                        .Sweepable()
                        .Example("500"));
     rows.push_back(P::Integer("warm_threshold", PARAM_MEMBER(node_budget), 0, P::kNoLimit, "node_budget's other name")
                        .Example("500"));
+    // Each registered model's own keys, read into the scene's model_params.
+    for (const RegisteredBlock& r : RegisteredBlocks(false)) {
+      for (ParamRow<Scene>& row : P::Lifted(*r.block->table, PARAM_MEMBER(model_params))) {
+        ExpectNewKey(rows, row.key, "the model section", r.models);
+        rows.push_back(std::move(row));
+      }
+    }
     return ParamTable<Scene>(
-        "model", PointshellContactParamTable().doc() + " node_budget is handed to each query.", std::move(rows),
-        [](const ConfigNode& n, Scene*) {
+        "model",
+        ContactParamTable().doc() + " node_budget is handed to each query; the other keys are the registered models' "
+                                    "own (the model named first in the meaning).",
+        std::move(rows), [](const ConfigNode& n, Scene*) {
           if (n.Has("node_budget") && n.Has("warm_threshold")) n.Fail("give node_budget or warm_threshold, not both");
         });
-  }();
-  return table;
+  });
 }
 
 }  // namespace
@@ -272,11 +342,10 @@ const ParamTable<DeformableSpec>& DeformableParams() {
 }
 
 const ParamTable<BodySpec>& BodyParams() {
+  return BuiltFromRegistry<ParamTable<BodySpec>>([] {
   using P = ParamRows<BodySpec>;
   constexpr unsigned kAll = kShapesField | kShapesPointshell | kShapesReducedModel;  // through the mesh's content
-  static const ParamTable<BodySpec> table(
-      "bodies[]", "One of the scene's two bodies: its mesh, placement, role, and the blocks that build its models.",
-      {
+  std::vector<ParamRow<BodySpec>> rows = {
           P::Text("name", PARAM_MEMBER(name), "the body's name (default: its mesh)"),
           P::Custom("mesh", "text", "a file on the data search path, or a procedural shape \"sphere:0.05\"",
                     "the body's surface (required)",
@@ -300,10 +369,6 @@ const ParamTable<BodySpec>& BodyParams() {
                     "pointshell (body A) or field (body B); the two bodies take different roles (required)"),
           P::Block("field", PARAM_MEMBER(field), FieldParams(), "its distance field"),
           P::Block("pointshell", PARAM_MEMBER(pointshell), PointshellParams(), "its pointshell"),
-          P::Block("pressure_field", PARAM_MEMBER(contact.pressure_field), PressureFieldParams(),
-                   "its pressure field in the pressure-field model"),
-          P::Block("inner_spheres", PARAM_MEMBER(contact.inner_spheres), InnerSphereParams(),
-                   "its sphere packing in the inner-spheres model"),
           P::Custom("deformable", "block", "see `bodies[].deformable`", "a reduced deformable model (absent: rigid)",
                     [](const ConfigNode& v, BodySpec* b) { b->deformable = DeformableParams().Parse(v); },
                     [](const BodySpec& b, Hasher* h) {
@@ -311,7 +376,15 @@ const ParamTable<BodySpec>& BodyParams() {
                     },
                     [](const BodySpec&) { return std::string("absent"); })
               .Shapes(kShapesReducedModel),
-      },
+  };
+  // Each registered model's blocks, read into the body's model_blocks.
+  for (const RegisteredBlock& r : RegisteredBlocks(true)) {
+    ExpectNewKey(rows, r.block->key, "bodies[]", r.models);
+    rows.push_back(P::Block(r.block->key, PARAM_MEMBER(model_blocks), *r.block->table, r.block->doc));
+  }
+  return ParamTable<BodySpec>(
+      "bodies[]", "One of the scene's two bodies: its mesh, placement, role, and the blocks that build its models.",
+      std::move(rows),
       [](const ConfigNode& n, BodySpec* b) {
         (void)n.Get("mesh");  // required
         (void)n.Get("role");
@@ -321,7 +394,7 @@ const ParamTable<BodySpec>& BodyParams() {
               "a deformable body needs a dense field (its reduced model and deformed field read every sample)");
         }
       });
-  return table;
+  });
 }
 
 Pose ParsePoseNode(const ConfigNode& n) {
@@ -356,6 +429,7 @@ Pose ParsePoseNode(const ConfigNode& n) {
 }
 
 Scene ParseScene(const ConfigNode& n) {
+  RegisterContactModels();  // a scene names models and their keys: every model the build holds
   n.ExpectKeys({"name", "bodies", "model", "models"});
   Scene scene;
   scene.file = n.file();
@@ -420,7 +494,7 @@ std::array<SceneBlock, 2> EveryBodyBlock(const std::string& key, const ParamTabl
 
 const std::vector<SceneBlock>& SceneBlocks() {
   const auto none = [](const Scene&, const std::string&) { return std::string(); };
-  static const std::vector<SceneBlock> blocks = [&] {
+  return BuiltFromRegistry<std::vector<SceneBlock>>([&] {
     std::vector<SceneBlock> b;
     const auto add = [&b](std::array<SceneBlock, 2> both) { b.insert(b.end(), both.begin(), both.end()); };
     b.push_back({"", "", {}, BodyParams().Reference("bodies[]"), none});
@@ -443,16 +517,15 @@ const std::vector<SceneBlock>& SceneBlocks() {
                                         : std::string();
        }},
     });
-    add(EveryBodyBlock("pressure_field", PressureFieldParams(),
-                       [](const BodySpec& body) -> const PressureFieldSpec& { return body.contact.pressure_field; }));
-    add(EveryBodyBlock("inner_spheres", InnerSphereParams(),
-                       [](const BodySpec& body) -> const InnerSphereSpec& { return body.contact.inner_spheres; }));
+    for (const RegisteredBlock& r : RegisteredBlocks(true)) {
+      add(EveryBodyBlock(r.block->key, *r.block->table,
+                         [](const BodySpec& body) -> const ParamValues& { return body.model_blocks; }));
+    }
     b.push_back(
       {"scene.model.", "", ModelSectionParams().SweepKeys(), ModelSectionParams().Reference("model"),
        [](const Scene& s, const std::string& k) { return ShowKey(ModelSectionParams(), s, k); }});
     return b;
-  }();
-  return blocks;
+  });
 }
 
 std::string SceneReference() {

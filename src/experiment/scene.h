@@ -32,9 +32,11 @@
 //       role: field
 //   model: {k_C: 2000, L: 10, node_budget: 0, max_point_speed: 1.0, coherence: true, ...}
 //
-// The model section is the paper's model's parameters (contact/pointshell_contact_params.h,
-// which every registered model draws its shared parameters from) plus node_budget (alias
-// warm_threshold), the warm threshold V_W handed to each query.
+// The model section is the keys every model shares (contact/contact_params.h), node_budget
+// (alias warm_threshold), the warm threshold V_W handed to each query, and each registered
+// model's own keys (ContactModelEntry::pair_params: the paper's level, pointshell-ccd's proxy_*,
+// ...). A body's blocks beyond field, pointshell and deformable are the registered models'
+// (ContactModelEntry::body_blocks: pressure_field, inner_spheres, ...).
 #pragma once
 
 #include <filesystem>
@@ -43,8 +45,7 @@
 #include <string>
 #include <vector>
 
-#include "contact/body_contact_params.h"
-#include "contact/pointshell_contact_params.h"
+#include "contact/contact_params.h"
 #include "deform/anchoring.h"
 #include "deform/deformed_distance_field.h"
 #include "deform/reduced_forces.h"
@@ -53,6 +54,7 @@
 #include "geometry/pose.h"
 #include "util/config_node.h"
 #include "util/param_table.h"
+#include "util/param_values.h"
 
 namespace contactlab {
 
@@ -110,7 +112,7 @@ struct BodySpec {
   FieldSpec field;
   PointshellSpec pointshell;
   std::optional<DeformableSpec> deformable;  // none: rigid
-  BodyContactParams contact;         // pressure_field and inner_spheres blocks (volumetric models)
+  ParamValues model_blocks;          // the registered models' blocks (pressure_field, inner_spheres, ...)
 };
 
 
@@ -119,7 +121,8 @@ struct Scene {
   std::string file;                  // where it was read from
   BodySpec pointshell_body;          // body A
   BodySpec field_body;               // body B
-  PointshellContactParams model;     // the "model:" section
+  ContactParams model;               // the "model:" section's keys every model shares
+  ParamValues model_params;          // its keys of each registered model
   std::int64_t node_budget = 0;      // warm threshold V_W, nodes per cycle; 0 = unlimited
   std::vector<std::string> models;   // model names to compare (default: pointshell)
 

@@ -6,6 +6,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "contact/register_contact_models.h"
 #include "geometry/mesh_io.h"
 #include "geometry/procedural_shapes.h"
 #include "pointshell/build_pointshell.h"
@@ -277,7 +278,8 @@ SceneDynamics MakeSceneDynamics(SceneAssets& assets, double dt) {
 }
 
 std::unique_ptr<ContactModel> MakeSceneContactModel(std::string_view name, const Scene& scene, SceneAssets& assets) {
-  return MakeContactModel(name, ContactModelInputs{assets.A, assets.B, scene.model},
+  RegisterContactModels();
+  return MakeContactModel(name, ContactModelInputs{assets.A, assets.B, scene.model, scene.model_params},
                           scene.file.empty() ? std::string_view("scene") : std::string_view(scene.file));
 }
 

@@ -75,7 +75,7 @@ class BodyAssets final : public ContactBody {
   // The body's deformed distance field (paper sec. 4.2): proxies fitted to its field, embedded
   // in its reduced model, with the scene's deformable.field options (built in memory).
   std::shared_ptr<const DeformedDistanceField> deformed_field() override;
-  const BodyContactParams& contact_params() const override { return spec_.contact; }
+  const ParamValues& model_blocks() const override { return spec_.model_blocks; }
   // OPTIONS' cache folder / "derived-HASH.bin", HASH of the field's key and KEY; empty when
   // caching is off.
   std::filesystem::path DerivedCachePath(std::string_view key) override;

@@ -101,6 +101,7 @@ class ParamTable {
   const std::string& name() const { return name_; }
   const std::string& doc() const { return doc_; }
   const std::vector<ParamRow<Spec>>& rows() const { return rows_; }
+  const Check& check() const { return check_; }
   const ParamRow<Spec>* Find(const std::string& key) const {
     for (const auto& r : rows_) {
       if (r.key == key) return &r;

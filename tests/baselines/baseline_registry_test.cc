@@ -3,7 +3,7 @@
 // rejects a bad penalty parameter.
 #include <gtest/gtest.h>
 
-#include "baselines/register_baselines.h"
+#include "contact/register_contact_models.h"
 #include "contact/model_registry.h"
 #include "geometry/procedural_shapes.h"
 #include "pointshell/build_pointshell.h"
@@ -57,10 +57,11 @@ class ShapeBody final : public ContactBody {
 };
 
 TEST(BaselineRegistry, EveryModelAsksForWhatItDeclaresAndPushesTheBoxDown) {
-  RegisterBaselineContactModels();
+  RegisterContactModels();
   ShapeBody ball(MakeSphere(0.02, 3));                       // A
   ShapeBody box(MakeBox(Eigen::Vector3d(0.04, 0.04, 0.01), 2));  // B, top face at z = 0.01
-  PointshellContactParams params;
+  const ContactParams params;
+  const ParamValues own;  // every model's own keys at their defaults
   ContactQuery q;
   q.X_WA = Pose::FromTranslation(Eigen::Vector3d(0.001, -0.002, 0.0285));  // 1.5 mm deep
   int models = 0;
@@ -70,7 +71,7 @@ TEST(BaselineRegistry, EveryModelAsksForWhatItDeclaresAndPushesTheBoxDown) {
     SCOPED_TRACE(name);
     ball.ResetCounts();
     box.ResetCounts();
-    std::unique_ptr<ContactModel> model = MakeContactModel(name, {ball, box, params}, "test");
+    std::unique_ptr<ContactModel> model = MakeContactModel(name, {ball, box, params, own}, "test");
     EXPECT_EQ(ball.shells > 0, e->needs.pointshell_A);
     EXPECT_EQ(ball.fields > 0, e->needs.field_A);
     EXPECT_EQ(ball.meshes > 0, e->needs.mesh_A);
@@ -87,16 +88,17 @@ TEST(BaselineRegistry, EveryModelAsksForWhatItDeclaresAndPushesTheBoxDown) {
 }
 
 TEST(BaselineRegistry, EveryModelRejectsANegativeStiffness) {
-  RegisterBaselineContactModels();
+  RegisterContactModels();
   ShapeBody ball(MakeSphere(0.02, 2));
   ShapeBody box(MakeBox(Eigen::Vector3d(0.04, 0.04, 0.01), 1));
-  PointshellContactParams params;
+  ContactParams params;
   params.penalty.k_C = -5;
+  const ParamValues own;
   for (const std::string& name : ContactModelNames()) {
     const ContactModelEntry* e = FindContactModel(name);
     if (e == nullptr) continue;
     try {
-      MakeContactModel(name, {ball, box, params}, "test");
+      MakeContactModel(name, {ball, box, params, own}, "test");
       ADD_FAILURE() << name << " accepted k_C = -5";
     } catch (const Error& err) {
       EXPECT_NE(std::string(err.what()).find("k_C"), std::string::npos) << name << ": " << err.what();

@@ -14,7 +14,7 @@
 #include "baselines/reference/halfspace_limit_reference.h"
 #include "baselines/reference/surface_quadrature_reference.h"
 #include "baselines/reference/volume_reference.h"
-#include "baselines/register_baselines.h"
+#include "contact/register_contact_models.h"
 #include "contact/model_registry.h"
 #include "geometry/procedural_shapes.h"
 #include "util/error.h"
@@ -204,7 +204,7 @@ TEST(HalfspaceLimitReference, SphereOnATurnedBoxMatchesTheClosedForm) {
 }
 
 TEST(VolumeReference, IsAReferenceOnlyModel) {
-  RegisterBaselineContactModels();
+  RegisterContactModels();
   const ContactModelEntry* e = FindContactModel("volume");
   ASSERT_NE(e, nullptr);
   EXPECT_TRUE(e->reference_only);

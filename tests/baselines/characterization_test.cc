@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "baselines/reference/analytic_references.h"
-#include "baselines/register_baselines.h"
+#include "contact/register_contact_models.h"
 #include "deformable_references.h"
 #include "experiment/scene_assets.h"
 #include "experiment/scene.h"
@@ -238,7 +238,7 @@ Scene CaseScene(const PairCase& c, int order, bool deformable_A, bool deformable
 }
 
 TEST(Characterization, EveryModelWithinRecordedErrorOfReferences) {
-  RegisterBaselineContactModels();
+  RegisterContactModels();
   testing::TempDir cache;
   const AssetOptions options = testing::Assets(cache);
 

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "baselines/register_baselines.h"
+#include "contact/register_contact_models.h"
 #include "contact/model_registry.h"
 #include "experiment/scene.h"
 #include "experiment/deformable_fixture.h"
@@ -68,7 +68,7 @@ const std::vector<Pose>& Motions() {
 }
 
 TEST(FrameCovariance, EveryModelTurnsItsWrenchWithTheScene) {
-  RegisterBaselineContactModels();
+  RegisterContactModels();
   testing::TempDir cache;
   const AssetOptions options = testing::Assets(cache);
   const std::vector<Pose>& motions = Motions();

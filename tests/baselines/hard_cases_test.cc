@@ -67,8 +67,8 @@
 #include <vector>
 
 #include "allocation_counter.h"
-#include "baselines/register_baselines.h"
-#include "contact/body_contact_params.h"
+#include "contact/register_contact_models.h"
+#include "baselines/pressure_field/pressure_field_params.h"
 #include "contact/model_registry.h"
 #include "experiment/deformable_fixture.h"
 #include "experiment/scene.h"
@@ -871,7 +871,7 @@ Eigen::Vector3d Centre(const DistanceField& field) {
 }
 
 TEST(HardCases, DeepPenetrationPastTheMedialAxis) {
-  RegisterBaselineContactModels();
+  RegisterContactModels();
   testing::TempDir cache;
   HardCaseRunner runner(cache);
   runner.Run(BallThroughPlate());
@@ -879,7 +879,7 @@ TEST(HardCases, DeepPenetrationPastTheMedialAxis) {
 }
 
 TEST(HardCases, ThinAndSharpFeatures) {
-  RegisterBaselineContactModels();
+  RegisterContactModels();
   testing::TempDir cache;
   HardCaseRunner runner(cache);
   runner.Run(BladeOnBlock());
@@ -891,7 +891,7 @@ TEST(HardCases, ThinAndSharpFeatures) {
 }
 
 TEST(HardCases, DegenerateContact) {
-  RegisterBaselineContactModels();
+  RegisterContactModels();
   testing::TempDir cache;
   HardCaseRunner runner(cache);
   runner.Run(Identical("sphere:0.01,3", "identical-spheres"));
@@ -903,7 +903,7 @@ TEST(HardCases, DegenerateContact) {
 }
 
 TEST(HardCases, MotionExtremesWithCoherence) {
-  RegisterBaselineContactModels();
+  RegisterContactModels();
   testing::TempDir cache;
   HardCaseRunner runner(cache);
   runner.Run(Teleport(true));
@@ -913,7 +913,7 @@ TEST(HardCases, MotionExtremesWithCoherence) {
 }
 
 TEST(HardCases, InputExtremes) {
-  RegisterBaselineContactModels();
+  RegisterContactModels();
   testing::TempDir cache;
   HardCaseRunner runner(cache);
   runner.Run(Quaternion(1.0, "quaternion-unit"));
@@ -977,7 +977,7 @@ HardCase Deformable(HardCase c, int which) {
 // (paper sec. 4): a deformable pointshell, and a deformed field whose pull-back reads the rest
 // field far inside the body.
 TEST(HardCases, DeformableBodiesThroughAPlateAndOverAPeg) {
-  RegisterBaselineContactModels();
+  RegisterContactModels();
   testing::TempDir cache;
   HardCaseRunner runner(cache);
   for (const int which : {1, 2}) {
@@ -988,7 +988,7 @@ TEST(HardCases, DeformableBodiesThroughAPlateAndOverAPeg) {
 
 // Fields of 8 and 128 cells along the longest side.
 TEST(HardCases, FieldsOf8And128Cells) {
-  RegisterBaselineContactModels();
+  RegisterContactModels();
   testing::TempDir cache;
   HardCaseRunner runner(cache);
   runner.Run(BallThroughPlate(8, 8, "fields-8"));
@@ -1003,7 +1003,7 @@ TEST(HardCases, FieldsOf512Cells) {
 #if defined(__SANITIZE_ADDRESS__)
   GTEST_SKIP() << "512-cell fields take more than 10 minutes under AddressSanitizer; the Release suite runs them";
 #endif
-  RegisterBaselineContactModels();
+  RegisterContactModels();
   testing::TempDir cache;
   HardCaseRunner runner(cache);
   HardCase c = BallThroughPlate(512, 512, "fields-512");
@@ -1038,7 +1038,7 @@ std::vector<TunnelTool> TunnelTools() {
 }
 
 TEST(HardCases, TunnellingAtSpeed) {
-  RegisterBaselineContactModels();
+  RegisterContactModels();
   testing::TempDir cache;
   AssetOptions options;
   options.cache_dir = cache.path();

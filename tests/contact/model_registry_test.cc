@@ -6,8 +6,9 @@
 
 #include <algorithm>
 
-#include "contact/pointshell_contact_model.h"
+#include "contact/register_contact_models.h"
 #include "contact/test_shells.h"
+#include "pointshell_contact/pointshell_contact_model.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -37,6 +38,9 @@ class FakeBody final : public ContactBody {
 };
 
 // A model of no force, standing for one a user adds in a folder of their own.
+// Every model the build holds, the paper's among them, registered as a program does.
+const bool kModelsRegistered = (RegisterContactModels(), true);
+
 class NoForceModel final : public ContactModel {
  public:
   std::string_view name() const override { return "no-force"; }
@@ -67,15 +71,18 @@ TEST(ModelRegistry, AFactoryGetsTheBodiesAndTheScenesParameters) {
   A.shell_ = testing::MakeNestedShell(p, n, {16, 64});
   B.field_ = testing::SampleField([](const Eigen::Vector3d& x) { return x.z(); }, Eigen::Vector3d(-2, -2, -2),
                                   Eigen::Vector3d(2, 2, 2), 0.05);
-  PointshellContactParams params;
+  ContactParams params;
   params.penalty = {.k_C = 123, .L = 0};
-  std::unique_ptr<ContactModel> model = MakeContactModel("pointshell-linear", {A, B, params}, "test");
+  ParamValues own;  // the paper's own keys: level 1, the shell's deepest
+  own.Mutable(PointshellOwnParamTable()).level = 1;
+  std::unique_ptr<ContactModel> model = MakeContactModel("pointshell-linear", {A, B, params, own}, "test");
   EXPECT_EQ(A.shells, 1);
   EXPECT_EQ(B.fields, 1);
   EXPECT_EQ(A.fields + A.meshes + B.shells + B.meshes, 0);  // nothing it does not need
   auto* paper = dynamic_cast<PointshellContactModel*>(model.get());
   ASSERT_NE(paper, nullptr);
   EXPECT_EQ(paper->params().penalty.k_C, 123);
+  EXPECT_EQ(paper->params().level, 1);
   ContactQuery q;
   q.X_WA = Pose::FromTranslation(Eigen::Vector3d(0, 0, 0.9));
   const ContactResult r = model->Evaluate(q);
@@ -93,15 +100,17 @@ TEST(ModelRegistry, AModelRegisteredFromOutsideIsMadeByName) {
   EXPECT_TRUE(std::is_sorted(names.begin(), names.end()));
   EXPECT_NE(std::find(names.begin(), names.end(), "no-force"), names.end());
   FakeBody A, B;
-  const PointshellContactParams params;
-  EXPECT_EQ(MakeContactModel("no-force", {A, B, params}, "test")->name(), "no-force");
+  const ContactParams params;
+  const ParamValues own;
+  EXPECT_EQ(MakeContactModel("no-force", {A, B, params, own}, "test")->name(), "no-force");
 }
 
 TEST(ModelRegistry, AnUnknownNameListsTheKnownOnes) {
   FakeBody A, B;
-  const PointshellContactParams params;
+  const ContactParams params;
+  const ParamValues own;
   try {
-    MakeContactModel("pointshel", {A, B, params}, "scene.yaml");
+    MakeContactModel("pointshel", {A, B, params, own}, "scene.yaml");
     FAIL() << "no error";
   } catch (const Error& e) {
     const std::string m = e.what();

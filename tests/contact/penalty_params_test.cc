@@ -6,7 +6,7 @@
 #include <cmath>
 #include <functional>
 
-#include "contact/pointshell_contact_params.h"
+#include "pointshell_contact/pointshell_contact_params.h"
 #include "util/config_node.h"
 #include "test_support.h"
 #include "util/error.h"
@@ -50,11 +50,20 @@ TEST(PenaltyParams, CheckRejectsZeroNegativeOrNonFiniteStiffnessAndNegativeL) {
   EXPECT_NE(ErrorOf([] { CheckPenaltyParams({.k_C = 1, .L = -2}, "m"); }).find("m: L"), std::string::npos);
 }
 
-// The model section's table (contact/pointshell_contact_params.h), reading TEXT as FILE with
-// "other" left to the caller.
+// The model section as the paper's model reads it: the shared keys' table
+// (contact/contact_params.h) and the paper's own (pointshell_contact/pointshell_contact_params.h),
+// reading TEXT as FILE with "other" left to the caller.
 PointshellContactParams ParseModel(const std::string& text, const std::string& file,
                                    PointshellContactParams base = {}) {
-  return PointshellContactParamTable().Parse(ConfigNode::LoadString(text, file), base, {"other"});
+  const ConfigNode node = ConfigNode::LoadString(text, file);
+  std::vector<std::string> own_keys = PointshellOwnParamTable().Keys();
+  std::vector<std::string> shared_keys = ContactParamTable().Keys();
+  own_keys.push_back("other");
+  shared_keys.push_back("other");
+  const ContactParams shared{base.penalty, base.coherence, base.max_point_speed, base.cycle_seconds, base.lipschitz};
+  const PointshellOwnParams own{base.level, base.cold_fraction, base.gradient};
+  return PointshellParamsOf(ContactParamTable().Parse(node, shared, own_keys),
+                            PointshellOwnParamTable().Parse(node, own, shared_keys));
 }
 
 TEST(PenaltyParams, ParseNamesTheFileLineAndKey) {

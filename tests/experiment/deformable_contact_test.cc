@@ -11,8 +11,8 @@
 #include <random>
 #include <sstream>
 
-#include "contact/deformable_contact_models.h"
-#include "contact/pointshell_contact_model.h"
+#include "pointshell_contact/deformable_contact_models.h"
+#include "pointshell_contact/pointshell_contact_model.h"
 #include "contact/model_registry.h"
 #include "deform/reduced_integrator.h"
 #include "experiment/experiment_config.h"
@@ -380,7 +380,8 @@ TEST(DeformableContact, ModelsThatTreatTheBodyAsRigidRefuseADeformableBody) {
   rigid_only.needs.field_B = true;
   rigid_only.make = [](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
     return std::make_unique<PointshellContactModel>(PointshellContactModel::Variant::kLinear, in.A.pointshell(),
-                                                    in.B.field(), in.params);
+                                                    in.B.field(),
+                                                    PointshellParamsOf(in.params, in.Params(PointshellOwnParamTable())));
   };
   RegisterContactModel(rigid_only);
   try {

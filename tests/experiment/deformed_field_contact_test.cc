@@ -13,7 +13,7 @@
 #include <random>
 #include <sstream>
 
-#include "contact/deformable_contact_models.h"
+#include "pointshell_contact/deformable_contact_models.h"
 #include "contact/model_registry.h"
 #include "deform/body_dynamics.h"
 #include "deform/reduced_integrator.h"

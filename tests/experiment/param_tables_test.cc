@@ -13,6 +13,7 @@
 #include <sstream>
 #include <string>
 
+#include "contact/model_registry.h"
 #include "experiment/experiment_config.h"
 #include "experiment/scene.h"
 #include "experiment/scene_assets.h"
@@ -94,9 +95,11 @@ TEST(ParamTable, EverySweepableSceneKeyIsASweepAxis) {
       find(PointshellParams());
       find(DeformableParams());
       find(DeformedFieldParams());
-      find(PointshellContactParamTable());
-      find(PressureFieldParams());
-      find(InnerSphereParams());
+      find(ContactParamTable());
+      for (const ContactModelEntry* e : ContactModelEntries()) {  // each model's own keys and blocks
+        if (e->pair_params) find(*e->pair_params->table);
+        for (const ModelParamBlock& b : e->body_blocks) find(*b.table);
+      }
       if (key == "node_budget") example = "500";
       ASSERT_FALSE(example.empty()) << key << " has no example value";
       const std::string axis = block.alias_prefix + key;

@@ -14,7 +14,7 @@ fail() { echo "FAILED: $*"; exit 1; }
 "$cmake" --install "$build" --prefix "$prefix" > "$work/install.log" 2>&1 || { cat "$work/install.log"; fail "cmake --install"; }
 for f in lib/cmake/ContactLab/ContactLabConfig.cmake lib/cmake/ContactLab/ContactLabConfigVersion.cmake \
          lib/cmake/ContactLab/ContactLabTargets.cmake lib/libcontactlab_contact.a \
-         include/contactlab/contact/contact_model.h include/contactlab/baselines/register_baselines.h; do
+         include/contactlab/contact/contact_model.h include/contactlab/contact/register_contact_models.h; do
   [ -f "$prefix/$f" ] || fail "the install lacks $f"
 done
 

@@ -8,7 +8,7 @@
 #include <set>
 #include <sstream>
 
-#include "baselines/register_baselines.h"
+#include "contact/register_contact_models.h"
 #include "experiment/result_csv.h"
 #include "experiment/runner.h"
 #include "scene_fixtures.h"
@@ -157,7 +157,7 @@ TEST(SceneView, PointsInContactAreThoseInsideTheFieldBody) {
 // A contact surface (pressure-field) drawn on the scene page: of the scene's models that keep
 // one, at the start poses, every corner inside both bodies; none for the other models.
 TEST(SceneView, ThePressureFieldsContactSurfaceLiesInsideBothBodies) {
-  RegisterBaselineContactModels();
+  RegisterContactModels();
   TempDir dir;
   std::ofstream(dir / "config.yaml") << kConfig;
   Scene scene = LoadExperimentConfig(dir / "config.yaml").scene;
@@ -190,7 +190,7 @@ TEST(SceneView, ThePressureFieldsContactSurfaceLiesInsideBothBodies) {
 // last among them, each evaluated at that frame's recorded pose: it lies inside the ball where
 // the ball was then, and is empty while the ball is clear of the plate.
 TEST(Replay, APressureFieldTrackCarriesItsSurfaceAtEvenlySpacedFrames) {
-  RegisterBaselineContactModels();
+  RegisterContactModels();
   TempDir dir;
   RunTiny(dir, {"models=[pointshell, pressure-field]", "trajectory.depth=0.005"});
   const Replay r = ReadReplay(dir / "out", std::nullopt);

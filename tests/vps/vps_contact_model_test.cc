@@ -11,9 +11,9 @@
 #include <cmath>
 #include <random>
 
-#include "baselines/register_baselines.h"
+#include "contact/register_contact_models.h"
 #include "baselines/vps/vps_pointshell.h"
-#include "contact/pointshell_contact_model.h"
+#include "pointshell_contact/pointshell_contact_model.h"
 #include "contact/test_shells.h"
 #include "experiment/scene_assets.h"
 #include "util/error.h"
@@ -329,7 +329,7 @@ Scene BallOnPlateScene() {
 }
 
 TEST(VpsRegistration, BothModelsAreMadeByNameAndPushThePlateDown) {
-  RegisterBaselineContactModels();
+  RegisterContactModels();
   const std::vector<std::string> names = ContactModelNames();
   EXPECT_NE(std::find(names.begin(), names.end(), "vps"), names.end());
   EXPECT_NE(std::find(names.begin(), names.end(), "vps-repulsion"), names.end());

@@ -1,6 +1,6 @@
 // Barbič & James 2008, sec. 2.1, 3 and 5: the checks every instance of the paper's model
 // makes, and its rigid x grid instance.
-#include "contact/pointshell_contact_model.h"
+#include "pointshell_contact/pointshell_contact_model.h"
 
 #include "pointshell/point_tree.h"
 #include "util/error.h"

@@ -1,4 +1,4 @@
-#include "contact/pointshell_contact_model.h"
+#include "pointshell_contact/pointshell_contact_model.h"
 
 #include <gtest/gtest.h>
 
@@ -13,7 +13,7 @@
 #include "geometry/procedural_shapes.h"
 #include "sdf/build_distance_field.h"
 #include "sdf/signed_distance_grid.h"
-#include "test_shells.h"
+#include "contact/test_shells.h"
 #include "util/error.h"
 
 namespace contactlab {

@@ -43,9 +43,9 @@
 #include "contact/contact_model.h"
 #include "contact/float_transform.h"
 #include "contact/halfspace_contacts.h"
-#include "contact/pointshell_contact_params.h"
-#include "contact/pointshell_traversal.h"
-#include "contact/reduced_force_sum.h"
+#include "pointshell_contact/pointshell_contact_params.h"
+#include "pointshell_contact/pointshell_traversal.h"
+#include "pointshell_contact/reduced_force_sum.h"
 
 namespace contactlab {
 

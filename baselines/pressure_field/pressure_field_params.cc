@@ -1,4 +1,4 @@
-#include "contact/body_contact_params.h"
+#include "baselines/pressure_field/pressure_field_params.h"
 
 namespace contactlab {
 
@@ -18,17 +18,15 @@ const ParamTable<PressureFieldSpec>& PressureFieldParams() {
   return table;
 }
 
-const ParamTable<InnerSphereSpec>& InnerSphereParams() {
-  using P = ParamRows<InnerSphereSpec>;
-  static const ParamTable<InnerSphereSpec> table(
-      "bodies[].inner_spheres",
-      "The body's inner-sphere packing in the inner-spheres model: greedy largest empty spheres inside its field.",
+const ParamTable<PressureLatticeSpec>& PressureLatticeParams() {
+  using P = ParamRows<PressureLatticeSpec>;
+  static const ParamTable<PressureLatticeSpec> table(
+      "pressure-field", "The lattice the pressure field's contact surface is extracted on.",
       {
-          P::Integer("spheres", PARAM_MEMBER(spheres), 1, kMaxInnerSpheres, "at most this many spheres")
-              .Sweepable().Example("500"),
-          P::Number("coverage", PARAM_MEMBER(coverage), AtLeast(0), AtMost(1),
-                    "stop once the spheres fill this fraction of the body's volume (0: no target)")
-              .Sweepable().Example("0.8"),
+          P::Integer("pressure_lattice", PARAM_MEMBER(lattice), 1, 16,
+                     "pressure-field: spacing of the lattice the contact surface is extracted on, in cells of the "
+                     "finer field (1: its grid)")
+              .Sweepable().Example("2"),
       });
   return table;
 }

@@ -26,7 +26,7 @@
 #include "contact/contact_accumulator.h"
 #include "contact/contact_model.h"
 #include "contact/float_transform.h"
-#include "contact/pointshell_contact_params.h"
+#include "pointshell_contact/pointshell_contact_params.h"
 #include "pointshell/pointshell.h"
 #include "sdf/distance_field.h"
 

@@ -2,8 +2,8 @@
 // (Barbič & James 2008, sec. 2.1, 3, 5), the rigid x grid instance of PointshellFieldModel.
 #pragma once
 
-#include "contact/pointshell_field_model.h"
-#include "contact/rigid_sides.h"
+#include "pointshell_contact/pointshell_field_model.h"
+#include "pointshell_contact/rigid_sides.h"
 
 namespace contactlab {
 

@@ -1,5 +1,5 @@
 // Barbič & James 2008, sec. 4: the deformable instances of the paper's contact model.
-#include "contact/deformable_contact_models.h"
+#include "pointshell_contact/deformable_contact_models.h"
 
 namespace contactlab {
 

@@ -25,7 +25,7 @@
 #include <memory>
 
 #include "contact/float_transform.h"
-#include "contact/reduced_force_sum.h"
+#include "pointshell_contact/reduced_force_sum.h"
 #include "deform/deformable_pointshell.h"
 #include "deform/deformed_distance_field.h"
 #include "deform/deformed_field_batch.h"

@@ -2,9 +2,9 @@
 // PointshellFieldModel whose shell side (sec. 4.1), field side (sec. 4.2) or both deform.
 #pragma once
 
-#include "contact/deformable_sides.h"
-#include "contact/pointshell_field_model.h"
-#include "contact/rigid_sides.h"
+#include "pointshell_contact/deformable_sides.h"
+#include "pointshell_contact/pointshell_field_model.h"
+#include "pointshell_contact/rigid_sides.h"
 
 namespace contactlab {
 

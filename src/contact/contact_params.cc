@@ -1,0 +1,33 @@
+#include "contact/contact_params.h"
+
+namespace contactlab {
+
+const ParamTable<ContactParams>& ContactParamTable() {
+  using P = ParamRows<ContactParams>;
+  static const ParamTable<ContactParams> table(
+      "model", "The parameters every contact model shares: the paper's penalty law (Barbič & James 2008), the "
+      "coherence bound and the haptic cycle.",
+      {
+          P::Number("k_C", PARAM_MEMBER(penalty.k_C), Above(0), NoUpperBound(),
+                    "contact stiffness of one point, N/m (sec. 2.1)")
+              .Unit("N/m").Sweepable().Example("3000"),
+          P::Integer("L", PARAM_MEMBER(penalty.L), 0, 1000000,
+                     "contacts at which the stiffness is scaled by L / l (0: no scaling; sec. 2.1)")
+              .Sweepable().Example("20"),
+          P::Boolean("coherence", PARAM_MEMBER(coherence),
+                     "temporal coherence (sec. 3) in the models that keep it (pointshell's tree variant, vps); "
+                     "refused against a deformed field")
+              .Sweepable().Example("true"),
+          P::Number("max_point_speed", PARAM_MEMBER(max_point_speed), Above(0), NoUpperBound(),
+                    "largest speed of any pointshell point relative to B, which coherence assumes")
+              .Unit("m/s").Sweepable().Example("0.5"),
+          P::Number("cycle_seconds", PARAM_MEMBER(cycle_seconds), Above(0), NoUpperBound(), "one haptic cycle")
+              .Unit("s").Sweepable().Example("0.002"),
+          P::Number("lipschitz", PARAM_MEMBER(lipschitz), AtLeast(1), NoUpperBound(),
+                    "bound on |grad d| assumed by culling and coherence (paper: 1)")
+              .Sweepable().Example("1.5"),
+      });
+  return table;
+}
+
+}  // namespace contactlab

@@ -1,0 +1,24 @@
+// The parameters every contact model shares, read from a scene's "model:" section: the penalty
+// law (Barbič & James 2008, sec. 2.1), the coherence bound (sec. 3) and the haptic cycle. A
+// model's own keys live in its own folder, in the table its registry entry carries
+// (model_registry.h, ContactModelEntry::pair_params).
+#pragma once
+
+#include "contact/penalty_params.h"
+#include "util/param_table.h"
+
+namespace contactlab {
+
+struct ContactParams {
+  PenaltyParams penalty;         // k_C and L (sec. 2.1)
+  bool coherence = false;        // temporal coherence (sec. 3), in the models that keep it
+  double max_point_speed = 1.0;  // m/s, largest speed of any point of A relative to B
+  double cycle_seconds = 1e-3;   // duration of one haptic cycle, seconds
+  double lipschitz = 1.0;        // bound on |grad d| assumed by culling and coherence (paper: 1)
+};
+
+// The parameters above as a table (util/param_table.h): the scene's model section reads them
+// through it, each value checked, the error naming file, line and key.
+const ParamTable<ContactParams>& ContactParamTable();
+
+}  // namespace contactlab
