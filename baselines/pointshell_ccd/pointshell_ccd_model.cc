@@ -24,6 +24,37 @@ bool UnitPose(const Pose& pose, Pose* out) {
   return true;
 }
 
+// Constraints that contradict each other (the proxy deep inside B, past a medial surface) drive
+// the multipliers up without bound: the correction to GOAL's straight step is kept within the
+// straight step's length plus twice DEEPEST_VIOLATION (a consistent set never needs more:
+// undoing the step and backing out of the deepest point). RADIUS weighs rotations as lengths.
+void LimitCorrection(const BlendMotion& goal, double radius, double deepest_violation, Eigen::Vector3d* v,
+                     Eigen::Vector3d* w) {
+  const double reach = goal.v.norm() + goal.w.norm() * radius + 2 * deepest_violation;
+  if (const double dv = (*v - goal.v).norm(); dv > reach) *v = goal.v + (reach / dv) * (*v - goal.v);
+  if (const double dw = (*w - goal.w).norm() * radius; dw > reach) *w = goal.w + (reach / dw) * (*w - goal.w);
+}
+
+// K_B of the spring with the proxy sliding: -M^½ P M^½ with P the projector onto the range of
+// G (the sum of u u^T over the tight constraints, A's frame), turned into the world frame by
+// A's pose X_WA, into *K_B. K and KR: the translational and rotational stiffness of M.
+void SlidingStiffness(const Matrix6d& G, double k, double kr, const Pose& X_WA, Matrix6d* K_B) {
+  const Eigen::SelfAdjointEigenSolver<Matrix6d> eig(G);  // (G over every tight constraint)
+  const Vector6d ev = eig.eigenvalues();
+  const double top = ev.maxCoeff();
+  Matrix6d P = Matrix6d::Zero();
+  for (int j = 0; j < 6; ++j) {
+    if (ev[j] > 1e-9 * top) P.noalias() += eig.eigenvectors().col(j) * eig.eigenvectors().col(j).transpose();
+  }
+  Vector6d root_m;
+  root_m << Eigen::Vector3d::Constant(std::sqrt(k)), Eigen::Vector3d::Constant(std::sqrt(kr));
+  const Matrix6d K_A = -(root_m.asDiagonal() * P * root_m.asDiagonal());
+  // Rows and twists were in A's frame; K_B is in the world frame.
+  Matrix6d T = Matrix6d::Zero();
+  T.topLeftCorner<3, 3>() = T.bottomRightCorner<3, 3>() = X_WA.R();
+  *K_B = T * K_A * T.transpose();  // assigned, not returned: Eigen evaluates it through a temporary, as before
+}
+
 }  // namespace
 
 void PointshellCcdParams::Check(std::string_view where) const {
@@ -63,6 +94,77 @@ bool PointshellCcdModel::Proxy(Pose* X_WB_proxy) const {
   return true;
 }
 
+double PointshellCcdModel::LoadConstraints(int n, const Eigen::Vector3d& o, Eigen::Vector3d* v, Eigen::Vector3d* w,
+                                           double* deepest) {
+  const double l = params_.offset, k = params_.stiffness, kr = params_.rot_stiffness;
+  *deepest = 0;
+  double deepest_violation = 0;  // largest l - d_i
+  for (int i = 0; i < n; ++i) {
+    const NearPoint& c = near_[i];
+    moment_[i] = (c.p_A - o).cross(c.gradient_A);
+    const double diag = c.gradient_A.squaredNorm() / k + moment_[i].squaredNorm() / kr;
+    inv_diag_[i] = diag > 0 ? 1 / diag : 0;
+    // Warm start from the point's latest multiplier.
+    const double mu = point_multiplier_[std::size_t(c.point)];
+    multiplier_[i] = mu;
+    if (mu > 0) {
+      *v -= (mu / k) * c.gradient_A;
+      *w -= (mu / kr) * moment_[i];
+    }
+    *deepest = std::max(*deepest, -c.distance);
+    deepest_violation = std::max(deepest_violation, l - c.distance);
+  }
+  return deepest_violation;
+}
+
+void PointshellCcdModel::SolveMultipliers(int n, Eigen::Vector3d* v, Eigen::Vector3d* w) {
+  const double l = params_.offset, k = params_.stiffness, kr = params_.rot_stiffness;
+  for (int sweep = 0; sweep < kSweeps && n > 0; ++sweep) {
+    double worst = 0;
+    for (int i = 0; i < n; ++i) {
+      const NearPoint& c = near_[i];
+      const double violation = c.gradient_A.dot(*v) + moment_[i].dot(*w) - (c.distance - l);
+      const double mu = std::max(0.0, multiplier_[i] + violation * inv_diag_[i]);
+      const double dmu = mu - multiplier_[i];
+      if (dmu != 0) {
+        *v -= (dmu / k) * c.gradient_A;
+        *w -= (dmu / kr) * moment_[i];
+        multiplier_[i] = mu;
+      }
+      worst = std::max(worst, violation);
+    }
+    if (worst <= kViolationTolerance * l) break;
+  }
+}
+
+void PointshellCcdModel::KeepMultipliers(int n) {
+  for (int i = 0; i < warm_count_; ++i) point_multiplier_[std::size_t(warm_points_[i])] = 0;
+  for (int i = 0; i < n; ++i) {
+    point_multiplier_[std::size_t(near_[i].point)] = multiplier_[i];
+    warm_points_[i] = near_[i].point;
+  }
+  warm_count_ = n;
+}
+
+int PointshellCcdModel::TightConstraints(int n, const Eigen::Vector3d& v, const Eigen::Vector3d& w,
+                                         Matrix6d* G) const {
+  const double l = params_.offset, k = params_.stiffness, kr = params_.rot_stiffness;
+  G->setZero();
+  int pushing = 0;
+  for (int i = 0; i < n; ++i) {
+    // A constraint the step ends on blocks its direction whether or not it happens to carry
+    // the multiplier (projected Gauss-Seidel puts a flat face's load on one of its points).
+    const NearPoint& c = near_[i];
+    const double slack = (c.distance - l) - (c.gradient_A.dot(v) + moment_[i].dot(w));
+    if (multiplier_[i] <= 0 && slack > kViolationTolerance * l) continue;
+    if (multiplier_[i] > 0) ++pushing;
+    Vector6d u;
+    u << near_[i].gradient_A / std::sqrt(k), moment_[i] / std::sqrt(kr);
+    G->noalias() += u * u.transpose();
+  }
+  return pushing;
+}
+
 ContactResult PointshellCcdModel::Evaluate(const ContactQuery& query) {
   ContactResult out;
   Pose X_WA, X_WB;
@@ -88,74 +190,21 @@ ContactResult PointshellCcdModel::Evaluate(const ContactQuery& query) {
   auto remaining = [&] { return budget > 0 ? std::max<std::int64_t>(1, budget - visited) : std::int64_t(0); };
 
   for (int it = 0; it < params_.iterations; ++it) {
+    // The active set at the proxy, and the straight step to B.
     const int n = search_.Near(X_AP_, 2 * l, lambda, remaining(), near_.data(), int(near_.size()), &visited, &degraded);
     const BlendMotion goal = BlendMotion::Between(X_AP_, X_AB);
     Eigen::Vector3d v = goal.v, w = goal.w;
-    const Eigen::Vector3d o = X_AP_.translation;
-    G.setZero();
-    pushing = 0;
-    deepest = 0;
-    double deepest_violation = 0;  // largest l - d_i
-    for (int i = 0; i < n; ++i) {
-      const NearPoint& c = near_[i];
-      moment_[i] = (c.p_A - o).cross(c.gradient_A);
-      const double diag = c.gradient_A.squaredNorm() / k + moment_[i].squaredNorm() / kr;
-      inv_diag_[i] = diag > 0 ? 1 / diag : 0;
-      // Warm start from the point's latest multiplier.
-      const double mu = point_multiplier_[std::size_t(c.point)];
-      multiplier_[i] = mu;
-      if (mu > 0) {
-        v -= (mu / k) * c.gradient_A;
-        w -= (mu / kr) * moment_[i];
-      }
-      deepest = std::max(deepest, -c.distance);
-      deepest_violation = std::max(deepest_violation, l - c.distance);
-    }
+    const double deepest_violation = LoadConstraints(n, X_AP_.translation, &v, &w, &deepest);
     // min 1/2 (ξ - ξ_goal)^T M (ξ - ξ_goal) subject to J_i ξ <= d_i - l: projected Gauss-Seidel
     // on the multipliers, ξ = ξ_goal - M^-1 sum J_i^T μ_i kept up to date.
-    for (int sweep = 0; sweep < kSweeps && n > 0; ++sweep) {
-      double worst = 0;
-      for (int i = 0; i < n; ++i) {
-        const NearPoint& c = near_[i];
-        const double violation = c.gradient_A.dot(v) + moment_[i].dot(w) - (c.distance - l);
-        const double mu = std::max(0.0, multiplier_[i] + violation * inv_diag_[i]);
-        const double dmu = mu - multiplier_[i];
-        if (dmu != 0) {
-          v -= (dmu / k) * c.gradient_A;
-          w -= (dmu / kr) * moment_[i];
-          multiplier_[i] = mu;
-        }
-        worst = std::max(worst, violation);
-      }
-      if (worst <= kViolationTolerance * l) break;
-    }
-    // Constraints that contradict each other (the proxy deep inside B, past a medial surface)
-    // drive the multipliers up without bound: the correction to the straight step is kept
-    // within the straight step's length plus twice the deepest violation (a consistent set
-    // never needs more: undoing the step and backing out of the deepest point).
-    const double reach = goal.v.norm() + goal.w.norm() * radius + 2 * deepest_violation;
-    if (const double dv = (v - goal.v).norm(); dv > reach) v = goal.v + (reach / dv) * (v - goal.v);
-    if (const double dw = (w - goal.w).norm() * radius; dw > reach) w = goal.w + (reach / dw) * (w - goal.w);
-    for (int i = 0; i < warm_count_; ++i) point_multiplier_[std::size_t(warm_points_[i])] = 0;
-    for (int i = 0; i < n; ++i) {
-      point_multiplier_[std::size_t(near_[i].point)] = multiplier_[i];
-      warm_points_[i] = near_[i].point;
-    }
-    warm_count_ = n;
-    for (int i = 0; i < n; ++i) {
-      // A constraint the step ends on blocks its direction whether or not it happens to carry
-      // the multiplier (projected Gauss-Seidel puts a flat face's load on one of its points).
-      const NearPoint& c = near_[i];
-      const double slack = (c.distance - l) - (c.gradient_A.dot(v) + moment_[i].dot(w));
-      if (multiplier_[i] <= 0 && slack > kViolationTolerance * l) continue;
-      if (multiplier_[i] > 0) ++pushing;
-      Vector6d u;
-      u << near_[i].gradient_A / std::sqrt(k), moment_[i] / std::sqrt(kr);
-      G.noalias() += u * u.transpose();
-    }
+    SolveMultipliers(n, &v, &w);
+    LimitCorrection(goal, radius, deepest_violation, &v, &w);
+    KeepMultipliers(n);
+    pushing = TightConstraints(n, v, w, &G);
     // Nowhere to go: a step of a thousandth of the offset is not taken (at rest in contact the
     // solve leaves rounding-sized steps, each a full search).
     if (v.norm() + w.norm() * radius <= 1e-3 * l) break;
+    // Along the step as far as the earliest impact.
     const BlendMotion step = BlendMotion::From(X_AP_, v, w);
     const ImpactResult hit = search_.Earliest(step, {l, 0.5 * l, lambda, remaining()});
     visited += hit.nodes_visited;
@@ -169,22 +218,7 @@ ContactResult PointshellCcdModel::Evaluate(const ContactQuery& query) {
   const Eigen::Vector3d phi = CalcRotationVector(X_WP.rotation * X_WB.rotation.conjugate());
   out.on_B.force = k * (X_WP.translation - X_WB.translation);
   out.on_B.torque = kr * phi;
-  if (pushing > 0) {
-    const Eigen::SelfAdjointEigenSolver<Matrix6d> eig(G);  // (G over every tight constraint)
-    const Vector6d ev = eig.eigenvalues();
-    const double top = ev.maxCoeff();
-    Matrix6d P = Matrix6d::Zero();
-    for (int j = 0; j < 6; ++j) {
-      if (ev[j] > 1e-9 * top) P.noalias() += eig.eigenvectors().col(j) * eig.eigenvectors().col(j).transpose();
-    }
-    Vector6d root_m;
-    root_m << Eigen::Vector3d::Constant(std::sqrt(k)), Eigen::Vector3d::Constant(std::sqrt(kr));
-    const Matrix6d K_A = -(root_m.asDiagonal() * P * root_m.asDiagonal());
-    // Rows and twists were in A's frame; K_B is in the world frame.
-    Matrix6d T = Matrix6d::Zero();
-    T.topLeftCorner<3, 3>() = T.bottomRightCorner<3, 3>() = X_WA.R();
-    out.K_B = T * K_A * T.transpose();
-  }
+  if (pushing > 0) SlidingStiffness(G, k, kr, X_WA, &out.K_B);
   out.stats.points_in_contact = pushing;
   out.stats.nodes_visited = visited;
   out.stats.level_rendered = degraded ? -1 : search_.shell().num_levels() - 1;

@@ -60,6 +60,20 @@ class PointshellCcdModel final : public ContactModel {
   const PointshellCcdParams& params() const { return params_; }
 
  private:
+  // The parts of one constrained step over the N active points in near_ (A's frame); (V, W) is
+  // the proxy's twist, starting at the straight step to B.
+  // Loads each point's moment about the proxy's origin O and inverse diagonal, and its
+  // multiplier warm-started from the point's latest one, applied to (V, W). *DEEPEST: the
+  // deepest penetration. Returns the largest violation l - d_i.
+  double LoadConstraints(int n, const Eigen::Vector3d& o, Eigen::Vector3d* v, Eigen::Vector3d* w, double* deepest);
+  // Projected Gauss-Seidel sweeps on the multipliers, (V, W) kept in step with them.
+  void SolveMultipliers(int n, Eigen::Vector3d* v, Eigen::Vector3d* w);
+  // Keeps the multipliers per point for the next step's warm start, forgetting the previous.
+  void KeepMultipliers(int n);
+  // The constraints the step (V, W) ends on: *G = sum of u u^T over them, u = M^-1/2 J^T.
+  // Returns how many of them push (carry a multiplier).
+  int TightConstraints(int n, const Eigen::Vector3d& v, const Eigen::Vector3d& w, Matrix6d* G) const;
+
   ImpactSearch search_;
   PointshellCcdParams params_;
   bool has_proxy_ = false;

@@ -72,6 +72,80 @@ double DistanceAt(const DistanceField& field, const Frame& F, const Eigen::Vecto
   return field.Distance(float(q.x()), float(q.y()), float(q.z()));
 }
 
+// What every impact search along one motion reads: B's field at the motion's frames, the level
+// points stop at, the Lipschitz bound λ and the slack eps.
+struct LevelAlongMotion {
+  const DistanceField& field;
+  const MotionFrames& frames;
+  double level, lambda, eps;
+};
+
+// The crossing of point P_A (A's frame) through LVL, bracketed in [A, B] with f(a) > 0 >= f(b),
+// f = d - LVL. Illinois regula falsi; the impact is taken at a (a time at which the point is
+// still above its level).
+double RefineCrossing(const LevelAlongMotion& m, const Eigen::Vector3d& p_A, double lvl, double a, double fa,
+                      double b, double fb) {
+  int side = 0;
+  for (int it = 0; it < kRefineSteps && b - a > kRefineWidth; ++it) {
+    double t = b - fb * (b - a) / (fb - fa);
+    if (!(t > a && t < b)) t = 0.5 * (a + b);
+    const double ft = DistanceAt(m.field, m.frames.At(t), p_A) - lvl;
+    if (ft > 0) {
+      a = t, fa = ft;
+      if (side == -1) fb *= 0.5;
+      side = -1;
+    } else {
+      b = t, fb = ft;
+      if (side == 1) fa *= 0.5;
+      side = 1;
+    }
+  }
+  return a;
+}
+
+// The earliest time in [T0, T_HIT) at which the point P_A (A's frame), moving no faster than
+// SPEED, reaches its level; T_HIT or later when it does not.
+double PointImpact(const LevelAlongMotion& m, const Eigen::Vector3d& p_A, double speed, double t0, double t_hit) {
+  double t = t0;
+  const double d0 = DistanceAt(m.field, m.frames.At(t), p_A);
+  const double lvl = t0 == 0 ? std::min(m.level, d0 - m.eps) : m.level;
+  // Steps may pass a dip down to the field's zero (never below it), or eps below a level
+  // that is itself below eps.
+  const double dip = std::max(m.eps, lvl);
+  double f = d0 - lvl;
+  if (!(f > 0)) return f <= 0 ? t0 : 2.0;  // at the level at t0 (NaN: a field without values here)
+  for (int step = 0; step < kPointSteps; ++step) {
+    const double t1 = t + std::max(f, dip) / (m.lambda * speed);
+    if (t1 >= t_hit) {
+      // The step passes the earliest impact so far. If the point may have reached its level
+      // by then and is below it there, the crossing is bracketed; otherwise it dips at most
+      // DIP below its level before t_hit.
+      if (f >= m.lambda * speed * (t_hit - t)) return 2.0;
+      const double fe = DistanceAt(m.field, m.frames.At(t_hit), p_A) - lvl;
+      return fe > 0 ? 2.0 : RefineCrossing(m, p_A, lvl, t, f, t_hit, fe);
+    }
+    const double f1 = DistanceAt(m.field, m.frames.At(t1), p_A) - lvl;
+    if (f1 <= 0) return RefineCrossing(m, p_A, lvl, t, f, t1, f1);
+    t = t1;
+    f = f1;
+  }
+  return t;  // out of steps: safe up to here
+}
+
+// Conservative advancement of a node (centre C in A's frame, bounding radius R, moving no
+// faster than SPEED) from T: the time from which its subtree may reach the level, at most
+// kNodeSteps steps on; T_HIT or later when none of it can before T_HIT.
+double AdvanceNode(const LevelAlongMotion& m, const Eigen::Vector3d& c, double r, double speed, double t,
+                   double t_hit) {
+  for (int step = 0; step < kNodeSteps; ++step) {
+    const double f = DistanceAt(m.field, m.frames.At(t), c) - m.lambda * r - m.level;
+    if (!(f > m.eps)) break;  // may reach the level from t on
+    t += f / (m.lambda * speed);
+    if (t >= t_hit) break;
+  }
+  return t;
+}
+
 }  // namespace
 
 BlendMotion BlendMotion::Between(const Pose& X0, const Pose& X1) {
@@ -103,56 +177,9 @@ ImpactResult ImpactSearch::Earliest(const BlendMotion& motion, const ImpactParam
   const double lambda = params.lipschitz, level = params.level;
   const double eps = std::max(params.slack, std::numeric_limits<double>::min());
   double t_hit = 1;
+  const LevelAlongMotion along{field, frames, level, lambda, eps};
 
-  // The earliest time in [T0, T_HIT) at which the point P_A, moving no faster than SPEED,
-  // reaches its level; T_HIT or later when it does not.
-  auto point_impact = [&](const Eigen::Vector3d& p_A, double speed, double t0) -> double {
-    double t = t0;
-    const double d0 = DistanceAt(field, frames.At(t), p_A);
-    const double lvl = t0 == 0 ? std::min(level, d0 - eps) : level;
-    // Steps may pass a dip down to the field's zero (never below it), or eps below a level
-    // that is itself below eps.
-    const double dip = std::max(eps, lvl);
-    double f = d0 - lvl;
-    if (!(f > 0)) return f <= 0 ? t0 : 2.0;  // at the level at t0 (NaN: a field without values here)
-    // Bracketed: f(a) > 0 >= f(b). Illinois regula falsi; the impact is taken at a (a time at
-    // which the point is still above its level).
-    auto refine = [&](double a, double fa, double b, double fb) {
-      int side = 0;
-      for (int it = 0; it < kRefineSteps && b - a > kRefineWidth; ++it) {
-        double m = b - fb * (b - a) / (fb - fa);
-        if (!(m > a && m < b)) m = 0.5 * (a + b);
-        const double fm = DistanceAt(field, frames.At(m), p_A) - lvl;
-        if (fm > 0) {
-          a = m, fa = fm;
-          if (side == -1) fb *= 0.5;
-          side = -1;
-        } else {
-          b = m, fb = fm;
-          if (side == 1) fa *= 0.5;
-          side = 1;
-        }
-      }
-      return a;
-    };
-    for (int step = 0; step < kPointSteps; ++step) {
-      const double t1 = t + std::max(f, dip) / (lambda * speed);
-      if (t1 >= t_hit) {
-        // The step passes the earliest impact so far. If the point may have reached its level
-        // by then and is below it there, the crossing is bracketed; otherwise it dips at most
-        // DIP below its level before t_hit.
-        if (f >= lambda * speed * (t_hit - t)) return 2.0;
-        const double fe = DistanceAt(field, frames.At(t_hit), p_A) - lvl;
-        return fe > 0 ? 2.0 : refine(t, f, t_hit, fe);
-      }
-      const double f1 = DistanceAt(field, frames.At(t1), p_A) - lvl;
-      if (f1 <= 0) return refine(t, f, t1, f1);
-      t = t1;
-      f = f1;
-    }
-    return t;  // out of steps: safe up to here
-  };
-
+  // Breadth-first over the tree from its top level, each node with the time it starts at.
   queue_.clear();
   queue_t_.clear();
   for (std::int32_t n = s.level_node_begin[0]; n < s.level_node_begin[1]; ++n) {
@@ -183,7 +210,7 @@ ImpactResult ImpactSearch::Earliest(const BlendMotion& motion, const ImpactParam
       const double speed = theta * (std::max((c - motion.o0).norm(), (c - o1).norm()) + r) + travel;
       if (!(speed > 0)) continue;  // a point on the rotation axis at B's origin does not move
       if (leaf) {
-        const double ti = point_impact(c, speed, t);
+        const double ti = PointImpact(along, c, speed, t, t_hit);
         if (ti < t_hit) {
           t_hit = ti;
           result.hit = true;
@@ -191,17 +218,8 @@ ImpactResult ImpactSearch::Earliest(const BlendMotion& motion, const ImpactParam
         }
         continue;
       }
-      bool culled = false;
-      for (int step = 0; step < kNodeSteps; ++step) {
-        const double f = DistanceAt(field, frames.At(t), c) - lambda * r - level;
-        if (!(f > eps)) break;  // may reach the level from t on
-        t += f / (lambda * speed);
-        if (t >= t_hit) {
-          culled = true;
-          break;
-        }
-      }
-      if (culled) continue;
+      t = AdvanceNode(along, c, r, speed, t, t_hit);
+      if (t >= t_hit) continue;  // culled: nothing of it reaches the level before the earliest impact
       for (std::int32_t ch = s.child_begin[n]; ch < s.child_begin[n + 1]; ++ch) {
         next_.push_back(ch);
         next_t_.push_back(t);

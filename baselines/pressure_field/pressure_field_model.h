@@ -37,6 +37,7 @@
 #include <string_view>
 #include <vector>
 
+#include "baselines/pressure_field/pressure_law.h"
 #include "contact/contact_model.h"
 #include "sdf/distance_field.h"
 
@@ -85,11 +86,9 @@ class PressureFieldModel final : public ContactModel {
   // Finds the blocks that may hold surface with M at X_LM; false when there is none.
   bool FindBlocks(const Pose& X_LM, std::int64_t* nodes);
   int CountPatches();
-  // p_M - p_L up to a positive factor, from the two fields at a point (a rigid side's pressure
-  // counts as infinite inside it): its zero set is the contact surface.
-  double Gap(double phi_M, double phi_L) const {
-    return M_.rigid ? -phi_M : L_.rigid ? phi_L : -kM_ * phi_M + kL_ * phi_L;
-  }
+  // The two bodies' pressures and their gap p_M - p_L (up to a positive factor; a rigid side's
+  // pressure counts as infinite inside it), whose zero set is the contact surface.
+  PressureLaw Law() const { return {M_.rigid, L_.rigid, kM_, kL_}; }
   // The wrench on B (world, about B's origin) of SUMS, the lattice body's, at the poses.
   Wrench OnB(const Sums& sums, const Pose& X_WA, const Pose& X_WB) const;
   Pose LatticeToOther(const Pose& X_WA, const Pose& X_WB) const {

@@ -143,41 +143,57 @@ void SparseFieldStorage::Validate(const std::string& where) const {
   }
 }
 
-SparseFieldStorage BuildSparseStorage(const TriangleMesh& mesh, const MeshSignedDistance& sign,
-                                      const FieldGrid& coarse_grid, std::vector<float> coarse, int band_voxels) {
-  SparseFieldStorage s;
-  s.bricks = coarse_grid.dims - Eigen::Vector3i::Ones();
-  s.coarse = std::move(coarse);
-  s.band_voxels = band_voxels;
-  const double H = coarse_grid.spacing, h = H / SparseFieldStorage::kBrick;
-  const double band = band_voxels * h, exact = band + h;
-  s.SetSpacing(h);
-  const Eigen::Vector3d o = coarse_grid.origin;
-  const Eigen::Vector3i last = SparseFieldStorage::kBrick * s.bricks;  // last fine sample per axis
-  const std::vector<double> corners = FlattenTriangles(mesh);
-  const int T = mesh.num_triangles();
+namespace {
+
+// What every stage of the sparse build reads: the fine lattice (origin O, spacing h, LAST fine
+// sample per axis), the coarse spacing H, the band (metres) and EXACT = band + h, the radius
+// within which samples get exact distances, and the flattened triangles (FlattenTriangles).
+struct SparseBuild {
+  const SparseFieldStorage& s;
+  Eigen::Vector3d o;
+  double H, h, band, exact;
+  Eigen::Vector3i last;
+  const std::vector<double>& corners;
 
   // Fine-sample index range [lo, hi] per axis within EXACT of triangle T's box.
-  auto sample_range = [&](int t, Eigen::Vector3i* lo, Eigen::Vector3i* hi) {
+  void SampleRange(int t, Eigen::Vector3i* lo, Eigen::Vector3i* hi) const {
     const double* c = corners.data() + 9 * std::size_t(t);
     for (int a = 0; a < 3; ++a) {
       const double mn = std::min({c[a], c[3 + a], c[6 + a]}) - exact, mx = std::max({c[a], c[3 + a], c[6 + a]}) + exact;
       (*lo)[a] = std::clamp(int(std::floor((mn - o[a]) / h)), 0, last[a]);
       (*hi)[a] = std::clamp(int(std::ceil((mx - o[a]) / h)), 0, last[a]);
     }
-  };
+  }
+  // The brick (BX, BY, BZ) of brick id ID.
+  Eigen::Vector3i BrickOf(std::int64_t id) const {
+    return {int(id % s.bricks.x()), int((id / s.bricks.x()) % s.bricks.y()),
+            int(id / (std::int64_t(s.bricks.x()) * s.bricks.y()))};
+  }
+};
 
-  // 1. (brick, triangle) for every brick whose samples a triangle's grown box reaches.
+// The bricks some triangle's grown box reaches (CANDIDATE, ascending ids), each with its
+// triangles: PAIRS[BEGIN[c] .. BEGIN[c + 1]) for candidate c.
+struct BrickCandidates {
   struct Pair {
     std::int64_t brick;
     std::int32_t tri;
   };
+  std::vector<Pair> pairs;
+  std::vector<std::int64_t> candidate;
+  std::vector<std::size_t> begin;
+};
+
+// (brick, triangle) for every brick whose samples a triangle's grown box reaches, in parallel,
+// then sorted and grouped by brick.
+BrickCandidates FindCandidateBricks(const SparseBuild& b, int num_triangles) {
+  using Pair = BrickCandidates::Pair;
+  const SparseFieldStorage& s = b.s;
   tbb::enumerable_thread_specific<std::vector<Pair>> local;
-  tbb::parallel_for(tbb::blocked_range<int>(0, T, 256), [&](const tbb::blocked_range<int>& r) {
+  tbb::parallel_for(tbb::blocked_range<int>(0, num_triangles, 256), [&](const tbb::blocked_range<int>& r) {
     auto& out = local.local();
     for (int t = r.begin(); t < r.end(); ++t) {
       Eigen::Vector3i lo, hi;
-      sample_range(t, &lo, &hi);
+      b.SampleRange(t, &lo, &hi);
       Eigen::Vector3i b0, b1;  // brick b holds samples [8 b, 8 b + 8]
       for (int a = 0; a < 3; ++a) {
         b0[a] = std::max(0, (lo[a] - 1) / SparseFieldStorage::kBrick);
@@ -188,21 +204,234 @@ SparseFieldStorage BuildSparseStorage(const TriangleMesh& mesh, const MeshSigned
           for (int bx = b0.x(); bx <= b1.x(); ++bx) out.push_back({s.BrickIndex(bx, by, bz), t});
     }
   });
-  std::vector<Pair> pairs;
+  BrickCandidates out;
+  std::vector<Pair>& pairs = out.pairs;
   for (auto& v : local) pairs.insert(pairs.end(), v.begin(), v.end());
   local.clear();
-  tbb::parallel_sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
-    return a.brick != b.brick ? a.brick < b.brick : a.tri < b.tri;
+  tbb::parallel_sort(pairs.begin(), pairs.end(), [](const Pair& x, const Pair& y) {
+    return x.brick != y.brick ? x.brick < y.brick : x.tri < y.tri;
   });
-  std::vector<std::int64_t> candidate;  // brick ids, ascending
-  std::vector<std::size_t> begin;       // their first pair
   for (std::size_t p = 0; p < pairs.size(); ++p) {
     if (p == 0 || pairs[p].brick != pairs[p - 1].brick) {
-      candidate.push_back(pairs[p].brick);
-      begin.push_back(p);
+      out.candidate.push_back(pairs[p].brick);
+      out.begin.push_back(p);
     }
   }
-  begin.push_back(pairs.size());
+  out.begin.push_back(pairs.size());
+  return out;
+}
+
+// Per-brick scratch, kBrickSamples entries each (x fastest): the best squared distance so far
+// and its triangle (-1: none within EXACT), the samples a triangle's plane leaves for the
+// vectorised test (position, brick index, result), the breadth-first queue, the signs and the
+// final values.
+struct BrickScratch {
+  double d2[kBrickSamples];
+  std::int32_t tri[kBrickSamples];
+  double qx[kBrickSamples], qy[kBrickSamples], qz[kBrickSamples], e2[kBrickSamples];
+  int ql[kBrickSamples], queue[kBrickSamples];
+  std::int8_t sgn[kBrickSamples];
+  float value[kBrickSamples];
+};
+
+// Lowers the brick's distances (first fine sample FIRST) to triangle T's where closer.
+void TriangleIntoBrick(const SparseBuild& b, int t, const Eigen::Vector3i& first, BrickScratch* w) {
+  const Eigen::Vector3d& o = b.o;
+  const double h = b.h, exact = b.exact;
+  double* d2 = w->d2;
+  Eigen::Vector3i lo, hi;
+  b.SampleRange(t, &lo, &hi);
+  lo = lo.cwiseMax(first);
+  hi = hi.cwiseMin(first + Eigen::Vector3i::Constant(SparseFieldStorage::kBrick));
+  const double* tc = b.corners.data() + 9 * std::size_t(t);
+  // The triangle's plane, s(p) = n . p - c with |n| = 1 (zero for a degenerate one): no
+  // point farther from the plane than from its best triangle so far can gain, and none
+  // farther than EXACT is wanted, which bounds each grid row to a run of samples.
+  const Eigen::Vector3d A(tc[0], tc[1], tc[2]), B(tc[3], tc[4], tc[5]), C(tc[6], tc[7], tc[8]);
+  Eigen::Vector3d n = (B - A).cross(C - A);
+  // Degenerate as PointTriangleDistanceSquared decides it: the union of its edges.
+  const bool degenerate = !(n.squaredNorm() > 1e-24 * (B - A).squaredNorm() * (C - A).squaredNorm());
+  n = degenerate ? Eigen::Vector3d::Zero() : n.normalized();
+  const double c = n.dot(A);
+  int m = 0;
+  for (int k = lo.z(); k <= hi.z(); ++k)
+    for (int j = lo.y(); j <= hi.y(); ++j) {
+      int i0 = lo.x(), i1 = hi.x();
+      const double s0 = n.x() * o.x() + n.y() * (o.y() + h * j) + n.z() * (o.z() + h * k) - c;  // s at i = 0
+      const double ds = n.x() * h;
+      if (std::abs(ds) > 1e-12 * h) {
+        const double a0 = (-exact - s0) / ds, a1 = (exact - s0) / ds;
+        i0 = std::max(i0, int(std::floor(std::min(a0, a1))));
+        i1 = std::min(i1, int(std::ceil(std::max(a0, a1))));
+      } else if (std::abs(s0) >= exact) {
+        continue;
+      }
+      for (int i = i0; i <= i1; ++i) {
+        const int l = (i - first.x()) + kEdge * ((j - first.y()) + kEdge * (k - first.z()));
+        const double plane = s0 + ds * i;
+        if (plane * plane >= d2[l]) continue;
+        if (degenerate) {
+          const double q[3] = {o.x() + h * i, o.y() + h * j, o.z() + h * k};
+          const double e2 = PointTriangleDistanceSquared(q, tc, tc + 3, tc + 6);
+          if (e2 < d2[l]) d2[l] = e2, w->tri[l] = t;
+          continue;
+        }
+        w->qx[m] = o.x() + h * i, w->qy[m] = o.y() + h * j, w->qz[m] = o.z() + h * k, w->ql[m] = l;
+        ++m;
+      }
+    }
+  // The samples the plane left, several per instruction.
+  PointsTriangleDistancesSquared(tc, w->qx, w->qy, w->qz, m, w->e2);
+  for (int r = 0; r < m; ++r) {
+    if (w->e2[r] < d2[w->ql[r]]) d2[w->ql[r]] = w->e2[r], w->tri[w->ql[r]] = t;
+  }
+}
+
+// Signs of the brick's exact samples (pseudo-normals) and their values. Returns whether there
+// is any; *NEAREST: the smallest exact distance.
+bool SignExactSamples(const SparseBuild& b, const MeshSignedDistance& sign, const Eigen::Vector3i& first,
+                      BrickScratch* w, double* nearest) {
+  *nearest = std::numeric_limits<double>::infinity();
+  bool any = false;
+  for (int l = 0; l < kBrickSamples; ++l) {
+    w->sgn[l] = 0;
+    if (w->tri[l] < 0) continue;
+    const int i = first.x() + l % kEdge, j = first.y() + (l / kEdge) % kEdge, k = first.z() + l / (kEdge * kEdge);
+    const double d = std::sqrt(w->d2[l]);
+    const bool inside = sign.Inside(b.o + b.h * Eigen::Vector3d(i, j, k), w->tri[l]);
+    w->sgn[l] = inside ? -1 : 1;
+    w->value[l] = float(inside ? -d : d);
+    *nearest = std::min(*nearest, d);
+    any = true;
+  }
+  return any;
+}
+
+// Spreads the exact samples' signs to the rest, breadth-first over the brick's 6-neighbour
+// grid: a sample farther than EXACT has no surface within EXACT > h of it, so its neighbours
+// share its sign.
+void SpreadSigns(BrickScratch* w) {
+  std::int8_t* sgn = w->sgn;
+  int* queue = w->queue;
+  int head = 0, tail = 0;
+  for (int l = 0; l < kBrickSamples; ++l) {
+    if (sgn[l] != 0) queue[tail++] = l;
+  }
+  while (head < tail) {
+    const int l = queue[head++];
+    const int i = l % kEdge, j = (l / kEdge) % kEdge, k = l / (kEdge * kEdge);
+    const int n[6] = {i > 0 ? l - 1 : -1, i < kEdge - 1 ? l + 1 : -1, j > 0 ? l - kEdge : -1,
+                      j < kEdge - 1 ? l + kEdge : -1, k > 0 ? l - kEdge * kEdge : -1,
+                      k < kEdge - 1 ? l + kEdge * kEdge : -1};
+    for (int m : n) {
+      if (m >= 0 && sgn[m] == 0) {
+        sgn[m] = sgn[l];
+        queue[tail++] = m;
+      }
+    }
+  }
+}
+
+// Samples of brick BRICK beyond EXACT: the bounds of the coarse cell, with EXACT as the floor.
+// Every sample of a stored brick is within 8 sqrt(3) h of one with |d| <= band, so the clamp to
+// band + 14 h loses nothing true and keeps the 16-bit step below 6e-4 h.
+void FillBeyondExact(const SparseBuild& b, const Eigen::Vector3i& brick, BrickScratch* w) {
+  const double band = b.band, h = b.h;
+  double corners_c[2][2][2];
+  CoarseCorners(b.s, brick.x(), brick.y(), brick.z(), corners_c);
+  for (int l = 0; l < kBrickSamples; ++l) {
+    if (w->tri[l] >= 0) continue;
+    const Eigen::Vector3d t(l % kEdge, (l / kEdge) % kEdge, l / (kEdge * kEdge));
+    Eigen::Vector3d unused;
+    const double v = CoarseCellValue(corners_c, t / SparseFieldStorage::kBrick, w->sgn[l] > 0, b.exact, b.s.margin,
+                                     b.H, &unused);
+    w->value[l] = float(std::clamp(v, -(band + 14 * h), band + 14 * h));
+  }
+}
+
+// The samples of candidate brick C: exact within EXACT of the surface, signed, the rest
+// bounded. Writes them to *KEPT and returns 0 when the brick is stored; else leaves *KEPT empty
+// and returns its slot code (kInside or kOutside).
+std::int32_t BuildCandidateBrick(const SparseBuild& b, const MeshSignedDistance& sign, const BrickCandidates& cand,
+                                 std::size_t c, BrickScratch* w, std::vector<float>* kept) {
+  const std::int64_t id = cand.candidate[c];
+  const Eigen::Vector3i brick = b.BrickOf(id);
+  const Eigen::Vector3i first = SparseFieldStorage::kBrick * brick;
+  // Exact distances from the brick's triangles.
+  std::fill(w->d2, w->d2 + kBrickSamples, b.exact * b.exact);
+  std::fill(w->tri, w->tri + kBrickSamples, -1);
+  for (std::size_t p = cand.begin[c]; p < cand.begin[c + 1]; ++p) TriangleIntoBrick(b, cand.pairs[p].tri, first, w);
+  // Their signs, spread to the rest.
+  double nearest;
+  if (!SignExactSamples(b, sign, first, w, &nearest)) {
+    return b.s.slot[id];  // the grown box reached the brick, no sample is within EXACT: as a far brick
+  }
+  SpreadSigns(w);
+  if (nearest > b.band) {  // not stored: every sample is beyond the band
+    return w->sgn[0] < 0 ? SparseFieldStorage::kInside : SparseFieldStorage::kOutside;
+  }
+  FillBeyondExact(b, brick, w);
+  kept->assign(w->value, w->value + kBrickSamples);
+  return 0;
+}
+
+// The Morton (z-curve) code of brick ID's position in S.
+std::uint64_t MortonCode(const SparseFieldStorage& s, std::int64_t id) {
+  const std::uint64_t b[3] = {std::uint64_t(id % s.bricks.x()), std::uint64_t((id / s.bricks.x()) % s.bricks.y()),
+                              std::uint64_t(id / (std::int64_t(s.bricks.x()) * s.bricks.y()))};
+  std::uint64_t code = 0;
+  for (int bit = 0; bit < 21; ++bit)
+    for (int a = 0; a < 3; ++a) code |= ((b[a] >> bit) & 1u) << (3 * bit + a);
+  return code;
+}
+
+// Stores the kept bricks in Morton order of their position, so bricks near in space are near
+// in memory, with samples quantised to one step for the whole field; the others get their
+// CODE as slot.
+void StoreBricks(const std::vector<std::int64_t>& candidate, const std::vector<std::vector<float>>& kept,
+                 const std::vector<std::int32_t>& code, double h, SparseFieldStorage* s) {
+  std::vector<std::pair<std::uint64_t, std::size_t>> order;
+  double largest = 0;
+  for (std::size_t c = 0; c < candidate.size(); ++c) {
+    if (kept[c].empty()) {
+      s->slot[candidate[c]] = code[c];
+      continue;
+    }
+    order.emplace_back(MortonCode(*s, candidate[c]), c);
+    for (float v : kept[c]) largest = std::max(largest, double(std::abs(v)));
+  }
+  std::sort(order.begin(), order.end());
+  const std::int64_t stored = std::int64_t(order.size());
+  for (std::size_t r = 0; r < order.size(); ++r) s->slot[candidate[order[r].second]] = std::int32_t(r);
+  s->quantum = float(largest > 0 ? largest / 32767 : h * 1e-6);
+  s->samples.assign(std::size_t(stored) * SparseFieldStorage::kBrickStride, 0);
+  tbb::parallel_for(std::size_t(0), candidate.size(), [&](std::size_t c) {
+    if (kept[c].empty()) return;
+    std::int16_t* out = s->samples.data() + std::size_t(s->slot[candidate[c]]) * SparseFieldStorage::kBrickStride;
+    for (int l = 0; l < kBrickSamples; ++l) {
+      out[l] = std::int16_t(std::clamp(std::lround(kept[c][l] / s->quantum), -32767L, 32767L));
+    }
+  });
+}
+
+}  // namespace
+
+SparseFieldStorage BuildSparseStorage(const TriangleMesh& mesh, const MeshSignedDistance& sign,
+                                      const FieldGrid& coarse_grid, std::vector<float> coarse, int band_voxels) {
+  SparseFieldStorage s;
+  s.bricks = coarse_grid.dims - Eigen::Vector3i::Ones();
+  s.coarse = std::move(coarse);
+  s.band_voxels = band_voxels;
+  const double H = coarse_grid.spacing, h = H / SparseFieldStorage::kBrick;
+  const double band = band_voxels * h, exact = band + h;
+  s.SetSpacing(h);
+  const std::vector<double> corners = FlattenTriangles(mesh);
+  const SparseBuild build{s, coarse_grid.origin, H, h, band, exact,
+                          SparseFieldStorage::kBrick * s.bricks,  // last fine sample per axis
+                          corners};
+
+  // 1. The bricks a triangle's grown box reaches, each with its triangles.
+  const BrickCandidates cand = FindCandidateBricks(build, mesh.num_triangles());
 
   // Bricks no triangle comes near: every sample is farther than EXACT, one sign, the coarse one.
   s.slot.resize(std::size_t(s.bricks.prod()));
@@ -214,162 +443,18 @@ SparseFieldStorage BuildSparseStorage(const TriangleMesh& mesh, const MeshSigned
       }
 
   // 2. Exact distances within EXACT of the surface, per candidate brick, in parallel.
-  std::vector<std::vector<float>> kept(candidate.size());
-  std::vector<std::int32_t> code(candidate.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidate.size(), 4), [&](const tbb::blocked_range<std::size_t>& r) {
-    double d2[kBrickSamples];
-    std::int32_t tri[kBrickSamples];
-    double qx[kBrickSamples], qy[kBrickSamples], qz[kBrickSamples], e2[kBrickSamples];
-    int ql[kBrickSamples], queue[kBrickSamples];
-    std::int8_t sgn[kBrickSamples];
-    float value[kBrickSamples];
-    for (std::size_t c = r.begin(); c < r.end(); ++c) {
-      const std::int64_t id = candidate[c];
-      const int bx = int(id % s.bricks.x()), by = int((id / s.bricks.x()) % s.bricks.y()),
-                bz = int(id / (std::int64_t(s.bricks.x()) * s.bricks.y()));
-      const Eigen::Vector3i first = SparseFieldStorage::kBrick * Eigen::Vector3i(bx, by, bz);
-      std::fill(d2, d2 + kBrickSamples, exact * exact);
-      std::fill(tri, tri + kBrickSamples, -1);
-      for (std::size_t p = begin[c]; p < begin[c + 1]; ++p) {
-        const int t = pairs[p].tri;
-        Eigen::Vector3i lo, hi;
-        sample_range(t, &lo, &hi);
-        lo = lo.cwiseMax(first);
-        hi = hi.cwiseMin(first + Eigen::Vector3i::Constant(SparseFieldStorage::kBrick));
-        const double* tc = corners.data() + 9 * std::size_t(t);
-        // The triangle's plane, s(p) = n . p - c with |n| = 1 (zero for a degenerate one): no
-        // point farther from the plane than from its best triangle so far can gain, and none
-        // farther than EXACT is wanted, which bounds each grid row to a run of samples.
-        const Eigen::Vector3d A(tc[0], tc[1], tc[2]), B(tc[3], tc[4], tc[5]), C(tc[6], tc[7], tc[8]);
-        Eigen::Vector3d n = (B - A).cross(C - A);
-        // Degenerate as PointTriangleDistanceSquared decides it: the union of its edges.
-        const bool degenerate = !(n.squaredNorm() > 1e-24 * (B - A).squaredNorm() * (C - A).squaredNorm());
-        n = degenerate ? Eigen::Vector3d::Zero() : n.normalized();
-        const double c = n.dot(A);
-        int m = 0;
-        for (int k = lo.z(); k <= hi.z(); ++k)
-          for (int j = lo.y(); j <= hi.y(); ++j) {
-            int i0 = lo.x(), i1 = hi.x();
-            const double s0 = n.x() * o.x() + n.y() * (o.y() + h * j) + n.z() * (o.z() + h * k) - c;  // s at i = 0
-            const double ds = n.x() * h;
-            if (std::abs(ds) > 1e-12 * h) {
-              const double a0 = (-exact - s0) / ds, a1 = (exact - s0) / ds;
-              i0 = std::max(i0, int(std::floor(std::min(a0, a1))));
-              i1 = std::min(i1, int(std::ceil(std::max(a0, a1))));
-            } else if (std::abs(s0) >= exact) {
-              continue;
-            }
-            for (int i = i0; i <= i1; ++i) {
-              const int l = (i - first.x()) + kEdge * ((j - first.y()) + kEdge * (k - first.z()));
-              const double plane = s0 + ds * i;
-              if (plane * plane >= d2[l]) continue;
-              if (degenerate) {
-                const double q[3] = {o.x() + h * i, o.y() + h * j, o.z() + h * k};
-                const double e2 = PointTriangleDistanceSquared(q, tc, tc + 3, tc + 6);
-                if (e2 < d2[l]) d2[l] = e2, tri[l] = t;
-                continue;
-              }
-              qx[m] = o.x() + h * i, qy[m] = o.y() + h * j, qz[m] = o.z() + h * k, ql[m] = l;
-              ++m;
-            }
-          }
-        // The samples the plane left, several per instruction.
-        PointsTriangleDistancesSquared(tc, qx, qy, qz, m, e2);
-        for (int r = 0; r < m; ++r) {
-          if (e2[r] < d2[ql[r]]) d2[ql[r]] = e2[r], tri[ql[r]] = t;
-        }
-      }
-      // Signs of the exact samples (pseudo-normals), then spread to the rest: a sample farther
-      // than EXACT has no surface within EXACT > h of it, so its neighbours share its sign.
-      double nearest = std::numeric_limits<double>::infinity();
-      bool any = false;
-      for (int l = 0; l < kBrickSamples; ++l) {
-        sgn[l] = 0;
-        if (tri[l] < 0) continue;
-        const int i = first.x() + l % kEdge, j = first.y() + (l / kEdge) % kEdge, k = first.z() + l / (kEdge * kEdge);
-        const double d = std::sqrt(d2[l]);
-        const bool inside = sign.Inside(o + h * Eigen::Vector3d(i, j, k), tri[l]);
-        sgn[l] = inside ? -1 : 1;
-        value[l] = float(inside ? -d : d);
-        nearest = std::min(nearest, d);
-        any = true;
-      }
-      if (!any) {  // the grown box reached the brick, no sample is within EXACT: as a far brick
-        code[c] = s.slot[id];
-        continue;
-      }
-      // Breadth-first from the exact samples over the brick's 6-neighbour grid.
-      int head = 0, tail = 0;
-      for (int l = 0; l < kBrickSamples; ++l) {
-        if (sgn[l] != 0) queue[tail++] = l;
-      }
-      while (head < tail) {
-        const int l = queue[head++];
-        const int i = l % kEdge, j = (l / kEdge) % kEdge, k = l / (kEdge * kEdge);
-        const int n[6] = {i > 0 ? l - 1 : -1, i < kEdge - 1 ? l + 1 : -1, j > 0 ? l - kEdge : -1,
-                          j < kEdge - 1 ? l + kEdge : -1, k > 0 ? l - kEdge * kEdge : -1,
-                          k < kEdge - 1 ? l + kEdge * kEdge : -1};
-        for (int m : n) {
-          if (m >= 0 && sgn[m] == 0) {
-            sgn[m] = sgn[l];
-            queue[tail++] = m;
-          }
-        }
-      }
-      if (nearest > band) {  // not stored: every sample is beyond the band
-        code[c] = sgn[0] < 0 ? SparseFieldStorage::kInside : SparseFieldStorage::kOutside;
-        continue;
-      }
-      // Samples beyond EXACT: the bounds of the coarse cell, with EXACT as the floor. Every
-      // sample of a stored brick is within 8 sqrt(3) h of one with |d| <= band, so the clamp to
-      // band + 14 h loses nothing true and keeps the 16-bit step below 6e-4 h.
-      double corners_c[2][2][2];
-      CoarseCorners(s, bx, by, bz, corners_c);
-      for (int l = 0; l < kBrickSamples; ++l) {
-        if (tri[l] >= 0) continue;
-        const Eigen::Vector3d t(l % kEdge, (l / kEdge) % kEdge, l / (kEdge * kEdge));
-        Eigen::Vector3d unused;
-        const double v = CoarseCellValue(corners_c, t / SparseFieldStorage::kBrick, sgn[l] > 0, exact, s.margin, H,
-                                         &unused);
-        value[l] = float(std::clamp(v, -(band + 14 * h), band + 14 * h));
-      }
-      kept[c].assign(value, value + kBrickSamples);
-      code[c] = 0;
-    }
-  });
+  std::vector<std::vector<float>> kept(cand.candidate.size());
+  std::vector<std::int32_t> code(cand.candidate.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cand.candidate.size(), 4),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      BrickScratch scratch;
+                      for (std::size_t c = r.begin(); c < r.end(); ++c) {
+                        code[c] = BuildCandidateBrick(build, sign, cand, c, &scratch, &kept[c]);
+                      }
+                    });
 
-  // 3. Stored bricks in Morton (z-curve) order of their position, so bricks near in space are
-  // near in memory; samples quantised to one step for the whole field.
-  auto morton = [&](std::int64_t id) {
-    const std::uint64_t b[3] = {std::uint64_t(id % s.bricks.x()), std::uint64_t((id / s.bricks.x()) % s.bricks.y()),
-                                std::uint64_t(id / (std::int64_t(s.bricks.x()) * s.bricks.y()))};
-    std::uint64_t code = 0;
-    for (int bit = 0; bit < 21; ++bit)
-      for (int a = 0; a < 3; ++a) code |= ((b[a] >> bit) & 1u) << (3 * bit + a);
-    return code;
-  };
-  std::vector<std::pair<std::uint64_t, std::size_t>> order;
-  double largest = 0;
-  for (std::size_t c = 0; c < candidate.size(); ++c) {
-    if (kept[c].empty()) {
-      s.slot[candidate[c]] = code[c];
-      continue;
-    }
-    order.emplace_back(morton(candidate[c]), c);
-    for (float v : kept[c]) largest = std::max(largest, double(std::abs(v)));
-  }
-  std::sort(order.begin(), order.end());
-  const std::int64_t stored = std::int64_t(order.size());
-  for (std::size_t r = 0; r < order.size(); ++r) s.slot[candidate[order[r].second]] = std::int32_t(r);
-  s.quantum = float(largest > 0 ? largest / 32767 : h * 1e-6);
-  s.samples.assign(std::size_t(stored) * SparseFieldStorage::kBrickStride, 0);
-  tbb::parallel_for(std::size_t(0), candidate.size(), [&](std::size_t c) {
-    if (kept[c].empty()) return;
-    std::int16_t* out = s.samples.data() + std::size_t(s.slot[candidate[c]]) * SparseFieldStorage::kBrickStride;
-    for (int l = 0; l < kBrickSamples; ++l) {
-      out[l] = std::int16_t(std::clamp(std::lround(kept[c][l] / s.quantum), -32767L, 32767L));
-    }
-  });
+  // 3. Stored bricks in Morton order, quantised.
+  StoreBricks(cand.candidate, kept, code, h, &s);
   return s;
 }
 
