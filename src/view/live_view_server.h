@@ -26,6 +26,7 @@
 
 namespace httplib {
 class Server;
+class DataSink;
 }
 
 namespace contactlab {
@@ -140,6 +141,17 @@ class LiveViewServer {
   // The newest sweep of marks and its JSON, shared by the stream threads (TakeLatest has one
   // reader at a time).
   Marks LatestMarks();
+  struct StreamState;
+
+  // The constructor's steps (live_view_server.cc says what each does).
+  void LimitConnections();
+  void RoutePageAndLatest();
+  void RouteStream();
+  void BindAndServe(int port);
+  // A stream's life: counted in (false past the limit), its events, counted out.
+  bool OpenStream();
+  bool SendStreamEvents(StreamState& stream, httplib::DataSink& sink);
+  void CloseStream();
 
   std::string page_;
   const LiveSnapshotHistory& source_;
