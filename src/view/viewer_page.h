@@ -1,10 +1,16 @@
-// The viewer page: one self-contained HTML file (three.js r111 and its OrbitControls inlined from
-// their installed files, the viewer's own HTML, CSS and JS embedded in the program at build time
-// from src/view/web/, and the data of view_data.h). Nothing is fetched when the page is opened.
+// The viewer page: one self-contained HTML file from the template src/view/web/viewer.html:
+// three.js r111 and its OrbitControls inlined from their installed files, the viewer's ES
+// modules bundled into one inline module (module_bundle.h; a page opened from file:// can load
+// no module file), and the data of view_data.h. Nothing is fetched when the page is opened.
+// The viewer's own HTML, CSS and modules (src/view/web/) are embedded in the program at build
+// time, so the program finds them wherever it is installed; three.js is read from Debian's
+// libjs-three when a page is made.
 #pragma once
 
 #include <filesystem>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -21,12 +27,15 @@ std::filesystem::path ThreeJsDir();
 // any work so that a missing package is reported at once.
 void RequireThreeJs();
 
-// The page showing DATA. Throws Error naming the three.js file that is missing or unreadable
-// and the package that provides it.
+// The page showing DATA, self-contained. Throws Error naming the three.js file that is missing
+// or unreadable and the package that provides it.
 std::string ViewerPage(const nlohmann::json& data);
 
-// The page's parts as embedded in the program (for tests): "viewer.html", "viewer.css",
-// "viewer.js"; throws Error for another name.
+// The page's parts as embedded in the program (for tests): "viewer.html", "viewer.css" and the
+// modules "viewer/NAME.js"; throws Error for another name.
 std::string_view EmbeddedWebFile(std::string_view name);
+
+// The names of the viewer's embedded modules ("viewer/main.js", ...), in name order.
+std::vector<std::string> ViewerModuleNames();
 
 }  // namespace contactlab
