@@ -84,6 +84,16 @@ constexpr std::chrono::milliseconds kStreamPoll{10};
 // does not read).
 constexpr std::chrono::seconds kStreamDrain{5};
 
+// A regular expression (httplib's routes are ECMAScript ones) that matches TEXT alone.
+std::string RegexMatching(const std::string& text) {
+  std::string pattern;
+  for (char c : text) {
+    if (std::string_view("\\^$.|?*+()[]{}").find(c) != std::string_view::npos) pattern += '\\';
+    pattern += c;
+  }
+  return pattern;
+}
+
 }  // namespace
 
 LiveSnapshotPublisher::LiveSnapshotPublisher(LiveSnapshotHistory& history, std::int64_t every_cycles)
@@ -97,7 +107,7 @@ LiveViewServer::Marks LiveViewServer::LatestMarks() {
   return {marks_sweep_.sequence, marks_sweep_.last_cycle, marks_json_};
 }
 
-LiveViewServer::LiveViewServer(std::string page, const LiveSnapshotHistory& source, int port, ContactPointMarks* marks,
+LiveViewServer::LiveViewServer(ServedPage page, const LiveSnapshotHistory& source, int port, ContactPointMarks* marks,
                                std::int64_t marks_every_cycles)
     : page_(std::move(page)),
       source_(source),
@@ -107,7 +117,8 @@ LiveViewServer::LiveViewServer(std::string page, const LiveSnapshotHistory& sour
   if (marks_every_cycles_ <= 0) Fail("live view", "marks must be at least 1 cycle apart");
   if (port < 0 || port > 65535) Fail("--view", "port " + std::to_string(port) + " is not in 0..65535");
   LimitConnections();
-  RoutePageAndLatest();
+  RoutePage();
+  RouteLatest();
   RouteStream();
   BindAndServe(port);
 }
@@ -131,12 +142,22 @@ void LiveViewServer::LimitConnections() {
   });
 }
 
-// The page at "/", and the newest snapshot and marks at "/snapshot" and "/marks" (204 before
-// the first).
-void LiveViewServer::RoutePageAndLatest() {
+// The page at "/" and each of its files at "/" + its path; the files are asked to be checked
+// again before reuse, so a browser never runs a cached script of another version beside the page.
+void LiveViewServer::RoutePage() {
   server_->Get("/", [this](const httplib::Request&, httplib::Response& res) {
-    res.set_content(page_, "text/html; charset=utf-8");
+    res.set_content(page_.html, "text/html; charset=utf-8");
   });
+  for (const ServedFile& file : page_.files) {
+    server_->Get(RegexMatching("/" + file.path), [&file](const httplib::Request&, httplib::Response& res) {
+      res.set_header("Cache-Control", "no-cache");
+      res.set_content(file.content, file.content_type);
+    });
+  }
+}
+
+// The newest snapshot and marks at "/snapshot" and "/marks" (204 before the first).
+void LiveViewServer::RouteLatest() {
   server_->Get("/snapshot", [this](const httplib::Request&, httplib::Response& res) {
     LiveSnapshot s;
     if (!source_.Latest(&s)) {

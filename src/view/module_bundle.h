@@ -1,6 +1,7 @@
 // The viewer's ES modules (src/view/web/viewer/) as one script, for a page that must work
 // opened from a file: a browser loads no module file from file:// (its origin is opaque), so
-// the page `contactlab view` writes holds the modules inline, bundled by this step.
+// `contactlab view` inlines the modules into the page it writes, bundled by this step, while a
+// session's live view serves them as files.
 //
 // The bundle keeps each module's scope: every module becomes a function, run once in
 // dependency order, that returns its exports, and each import becomes a destructuring of the

@@ -17,6 +17,7 @@ namespace fs = std::filesystem;
 // The viewer's modules: the embedded files below this folder; the page runs kEntryModule.
 constexpr std::string_view kModuleFolder = "viewer/";
 constexpr std::string_view kEntryModule = "viewer/main.js";
+constexpr std::string_view kScriptType = "text/javascript; charset=utf-8";
 
 // Reads FILE of three.js, naming it and the package that provides it when it cannot.
 std::string ReadThreeJsFile(const fs::path& file) {
@@ -123,6 +124,21 @@ std::string ViewerPage(const nlohmann::json& data) {
                       "<script>" + CheckScriptSafe(three.three, three.three_path.string()) + "</script>\n<script>" +
                           CheckScriptSafe(three.orbit, three.orbit_path.string()) + "</script>",
                       "<script type=\"module\">\n" + CheckScriptSafe(bundle, "the viewer's modules") + "</script>");
+}
+
+ServedPage ServedViewerPage(const nlohmann::json& data) {
+  ThreeJs three = ReadThreeJs();
+  ServedPage page;
+  page.html = FillTemplate(data,
+                           "<script src=\"three/three.min.js\"></script>\n"
+                           "<script src=\"three/OrbitControls.js\"></script>",
+                           "<script type=\"module\" src=\"" + std::string(kEntryModule) + "\"></script>");
+  page.files.push_back({"three/three.min.js", std::move(three.three), std::string(kScriptType)});
+  page.files.push_back({"three/OrbitControls.js", std::move(three.orbit), std::string(kScriptType)});
+  for (const std::string& name : ViewerModuleNames()) {
+    page.files.push_back({name, std::string(EmbeddedWebFile(name)), std::string(kScriptType)});
+  }
+  return page;
 }
 
 }  // namespace contactlab

@@ -6,9 +6,9 @@
 // a live session the stream of its snapshots. When the first frame is drawn,
 // <html data-ready="1"> is set.
 //
-// The modules (this folder) are ES modules, bundled into one inline module of the page
-// (src/view/module_bundle.h): they import with `import { a, b } from './name.js';` and export
-// with `export function|const|class NAME`.
+// The modules (this folder) are ES modules, served as files by the live view and bundled into
+// one inline module by `contactlab view` (src/view/module_bundle.h): they import with
+// `import { a, b } from './name.js';` and export with `export function|const|class NAME`.
 import { addBodies } from './bodies.js';
 import { addSceneSurfaces } from './contact_surfaces.js';
 import { addFieldSlice } from './field_slice.js';
