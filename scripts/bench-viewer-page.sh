@@ -5,7 +5,7 @@
 # Usage: scripts/bench-viewer-page.sh CONTACTLAB SCENE.yaml [WORKDIR] [RUNS]
 # Prints, per page: its size, the time from navigation to the first frame drawn (data-ready-ms)
 # and the mean and 95th-percentile time between frames while the camera circles the scene once
-# in 240 frames (#bench=orbit, src/view/web/viewer.js), each of RUNS loads (default 3) in a
+# in 240 frames (#bench=orbit, src/view/web/viewer/orbit_bench.js), each of RUNS loads (default 3) in a
 # fresh browser, read in real time through the DevTools protocol (viewer-page-timing.mjs).
 set -uo pipefail
 cli=$1; scene=$2; work=${3:-/tmp/contactlab-bench-viewer}; runs=${4:-3}

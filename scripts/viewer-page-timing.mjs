@@ -1,6 +1,6 @@
 // Loads a viewer page in a running Chromium (--remote-debugging-port) through the DevTools
 // protocol, in real time, and prints what the page measured as JSON: data-ready-ms (navigation
-// to first frame) and window.contactlabBench (the #bench=orbit frame times, src/view/web/viewer.js).
+// to first frame) and window.contactlabBench (the #bench=orbit frame times, src/view/web/viewer/orbit_bench.js).
 // Usage: node --experimental-websocket scripts/viewer-page-timing.mjs PORT URL [TIMEOUT_S]
 // (scripts/bench-viewer-page.sh runs it).
 const [port, url, timeoutArg] = process.argv.slice(2);

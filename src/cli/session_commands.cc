@@ -264,7 +264,7 @@ SessionView StartSessionView(const SessionArgs& args, SessionScene& s, int port,
   SessionView view;
   view.snapshots = std::make_unique<LiveSnapshotHistory>();
   view.publisher = std::make_unique<LiveSnapshotPublisher>(*view.snapshots, snapshot_every);
-  view.server = std::make_unique<LiveViewServer>(ViewerPage(data), *view.snapshots, port, marks, marks_every);
+  view.server = std::make_unique<LiveViewServer>(ServedViewerPage(data), *view.snapshots, port, marks, marks_every);
   return view;
 }
 

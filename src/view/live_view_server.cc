@@ -84,6 +84,16 @@ constexpr std::chrono::milliseconds kStreamPoll{10};
 // does not read).
 constexpr std::chrono::seconds kStreamDrain{5};
 
+// A regular expression (httplib's routes are ECMAScript ones) that matches TEXT alone.
+std::string RegexMatching(const std::string& text) {
+  std::string pattern;
+  for (char c : text) {
+    if (std::string_view("\\^$.|?*+()[]{}").find(c) != std::string_view::npos) pattern += '\\';
+    pattern += c;
+  }
+  return pattern;
+}
+
 }  // namespace
 
 LiveSnapshotPublisher::LiveSnapshotPublisher(LiveSnapshotHistory& history, std::int64_t every_cycles)
@@ -97,7 +107,7 @@ LiveViewServer::Marks LiveViewServer::LatestMarks() {
   return {marks_sweep_.sequence, marks_sweep_.last_cycle, marks_json_};
 }
 
-LiveViewServer::LiveViewServer(std::string page, const LiveSnapshotHistory& source, int port, ContactPointMarks* marks,
+LiveViewServer::LiveViewServer(ServedPage page, const LiveSnapshotHistory& source, int port, ContactPointMarks* marks,
                                std::int64_t marks_every_cycles)
     : page_(std::move(page)),
       source_(source),
@@ -106,16 +116,22 @@ LiveViewServer::LiveViewServer(std::string page, const LiveSnapshotHistory& sour
       server_(std::make_unique<httplib::Server>()) {
   if (marks_every_cycles_ <= 0) Fail("live view", "marks must be at least 1 cycle apart");
   if (port < 0 || port > 65535) Fail("--view", "port " + std::to_string(port) + " is not in 0..65535");
+  LimitConnections();
+  RoutePage();
+  RouteLatest();
+  RouteStream();
+  BindAndServe(port);
+}
 
-  // A thread per stream the limit allows and spares for everything else: a stream holds its
-  // thread for its whole life. Idle and stalled connections are cut, so they cannot hold the
-  // spares.
+// A thread per stream the limit allows and spares for everything else: a stream holds its
+// thread for its whole life. Idle and stalled connections are cut, so they cannot hold the
+// spares. Only GET and HEAD: anything else is refused before its body is read (a POST without a
+// body would otherwise wait for one until the read timeout).
+void LiveViewServer::LimitConnections() {
   server_->new_task_queue = [] { return new httplib::ThreadPool(kLiveViewStreamLimit + kLiveViewSpareThreads); };
   server_->set_read_timeout(2, 0);
   server_->set_write_timeout(2, 0);
   server_->set_keep_alive_timeout(1);
-  // Only GET and HEAD: anything else is refused before its body is read (a POST without a body
-  // would otherwise wait for one until the read timeout).
   server_->set_pre_routing_handler([](const httplib::Request& req, httplib::Response& res) {
     if (req.method == "GET" || req.method == "HEAD") return httplib::Server::HandlerResponse::Unhandled;
     res.status = 405;
@@ -124,9 +140,24 @@ LiveViewServer::LiveViewServer(std::string page, const LiveSnapshotHistory& sour
     res.set_content("the live view answers GET and HEAD only\n", "text/plain");
     return httplib::Server::HandlerResponse::Handled;
   });
+}
+
+// The page at "/" and each of its files at "/" + its path; the files are asked to be checked
+// again before reuse, so a browser never runs a cached script of another version beside the page.
+void LiveViewServer::RoutePage() {
   server_->Get("/", [this](const httplib::Request&, httplib::Response& res) {
-    res.set_content(page_, "text/html; charset=utf-8");
+    res.set_content(page_.html, "text/html; charset=utf-8");
   });
+  for (const ServedFile& file : page_.files) {
+    server_->Get(RegexMatching("/" + file.path), [&file](const httplib::Request&, httplib::Response& res) {
+      res.set_header("Cache-Control", "no-cache");
+      res.set_content(file.content, file.content_type);
+    });
+  }
+}
+
+// The newest snapshot and marks at "/snapshot" and "/marks" (204 before the first).
+void LiveViewServer::RouteLatest() {
   server_->Get("/snapshot", [this](const httplib::Request&, httplib::Response& res) {
     LiveSnapshot s;
     if (!source_.Latest(&s)) {
@@ -143,98 +174,119 @@ LiveViewServer::LiveViewServer(std::string page, const LiveSnapshotHistory& sour
     }
     res.set_content(m.json, "application/json");
   });
-  // Server-sent events: every snapshot of the history once and in order from where the stream
-  // joined, and the newest marks when due; the stream ends when the server stops (after
-  // sending what was published before) or the client goes away.
+}
+
+// Where one event stream is: the next snapshot to send, and the last marks sent (0: none yet)
+// and their cycle.
+struct LiveViewServer::StreamState {
+  std::uint64_t next = 0;
+  std::uint64_t marks_sequence = 0;
+  std::int64_t marks_cycle = 0;
+};
+
+// Server-sent events at "/stream": every snapshot of the history once and in order from where
+// the stream joined, and the newest marks when due; the stream ends when the server stops
+// (after sending what was published before) or the client goes away.
+void LiveViewServer::RouteStream() {
   server_->Get("/stream", [this](const httplib::Request&, httplib::Response& res) {
     res.set_header("Cache-Control", "no-cache");
-    struct Stream {
-      std::uint64_t next = 0;            // the next snapshot to send
-      std::uint64_t marks_sequence = 0;  // the last marks sent (0: none yet) and their cycle
-      std::int64_t marks_cycle = 0;
-    };
-    {
-      std::lock_guard<std::mutex> lock(streams_mutex_);
-      if (streams_open_ >= kLiveViewStreamLimit) {
-        res.status = 503;
-        res.set_content("the live view serves at most " + std::to_string(kLiveViewStreamLimit) +
-                            " streams at once; close one and retry\n",
-                        "text/plain");
-        return;
-      }
-      ++streams_opened_;
-      ++streams_open_;
+    if (!OpenStream()) {
+      res.status = 503;
+      res.set_content("the live view serves at most " + std::to_string(kLiveViewStreamLimit) +
+                          " streams at once; close one and retry\n",
+                      "text/plain");
+      return;
     }
-    auto stream = std::make_shared<Stream>();
+    auto stream = std::make_shared<StreamState>();
     const std::uint64_t published = source_.published();
     stream->next = published > 0 ? published - 1 : 0;
     streams_changed_.notify_all();
     res.set_chunked_content_provider(
         "text/event-stream",
-        [this, stream](std::size_t, httplib::DataSink& sink) {
-          for (;;) {
-            // Whether the server stops, before looking: what was published before Stop() is
-            // then all there.
-            bool stopping;
-            {
-              std::lock_guard<std::mutex> lock(streams_mutex_);
-              stopping = stopping_;
-            }
-            bool wrote = false;
-            // The newest marks, when a sweep completed at least marks_every_cycles_ after the last
-            // one sent. Looked for after each snapshot that is that far on (and while none was
-            // sent, and at the end), so that marks go out in session time, between the snapshots,
-            // and a sweep is copied and encoded only when it may be due.
-            const auto send_marks_when_due = [&](bool look) {
-              if (!marks_ || !look) return true;
-              const Marks m = LatestMarks();
-              if (m.sequence == 0 || m.sequence == stream->marks_sequence) return true;
-              if (stream->marks_sequence != 0 && m.last_cycle - stream->marks_cycle < marks_every_cycles_) return true;
-              stream->marks_sequence = m.sequence;
-              stream->marks_cycle = m.last_cycle;
-              const std::string event = "event: marks\ndata: " + m.json + "\n\n";
-              wrote = true;
-              return sink.write(event.data(), event.size());
-            };
-            // Every snapshot published since the last look, in order; a stream more than the
-            // history behind skips to the newest.
-            for (LiveSnapshot s;;) {
-              const HistoryRead read = source_.Get(stream->next, &s);
-              if (read == HistoryRead::kNotYet) break;
-              if (read == HistoryRead::kOverwritten) {
-                stream->next = source_.published() - 1;
-                continue;
-              }
-              ++stream->next;
-              const std::string event = "data: " + SnapshotJson(s) + "\n\n";
-              if (!sink.write(event.data(), event.size())) return false;
-              wrote = true;
-              if (!send_marks_when_due(stream->marks_sequence == 0 || s.cycle - stream->marks_cycle >= marks_every_cycles_))
-                return false;
-            }
-            if (!send_marks_when_due(stream->marks_sequence == 0 || stopping)) return false;
-            if (stopping) {
-              sink.done();
-              return true;
-            }
-            if (wrote) return true;
-            {
-              std::unique_lock<std::mutex> lock(streams_mutex_);
-              streams_changed_.wait_for(lock, kStreamPoll, [&] { return stopping_; });
-            }
-            if (!sink.is_writable()) return false;
-          }
-        },
-        [this](bool) {
-          {
-            std::lock_guard<std::mutex> lock(streams_mutex_);
-            --streams_open_;
-          }
-          streams_changed_.notify_all();
-        });
+        [this, stream](std::size_t, httplib::DataSink& sink) { return SendStreamEvents(*stream, sink); },
+        [this](bool) { CloseStream(); });
   });
+}
 
-  // Loopback only: the page and the stream never leave this machine.
+// Counts a stream in, unless kLiveViewStreamLimit are open (then false).
+bool LiveViewServer::OpenStream() {
+  std::lock_guard<std::mutex> lock(streams_mutex_);
+  if (streams_open_ >= kLiveViewStreamLimit) return false;
+  ++streams_opened_;
+  ++streams_open_;
+  return true;
+}
+
+// Counts a stream out, when httplib is done with it.
+void LiveViewServer::CloseStream() {
+  {
+    std::lock_guard<std::mutex> lock(streams_mutex_);
+    --streams_open_;
+  }
+  streams_changed_.notify_all();
+}
+
+// The chunked content provider of one stream (its thread): writes what was published since
+// the last call, or waits for it; returns false when the client went away.
+bool LiveViewServer::SendStreamEvents(StreamState& stream, httplib::DataSink& sink) {
+  for (;;) {
+    // Whether the server stops, before looking: what was published before Stop() is then all
+    // there.
+    bool stopping;
+    {
+      std::lock_guard<std::mutex> lock(streams_mutex_);
+      stopping = stopping_;
+    }
+    bool wrote = false;
+    // The newest marks, when a sweep completed at least marks_every_cycles_ after the last one
+    // sent. Looked for after each snapshot that is that far on (and while none was sent, and at
+    // the end), so that marks go out in session time, between the snapshots, and a sweep is
+    // copied and encoded only when it may be due.
+    const auto send_marks_when_due = [&](bool look) {
+      if (!marks_ || !look) return true;
+      const Marks m = LatestMarks();
+      if (m.sequence == 0 || m.sequence == stream.marks_sequence) return true;
+      if (stream.marks_sequence != 0 && m.last_cycle - stream.marks_cycle < marks_every_cycles_) return true;
+      stream.marks_sequence = m.sequence;
+      stream.marks_cycle = m.last_cycle;
+      const std::string event = "event: marks\ndata: " + m.json + "\n\n";
+      wrote = true;
+      return sink.write(event.data(), event.size());
+    };
+    // Every snapshot published since the last look, in order; a stream more than the history
+    // behind skips to the newest.
+    for (LiveSnapshot s;;) {
+      const HistoryRead read = source_.Get(stream.next, &s);
+      if (read == HistoryRead::kNotYet) break;
+      if (read == HistoryRead::kOverwritten) {
+        stream.next = source_.published() - 1;
+        continue;
+      }
+      ++stream.next;
+      const std::string event = "data: " + SnapshotJson(s) + "\n\n";
+      if (!sink.write(event.data(), event.size())) return false;
+      wrote = true;
+      if (!send_marks_when_due(stream.marks_sequence == 0 || s.cycle - stream.marks_cycle >= marks_every_cycles_))
+        return false;
+    }
+    if (!send_marks_when_due(stream.marks_sequence == 0 || stopping)) return false;
+    if (stopping) {
+      sink.done();
+      return true;
+    }
+    if (wrote) return true;
+    {
+      std::unique_lock<std::mutex> lock(streams_mutex_);
+      streams_changed_.wait_for(lock, kStreamPoll, [&] { return stopping_; });
+    }
+    if (!sink.is_writable()) return false;
+  }
+}
+
+// Binds 127.0.0.1:PORT (0: a free port) and serves on thread_. Loopback only: the page and the
+// stream never leave this machine. Returns once serving, so that Stop() always finds a running
+// server to stop.
+void LiveViewServer::BindAndServe(int port) {
   if (port == 0) {
     port_ = server_->bind_to_any_port("127.0.0.1");
     if (port_ <= 0) Fail("127.0.0.1", "cannot bind a free port for the live view");
@@ -245,7 +297,6 @@ LiveViewServer::LiveViewServer(std::string page, const LiveSnapshotHistory& sour
     port_ = port;
   }
   thread_ = std::thread([this] { server_->listen_after_bind(); });
-  // Serving before returning, so that Stop() always finds a running server to stop.
   for (int i = 0; i < 2000 && !server_->is_running(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(1));
 }
 

@@ -1,14 +1,14 @@
-// The live view of a haptic session (`contactlab session ... --view [PORT]`): an HTTP server on
-// the loopback address that serves the viewer page (viewer_page.h) and a server-sent-events
-// stream of snapshots of the session: the haptic body's and the device's poses, the forces,
-// level rendered and points in contact, cycle time. The haptic thread is untouched: its cycle
-// records reach the session's consumer thread through the loop's lock-free ring (haptic_loop.h),
-// the consumer takes one snapshot every so many cycles (LiveSnapshotPublisher: by session time,
-// not by the wall clock) into a lock-free history (snapshot_history.h), and each stream sends
-// every snapshot of the history in order from where it joined, whenever its thread runs. With
-// the per-point contact marks of the displayed pointshell points
-// (haptics/contact_point_marks.h), the stream also carries the newest completed sweep of marks,
-// at most one per so many cycles.
+// The live view of a haptic session (`contactlab session ... --view [PORT]`): an HTTP server on the
+// loopback address that serves the viewer page and the scripts it loads (viewer_page.h,
+// ServedViewerPage) and a server-sent-events stream of snapshots of the session: the haptic body's
+// and the device's poses, the forces, level rendered and points in contact, cycle time. The haptic
+// thread is untouched: its cycle records reach the session's consumer thread through the loop's
+// lock-free ring (haptic_loop.h), the consumer takes one snapshot every so many cycles
+// (LiveSnapshotPublisher: by session time, not by the wall clock) into a lock-free history
+// (snapshot_history.h), and each stream sends every snapshot of the history in order from where it
+// joined, whenever its thread runs. With the per-point contact marks of the displayed pointshell
+// points (haptics/contact_point_marks.h), the stream also carries the newest completed sweep of
+// marks, at most one per so many cycles.
 #pragma once
 
 #include <atomic>
@@ -23,9 +23,11 @@
 #include "haptics/contact_point_marks.h"
 #include "haptics/haptic_cycle.h"
 #include "view/snapshot_history.h"
+#include "view/viewer_page.h"
 
 namespace httplib {
 class Server;
+class DataSink;
 }
 
 namespace contactlab {
@@ -101,18 +103,17 @@ inline constexpr int kLiveViewSpareThreads = 4;
 
 class LiveViewServer {
  public:
-  // Serves PAGE at "/", the snapshots of SOURCE at "/stream" (text/event-stream, one "data:
-  // JSON" event per snapshot, each snapshot once and in order, starting from the newest when
-  // the stream opens or from the first when none was published yet) and the newest one at
-  // "/snapshot" (JSON; 204 before the first), on 127.0.0.1:PORT (0: a free port). At most
-  // kLiveViewStreamLimit streams at once (503 past it); methods other than GET and HEAD get 405
-  // without their body being read; a client that sends nothing or stops reading is cut after
-  // a few seconds. With MARKS,
-  // the stream also sends "event: marks" + "data: MarksJson" when a newer sweep completed at
-  // least MARKS_EVERY_CYCLES haptic cycles after the last one it sent, and "/marks" returns the
-  // newest (204 before the first). SOURCE and MARKS must outlive the server. Throws Error
-  // naming the address when it cannot bind.
-  LiveViewServer(std::string page, const LiveSnapshotHistory& source, int port, ContactPointMarks* marks = nullptr,
+  // Serves PAGE.html at "/" and each of PAGE.files at "/" + its path, the snapshots of SOURCE at
+  // "/stream" (text/event-stream, one "data: JSON" event per snapshot, each snapshot once and in
+  // order, starting from the newest when the stream opens or from the first when none was published
+  // yet) and the newest one at "/snapshot" (JSON; 204 before the first), on 127.0.0.1:PORT (0: a
+  // free port). At most kLiveViewStreamLimit streams at once (503 past it); methods other than GET
+  // and HEAD get 405 without their body being read; a client that sends nothing or stops reading is
+  // cut after a few seconds. With MARKS, the stream also sends "event: marks" + "data: MarksJson"
+  // when a newer sweep completed at least MARKS_EVERY_CYCLES haptic cycles after the last one it
+  // sent, and "/marks" returns the newest (204 before the first). SOURCE and MARKS must outlive the
+  // server. Throws Error naming the address when it cannot bind.
+  LiveViewServer(ServedPage page, const LiveSnapshotHistory& source, int port, ContactPointMarks* marks = nullptr,
                  std::int64_t marks_every_cycles = 67);
   ~LiveViewServer();
   LiveViewServer(const LiveViewServer&) = delete;
@@ -140,8 +141,20 @@ class LiveViewServer {
   // The newest sweep of marks and its JSON, shared by the stream threads (TakeLatest has one
   // reader at a time).
   Marks LatestMarks();
+  struct StreamState;
 
-  std::string page_;
+  // The constructor's steps (live_view_server.cc says what each does).
+  void LimitConnections();
+  void RoutePage();
+  void RouteLatest();
+  void RouteStream();
+  void BindAndServe(int port);
+  // A stream's life: counted in (false past the limit), its events, counted out.
+  bool OpenStream();
+  bool SendStreamEvents(StreamState& stream, httplib::DataSink& sink);
+  void CloseStream();
+
+  ServedPage page_;
   const LiveSnapshotHistory& source_;
   ContactPointMarks* marks_;
   std::int64_t marks_every_cycles_;

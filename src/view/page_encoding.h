@@ -1,4 +1,4 @@
-// Compact data for the viewer page (src/view/web/viewer.js): binary arrays as base64 text of
+// Compact data for the viewer page (src/view/web/viewer/): binary arrays as base64 text of
 // their little-endian bytes, which the page turns back into Float32Array / Uint32Array /
 // Uint8Array without parsing numbers, and JSON that can sit inside a <script> element.
 #pragma once

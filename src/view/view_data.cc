@@ -366,11 +366,14 @@ ReplayTrack MakeTrack(const std::string& name, const std::vector<const ReplayRow
 
 // REPLAY's scene, moving body and job label (and its experiment's name when cycles.csv gave
 // none), from the RESOLVED config expanded again to the job REPLAY->job. Throws Error naming
-// META_FILE when the config is not a contact study or has no such job.
+// META_FILE when the config's study has no trajectories to replay (Study::replayable) or the
+// config has no such job.
 void SetJobScene(const ResolvedConfig& resolved, const fs::path& meta_file, Replay* replay) {
   const ConfigNode root = ConfigNode::LoadString(resolved.yaml, resolved.file);
   const ExperimentConfig config = ParseExperimentConfig(root, resolved.yaml);
-  if (config.study != "contact") Fail(meta_file.string(), "is a " + config.study + " study, which has no trajectory to replay");
+  if (!StudyOf(config).replayable) {
+    Fail(meta_file.string(), "is a " + config.study + " study, which has no trajectory to replay");
+  }
   const std::vector<Job> all = ExpandJobs(config);
   const auto it = std::find_if(all.begin(), all.end(), [&](const Job& j) { return j.index == replay->job; });
   if (it == all.end()) {

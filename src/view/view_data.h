@@ -2,7 +2,7 @@
 // scene (meshes in their body frames and start poses), the pointshell of the pointshell body
 // coloured by level (Barbič & James 2008, sec. 2.2, 2.4), a slice of the field body's signed
 // distance field (sec. 2.3), and for a replay the per-cycle poses and wrenches of each model.
-// src/view/web/viewer.js reads it; docs/viewer.md describes the page.
+// The viewer's modules (src/view/web/viewer/) read it; docs/viewer.md describes the page.
 #pragma once
 
 #include <filesystem>
@@ -110,8 +110,8 @@ nlohmann::json ReplayViewData(const Replay& replay, SceneAssets& assets, const S
 // REPLAYS[i]: {"title": the experiment, "jobs": [{"job", "label", "title"}], "blobs": [text],
 // "job_data": [each job's data with every string of at least 1024 characters replaced by
 // {"$blob": N}, N its index in "blobs"]}, so that meshes, pointshells and slices the jobs share
-// are embedded once. The page (viewer.js) shows the job of #job=I (default the first) and a job
-// selector. Throws Error unless there is one page data per replay, and at least one.
+// are embedded once. The page (web/viewer/page_data.js) shows the job of #job=I (default the
+// first) and a job selector. Throws Error unless there is one page data per replay, and at least one.
 nlohmann::json SeveralJobsViewData(const std::vector<Replay>& replays, std::vector<nlohmann::json> job_data);
 
 }  // namespace contactlab

@@ -89,8 +89,9 @@ browse "--screenshot=$work/jobs.png" "file://$work/jobs.html#job=1&t=0.05" jobs.
 grep -q '<option value="0">job 0: k_C=500</option><option value="1">job 1: k_C=1500</option>' jobs.dom ||
   { echo "FAILED: the job selector does not list both jobs"; status=1; }
 # Choosing job 1 in the selector of a page opened on job 0 (a script added to the page does what a
-# user would) shows job 1.
-sed 's|</body>|<script>if (document.documentElement.getAttribute("data-job") === "0" \&\& !sessionStorage.getItem("switched")) { sessionStorage.setItem("switched", "1"); var s = document.getElementById("job"); s.value = "1"; s.dispatchEvent(new Event("change")); }</script></body>|' \
+# user would) shows job 1. The script is a module so that it runs after the viewer's module has
+# filled the selector (module scripts run in order, once the page is parsed).
+sed 's|</body>|<script type="module">if (document.documentElement.getAttribute("data-job") === "0" \&\& !sessionStorage.getItem("switched")) { sessionStorage.setItem("switched", "1"); var s = document.getElementById("job"); s.value = "1"; s.dispatchEvent(new Event("change")); }</script></body>|' \
   jobs.html > switch.html
 browse --dump-dom "file://$work/switch.html" switch.dom.log > switch.dom
 "$python" "$here/check_page.py" --page switch --dom switch.dom --png jobs.png --logs switch.dom.log --replay \

@@ -4,8 +4,8 @@
 DOM (--dump-dom after the virtual-time budget): <html data-ready="1" data-errors="0">.
 Logs (Chromium's stderr with --enable-logging): no uncaught error or console error of the page.
 PNG (--screenshot): not blank (pixel variance above a threshold), body A's orange and body B's
-blue each cover enough pixels (src/view/web/viewer.js keeps other colours off those hues), and
-with --min-red the contact red covers at least that many; with --differs-from, at least
+blue each cover enough pixels (src/view/web/viewer/colours.js keeps other colours off those
+hues), and with --min-red the contact red covers at least that many; with --differs-from, at least
 --min-differing pixels differ from another screenshot of the same view (what it adds is drawn).
 """
 import argparse

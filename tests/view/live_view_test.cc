@@ -223,13 +223,24 @@ struct StreamEvents {
 
 TEST(LiveView, ServerStreamsTheNewestSnapshotOnLoopback) {
   auto source = std::make_unique<LiveSnapshotHistory>();
-  LiveViewServer server("<html>page</html>", *source, 0);
+  LiveViewServer server(ServedPage{"<html>page</html>", {{"viewer/a.js", "export const A = 1;\n", "text/javascript"}}},
+                        *source, 0);
   ASSERT_GT(server.port(), 0);
   httplib::Client client("127.0.0.1", server.port());
   // Before the first snapshot: the page, and no snapshot.
   auto page = client.Get("/");
   ASSERT_TRUE(page);
   EXPECT_EQ(page->body, "<html>page</html>");
+  // The page's file at its path, and nothing at a path that differs in a character the route's
+  // pattern would otherwise match (the dot).
+  auto file = client.Get("/viewer/a.js");
+  ASSERT_TRUE(file);
+  EXPECT_EQ(file->status, 200);
+  EXPECT_EQ(file->body, "export const A = 1;\n");
+  EXPECT_EQ(file->get_header_value("Content-Type"), "text/javascript");
+  auto other = client.Get("/viewer/aXjs");
+  ASSERT_TRUE(other);
+  EXPECT_EQ(other->status, 404);
   auto none = client.Get("/snapshot");
   ASSERT_TRUE(none);
   EXPECT_EQ(none->status, 204);
@@ -278,7 +289,7 @@ TEST(LiveView, ServerStreamsTheNewestSnapshotOnLoopback) {
 // skips reaches early.
 TEST(LiveView, StreamSendsEverySnapshotOnceInOrderFromWhereItJoined) {
   auto source = std::make_unique<LiveSnapshotHistory>();
-  LiveViewServer server("<html></html>", *source, 0);
+  LiveViewServer server(ServedPage{"<html></html>"}, *source, 0);
   httplib::Client client("127.0.0.1", server.port());
   client.set_read_timeout(60, 0);  // a hang guard only
   std::int64_t cycle = 0;
@@ -313,7 +324,7 @@ TEST(LiveView, StreamSendsEverySnapshotOnceInOrderFromWhereItJoined) {
 // cleanly; WaitForStreams is how a session (and this test) knows that its viewer is there.
 TEST(LiveView, StopEndsEachStreamAfterEverySnapshotPublishedBeforeIt) {
   auto source = std::make_unique<LiveSnapshotHistory>();
-  LiveViewServer server("<html></html>", *source, 0);
+  LiveViewServer server(ServedPage{"<html></html>"}, *source, 0);
   StreamEvents events;
   bool ended_cleanly = false;
   std::thread viewer([&] {
@@ -366,7 +377,7 @@ std::string RawExchange(int port, const std::string& request) {
 // held stream ends cleanly.
 TEST(LiveView, StreamsPastTheLimitCannotStarveThePage) {
   auto source = std::make_unique<LiveSnapshotHistory>();
-  LiveViewServer server("<html>live</html>", *source, 0);
+  LiveViewServer server(ServedPage{"<html>live</html>"}, *source, 0);
   std::vector<std::thread> watchers;
   std::vector<int> status(kLiveViewStreamLimit, 0);
   for (int i = 0; i < kLiveViewStreamLimit; ++i) {
@@ -426,7 +437,7 @@ TEST(LiveView, StreamSendsMarksAtMostOncePerMarksCycles) {
   ContactPointMarks marks({0, 1, 2}, 3);
   CycleParityModel model;
   constexpr std::int64_t kMarksEvery = 10;
-  LiveViewServer server("<html></html>", *source, 0, &marks, kMarksEvery);
+  LiveViewServer server(ServedPage{"<html></html>"}, *source, 0, &marks, kMarksEvery);
   httplib::Client client("127.0.0.1", server.port());
   client.set_read_timeout(60, 0);  // a hang guard only
   std::int64_t cycle = 0;
@@ -520,7 +531,18 @@ TEST(LiveView, SessionStreamMatchesItsLog) {
   ASSERT_TRUE(page) << output;
   EXPECT_EQ(page->status, 200);
   EXPECT_NE(page->body.find("\"live\":{"), std::string::npos);
-  EXPECT_NE(page->body.find("THREE.OrbitControls"), std::string::npos);
+  // three.js and the viewer's modules are files beside the page (the modules the entry
+  // imports, such as replay.js, too), each served as JavaScript.
+  EXPECT_NE(page->body.find("<script src=\"three/three.min.js\"></script>"), std::string::npos);
+  EXPECT_NE(page->body.find("<script src=\"three/OrbitControls.js\"></script>"), std::string::npos);
+  EXPECT_NE(page->body.find("<script type=\"module\" src=\"viewer/main.js\"></script>"), std::string::npos);
+  for (const std::string path : {"three/three.min.js", "three/OrbitControls.js", "viewer/main.js", "viewer/replay.js"}) {
+    const auto script = client.Get("/" + path);
+    ASSERT_TRUE(script) << path;
+    EXPECT_EQ(script->status, 200) << path;
+    EXPECT_EQ(script->get_header_value("Content-Type"), "text/javascript; charset=utf-8") << path;
+  }
+  EXPECT_NE(client.Get("/three/OrbitControls.js")->body.find("THREE.OrbitControls"), std::string::npos);
 
   // The pointshell points the page draws (all of them: the shell is small).
   const std::string data_start = "<script type=\"application/json\" id=\"contactlab-data\">";

@@ -399,6 +399,24 @@ TEST(Replay, SeveralJobsPageDataEmbedsSharedArraysOnce) {
   EXPECT_NE(e.find("one page data per replay"), std::string::npos) << e;
 }
 
+// The job's scene is expanded again only from the config of a study that replays
+// (Study::replayable), whatever its name: a folder whose meta.json says a contact study wrote it
+// but whose resolved config is a closed-loop one is refused, naming meta.json.
+TEST(Replay, ResolvedConfigOfAStudyWithoutTrajectoriesIsRefused) {
+  TempDir dir;
+  RunTiny(dir);
+  nlohmann::json meta = nlohmann::json::parse(ReadWholeFile(dir / "out" / "meta.json"));
+  meta["study"] = "contact";
+  meta["resolved_config"] = "name: view-loop\nstudy: closed-loop\nscene:\n" +
+                            testing::BallOnPlate{.ball_z = 0.0215, .points = 256, .levels = 3, .seed = 3}.Yaml(2) +
+                            "models: [pointshell]\n";
+  WriteFileAtomically(dir / "out" / "meta.json", meta.dump(2));
+  const std::string e = ErrorOf([&] { ReadReplay(dir / "out", std::nullopt); });
+  EXPECT_NE(e.find((dir / "out" / "meta.json").string() + ": is a closed-loop study, which has no trajectory to replay"),
+            std::string::npos)
+      << e;
+}
+
 TEST(Replay, BadResultsFolderIsAClearErrorNamingTheFile) {
   TempDir dir;
   // No folder.

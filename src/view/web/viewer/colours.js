@@ -1,0 +1,14 @@
+// The viewer's colours. Each family keeps clear of the others' hues so a screenshot can tell
+// them apart (tests/view/check_page.py): body A orange, body B blue, levels neither.
+export const BODY_COLOURS = [0xe8862a, 0x2f6fd0];
+// Pointshell levels; red is kept for points in contact.
+export const LEVEL_COLOURS = ['#ffe14d', '#3cc83c', '#d040d0', '#40e0e0', '#a0ff60', '#9060ff',
+                              '#f0f0f0', '#ff80c0', '#00a080', '#c0c000', '#b0b0ff', '#808080'];
+export const CONTACT_COLOUR = '#ff1010';
+// Live contact marks: evaluated points sky blue (clear of body B's hue), the rest dim grey.
+export const EVALUATED_COLOUR = '#38c8ff';
+export const UNEVALUATED_COLOUR = '#5a5e64';
+export const FORCE_COLOUR = 0xff3030;
+// Contact surfaces (pressure-field), by pressure: dark teal (0) through green to pale yellow
+// (the largest), hues clear of the bodies' and the contact red.
+export const PRESSURE_STOPS = [[0, 80, 70], [120, 200, 60], [255, 240, 120]];
