@@ -35,25 +35,26 @@ std::unique_ptr<ContactModel> MakePaperModelFor(PointshellVariant variant, const
 
 ContactModelEntry PaperModel(PointshellVariant variant) {
   const bool linear = variant == PointshellVariant::kLinear;
-  ContactModelEntry e;
-  e.name = linear ? "pointshell-linear" : "pointshell";
-  e.description = linear ? "Barbič & James 2008: every point of one pointshell level against B's field"
-                         : "Barbič & James 2008: breadth-first pointshell tree against B's field";
-  e.needs.pointshell_A = true;
-  e.needs.field_B = true;
-  e.needs.depth_in_field_voxels = true;
-  e.needs.deformable_A = true;
-  e.needs.deformable_B = true;
-  e.pair_params = ParamBlock(PointshellOwnParamTable());
-  e.check = [variant](const ContactParams& params, const ParamValues& own, bool, bool deformable_B,
-                      std::string_view where) {
-    CheckPointshellCoherence(PointshellParamsOf(params, own.Get(PointshellOwnParamTable())), variant, deformable_B,
-                             where);
+  return {
+      .name = linear ? "pointshell-linear" : "pointshell",
+      .description = linear ? "Barbič & James 2008: every point of one pointshell level against B's field"
+                            : "Barbič & James 2008: breadth-first pointshell tree against B's field",
+      .needs = {.pointshell_A = true,
+                .field_B = true,
+                .depth_in_field_voxels = true,
+                .deformable_A = true,
+                .deformable_B = true},
+      .make = [variant](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
+        return in.A.deformable() ? MakePaperModelFor<DeformableShell>(variant, in)
+                                 : MakePaperModelFor<RigidShell>(variant, in);
+      },
+      .pair_params = ParamBlock(PointshellOwnParamTable()),
+      .check = [variant](const ContactParams& params, const ParamValues& own, bool, bool deformable_B,
+                         std::string_view where) {
+        CheckPointshellCoherence(PointshellParamsOf(params, own.Get(PointshellOwnParamTable())), variant,
+                                 deformable_B, where);
+      },
   };
-  e.make = [variant](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
-    return in.A.deformable() ? MakePaperModelFor<DeformableShell>(variant, in) : MakePaperModelFor<RigidShell>(variant, in);
-  };
-  return e;
 }
 
 }  // namespace
