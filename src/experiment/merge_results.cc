@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "experiment/result_csv.h"
+#include "experiment/csv_line.h"
 #include "experiment/runner.h"
 #include "experiment/study.h"
 #include "util/atomic_file.h"

@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <string_view>
 
-#include "experiment/result_csv.h"
+#include "experiment/csv_line.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
 

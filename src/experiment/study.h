@@ -3,10 +3,12 @@
 // how to check, run and merge its jobs. The harness (run, merge, Slurm, the viewer) asks the
 // study, never tests its name or sniffs a results folder's files; meta.json records it.
 //
-// Adding a study: a source file defining `void RegisterMyStudy()` that calls RegisterStudy, and
-// one `contactlab_study(SOURCES my_study.cc REGISTER RegisterMyStudy)` line in
-// src/experiment/CMakeLists.txt. The studies today: contact (runner.h: models along a
-// trajectory), deformed-field (deformed_field_study.h) and closed-loop (closed_loop_study.h).
+// Adding a study: a folder src/experiment/studies/my_study/ with a source file defining
+// `void RegisterMyStudy()` that calls RegisterStudy, its CMakeLists.txt holding one
+// `contactlab_study(SOURCES my_study.cc REGISTER RegisterMyStudy)` line, and its
+// add_subdirectory in src/experiment/CMakeLists.txt. The studies today, under studies/: contact
+// (contact/contact_study.h: models along a trajectory), deformed-field
+// (deformed_field/deformed_field_study.h) and closed-loop (closed_loop/closed_loop_study.h).
 #pragma once
 
 #include <filesystem>

@@ -12,9 +12,9 @@
 #include <set>
 #include <sstream>
 
-#include "experiment/closed_loop_study.h"
-#include "experiment/result_csv.h"
-#include "experiment/runner.h"
+#include "experiment/studies/closed_loop/closed_loop_study.h"
+#include "experiment/studies/contact/result_csv.h"
+#include "experiment/studies/contact/contact_study.h"
 #include "scene_fixtures.h"
 #include "csv_rows.h"
 #include "test_support.h"

@@ -1,4 +1,4 @@
-#include "experiment/convergence_table.h"
+#include "experiment/studies/contact/convergence_table.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,8 +7,8 @@
 #include <sstream>
 #include <vector>
 
-#include "experiment/metrics.h"
-#include "experiment/result_csv.h"
+#include "experiment/studies/contact/metrics.h"
+#include "experiment/studies/contact/result_csv.h"
 
 namespace contactlab {
 

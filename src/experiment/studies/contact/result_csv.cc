@@ -1,4 +1,4 @@
-#include "experiment/result_csv.h"
+#include "experiment/studies/contact/result_csv.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -325,15 +325,6 @@ std::vector<std::string> ReadCyclesCsv(const std::filesystem::path& file,
     on_row(record);
   }
   return axes;
-}
-
-std::vector<std::string> SplitCsvLine(const std::string& line) {
-  std::vector<std::string> cells;
-  std::stringstream ss(line);
-  std::string cell;
-  while (std::getline(ss, cell, ',')) cells.push_back(cell);
-  if (!line.empty() && line.back() == ',') cells.emplace_back();
-  return cells;
 }
 
 }  // namespace contactlab

@@ -8,10 +8,10 @@
 #include <optional>
 
 #include "contact/coherence_guard.h"
-#include "experiment/contact_placement.h"
-#include "experiment/metrics.h"
-#include "experiment/runner.h"
 #include "deform/body_dynamics.h"
+#include "experiment/contact_placement.h"
+#include "experiment/studies/contact/contact_study.h"
+#include "experiment/studies/contact/metrics.h"
 #include "util/error.h"
 
 namespace contactlab {

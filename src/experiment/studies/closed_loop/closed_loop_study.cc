@@ -1,12 +1,12 @@
-// The closed-loop study (experiment/closed_loop_study.h): one job builds the scene's assets, finds
+// The closed-loop study (closed_loop_study.h): one job builds the scene's assets, finds
 // where the hand touches, and runs the simulated loop per model and motion.
-#include "experiment/closed_loop_study.h"
+#include "experiment/studies/closed_loop/closed_loop_study.h"
 
 #include <algorithm>
 #include <cstdio>
 
 #include "contact/model_registry.h"
-#include "experiment/result_csv.h"
+#include "experiment/csv_line.h"
 #include "experiment/run_metadata.h"
 #include "experiment/runner.h"
 #include "experiment/scene_assets.h"
@@ -21,8 +21,8 @@ const ParamTable<LoopSpec>& LoopParams() {
       {"push", LoopMotion::kPush}, {"slide", LoopMotion::kSlide}, {"corner", LoopMotion::kCorner}};
   static const ParamTable<LoopSpec> table(
       "loop",
-      "The simulated haptic loop of a closed-loop study (experiment/closed_loop_study.h): the coupling, the "
-      "damping and the hand's motions.",
+      "The simulated haptic loop of a closed-loop study (experiment/studies/closed_loop/closed_loop_study.h): the "
+      "coupling, the damping and the hand's motions.",
       {
           P::Number("k_vc", PARAM_MEMBER(loop.k_vc), Above(0), NoUpperBound(), "linear coupling stiffness")
               .Unit("N/m").Sweepable().Example("5000"),

@@ -1,7 +1,7 @@
-// The deformed-field study (experiment/deformed_field_study.h): one job poses the field body,
+// The deformed-field study (deformed_field_study.h): one job poses the field body,
 // builds the exact reference for that pose and measures the proxy field against it; the study
 // runs the jobs and writes field_error.csv, field_slice.csv and meta.json.
-#include "experiment/deformed_field_study.h"
+#include "experiment/studies/deformed_field/deformed_field_study.h"
 
 #include <tbb/parallel_for.h>
 
@@ -11,7 +11,7 @@
 #include <cmath>
 #include <limits>
 
-#include "experiment/result_csv.h"
+#include "experiment/csv_line.h"
 #include "experiment/run_metadata.h"
 #include "experiment/study.h"
 #include "experiment/scene_assets.h"
