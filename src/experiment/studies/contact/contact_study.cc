@@ -72,8 +72,8 @@ void RegisterContactStudy() {
   s.description = "models compared along a trajectory";
   s.sections = {"models", "moving_body", "trajectory", "reference", "reference_every"};
   s.required = {"trajectory"};
-  s.tables = {"cycles.csv", "summary.csv"};
-  s.derived = {{"convergence.csv", [](const std::vector<std::string>& tables) { return ConvergenceCsv(tables[1]); }}};
+  s.tables = {CyclesTable(), SummaryTable()};
+  s.derived = {{ConvergenceTable(), [](const std::vector<std::string>& tables) { return ConvergenceCsv(tables[1]); }}};
   s.replayable = true;
   s.check = CheckContactStudy;
   s.run = RunContactStudy;

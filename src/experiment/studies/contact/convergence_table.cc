@@ -7,10 +7,43 @@
 #include <sstream>
 #include <vector>
 
+#include "experiment/csv_line.h"
 #include "experiment/studies/contact/metrics.h"
 #include "experiment/studies/contact/result_csv.h"
 
 namespace contactlab {
+namespace {
+
+// One group's fit.
+struct ConvergenceRow {
+  std::string group;
+  std::size_t samples = 0;
+  double fitted_order = 0, order_ci95 = 0;
+  std::string points, errors;  // space-separated, by points
+};
+
+const TableColumn<ConvergenceRow> kConvergenceColumns[] = {
+    {"group", "", "the model and the values of the sweep axes other than points and *seed (model;axis=value...)",
+     [](const ConvergenceRow& r, CsvLine& l) { l.Text(r.group); }},
+    {"samples", "", "pointshell sizes in the fit",
+     [](const ConvergenceRow& r, CsvLine& l) { l.Int((long long)r.samples); }},
+    {"fitted_order", "", "fitted order: error ~ points^-order (least squares in log-log)",
+     [](const ConvergenceRow& r, CsvLine& l) { l.Num("%.4g", r.fitted_order); }},
+    {"order_ci95", "", "95 % confidence half-width of fitted_order",
+     [](const ConvergenceRow& r, CsvLine& l) { l.Num("%.4g", r.order_ci95); }},
+    {"points", "", "the pointshell sizes, space-separated, ascending",
+     [](const ConvergenceRow& r, CsvLine& l) { l.Text(r.points); }},
+    {"errors", "", "rms_rel_error at each size (RMS over pooled *seed axes), space-separated",
+     [](const ConvergenceRow& r, CsvLine& l) { l.Text(r.errors); }},
+};
+
+}  // namespace
+
+const ResultTable& ConvergenceTable() {
+  static const ResultTable table = DeclareTable("convergence.csv", "one row per model and combination of the other sweep axes",
+                                                TableKeys::kNone, kConvergenceColumns);
+  return table;
+}
 
 std::string ConvergenceCsv(const std::string& summary_csv) {
   std::istringstream in(summary_csv);
@@ -21,7 +54,9 @@ std::string ConvergenceCsv(const std::string& summary_csv) {
     const auto it = std::find(header.begin(), header.end(), name);
     return it == header.end() ? -1 : int(it - header.begin());
   };
-  const int c_model = col("model"), c_points = col("points"), c_err = col("rms_rel_error"), c_job = col("job");
+  const ResultTable& summary = SummaryTable();
+  const int c_model = col(summary.Column("model")), c_points = col(summary.Column("points")),
+            c_err = col(summary.Column("rms_rel_error")), c_job = col(summary.Column("job"));
   // Group by model and the values of every sweep axis except points and the pooled ones (the
   // columns between "job" and "model"). A pooled axis (its name ends in "seed": repeated
   // samplings of one configuration) contributes its errors at equal points as one RMS, the
@@ -48,23 +83,26 @@ std::string ConvergenceCsv(const std::string& summary_csv) {
       groups[key].emplace_back(n, std::sqrt(sq / double(errs.size())));
     }
   }
-  std::string out = "group,samples,fitted_order,order_ci95,points,errors\n";
+  std::string out = ConvergenceTable().Header(ExperimentConfig());
   for (auto& [key, pairs] : groups) {
     std::sort(pairs.begin(), pairs.end());
     std::vector<double> xs, ys;
-    std::string pts, errs;
+    ConvergenceRow row;
+    row.group = key;
+    row.samples = pairs.size();
     for (auto [x, y] : pairs) {
       xs.push_back(x), ys.push_back(y);
       char b[48];
-      std::snprintf(b, sizeof b, "%s%d", pts.empty() ? "" : " ", int(x));
-      pts += b;
-      std::snprintf(b, sizeof b, "%s%.4g", errs.empty() ? "" : " ", y);
-      errs += b;
+      std::snprintf(b, sizeof b, "%s%d", row.points.empty() ? "" : " ", int(x));
+      row.points += b;
+      std::snprintf(b, sizeof b, "%s%.4g", row.errors.empty() ? "" : " ", y);
+      row.errors += b;
     }
-    char b[64], ci[64];
-    std::snprintf(b, sizeof b, "%.4g", FittedOrder(xs, ys));
-    std::snprintf(ci, sizeof ci, "%.4g", FittedOrderHalfWidth95(xs, ys));
-    out += key + "," + std::to_string(pairs.size()) + "," + b + "," + ci + "," + pts + "," + errs + "\n";
+    row.fitted_order = FittedOrder(xs, ys);
+    row.order_ci95 = FittedOrderHalfWidth95(xs, ys);
+    CsvLine line(&out);
+    AppendCells(kConvergenceColumns, row, &line);
+    out += '\n';
   }
   return out;
 }

@@ -1,9 +1,9 @@
-// The result tables of an experiment run: cycles.csv (one row per cycle per model) and
-// summary.csv (one row per model per job), long format. Each table's columns are declared
-// once — name, format and the value they show — and drive both the header and the rows, so a
-// column cannot be added to one and forgotten in the other. cycles.csv is read back by the same
-// table (ReadCyclesCsv, for the viewer's replay); scripts/make_figures.py reads the columns by
-// name.
+// The contact study's result tables: cycles.csv (one row per cycle per model) and summary.csv
+// (one row per model per job), long format. Each table's columns are declared once — name,
+// unit, meaning, format and the value they show (experiment/result_table.h) — and drive the
+// header, the rows and meta.json's "columns", so a column cannot be added to one and forgotten
+// in another. cycles.csv is read back by the same table (ReadCyclesCsv, for the viewer's
+// replay); scripts/figures/ name the columns through the declarations (`contactlab columns`).
 #pragma once
 
 #include <filesystem>
@@ -12,9 +12,14 @@
 #include <vector>
 
 #include "experiment/csv_line.h"
+#include "experiment/result_table.h"
 #include "experiment/studies/contact/contact_study.h"
 
 namespace contactlab {
+
+// The declarations of the tables (the study's `tables`, experiment/study.h).
+const ResultTable& CyclesTable();
+const ResultTable& SummaryTable();
 
 // Header line of each table: experiment,job,<sweep axes>,<declared columns>.
 std::string CyclesCsvHeader(const ExperimentConfig& config);
