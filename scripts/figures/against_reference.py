@@ -6,19 +6,20 @@ force jump relative to the model's own median force. Against the exact overlap v
 import math
 from collections import defaultdict
 
-from .common import figure, model_color, models_in, num, plt, scene_name
+from .common import CYCLES, SUMMARY, axis, figure, model_color, models_in, num, plt, scene_name
 
 
 def model_bars(results, experiment, axis_prefix, reference, title, out):
-    rows = results.load(experiment, "summary")
+    rows = results.load(experiment, SUMMARY)
     if not rows:
         return False
-    axis = next(k for k in rows[0] if k.startswith(axis_prefix))
-    cases = sorted({r[axis] for r in rows})
+    case_axis = next(k for k in rows[0] if k.startswith(axis_prefix))
+    cases = sorted({r[case_axis] for r in rows})
     models = models_in(rows)
-    panels = [("median_dir_error_deg", "p95_dir_error_deg", f"angle to {reference} (°): median, whisker p95"),
-              ("rms_rel_error_calibrated", None, "relative RMS error after the fitted scale"),
-              ("max_jump_rel", None, "largest jump / median |F| in contact")]
+    panels = [(SUMMARY.median_dir_error_deg, SUMMARY.p95_dir_error_deg,
+               f"angle to {reference} (°): median, whisker p95"),
+              (SUMMARY.rms_rel_error_calibrated, None, "relative RMS error after the fitted scale"),
+              (SUMMARY.max_jump_rel, None, "largest jump / median |F| in contact")]
     fig, axes = plt.subplots(1, len(panels), figsize=(5.0 * len(panels), 4.2), squeeze=False)
     width = 0.8 / max(1, len(models))
     for ax, (key, whisker, label) in zip(axes[0], panels):
@@ -26,7 +27,7 @@ def model_bars(results, experiment, axis_prefix, reference, title, out):
             xs, ys, hi = [], [], []
             for i, case in enumerate(cases):
                 for r in rows:
-                    if r[axis] == case and r["model"] == model and num(r, key) >= 0:
+                    if r[case_axis] == case and r[SUMMARY.model] == model and num(r, key) >= 0:
                         xs.append(i + (j - (len(models) - 1) / 2) * width)
                         ys.append(num(r, key))
                         hi.append(num(r, whisker) - num(r, key) if whisker else 0)
@@ -47,13 +48,13 @@ def model_bars(results, experiment, axis_prefix, reference, title, out):
 # overlap volume grows with the depth), |F| should not fall. Prints, per scene and model, the
 # cycles where it falls by more than 1 % of the model's median force in contact.
 def monotonicity(results, experiment):
-    rows = results.load(experiment, "cycles") or []
+    rows = results.load(experiment, CYCLES) or []
     by = defaultdict(list)
     for r in rows:
-        by[(r["scene"], r["model"])].append(r)
+        by[(r[axis("scene")], r[CYCLES.model])].append(r)
     for (scene, model), rs in sorted(by.items()):
         half = rs[: len(rs) // 2 + 1]
-        forces = [math.hypot(num(r, "fx"), num(r, "fy"), num(r, "fz")) for r in half]
+        forces = [math.hypot(num(r, CYCLES.fx), num(r, CYCLES.fy), num(r, CYCLES.fz)) for r in half]
         touching = sorted(f for f in forces if f > 0)
         if not touching:
             continue

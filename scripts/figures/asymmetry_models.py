@@ -4,17 +4,17 @@ the cycles where both orders have a force (printed, and bars)."""
 import math
 from collections import defaultdict
 
-from .common import figure, model_color, models_in, num, plt, scene_name
+from .common import CYCLES, axis, figure, model_color, models_in, num, plt, scene_name
 
 
 @figure(experiments=["asymmetry-models"], outputs=["asymmetry_models.png"])
 def asymmetry_models(results):
-    rows = results.load("asymmetry-models", "cycles")
+    rows = results.load("asymmetry-models", CYCLES)
     if not rows:
         return False
     by = defaultdict(list)
     for r in rows:
-        by[(r["scene"], r["model"], r["roles"])].append(r)
+        by[(r[axis("scene")], r[CYCLES.model], r[axis("roles")])].append(r)
     scenes = sorted({k[0] for k in by})
     models = models_in(rows)
     fig, axes = plt.subplots(1, 2, figsize=(10, 4.0))
@@ -24,8 +24,8 @@ def asymmetry_models(results):
             a, b = by.get((scene, model, "normal"), []), by.get((scene, model, "swapped"), [])
             mags, angles = [], []
             for ra, rb in zip(a, b):
-                fa = [num(ra, c) for c in ("fx", "fy", "fz")]
-                fb = [num(rb, c) for c in ("fx", "fy", "fz")]
+                fa = [num(ra, c) for c in (CYCLES.fx, CYCLES.fy, CYCLES.fz)]
+                fb = [num(rb, c) for c in (CYCLES.fx, CYCLES.fy, CYCLES.fz)]
                 na, nb = math.hypot(*fa), math.hypot(*fb)
                 if na > 1e-9 and nb > 1e-9:
                     mags.append(abs(na - nb) / max(na, nb))

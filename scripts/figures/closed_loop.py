@@ -2,24 +2,24 @@
 stiffness and the largest stable one."""
 from collections import defaultdict
 
-from .common import figure, scene_name
+from .common import STABILITY, axis, figure, scene_name
 
 
 @figure(experiments=["closed-loop-stability"], outputs=["closed_loop_stability.png", "closed_loop_stability.md"])
 def closed_loop_stability(results):
-    rows = results.load("closed-loop-stability", "stability")
+    rows = results.load("closed-loop-stability", STABILITY)
     if not rows:
         return False
     # (scene, model) -> k_vc -> the reasons of its unstable motions ("" when all were stable).
     verdicts = defaultdict(lambda: defaultdict(list))
     stiffnesses = set()
     for r in rows:
-        key = (scene_name(r.get("scene", "")), r["model"])
-        k = float(r["k_vc"])
+        key = (scene_name(r.get(axis("scene"), "")), r[STABILITY.model])
+        k = float(r[STABILITY.k_vc])
         stiffnesses.add(k)
         verdicts[key][k]
-        if r["stable"] != "1":
-            verdicts[key][k].append(f"{r['verdict']} ({r['motion']})")
+        if r[STABILITY.stable] != "1":
+            verdicts[key][k].append(f"{r[STABILITY.verdict]} ({r[STABILITY.motion]})")
     stiffnesses = sorted(stiffnesses)
     header = ["scene", "model"] + [f"{k:g} N/m" for k in stiffnesses] + ["largest stable k_VC"]
     lines = []

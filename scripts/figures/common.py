@@ -18,6 +18,45 @@ from matplotlib.patches import Rectangle  # noqa: E402
 DPI = 110  # every PNG, figures and tables
 
 
+# ---------------------------------------------------------------------------------------------
+# The result tables and their columns. Every column a figure reads is named through its table:
+# SUMMARY.max_jump_N is "max_jump_N", a column the study that writes summary.csv declares (its
+# name, unit and meaning beside the C++ writer; `contactlab columns` lists them, and each run's
+# meta.json records them under "columns"). The figure test checks every such name against the
+# program's declarations, so renaming a column in C++ fails it. A sweep axis (scene, roles,
+# trajectory.speed, ...) is a column the config adds, named with axis().
+
+class Table:
+    """A result table of the studies, by its file under results/<experiment>/; attributes are
+    its column names."""
+
+    def __init__(self, file):
+        self.file = file
+
+    def __getattr__(self, column):
+        if column.startswith("__"):
+            raise AttributeError(column)
+        return column
+
+    def __repr__(self):
+        return f"Table({self.file!r})"
+
+
+CYCLES = Table("cycles.csv")            # study contact: one row per cycle per model
+SUMMARY = Table("summary.csv")          # study contact: one row per model per job
+CONVERGENCE = Table("convergence.csv")  # study contact: the fitted order per model and group
+FIELD_ERROR = Table("field_error.csv")  # study deformed-field: one row per job
+FIELD_SLICE = Table("field_slice.csv")  # study deformed-field: the slice's grid points
+STABILITY = Table("stability.csv")      # study closed-loop: one row per job, model and motion
+TABLES = {t.file: t for t in (CYCLES, SUMMARY, CONVERGENCE, FIELD_ERROR, FIELD_SLICE, STABILITY)}
+
+
+def axis(name):
+    """NAME, a sweep axis of an experiment's config: a column its sweep adds to every table of a
+    job (after experiment and job), not one a study declares."""
+    return name
+
+
 def read_csv(path):
     with open(path, newline="") as f:
         return list(csv.DictReader(f))
@@ -72,9 +111,9 @@ class Results:
         os.makedirs(self.out, exist_ok=True)
         self.made = []
 
-    # results/EXPERIMENT/KIND.csv as a list of dicts, or None when it does not exist.
-    def load(self, experiment, kind):
-        path = os.path.join(self.results, experiment, kind + ".csv")
+    # results/EXPERIMENT/TABLE (a Table above) as a list of dicts, or None when it does not exist.
+    def load(self, experiment, table):
+        path = os.path.join(self.results, experiment, table.file)
         if not os.path.exists(path):
             return None
         return read_csv(path)
@@ -266,6 +305,6 @@ def model_line(model, n, **overrides):
 
 
 # Models present in ROWS, in a fixed order: the table's order, then any others by name.
-def models_in(rows, key="model"):
+def models_in(rows, key=CYCLES.model):
     present = {r[key] for r in rows}
     return [m for m in MODEL_STYLES if m in present] + sorted(present - set(MODEL_STYLES))

@@ -3,35 +3,37 @@ sampling method (fitted order with its 95 % interval), and the force's continuit
 along the slide (largest jump relative to the median force)."""
 from collections import defaultdict
 
-from .common import figure, in_order, num, plt
+from .common import CONVERGENCE, SUMMARY, axis, figure, in_order, num, plt
 
 
 @figure(experiments=["convergence-eq2"], outputs=["convergence_eq2.png"])
 def convergence_eq2(results):
-    rows = results.load("convergence-eq2", "summary")
+    rows = results.load("convergence-eq2", SUMMARY)
     if not rows:
         return False
-    conv = {c["group"]: c for c in (results.load("convergence-eq2", "convergence") or [])}
-    axis = next(k for k in rows[0] if k.startswith("scene.bodies"))
-    shapes = sorted({r[axis] for r in rows})
-    methods = in_order(rows, "method")
+    conv = {c[CONVERGENCE.group]: c for c in (results.load("convergence-eq2", CONVERGENCE) or [])}
+    case_axis = next(k for k in rows[0] if k.startswith("scene.bodies"))
+    shapes = sorted({r[case_axis] for r in rows})
+    methods = in_order(rows, axis("method"))
     fig, axes = plt.subplots(1, len(shapes) + 1, figsize=(5.0 * (len(shapes) + 1), 4.2), squeeze=False)
     # One panel per shape: every sampling (seed) a dot, convergence.csv's pooled RMS per size a line.
     for i, shape in enumerate(shapes):
         ax = axes[0][i]
         for j, method in enumerate(methods):
-            pts = sorted((num(r, "points"), num(r, "rms_rel_error")) for r in rows
-                         if r[axis] == shape and r["method"] == method and 0 <= num(r, "rms_rel_error") < float("inf"))
+            pts = sorted((num(r, SUMMARY.points), num(r, SUMMARY.rms_rel_error)) for r in rows
+                         if r[case_axis] == shape and r[axis("method")] == method
+                         and 0 <= num(r, SUMMARY.rms_rel_error) < float("inf"))
             if not pts:
                 continue
             ax.loglog([p for p, _ in pts], [e for _, e in pts], ".", color=f"C{j}", alpha=0.5)
             group = next((c for g, c in conv.items() if f"={shape};" in g + ";" and f"method={method}" in g), None)
             label = method
             if group:
-                if group["fitted_order"] not in ("nan", ""):
-                    label += f": order {float(group['fitted_order']):.2f} ± {float(group['order_ci95']):.2f}"
-                xs = [float(v) for v in group["points"].split()]
-                ys = [float(v) for v in group["errors"].split()]
+                order, ci = group[CONVERGENCE.fitted_order], group[CONVERGENCE.order_ci95]
+                if order not in ("nan", ""):
+                    label += f": order {float(order):.2f} ± {float(ci):.2f}"
+                xs = [float(v) for v in group[CONVERGENCE.points].split()]
+                ys = [float(v) for v in group[CONVERGENCE.errors].split()]
                 ax.loglog(xs, ys, "o-", color=f"C{j}", label=label)
         ax.set_xlabel("pointshell points")
         ax.set_ylabel("RMS relative force error vs. closed-form eq. (2) limit")
@@ -44,8 +46,8 @@ def convergence_eq2(results):
         for k, shape in enumerate(shapes):
             by_n = defaultdict(list)
             for r in rows:
-                if r[axis] == shape and r["method"] == method:
-                    by_n[num(r, "points")].append(num(r, "max_jump_rel"))
+                if r[case_axis] == shape and r[axis("method")] == method:
+                    by_n[num(r, SUMMARY.points)].append(num(r, SUMMARY.max_jump_rel))
             xs = sorted(by_n)
             ax.loglog(xs, [max(sum(by_n[x]) / len(by_n[x]), 1e-6) for x in xs], "o-" if k == 0 else "s--",
                       color=f"C{j}", label=f"{method}, {shape}", ms=4)

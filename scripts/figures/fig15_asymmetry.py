@@ -2,37 +2,37 @@
 import math
 from collections import defaultdict
 
-from .common import figure, num, plt
+from .common import CYCLES, axis, figure, num, plt
 
 
 @figure(experiments=["fig15-asymmetry"], outputs=["fig15_asymmetry.png"])
 def fig15_asymmetry(results):
-    rows = results.load("fig15-asymmetry", "cycles")
+    rows = results.load("fig15-asymmetry", CYCLES)
     if not rows:
         return False
     fig, axes = plt.subplots(1, 2, figsize=(11, 4))
     angle_axis = axes[1].twinx()
     by = defaultdict(dict)
     for r in rows:
-        by[(r["resolution"], r["model"])].setdefault(r["roles"], []).append(r)
+        by[(r[axis("resolution")], r[CYCLES.model])].setdefault(r[axis("roles")], []).append(r)
     for (res, model), roles in sorted(by.items()):
         if "normal" not in roles or "swapped" not in roles:
             continue
         a, b = roles["normal"], roles["swapped"]
-        t = [num(r, "t") for r in a]
-        axes[0].plot(t, [math.hypot(num(r, "fx"), num(r, "fy"), num(r, "fz")) for r in a], lw=0.9,
+        t = [num(r, CYCLES.t) for r in a]
+        axes[0].plot(t, [math.hypot(num(r, CYCLES.fx), num(r, CYCLES.fy), num(r, CYCLES.fz)) for r in a], lw=0.9,
                      label=f"{res}³, moving dragon = field")
-        axes[0].plot(t, [math.hypot(num(r, "fx"), num(r, "fy"), num(r, "fz")) for r in b], "--", lw=0.9,
+        axes[0].plot(t, [math.hypot(num(r, CYCLES.fx), num(r, CYCLES.fy), num(r, CYCLES.fz)) for r in b], "--", lw=0.9,
                      label=f"{res}³, moving dragon = pointshell")
         # Both roles follow the same motion (one placement): the magnitudes' difference and
         # the angle between the two forces, against the depth of the config's role order.
         depth, diff, angle = [], [], []
         for ra, rb in zip(a, b):
-            fa = (num(ra, "fx"), num(ra, "fy"), num(ra, "fz"))
-            fb = (num(rb, "fx"), num(rb, "fy"), num(rb, "fz"))
+            fa = (num(ra, CYCLES.fx), num(ra, CYCLES.fy), num(ra, CYCLES.fz))
+            fb = (num(rb, CYCLES.fx), num(rb, CYCLES.fy), num(rb, CYCLES.fz))
             na, nb = math.hypot(*fa), math.hypot(*fb)
             if na > 1e-9 and nb > 1e-9:
-                depth.append(num(ra, "depth_voxels"))
+                depth.append(num(ra, CYCLES.depth_voxels))
                 diff.append(abs(na - nb) / max(na, nb))
                 cos = sum(x * y for x, y in zip(fa, fb)) / (na * nb)
                 angle.append(math.degrees(math.acos(max(-1.0, min(1.0, cos)))))

@@ -2,18 +2,18 @@
 every model's force opposing the push against the depth, over the pressing half of the run."""
 from collections import defaultdict
 
-from .common import figure, model_line, models_in, num, plt
+from .common import CYCLES, axis, figure, model_line, models_in, num, plt
 
 
 # The curves of EXPERIMENT, one panel per role order, until DEEPEST picks the deepest cycle,
 # with dotted lines at MARKS [(depth, label)]; TITLES[True] for the normal order.
 def push_through(results, experiment, depth_of, force_of, deepest, marks, xlabel, ylabel, titles, out):
-    rows = results.load(experiment, "cycles")
+    rows = results.load(experiment, CYCLES)
     if not rows:
         return False
     by = defaultdict(list)
     for r in rows:
-        by[(r.get("roles", "normal"), r["model"])].append(r)
+        by[(r.get(axis("roles"), "normal"), r[CYCLES.model])].append(r)
     orders = sorted({k[0] for k in by})
     fig, axes = plt.subplots(1, len(orders), figsize=(5.5 * len(orders), 4.2), squeeze=False)
     for ax, order in zip(axes[0], orders):
@@ -42,8 +42,8 @@ def push_through(results, experiment, depth_of, force_of, deepest, marks, xlabel
 def hard_cases_medial_axis(results):
     top = 0.002 + 0.01  # ball centre when its lowest point touches the plate's top face, m
     return push_through(
-        results, "hard-cases-medial-axis", lambda r: 1000 * (top - num(r, "z")), lambda r: num(r, "fz"),
-        lambda rs: min(range(len(rs)), key=lambda i: num(rs[i], "z")),
+        results, "hard-cases-medial-axis", lambda r: 1000 * (top - num(r, CYCLES.z)), lambda r: num(r, CYCLES.fz),
+        lambda rs: min(range(len(rs)), key=lambda i: num(rs[i], CYCLES.z)),
         [(2, "lowest point at mid-plane"), (12, "centre at mid-plane")],
         "depth of the ball's lowest point below the plate's top (mm)",
         "force on the ball along +z, opposing the push (N)",
@@ -58,8 +58,8 @@ def hard_cases_medial_axis(results):
 def hard_cases_tube_peg(results):
     touch = 0.0015  # tube offset along x where its inner wall touches the peg, m
     return push_through(
-        results, "hard-cases-tube-peg", lambda r: 1000 * (num(r, "x") - touch), lambda r: -num(r, "fx"),
-        lambda rs: max(range(len(rs)), key=lambda i: num(rs[i], "x")),
+        results, "hard-cases-tube-peg", lambda r: 1000 * (num(r, CYCLES.x) - touch), lambda r: -num(r, CYCLES.fx),
+        lambda rs: max(range(len(rs)), key=lambda i: num(rs[i], CYCLES.x)),
         [(0.25, "wall mid-surface in the peg"), (0.5, "wall through the peg's side")],
         "depth of the tube's inner wall in the peg (mm)",
         "force on the tube along -x, opposing the push (N)",
@@ -72,18 +72,20 @@ def hard_cases_tube_peg(results):
 # on the tool against the speed, per model and role order; a cross where the tool got through
 # (no force once wholly past), a red ring where the force ever pulled it along its motion. And
 # the counts per model and speed as a table.
-TOOL_AXIS = "scene.bodies[name=tool].mesh"
-PLATE_AXIS = "scene.bodies[name=plate].mesh"
+TOOL_AXIS = axis("scene.bodies[name=tool].mesh")
+PLATE_AXIS = axis("scene.bodies[name=plate].mesh")
 
 
 def tunnelling_runs(rows):
     """(tool, plate, roles, speed, model) -> (peak |F| N, got through, pulled the wrong way)."""
     runs = defaultdict(list)
     for r in rows:
-        runs[(r[TOOL_AXIS], r[PLATE_AXIS], r.get("roles", "normal"), float(r["trajectory.speed"]), r["model"])].append(r)
+        key = (r[TOOL_AXIS], r[PLATE_AXIS], r.get(axis("roles"), "normal"), float(r[axis("trajectory.speed")]),
+               r[CYCLES.model])
+        runs[key].append(r)
     out = {}
     for key, rs in runs.items():
-        forces = [(num(r, "fx"), num(r, "fy"), num(r, "fz")) for r in rs]
+        forces = [(num(r, CYCLES.fx), num(r, CYCLES.fy), num(r, CYCLES.fz)) for r in rs]
         mags = [(fx * fx + fy * fy + fz * fz) ** 0.5 for fx, fy, fz in forces]
         wrong = any(m > 1e-6 and f[2] < -0.05 * m for f, m in zip(forces, mags))  # along the motion, -z
         out[key] = (max(mags), mags[-1] <= 1e-9, wrong)
@@ -93,7 +95,7 @@ def tunnelling_runs(rows):
 @figure(experiments=["hard-cases-tunnelling"],
         outputs=["hard_cases_tunnelling.png", "hard_cases_tunnelling_table.png", "hard_cases_tunnelling_table.md"])
 def hard_cases_tunnelling(results):
-    rows = results.load("hard-cases-tunnelling", "cycles")
+    rows = results.load("hard-cases-tunnelling", CYCLES)
     if not rows:
         return False
     runs = tunnelling_runs(rows)

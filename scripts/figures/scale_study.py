@@ -3,13 +3,13 @@ model against pointshell size and against field resolution, shallow and deep con
 memory of each body against the resolution."""
 from matplotlib.ticker import FuncFormatter, NullLocator
 
-from .common import figure, model_style, models_in, num, plt
+from .common import SUMMARY, axis, figure, model_style, models_in, num, plt
 
 
 @figure(experiments=["scale-points", "scale-resolution"], outputs=["scale_study.png"])
 def scale_study(results):
-    points = results.load("scale-points", "summary")
-    resolution = results.load("scale-resolution", "summary")
+    points = results.load("scale-points", SUMMARY)
+    resolution = results.load("scale-resolution", SUMMARY)
     if not points and not resolution:
         return False
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.6))
@@ -26,12 +26,13 @@ def scale_study(results):
         for model in models_in(rows):
             st = model_style(model)
             for depth, (ls, filled) in depths.items():
-                rs = sorted((r for r in rows if r["model"] == model and r["trajectory.depth"] == depth), key=size_of)
+                rs = sorted((r for r in rows if r[SUMMARY.model] == model and r[axis("trajectory.depth")] == depth),
+                            key=size_of)
                 if not rs:
                     continue
                 x = [size_of(r) for r in rs]
-                med = [num(r, "median_us") for r in rs]
-                up = [max(0.0, num(r, "p99_us") - m) for r, m in zip(rs, med)]
+                med = [num(r, SUMMARY.median_us) for r in rs]
+                up = [max(0.0, num(r, SUMMARY.p99_us) - m) for r, m in zip(rs, med)]
                 ax.errorbar(x, med, yerr=[[0] * len(med), up], color=st["color"], ls=ls, marker=st["marker"], ms=5,
                             mfc=st["color"] if filled else "white", capsize=2, lw=1.1, elinewidth=0.7,
                             zorder=st["zorder"], label=f"{model}, {depth}")
@@ -47,7 +48,7 @@ def scale_study(results):
 
     # The resolution axis's label: cells, then "sparse" for a sparse field ("1024 sparse").
     def resolution_label(r):
-        for key in ("scene.bodies[role=field].field", "resolution"):
+        for key in (axis("scene.bodies[role=field].field"), axis("resolution")):
             if key in r:
                 return r[key]
         raise KeyError("scene.bodies[role=field].field")
@@ -55,7 +56,7 @@ def scale_study(results):
     def resolution_of(r):
         return float(resolution_label(r).split()[0])
 
-    time_panel(axes[0], points, lambda r: num(r, "points"), "pointshell points (dragon, body A)",
+    time_panel(axes[0], points, lambda r: num(r, SUMMARY.points), "pointshell points (dragon, body A)",
                "Cycle time against pointshell size (bunny field 128³)")
     time_panel(axes[1], resolution, resolution_of, "field resolution, cells along the longest side (bunny, body B)",
                "Cycle time against field resolution (65k points)")
@@ -64,15 +65,17 @@ def scale_study(results):
 
     # Memory per body: the bunny's field and the dragon's pointshell, as read by the paper's model.
     ax = axes[2]
-    mem = sorted((r for r in (resolution or []) if r["model"] == "pointshell-linear" and r["trajectory.depth"] == "shallow"
-                  and num(r, "field_B_bytes") > 0), key=resolution_of)
+    mem = sorted((r for r in (resolution or []) if r[SUMMARY.model] == "pointshell-linear"
+                  and r[axis("trajectory.depth")] == "shallow" and num(r, SUMMARY.field_B_bytes) > 0),
+                 key=resolution_of)
     if mem:
         x = [resolution_of(r) for r in mem]
-        ax.plot(x, [num(r, "field_B_bytes") / 2**20 for r in mem], "o-", color="k", label="field (bunny, body B)")
-        ax.plot(x, [num(r, "pointshell_A_bytes") / 2**20 for r in mem], "s--", color="0.55",
-                label=f"pointshell (dragon, body A, {int(num(mem[0], 'points'))} points)")
+        ax.plot(x, [num(r, SUMMARY.field_B_bytes) / 2**20 for r in mem], "o-", color="k",
+                label="field (bunny, body B)")
+        ax.plot(x, [num(r, SUMMARY.pointshell_A_bytes) / 2**20 for r in mem], "s--", color="0.55",
+                label=f"pointshell (dragon, body A, {int(num(mem[0], SUMMARY.points))} points)")
         for xi, r in zip(x, mem):
-            for key in ("field_B_bytes", "pointshell_A_bytes"):
+            for key in (SUMMARY.field_B_bytes, SUMMARY.pointshell_A_bytes):
                 ax.annotate(f"{num(r, key) / 2**20:.3g} MiB", (xi, num(r, key) / 2**20),
                             textcoords="offset points", xytext=(4, -10), fontsize=7)
         ax.legend(fontsize=7, loc="upper left")
@@ -85,8 +88,8 @@ def scale_study(results):
     ax.set_title("Memory per body against field resolution")
     ax.grid(True, which="both", alpha=0.3)
     # Ticks at the sizes measured, written out.
-    for ax, rows, size_of in ((axes[0], points, lambda r: num(r, "points")), (axes[1], resolution, resolution_of),
-                              (axes[2], resolution, resolution_of)):
+    for ax, rows, size_of in ((axes[0], points, lambda r: num(r, SUMMARY.points)),
+                              (axes[1], resolution, resolution_of), (axes[2], resolution, resolution_of)):
         if rows:
             ticks = sorted({size_of(r) for r in rows})
             ax.set_xticks(ticks)

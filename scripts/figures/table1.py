@@ -2,22 +2,22 @@
 import math
 from collections import defaultdict
 
-from .common import figure, num, scene_name
+from .common import CYCLES, SUMMARY, axis, figure, num, scene_name
 
 
 # EXPERIMENT's summary rows by scene and (model, coherence), and how often the tree model (no
 # coherence) rendered each level per scene; (None, None) without results.
 def table1_cells(results, experiment):
-    rows = results.load(experiment, "summary")
+    rows = results.load(experiment, SUMMARY)
     if not rows:
         return None, None
     levels = defaultdict(lambda: defaultdict(int))
-    for r in results.load(experiment, "cycles") or []:
-        if r["model"] == "pointshell" and r.get("coherence", "false") == "false":
-            levels[scene_name(r["scene"])][r["level"]] += 1
+    for r in results.load(experiment, CYCLES) or []:
+        if r[CYCLES.model] == "pointshell" and r.get(axis("coherence"), "false") == "false":
+            levels[scene_name(r[axis("scene")])][r[CYCLES.level]] += 1
     table = defaultdict(dict)
     for r in rows:
-        table[scene_name(r["scene"])][(r["model"], r.get("coherence", "false"))] = r
+        table[scene_name(r[axis("scene")])][(r[SUMMARY.model], r.get(axis("coherence"), "false"))] = r
     return table, levels
 
 
@@ -37,9 +37,9 @@ def table1_statistics(results):
         tree = cells.get(("pointshell", "false"), {})
         tc = cells.get(("pointshell", "true"), {})
         lin = cells.get(("pointshell-linear", "false"), {})
-        lines.append([scene, tree.get("points", ""), f"{num(tree, 'mean_nodes'):.0f}",
-                      f"{num(tree, 'median_us'):.1f}", f"{num(tc, 'median_us'):.1f}", usual_level(levels[scene]),
-                      f"{num(lin, 'median_us'):.1f}"])
+        lines.append([scene, tree.get(SUMMARY.points, ""), f"{num(tree, SUMMARY.mean_nodes):.0f}",
+                      f"{num(tree, SUMMARY.median_us):.1f}", f"{num(tc, SUMMARY.median_us):.1f}",
+                      usual_level(levels[scene]), f"{num(lin, SUMMARY.median_us):.1f}"])
     results.save_table(header, lines, "Table 1: traversal statistics per scene (circling contact, 1 mm deep)",
                        "table1_statistics")
     return True
@@ -57,9 +57,10 @@ def table1_deformable(results):
         tree = cells.get(("pointshell", "false"), {})
         tc = cells.get(("pointshell", "true"), {})
         lin = cells.get(("pointshell-linear", "false"), {})
-        lines.append([scene, tree.get("points", ""), tree.get("modes", ""), f"{num(tree, 'median_step_us'):.1f}",
-                      f"{num(tree, 'mean_nodes'):.0f}", f"{num(tree, 'median_us'):.1f}",
-                      f"{num(tc, 'median_us'):.1f}", usual_level(levels[scene]), f"{num(lin, 'median_us'):.1f}"])
+        lines.append([scene, tree.get(SUMMARY.points, ""), tree.get(SUMMARY.modes, ""),
+                      f"{num(tree, SUMMARY.median_step_us):.1f}", f"{num(tree, SUMMARY.mean_nodes):.0f}",
+                      f"{num(tree, SUMMARY.median_us):.1f}", f"{num(tc, SUMMARY.median_us):.1f}",
+                      usual_level(levels[scene]), f"{num(lin, SUMMARY.median_us):.1f}"])
     results.save_table(header, lines,
                        "Table 1, deformable pointshells: traversal and reduced StVK step (circling contact)",
                        "table1_deformable")
@@ -79,9 +80,10 @@ def table1_defo_defo(results):
               "tree µs (p99.9)", "level", "tree-less µs", "max jump N"]
     # p99.9 of the tree's per-cycle time, with the deformation steps (the whole cycle's work).
     cycle_us = defaultdict(list)
-    for r in results.load("table1-defo-defo", "cycles") or []:
-        if r["model"] == "pointshell" and r.get("coherence", "false") == "false":
-            cycle_us[scene_name(r["scene"])].append(num(r, "time_us") + num(r, "step_us") + num(r, "step_B_us"))
+    for r in results.load("table1-defo-defo", CYCLES) or []:
+        if r[CYCLES.model] == "pointshell" and r.get(axis("coherence"), "false") == "false":
+            cycle_us[scene_name(r[axis("scene")])].append(
+                num(r, CYCLES.time_us) + num(r, CYCLES.step_us) + num(r, CYCLES.step_B_us))
 
     def p999(values):
         v = sorted(values)
@@ -91,11 +93,12 @@ def table1_defo_defo(results):
     for scene, cells in sorted(table.items()):
         tree = cells.get(("pointshell", "false"), {})
         lin = cells.get(("pointshell-linear", "false"), {})
-        lines.append([scene, tree.get("points", ""), f"{tree.get('modes', '')} / {tree.get('modes_B', '')}",
-                      f"{num(tree, 'median_step_us'):.1f} / {num(tree, 'median_step_B_us'):.1f}",
-                      f"{num(tree, 'mean_nodes'):.0f}", f"{num(tree, 'median_us'):.1f}",
+        lines.append([scene, tree.get(SUMMARY.points, ""),
+                      f"{tree.get(SUMMARY.modes, '')} / {tree.get(SUMMARY.modes_B, '')}",
+                      f"{num(tree, SUMMARY.median_step_us):.1f} / {num(tree, SUMMARY.median_step_B_us):.1f}",
+                      f"{num(tree, SUMMARY.mean_nodes):.0f}", f"{num(tree, SUMMARY.median_us):.1f}",
                       f"{p999(cycle_us[scene]):.1f}", usual_level(levels[scene]),
-                      f"{num(lin, 'median_us'):.1f}", f"{num(tree, 'max_jump_N'):.3g}"])
+                      f"{num(lin, SUMMARY.median_us):.1f}", f"{num(tree, SUMMARY.max_jump_N):.3g}"])
     results.save_table(header, lines,
                        "Table 1, defo-defo: deformable pointshell vs deformed distance field (circling contact)",
                        "table1_defo_defo")

@@ -4,18 +4,18 @@ of one shape at the same poses: RMS |F_coarse - F_fine| / RMS |F_fine| over the 
 import math
 from collections import defaultdict
 
-from .common import figure, model_color, model_line, models_in, num, plt
+from .common import CYCLES, figure, model_color, model_line, models_in, num, plt
 
 
 @figure(experiments=["tessellation"], outputs=["tessellation.png"])
 def tessellation(results):
-    rows = results.load("tessellation", "cycles")
+    rows = results.load("tessellation", CYCLES)
     if not rows:
         return False
-    axis = next(k for k in rows[0] if k.startswith("scene.bodies"))
+    case_axis = next(k for k in rows[0] if k.startswith("scene.bodies"))
     by = defaultdict(list)
     for r in rows:
-        by[(r[axis], r["model"])].append(r)
+        by[(r[case_axis], r[CYCLES.model])].append(r)
     meshes = sorted({k[0] for k in by})
     models = models_in(rows)
     # Pairs of labels "SHAPE-COUNT": coarse (fewer triangles) then fine.
@@ -32,17 +32,18 @@ def tessellation(results):
             a, b = by.get((coarse, model), []), by.get((fine, model), [])
             if not a or len(a) != len(b):
                 continue
-            diff = sum(sum((num(x, c) - num(y, c)) ** 2 for c in ("fx", "fy", "fz")) for x, y in zip(a, b))
-            ref = sum(sum(num(y, c) ** 2 for c in ("fx", "fy", "fz")) for y in b)
+            force = (CYCLES.fx, CYCLES.fy, CYCLES.fz)
+            diff = sum(sum((num(x, c) - num(y, c)) ** 2 for c in force) for x, y in zip(a, b))
+            ref = sum(sum(num(y, c) ** 2 for c in force) for y in b)
             change = math.sqrt(diff / ref) if ref > 0 else float("nan")
             print(f"tessellation {shape} {coarse} vs {fine} {model}: RMS |dF| / RMS |F| = {change:.4f}")
             axes[0][0].bar(i + (j - (len(models) - 1) / 2) * width, change, width, color=model_color(model),
                            label=model if i == 0 else None)
             # The fine mesh in the model's style; the coarse one thin and dotted in its colour.
-            t = [num(r, "t") for r in b]
-            ax.plot(t, [math.hypot(num(r, "fx"), num(r, "fy"), num(r, "fz")) for r in b],
+            t = [num(r, CYCLES.t) for r in b]
+            ax.plot(t, [math.hypot(*(num(r, c) for c in force)) for r in b],
                     **model_line(model, len(b), label=f"{model}, {fine}"))
-            ax.plot(t, [math.hypot(num(r, "fx"), num(r, "fy"), num(r, "fz")) for r in a], color=model_color(model),
+            ax.plot(t, [math.hypot(*(num(r, c) for c in force)) for r in a], color=model_color(model),
                     lw=0.9, ls=":", zorder=3)
         ax.set_title(f"{shape}: {fine} in the model's line, {coarse} thin dotted", fontsize=9)
         ax.set_xlabel("time (s)")

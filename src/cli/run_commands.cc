@@ -13,6 +13,7 @@
 
 #include "cli/command_registry.h"
 #include "experiment/experiment_config.h"
+#include "experiment/result_table.h"
 #include "experiment/runner.h"
 #include "experiment/scene.h"
 #include "experiment/slurm_script.h"
@@ -207,6 +208,40 @@ const CommandRegistration kParams([](CLI::App& app) {
       std::cout << text;
     } else {
       WriteFileAtomically(*out, text);
+    }
+  });
+});
+
+// `contactlab columns [--json]`: every study's result tables and their declared columns (name,
+// unit, meaning; experiment/result_table.h), as Markdown or as JSON {study: {file: [column...]}}.
+// The figure scripts' test checks the columns they read against this list.
+const CommandRegistration kColumns([](CLI::App& app) {
+  auto json = std::make_shared<bool>(false);
+  CLI::App* cmd = app.add_subcommand(
+      "columns", "Print the columns of every study's result tables (name, unit, meaning), as declared by their writers");
+  cmd->add_flag("--json", *json, "as JSON: {study: {file: [{name, unit, meaning}, ...]}}");
+  cmd->callback([json] {
+    if (*json) {
+      nlohmann::json all = nlohmann::json::object();
+      for (const Study& study : Studies()) all[study.name] = study.ColumnsJson();
+      std::cout << all.dump(2) << "\n";
+      return;
+    }
+    for (const Study& study : Studies()) {
+      std::cout << "## Study `" << study.name << "`\n";
+      for (const ResultTable* table : study.AllTables()) {
+        std::cout << "\n### " << table->file << ": " << table->meaning << "\n\n| column | unit | meaning |\n|---|---|---|\n";
+        for (const auto& c : ColumnsJson(*table)) {
+          std::cout << "| " << c["name"].get<std::string>() << " | " << c["unit"].get<std::string>() << " | "
+                    << c["meaning"].get<std::string>() << " |\n";
+          if (table->keys != TableKeys::kNone && c["name"] == "job") {
+            std::cout << "| (sweep axes) | | one column per axis of the config's sweep"
+                      << (table->keys == TableKeys::kJobAndOtherAxes ? ", except those named like a column below" : "")
+                      << " |\n";
+          }
+        }
+      }
+      std::cout << "\n";
     }
   });
 });

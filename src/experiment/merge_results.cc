@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "experiment/result_csv.h"
+#include "experiment/csv_line.h"
 #include "experiment/runner.h"
 #include "experiment/study.h"
 #include "util/atomic_file.h"
@@ -57,7 +57,7 @@ void MergeResults(const std::vector<fs::path>& job_dirs, const fs::path& out_dir
   if (job_dirs.empty()) Fail(out_dir.string(), "nothing to merge");
   // The study that wrote the first folder (its meta.json says); every folder must be of it.
   const Study& study = StudyOfResults(job_dirs.front());
-  const std::vector<std::string>& tables = study.tables;
+  const std::vector<std::string> tables = study.TableFiles();
   std::vector<std::string> headers(tables.size()), bodies(tables.size());
   std::vector<long> rows(tables.size(), 0);
   nlohmann::json meta;

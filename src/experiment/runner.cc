@@ -1,8 +1,6 @@
-// Runs an experiment's jobs (in parallel unless the config measures timing) and writes a contact
-// study's results folder: cycles.csv and summary.csv (result_csv.h), convergence.csv
-// (convergence_table.h) and meta.json (run_metadata.h), each file atomically after every job
-// has finished (experiment/study.h). One job's work is in run_job.cc, the study's registration
-// in contact_study.cc, merging of single-job runs in merge_results.cc.
+// Runs an experiment's jobs (in parallel unless the config measures timing), one call of the
+// study's job function per sweep point (experiment/runner.h). Merging of single-job runs is in
+// merge_results.cc.
 #include "experiment/runner.h"
 
 #include <tbb/parallel_for.h>
@@ -13,9 +11,6 @@
 #include <exception>
 #include <thread>
 
-#include "experiment/result_csv.h"
-#include "experiment/run_metadata.h"
-#include "experiment/study.h"
 #include "util/error.h"
 #include "util/progress.h"
 
@@ -62,33 +57,6 @@ JobsRun RunJobs(const ExperimentConfig& config, const std::vector<Job>& all, con
   }
   out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
-}
-
-std::vector<SummaryRow> RunExperiment(const ExperimentConfig& config, const RunOptions& options,
-                                      const std::vector<int>& job_indices) {
-  const Study& study = StudyOf(config);
-  if (study.name != kContactStudy) {
-    Fail(config.file, "is a " + config.study + " study (" + study.description + "), not a contact study");
-  }
-  const std::vector<Job> all = ExpandJobs(config);
-  std::vector<JobResult> results(job_indices.empty() ? all.size() : job_indices.size());
-  const JobsRun jobs = RunJobs(config, all, job_indices, options, [&](std::size_t i, const Job& job) {
-    results[i] = RunJob(config, job, options);
-  });
-  const std::vector<int>& indices = jobs.indices;
-  const double wall = jobs.wall_seconds;
-  const int parallel = jobs.parallel;
-
-  // Everything is formatted in memory and written at the end, each file atomically.
-  std::string cycles = CyclesCsvHeader(config), summary = SummaryCsvHeader(config);
-  std::vector<SummaryRow> rows;
-  for (const JobResult& r : results) {
-    AppendCyclesCsv(config, r, &cycles);
-    AppendSummaryCsv(config, r, &summary);
-    rows.insert(rows.end(), r.summary.begin(), r.summary.end());
-  }
-  WriteStudyResults(study, options.out_dir, {cycles, summary}, RunMetadata(config, indices, wall, parallel));
-  return rows;
 }
 
 }  // namespace contactlab

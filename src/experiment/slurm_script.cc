@@ -203,7 +203,7 @@ std::vector<fs::path> SweepTaskFolders(const fs::path& out_dir, int jobs) {
     }
     if (why.empty()) {
       try {
-        for (const std::string& name : StudyOfResults(dir).tables) {
+        for (const std::string& name : StudyOfResults(dir).TableFiles()) {
           if (why.empty() && !fs::is_regular_file(dir / name, ec)) why = "no " + name;
         }
       } catch (const Error& e) {

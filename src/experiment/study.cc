@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <string_view>
 
-#include "experiment/result_csv.h"
+#include "experiment/csv_line.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
 
@@ -66,10 +66,29 @@ void RequireFiniteCells(const std::filesystem::path& file, const std::string& te
 }  // namespace
 
 std::vector<std::string> Study::Files() const {
-  std::vector<std::string> files = tables;
-  for (const Derived& d : derived) files.push_back(d.file);
+  std::vector<std::string> files;
+  for (const ResultTable* t : AllTables()) files.push_back(t->file);
   files.push_back("meta.json");
   return files;
+}
+
+std::vector<std::string> Study::TableFiles() const {
+  std::vector<std::string> files;
+  for (const ResultTable& t : tables) files.push_back(t.file);
+  return files;
+}
+
+std::vector<const ResultTable*> Study::AllTables() const {
+  std::vector<const ResultTable*> all;
+  for (const ResultTable& t : tables) all.push_back(&t);
+  for (const Derived& d : derived) all.push_back(&d.table);
+  return all;
+}
+
+nlohmann::json Study::ColumnsJson() const {
+  nlohmann::json columns = nlohmann::json::object();
+  for (const ResultTable* t : AllTables()) columns[t->file] = contactlab::ColumnsJson(*t);
+  return columns;
 }
 
 void RegisterStudy(Study study) {
@@ -139,7 +158,7 @@ void WriteStudyResults(const Study& study, const std::filesystem::path& out_dir,
                            std::to_string(study.tables.size()) + " declared");
   }
   // No table holds a non-finite number: a reader would take "nan" or "inf" as text or fail.
-  for (std::size_t t = 0; t < tables.size(); ++t) RequireFiniteCells(out_dir / study.tables[t], tables[t]);
+  for (std::size_t t = 0; t < tables.size(); ++t) RequireFiniteCells(out_dir / study.tables[t].file, tables[t]);
   // meta.json counts each table's rows, so that a merge can tell a complete table from one cut
   // short at a line break.
   nlohmann::json counted = meta;
@@ -150,11 +169,13 @@ void WriteStudyResults(const Study& study, const std::filesystem::path& out_dir,
       if (eol != at + 1) ++rows;
       at = eol;
     }
-    counted["table_rows"][study.tables[t]] = rows;
+    counted["table_rows"][study.tables[t].file] = rows;
   }
+  // And the columns each table declares, so that a reader finds their units and meanings.
+  counted["columns"] = study.ColumnsJson();
   std::filesystem::create_directories(out_dir);
-  for (std::size_t t = 0; t < tables.size(); ++t) WriteFileAtomically(out_dir / study.tables[t], tables[t]);
-  for (const Study::Derived& d : study.derived) WriteFileAtomically(out_dir / d.file, d.compute(tables));
+  for (std::size_t t = 0; t < tables.size(); ++t) WriteFileAtomically(out_dir / study.tables[t].file, tables[t]);
+  for (const Study::Derived& d : study.derived) WriteFileAtomically(out_dir / d.table.file, d.compute(tables));
   WriteFileAtomically(out_dir / "meta.json", counted.dump(2) + "\n");
 }
 

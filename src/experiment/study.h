@@ -3,10 +3,12 @@
 // how to check, run and merge its jobs. The harness (run, merge, Slurm, the viewer) asks the
 // study, never tests its name or sniffs a results folder's files; meta.json records it.
 //
-// Adding a study: a source file defining `void RegisterMyStudy()` that calls RegisterStudy, and
-// one `contactlab_study(SOURCES my_study.cc REGISTER RegisterMyStudy)` line in
-// src/experiment/CMakeLists.txt. The studies today: contact (runner.h: models along a
-// trajectory), deformed-field (deformed_field_study.h) and closed-loop (closed_loop_study.h).
+// Adding a study: a folder src/experiment/studies/my_study/ with a source file defining
+// `void RegisterMyStudy()` that calls RegisterStudy, its CMakeLists.txt holding one
+// `contactlab_study(SOURCES my_study.cc REGISTER RegisterMyStudy)` line, and its
+// add_subdirectory in src/experiment/CMakeLists.txt. The studies today, under studies/: contact
+// (contact/contact_study.h: models along a trajectory), deformed-field
+// (deformed_field/deformed_field_study.h) and closed-loop (closed_loop/closed_loop_study.h).
 #pragma once
 
 #include <filesystem>
@@ -19,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "experiment/experiment_config.h"
+#include "experiment/result_table.h"
 #include "util/config_node.h"
 
 namespace contactlab {
@@ -35,12 +38,13 @@ struct Study {
   std::vector<std::string> required;  // of `sections`, those a config must give
   // The sweep aliases it adds (alias, key path), e.g. (k_vc, loop.k_vc).
   std::vector<std::pair<std::string, std::string>> aliases;
-  // Its result tables: every job's rows under one header, joined in job order by a merge.
-  std::vector<std::string> tables;
-  // Files computed from the tables (their whole text, in `tables` order), written by the run
+  // Its result tables, each with its columns declared (experiment/result_table.h): every job's
+  // rows under one header, joined in job order by a merge.
+  std::vector<ResultTable> tables;
+  // Tables computed from the tables (their whole text, in `tables` order), written by the run
   // and recomputed by a merge, e.g. contact's convergence.csv from summary.csv.
   struct Derived {
-    std::string file;
+    ResultTable table;
     std::function<std::string(const std::vector<std::string>& tables)> compute;
   };
   std::vector<Derived> derived;
@@ -59,6 +63,12 @@ struct Study {
 
   // What a finished run's folder holds: the tables, the derived files and meta.json.
   std::vector<std::string> Files() const;
+  // The files of `tables`, in order.
+  std::vector<std::string> TableFiles() const;
+  // Every table it writes, `tables` then the derived ones.
+  std::vector<const ResultTable*> AllTables() const;
+  // Its tables' columns as meta.json records them: {"<file>": ColumnsJson(table), ...}.
+  nlohmann::json ColumnsJson() const;
 };
 
 // Adds STUDY; a second study of the same name is a programming error (std::logic_error).
@@ -75,8 +85,9 @@ const Study& StudyOf(const ExperimentConfig& config);
 const Study& StudyOfResults(const std::filesystem::path& dir);
 
 // Writes a run's results into OUT_DIR (created): STUDY's tables (TABLES, their text in the order
-// of study.tables), the derived files computed from them, and META as meta.json, each file
-// atomically. Runs and merges both write through it.
+// of study.tables), the derived files computed from them, and META as meta.json with the row
+// count and the declared columns of each table, each file atomically. Runs and merges both write
+// through it.
 void WriteStudyResults(const Study& study, const std::filesystem::path& out_dir, const std::vector<std::string>& tables,
                        const nlohmann::json& meta);
 

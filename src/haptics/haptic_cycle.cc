@@ -15,7 +15,8 @@ HapticCycle::HapticCycle(HapticDevice& device, ContactModel* model, const Haptic
       config_(config),
       coupling_(config.coupling),
       safety_(ResolveSafetyLimits(config.safety, device.capabilities())),
-      coherence_(config.max_point_speed, config.cycle_seconds, config.body_radius_H, "haptic cycle (body_radius_H)") {}
+      coherence_(config.max_point_speed, config.cycle_seconds, config.body_radius_H, "haptic cycle (body_radius_H)"),
+      contact_cycle_(model, config.dynamics_A, config.dynamics_B, &coherence_) {}
 
 void HapticCycle::Start(std::int64_t now_ns) {
   device_.Read(now_ns, &state_);
@@ -23,10 +24,8 @@ void HapticCycle::Start(std::int64_t now_ns) {
   coupling_.Reset(state_.X_WD);
   safety_.Start(now_ns);
   if (model_ != nullptr) model_->Reset();
-  coherence_.Start(coupling_.X_WH());
+  contact_cycle_.Start(coupling_.X_WH());  // the coherence guard from H's pose, the deformations at rest
   contact_faults_ = 0;
-  if (config_.dynamics_A != nullptr) config_.dynamics_A->Reset();
-  if (config_.dynamics_B != nullptr) config_.dynamics_B->Reset();
   cycle_ = 0;
 }
 
@@ -39,30 +38,21 @@ CycleRecord HapticCycle::Step(std::int64_t now_ns) {
   rec.new_sample = device_.Read(now_ns, &state_);
   if (rec.new_sample) last_sample_ns_ = now_ns;
 
-  // Contact at the simulated pose of H (body B of the model).
+  // Contact at the simulated pose of H (body B of the model): the coherence guard (A is static,
+  // so H's motion bounds the speed of its points), the deformations held fixed (H deforms: its
+  // field at its q), a diverged one restarted instead of queried (contact_cycle.h).
   ContactResult contact;
   if (model_ != nullptr) {
-    // Temporal-coherence guard: H's motion since the previous query, as a bound on the speed
-    // of its points (A is static), against the speed the model's coherence assumes.
-    const Pose& X_WH = coupling_.X_WH();
-    if (coherence_.Check(X_WH, &rec.point_speed)) {
-      model_->ResetCoherence();  // this cycle traverses in full; coherence restarts from it
-      rec.coherence_reset = true;
-    }
     ContactQuery q;
     q.X_WA = config_.X_WA;
-    q.X_WB = X_WH;
+    q.X_WB = coupling_.X_WH();
     q.cycle = cycle_;
     q.node_budget = config_.node_budget;
-    if (config_.dynamics_A != nullptr) q.deformation_A = config_.dynamics_A->Prepare();
-    if (config_.dynamics_B != nullptr) q.deformation_B = config_.dynamics_B->Prepare();  // H deforms: its field at its q
-    // A deformation that left finite numbers (a diverged step) is not queried.
-    if (RestartDiverged({config_.dynamics_A, config_.dynamics_B})) {
-      contact = model_->Evaluate(q);
-      if (config_.point_marks != nullptr) config_.point_marks->Update(*model_, q, cycle_);
-    } else {
-      contact.stats.faults = 1;
-    }
+    ContactCycleQuery done;
+    contact = contact_cycle_.Evaluate(q.X_WB, &q, &done);
+    rec.point_speed = done.point_speed;
+    rec.coherence_reset = done.coherence_reset;
+    if (done.queried && config_.point_marks != nullptr) config_.point_marks->Update(*model_, q, cycle_);
   }
 
   // Static virtual coupling, then the safety filter, then the device. A non-finite contact
@@ -111,17 +101,11 @@ CycleRecord HapticCycle::Step(std::int64_t now_ns) {
   }
   // The deformations advance at the end of the cycle with the contact forces as external
   // loads (paper sec. 4.1 and 5): A's, and H's own, decoupled from H's rigid motion.
-  if (model_ != nullptr && (config_.dynamics_A != nullptr || config_.dynamics_B != nullptr)) {
-    const auto t0 = std::chrono::steady_clock::now();
-    if (config_.dynamics_A != nullptr) {
-      config_.dynamics_A->Step();
-      rec.q_norm = config_.dynamics_A->state().q.norm();
-    }
-    if (config_.dynamics_B != nullptr) {
-      config_.dynamics_B->Step();
-      rec.q_norm_B = config_.dynamics_B->state().q.norm();
-    }
-    rec.step_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0).count();
+  if (model_ != nullptr && contact_cycle_.deformable()) {
+    const ContactCycleSteps steps = contact_cycle_.StepDeformations();
+    if (config_.dynamics_A != nullptr) rec.q_norm = config_.dynamics_A->state().q.norm();
+    if (config_.dynamics_B != nullptr) rec.q_norm_B = config_.dynamics_B->state().q.norm();
+    rec.step_ns = steps.step_A_ns + steps.step_B_ns;
   }
   ++cycle_;
   return rec;

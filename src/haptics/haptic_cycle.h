@@ -9,6 +9,7 @@
 #include "contact/coherence_guard.h"
 #include "contact/contact_model.h"
 #include "deform/body_dynamics.h"
+#include "haptics/contact_cycle.h"
 #include "haptics/contact_point_marks.h"
 #include "haptics/haptic_device.h"
 #include "haptics/safety_filter.h"
@@ -97,6 +98,8 @@ class HapticCycle {
   // its body B is the haptic body H, body A is static at CONFIG.X_WA. Throws Error when the
   // configuration is invalid.
   HapticCycle(HapticDevice& device, ContactModel* model, const HapticCycleConfig& config);
+  HapticCycle(const HapticCycle&) = delete;  // its contact cycle points at its coherence guard
+  HapticCycle& operator=(const HapticCycle&) = delete;
 
   // Starts a session at NOW_NS: reads the device, places H at the device pose, restarts the
   // safety ramp, resets the contact model.
@@ -127,6 +130,7 @@ class HapticCycle {
   std::int64_t last_sample_ns_ = 0;
   std::int64_t cycle_ = 0;
   CoherenceGuard coherence_;  // H's motion against the model's max_point_speed
+  ContactCycle contact_cycle_;  // the guard, the deformations and the query (contact_cycle.h)
   std::int64_t contact_faults_ = 0;
 };
 

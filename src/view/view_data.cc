@@ -12,7 +12,7 @@
 #include "contact/model_registry.h"
 #include "deform/embedded_points.h"
 #include "experiment/experiment_config.h"
-#include "experiment/result_csv.h"
+#include "experiment/studies/contact/result_csv.h"
 #include "experiment/study.h"
 #include "util/atomic_file.h"
 #include "util/config_node.h"

@@ -10,8 +10,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "experiment/result_csv.h"
-#include "experiment/runner.h"
+#include "experiment/studies/contact/result_csv.h"
+#include "experiment/studies/contact/contact_study.h"
 #include "sdf/sparse_field.h"
 #include "scene_fixtures.h"
 #include "test_support.h"

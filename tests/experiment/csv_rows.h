@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "experiment/result_csv.h"
+#include "experiment/studies/contact/result_csv.h"
 #include "util/atomic_file.h"
 
 namespace contactlab::testing {

@@ -16,7 +16,7 @@
 #include "contact/model_registry.h"
 #include "deform/reduced_integrator.h"
 #include "experiment/experiment_config.h"
-#include "experiment/runner.h"
+#include "experiment/studies/contact/contact_study.h"
 #include "experiment/scene_assets.h"
 #include "deformable_fixture.h"
 #include "test_support.h"

@@ -10,7 +10,7 @@
 #include "deform/reduced_model.h"
 #include "reduced/reduced_state.h"
 #include "experiment/experiment_config.h"
-#include "experiment/runner.h"
+#include "experiment/studies/contact/contact_study.h"
 #include "experiment/scene_assets.h"
 #include "test_support.h"
 

@@ -18,7 +18,7 @@
 #include "deform/body_dynamics.h"
 #include "deform/reduced_integrator.h"
 #include "experiment/experiment_config.h"
-#include "experiment/runner.h"
+#include "experiment/studies/contact/contact_study.h"
 #include "experiment/scene_assets.h"
 #include "deformable_fixture.h"
 #include "deformable_references.h"

@@ -1,7 +1,7 @@
 // The deformed-field study (study: deformed-field): a small armadillo sweep writes field_error.csv
 // and field_slice.csv with sane contents, more domains reduce the legs' mirroring, and bad
 // configs fail naming the file and the key.
-#include "experiment/deformed_field_study.h"
+#include "experiment/studies/deformed_field/deformed_field_study.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <map>
 #include <sstream>
 
-#include "experiment/result_csv.h"
+#include "experiment/studies/contact/result_csv.h"
 #include "experiment/study.h"
 #include "csv_rows.h"
 #include "test_support.h"

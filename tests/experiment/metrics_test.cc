@@ -1,6 +1,6 @@
-#include "experiment/convergence_table.h"
-#include "experiment/metrics.h"
-#include "experiment/result_csv.h"
+#include "experiment/studies/contact/convergence_table.h"
+#include "experiment/studies/contact/metrics.h"
+#include "experiment/studies/contact/result_csv.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The result tables' columns are declared once: header and rows always agree, and cycles.csv
 // reads back through the same columns to the rows written.
-#include "experiment/result_csv.h"
+#include "experiment/studies/contact/result_csv.h"
 
 #include <gtest/gtest.h>
 

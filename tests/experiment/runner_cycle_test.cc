@@ -12,8 +12,8 @@
 
 #include "allocation_counter.h"
 #include "contact/model_registry.h"
-#include "experiment/result_csv.h"
-#include "experiment/runner.h"
+#include "experiment/studies/contact/result_csv.h"
+#include "experiment/studies/contact/contact_study.h"
 #include "experiment/trajectory.h"
 #include "scene_fixtures.h"
 #include "test_support.h"

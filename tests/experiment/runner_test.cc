@@ -1,4 +1,4 @@
-#include "experiment/runner.h"
+#include "experiment/studies/contact/contact_study.h"
 
 #include <gtest/gtest.h>
 

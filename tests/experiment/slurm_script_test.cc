@@ -161,7 +161,7 @@ TEST_F(FakeSbatch, FailedSubmissionsReportSbatchAndCancelTheArray) {
 void WriteTask(const fs::path& out, int i, const std::string& jobs_json, const std::string& study = "contact") {
   const fs::path d = out / ("job-" + std::to_string(i));
   fs::create_directories(d);
-  for (const std::string& table : FindStudy(study)->tables) std::ofstream(d / table) << "job\n" << i << "\n";
+  for (const std::string& table : FindStudy(study)->TableFiles()) std::ofstream(d / table) << "job\n" << i << "\n";
   std::ofstream(d / "meta.json") << "{\"experiment\": \"e\", \"study\": \"" << study << "\", \"jobs\": " << jobs_json
                                  << "}\n";
 }

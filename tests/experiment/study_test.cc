@@ -12,9 +12,9 @@
 #include <set>
 #include <sstream>
 
-#include "experiment/closed_loop_study.h"
-#include "experiment/result_csv.h"
-#include "experiment/runner.h"
+#include "experiment/studies/closed_loop/closed_loop_study.h"
+#include "experiment/studies/contact/result_csv.h"
+#include "experiment/studies/contact/contact_study.h"
 #include "scene_fixtures.h"
 #include "csv_rows.h"
 #include "test_support.h"
@@ -56,7 +56,17 @@ TEST(Study, EveryRegisteredStudyDeclaresItsFilesOnce) {
     ASSERT_FALSE(files.empty());
     EXPECT_EQ(files.back(), "meta.json");
     EXPECT_EQ(std::set<std::string>(files.begin(), files.end()).size(), files.size());
-    for (const std::string& t : s.tables) EXPECT_EQ(fs::path(t).extension(), ".csv") << t;
+    for (const ResultTable& t : s.tables) EXPECT_EQ(fs::path(t.file).extension(), ".csv") << t.file;
+    // Every table, derived ones too, declares its columns once, each with a meaning.
+    for (const ResultTable* t : s.AllTables()) {
+      SCOPED_TRACE(t->file);
+      EXPECT_FALSE(t->columns.empty());
+      std::set<std::string> names;
+      for (const ResultColumn& c : t->columns) {
+        EXPECT_TRUE(names.insert(c.name).second) << c.name << " declared twice";
+        EXPECT_FALSE(c.meaning.empty()) << c.name;
+      }
+    }
     for (const std::string& r : s.required) {
       EXPECT_NE(std::find(s.sections.begin(), s.sections.end(), r), s.sections.end()) << r;
     }
@@ -104,7 +114,7 @@ TEST(Study, ASectionOnlyAnotherStudyReadsIsRefusedNamingThatStudy) {
 TEST(Study, ResultsWithANonFiniteCellAreRefusedAndNothingWritten) {
   TempDir dir;
   const Study& study = *FindStudy("closed-loop");
-  ASSERT_EQ(study.tables, std::vector<std::string>{"stability.csv"});
+  ASSERT_EQ(study.TableFiles(), std::vector<std::string>{"stability.csv"});
   for (const char* bad : {"nan", "-nan", "inf", "-inf", "NaN", "0.5 nan 1"}) {
     const std::string table = std::string("experiment,job,q\ninfo,0,0.5 1\ninfo,0,") + bad + "\n";
     try {
@@ -154,6 +164,33 @@ TEST(Study, TheStudyOfAResultsFolderComesFromItsMetaJson) {
   }
 }
 
+// Every table of the results folder DIR, a run of CONFIG, has the header its meta.json declares:
+// the declared columns in order, with CONFIG's sweep axes after the job's keys (less those a
+// table leaves out because a declared column has their name).
+void ExpectHeadersAsDeclared(const fs::path& dir, const ExperimentConfig& config) {
+  const nlohmann::json meta = nlohmann::json::parse(ReadWholeFile(dir / "meta.json"));
+  for (const ResultTable* table : StudyOfResults(dir).AllTables()) {
+    SCOPED_TRACE(table->file);
+    ASSERT_TRUE(meta["columns"].contains(table->file));
+    std::vector<std::string> expected;
+    for (const auto& c : meta["columns"][table->file]) expected.push_back(c["name"].get<std::string>());
+    if (table->keys != TableKeys::kNone) {
+      std::vector<std::string> axes;
+      for (const SweepAxis& a : config.sweep) {
+        if (table->keys == TableKeys::kJobAndAllAxes || table->Find(a.name) == nullptr) axes.push_back(a.name);
+      }
+      ASSERT_GE(expected.size(), 2u);
+      EXPECT_EQ(expected[0], "experiment");
+      EXPECT_EQ(expected[1], "job");
+      expected.insert(expected.begin() + 2, axes.begin(), axes.end());
+    }
+    std::ifstream in(dir / table->file);
+    std::string header;
+    std::getline(in, header);
+    EXPECT_EQ(SplitCsvLine(header), expected);
+  }
+}
+
 TEST(ClosedLoopStudy, TheSweptStiffnessReachesTheLoopAndSingleJobsMergeIntoTheSweep) {
   TempDir dir;
   const ExperimentConfig config = Load(dir, LoopConfig());
@@ -167,6 +204,7 @@ TEST(ClosedLoopStudy, TheSweptStiffnessReachesTheLoopAndSingleJobsMergeIntoTheSw
   study.run(config, o, {});
   for (const std::string& f : study.Files()) EXPECT_TRUE(fs::is_regular_file(dir / "all" / f)) << f;
   EXPECT_EQ(StudyOfResults(dir / "all").name, "closed-loop");
+  ExpectHeadersAsDeclared(dir / "all", config);
 
   const auto rows = ReadCsvRows(dir / "all" / "stability.csv");
   ASSERT_EQ(rows.size(), 4u);  // 2 jobs x 1 model x 2 motions
@@ -208,6 +246,7 @@ TEST(ClosedLoopStudy, TheSweptStiffnessReachesTheLoopAndSingleJobsMergeIntoTheSw
     }
   }
   EXPECT_EQ(StudyOfResults(dir / "merged").name, "closed-loop");
+  ExpectHeadersAsDeclared(dir / "merged", config);
   EXPECT_FALSE(fs::exists(dir / "merged" / "cycles.csv"));
 
   // Folders of two studies do not merge.
@@ -215,6 +254,7 @@ TEST(ClosedLoopStudy, TheSweptStiffnessReachesTheLoopAndSingleJobsMergeIntoTheSw
                                                  "trajectory: {type: approach-press, depth: 0.001, duration: 0.01}\n");
   o.out_dir = dir / "contact";
   StudyOf(contact).run(contact, o, {});
+  ExpectHeadersAsDeclared(dir / "contact", contact);
   try {
     MergeResults({dir / "job-0", dir / "contact"}, dir / "mixed");
     ADD_FAILURE() << "no error";

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "contact/model_registry.h"
-#include "experiment/runner.h"
+#include "experiment/studies/contact/contact_study.h"
 #include "experiment/scene.h"
 #include "test_support.h"
 #include "util/atomic_file.h"

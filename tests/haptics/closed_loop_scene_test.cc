@@ -15,7 +15,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "experiment/closed_loop_stability.h"
+#include "experiment/studies/closed_loop/closed_loop_stability.h"
 #include "experiment/scene.h"
 #include "experiment/scene_assets.h"
 #include "scene_fixtures.h"

@@ -1,11 +1,15 @@
 #!/usr/bin/python3
-"""Tests of scripts/make_figures.py and its figures/ package: discovery, the outputs of a run on
-tiny synthetic results, docs/experiments.md's example of adding a figure, tables sized to their text,
-and the per-model style table.
+"""Tests of scripts/make_figures.py and its figures/ package: discovery, the columns the figures
+name against those the studies declare (`contactlab columns --json`), the outputs of a run on
+tiny synthetic results written with the declared columns, docs/experiments.md's example of
+adding a figure, tables sized to their text, and the per-model style table.
 
-Usage: make_figures_test.py [PATH/TO/scripts/make_figures.py]  (exit 77: matplotlib missing)
+Usage: make_figures_test.py [PATH/TO/scripts/make_figures.py [PATH/TO/contactlab]]
+       (exit 77: matplotlib missing)
 """
+import ast
 import csv
+import json
 import os
 import re
 import shutil
@@ -17,6 +21,8 @@ import unittest
 
 SCRIPT = os.path.abspath(sys.argv.pop(1) if len(sys.argv) > 1 else
                          os.path.join(os.path.dirname(__file__), "..", "..", "scripts", "make_figures.py"))
+CONTACTLAB = os.path.abspath(sys.argv.pop(1) if len(sys.argv) > 1 else
+                             os.path.join(os.path.dirname(SCRIPT), "..", "build", "bin", "contactlab"))
 try:
     import matplotlib  # noqa: F401
 except ImportError:
@@ -27,6 +33,29 @@ import figures  # noqa: E402
 from figures import common  # noqa: E402
 
 
+# Every study's declared columns, {study: {file: [{name, unit, meaning}, ...]}}, as the program
+# prints them.
+def declared_columns():
+    run = subprocess.run([CONTACTLAB, "columns", "--json"], capture_output=True, text=True, timeout=60)
+    if run.returncode != 0:
+        raise RuntimeError(f"{CONTACTLAB} columns --json failed: {run.stderr}")
+    return json.loads(run.stdout)
+
+
+DECLARED = None
+
+
+# The declared column names of each table file, {file: [name, ...]}.
+def columns_by_file():
+    global DECLARED
+    if DECLARED is None:
+        DECLARED = {}
+        for tables in declared_columns().values():
+            for file, columns in tables.items():
+                DECLARED[file] = [c["name"] for c in columns]
+    return DECLARED
+
+
 def write_csv(path, rows):
     os.makedirs(os.path.dirname(path), exist_ok=True)
     with open(path, "w", newline="") as f:
@@ -35,27 +64,75 @@ def write_csv(path, rows):
         w.writerows(rows)
 
 
+# Writes ROWS (dicts naming declared columns and the sweep AXES) as results/EXPERIMENT/TABLE
+# with the header the program writes: the table's declared columns, the sweep axes after the
+# job's keys (experiment, job), every declared column present (0 where a row gives none). A key
+# that is neither a declared column nor an axis fails the test.
+def write_table(root, experiment, table, axes, rows):
+    declared = columns_by_file()[table.file]
+    keyed = declared[:2] == ["experiment", "job"]
+    header = declared[:2] + list(axes) + declared[2:] if keyed else list(declared)
+    for row in rows:
+        unknown = set(row) - set(header)
+        if unknown:
+            raise AssertionError(f"{table.file} declares no column {sorted(unknown)} (axes: {list(axes)})")
+    full = []
+    for row in rows:
+        cells = {c: 0 for c in header}
+        if keyed:
+            cells.update(experiment=experiment, job=0)
+        cells.update(row)
+        full.append(cells)
+    write_csv(os.path.join(root, experiment, table.file), full)
+
+
 # Tiny results for three experiments: a table, a per-model curve plot and a log-log plot.
 def write_synthetic_results(root):
+    C, S = common.CYCLES, common.SUMMARY
     summary, cycles = [], []
     for scene in ("data/scenes/block-joint.yaml", "data/scenes/dragon-bunny.yaml"):
         for model, coherence in (("pointshell", "false"), ("pointshell", "true"), ("pointshell-linear", "false")):
-            summary.append(dict(scene=scene, model=model, coherence=coherence, points=4096, mean_nodes=321.0,
-                                median_us=12.5))
-            cycles += [dict(scene=scene, model=model, coherence=coherence, level=lv) for lv in (3, 4, 4)]
-    write_csv(os.path.join(root, "table1-statistics", "summary.csv"), summary)
-    write_csv(os.path.join(root, "table1-statistics", "cycles.csv"), cycles)
+            summary.append({"scene": scene, "coherence": coherence, S.model: model, S.points: 4096,
+                            S.mean_nodes: 321.0, S.median_us: 12.5})
+            cycles += [{"scene": scene, "coherence": coherence, C.model: model, C.level: lv} for lv in (3, 4, 4)]
+    write_table(root, "table1-statistics", S, ["scene", "coherence"], summary)
+    write_table(root, "table1-statistics", C, ["scene", "coherence"], cycles)
     rows = []
     for roles in ("normal", "swapped"):
         for model in ("pointshell", "pointshell-linear", "vps", "some-new-model"):
             for i in range(40):
                 z = 0.012 - 0.0005 * i
-                rows.append(dict(roles=roles, model=model, cycle=i, z=z, fz=max(0.0, 0.012 - z) * 1000))
-    write_csv(os.path.join(root, "hard-cases-medial-axis", "cycles.csv"), rows)
-    write_csv(os.path.join(root, "fig05b-convergence", "summary.csv"),
-              [dict(model="pointshell-linear", points=n, rms_rel_error=1.0 / n) for n in (256, 1024, 4096)])
-    write_csv(os.path.join(root, "fig05b-convergence", "convergence.csv"), [dict(group="all", fitted_order=1.0)])
+                rows.append({"roles": roles, C.model: model, C.cycle: i, C.z: z, C.fz: max(0.0, 0.012 - z) * 1000})
+    write_table(root, "hard-cases-medial-axis", C, ["roles"], rows)
+    write_table(root, "fig05b-convergence", S, [],
+                [{S.model: "pointshell-linear", S.points: n, S.rms_rel_error: 1.0 / n}
+                 for n in (256, 1024, 4096)])
+    write_table(root, "fig05b-convergence", common.CONVERGENCE, [],
+                [{common.CONVERGENCE.group: "pointshell-linear", common.CONVERGENCE.fitted_order: 1.0}])
     return {"table1_statistics", "hard_cases_medial_axis", "fig05b_convergence"}
+
+
+# The columns a source names through a table of figures/common.py ({file: {column: [line, ...]}}),
+# and the string literals it uses as a row's key (subscript, .get, num, in_order), with lines.
+def named_columns(source):
+    tree = ast.parse(source)
+    tables = {name: t.file for name, t in vars(common).items() if isinstance(t, common.Table)}
+    named, literal_keys = {}, []
+    for node in ast.walk(tree):
+        if (isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id in tables
+                and isinstance(node.ctx, ast.Load)):
+            named.setdefault(tables[node.value.id], {}).setdefault(node.attr, []).append(node.lineno)
+        keys = []
+        if isinstance(node, ast.Subscript):
+            keys.append(node.slice)
+        elif isinstance(node, ast.Call):
+            f = node.func
+            if isinstance(f, ast.Name) and f.id in ("num", "in_order") and len(node.args) >= 2:
+                keys.append(node.args[1])
+            if isinstance(f, ast.Attribute) and f.attr == "get" and node.args:
+                keys.append(node.args[0])
+        literal_keys += [(k.value, k.lineno) for k in keys if isinstance(k, ast.Constant) and isinstance(k.value, str)]
+    return named, literal_keys
 
 
 def png_size(path):
@@ -86,6 +163,52 @@ class Discovery(unittest.TestCase):
                 writer[out] = module.__name__
         names = [draw.__name__ for _, draw in figures.all_figures()]
         self.assertEqual(len(names), len(set(names)), "two figures share a name")
+
+
+class Columns(unittest.TestCase):
+    def test_every_table_of_figures_common_is_declared_by_a_study(self):
+        for table in common.TABLES.values():
+            self.assertIn(table.file, columns_by_file(), f"no study declares {table.file}")
+        self.assertEqual(set(common.TABLES), set(columns_by_file()), "a declared table has no Table in common.py")
+
+    def test_figure_modules_read_only_declared_columns(self):
+        paths = [os.path.join(os.path.dirname(SCRIPT), "figures", "common.py")]
+        paths += [m.__file__ for m in figures.figure_modules()]
+        for path in paths:
+            with open(path) as f:
+                named, _ = named_columns(f.read())
+            for file, columns in named.items():
+                for column, lines in columns.items():
+                    if column == "file":
+                        continue
+                    if column not in columns_by_file()[file]:
+                        self.fail(f"{os.path.basename(path)}:{lines[0]} reads {file} column '{column}', which no "
+                                  f"study declares (contactlab columns)")
+
+    # A column named by a string of the module's own would escape the check above.
+    def test_figure_modules_name_no_declared_column_by_a_literal(self):
+        every = {c for columns in columns_by_file().values() for c in columns}
+        for module in figures.figure_modules():
+            with open(module.__file__) as f:
+                _, literal_keys = named_columns(f.read())
+            for key, line in literal_keys:
+                if key in every:
+                    self.fail(f"{os.path.basename(module.__file__)}:{line} names column '{key}' by a literal; name "
+                              f"it through its table (common.CYCLES.{key}, ...)")
+
+    def test_a_renamed_column_is_caught(self):
+        named, _ = named_columns("from .common import SUMMARY\nx = r[SUMMARY.max_jump]\n")
+        self.assertNotIn("max_jump", columns_by_file()["summary.csv"])
+        self.assertEqual(named, {"summary.csv": {"max_jump": [2]}})
+
+    def test_every_declared_column_has_a_meaning(self):
+        for study, tables in declared_columns().items():
+            for file, columns in tables.items():
+                names = [c["name"] for c in columns]
+                self.assertEqual(len(names), len(set(names)), f"{study} {file} declares a column twice")
+                for c in columns:
+                    self.assertTrue(c["meaning"], f"{study} {file} column {c['name']} has no meaning")
+                    self.assertIn("unit", c)
 
 
 class Run(unittest.TestCase):
@@ -120,8 +243,9 @@ class Run(unittest.TestCase):
             shutil.copytree(os.path.dirname(SCRIPT), scripts, ignore=shutil.ignore_patterns("__pycache__"))
             with open(os.path.join(scripts, "figures", "my_figure.py"), "w") as f:
                 f.write(example)
-            write_csv(os.path.join(root, "results", "my-experiment", "cycles.csv"),
-                      [dict(model=m, t=0.1 * i, fz=i) for m in ("pointshell", "bullet") for i in range(20)])
+            C = common.CYCLES
+            write_table(os.path.join(root, "results"), "my-experiment", C, [],
+                        [{C.model: m, C.t: 0.1 * i, C.fz: i} for m in ("pointshell", "bullet") for i in range(20)])
             run = subprocess.run([sys.executable, os.path.join(scripts, os.path.basename(SCRIPT)),
                                   "--results", os.path.join(root, "results")], capture_output=True, text=True, timeout=120)
             self.assertEqual(run.returncode, 0, run.stderr)

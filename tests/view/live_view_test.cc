@@ -25,7 +25,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "experiment/result_csv.h"
+#include "experiment/studies/contact/result_csv.h"
 #include "allocation_counter.h"
 #include "scene_fixtures.h"
 #include "test_support.h"

@@ -9,8 +9,8 @@
 #include <sstream>
 
 #include "contact/register_contact_models.h"
-#include "experiment/result_csv.h"
-#include "experiment/runner.h"
+#include "experiment/studies/contact/contact_study.h"
+#include "experiment/studies/contact/result_csv.h"
 #include "scene_fixtures.h"
 #include "test_support.h"
 #include "util/atomic_file.h"

@@ -1,22 +1,25 @@
-// The result tables of an experiment run: cycles.csv (one row per cycle per model) and
-// summary.csv (one row per model per job), long format. Each table's columns are declared
-// once — name, format and the value they show — and drive both the header and the rows, so a
-// column cannot be added to one and forgotten in the other. cycles.csv is read back by the same
-// table (ReadCyclesCsv, for the viewer's replay); scripts/make_figures.py reads the columns by
-// name.
+// The contact study's result tables: cycles.csv (one row per cycle per model) and summary.csv
+// (one row per model per job), long format. Each table's columns are declared once — name,
+// unit, meaning, format and the value they show (experiment/result_table.h) — and drive the
+// header, the rows and meta.json's "columns", so a column cannot be added to one and forgotten
+// in another. cycles.csv is read back by the same table (ReadCyclesCsv, for the viewer's
+// replay); scripts/figures/ name the columns through the declarations (`contactlab columns`).
 #pragma once
 
-#include <cstdio>
 #include <filesystem>
 #include <functional>
-#include <span>
 #include <string>
-#include <string_view>
 #include <vector>
 
-#include "experiment/runner.h"
+#include "experiment/csv_line.h"
+#include "experiment/result_table.h"
+#include "experiment/studies/contact/contact_study.h"
 
 namespace contactlab {
+
+// The declarations of the tables (the study's `tables`, experiment/study.h).
+const ResultTable& CyclesTable();
+const ResultTable& SummaryTable();
 
 // Header line of each table: experiment,job,<sweep axes>,<declared columns>.
 std::string CyclesCsvHeader(const ExperimentConfig& config);
@@ -54,44 +57,5 @@ struct CyclesCsvRow {
 // whose length differs from the first row of the same job and model.
 std::vector<std::string> ReadCyclesCsv(const std::filesystem::path& file,
                                        const std::function<void(const CyclesCsvRow&)>& on_row);
-
-// One line of a table being written: cells appended to OUT, separated by commas.
-class CsvLine {
- public:
-  explicit CsvLine(std::string* out) : out_(out) {}
-  void Text(std::string_view s) { Cell(s.data(), s.size()); }
-  void Num(const char* format, double v) { Format(format, v); }
-  void Int(long long v) { Format("%lld", v); }
-  void Empty() { Cell("", 0); }
-  // One cell of VALUES each printed with FORMAT, separated by spaces (empty cell for none).
-  void Numbers(const char* format, std::span<const double> values) {
-    if (!first_) *out_ += ',';
-    first_ = false;
-    char buf[64];
-    for (std::size_t j = 0; j < values.size(); ++j) {
-      if (j > 0) *out_ += ' ';
-      const int n = std::snprintf(buf, sizeof buf, format, values[j]);
-      out_->append(buf, std::size_t(n));
-    }
-  }
-
- private:
-  template <class T>
-  void Format(const char* format, T v) {
-    char buf[64];
-    const int n = std::snprintf(buf, sizeof buf, format, v);
-    Cell(buf, std::size_t(n));
-  }
-  void Cell(const char* s, std::size_t n) {
-    if (!first_) *out_ += ',';
-    out_->append(s, n);
-    first_ = false;
-  }
-  std::string* out_;
-  bool first_ = true;
-};
-
-// Cells of one CSV line (a trailing comma kept: "a,b," splits into "a", "b", "").
-std::vector<std::string> SplitCsvLine(const std::string& line);
 
 }  // namespace contactlab

@@ -1,5 +1,5 @@
 // Closed-loop stability with a real contact model on a real scene (Barbič & James 2008, sec. 5).
-#include "experiment/closed_loop_stability.h"
+#include "experiment/studies/closed_loop/closed_loop_stability.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,13 +1,45 @@
-// The contact study (`study: contact`, the default; experiment/runner.h): every model of a job
+// The contact study (`study: contact`, the default; contact_study.h): every model of a job
 // follows the trajectory cycle by cycle; results cycles.csv, summary.csv and convergence.csv.
+#include "experiment/studies/contact/contact_study.h"
+
 #include <cstdio>
 
-#include "experiment/convergence_table.h"
-#include "experiment/runner.h"
+#include "experiment/run_metadata.h"
+#include "experiment/studies/contact/convergence_table.h"
+#include "experiment/studies/contact/result_csv.h"
 #include "experiment/study.h"
 #include "experiment/trajectory.h"
+#include "util/error.h"
 
 namespace contactlab {
+
+std::vector<SummaryRow> RunExperiment(const ExperimentConfig& config, const RunOptions& options,
+                                      const std::vector<int>& job_indices) {
+  const Study& study = StudyOf(config);
+  if (study.name != kContactStudy) {
+    Fail(config.file, "is a " + config.study + " study (" + study.description + "), not a contact study");
+  }
+  const std::vector<Job> all = ExpandJobs(config);
+  std::vector<JobResult> results(job_indices.empty() ? all.size() : job_indices.size());
+  const JobsRun jobs = RunJobs(config, all, job_indices, options, [&](std::size_t i, const Job& job) {
+    results[i] = RunJob(config, job, options);
+  });
+  const std::vector<int>& indices = jobs.indices;
+  const double wall = jobs.wall_seconds;
+  const int parallel = jobs.parallel;
+
+  // Everything is formatted in memory and written at the end, each file atomically.
+  std::string cycles = CyclesCsvHeader(config), summary = SummaryCsvHeader(config);
+  std::vector<SummaryRow> rows;
+  for (const JobResult& r : results) {
+    AppendCyclesCsv(config, r, &cycles);
+    AppendSummaryCsv(config, r, &summary);
+    rows.insert(rows.end(), r.summary.begin(), r.summary.end());
+  }
+  WriteStudyResults(study, options.out_dir, {cycles, summary}, RunMetadata(config, indices, wall, parallel));
+  return rows;
+}
+
 namespace {
 
 // Every job's trajectory parses (a mapping with a known type and its keys), so errors come
@@ -40,8 +72,8 @@ void RegisterContactStudy() {
   s.description = "models compared along a trajectory";
   s.sections = {"models", "moving_body", "trajectory", "reference", "reference_every"};
   s.required = {"trajectory"};
-  s.tables = {"cycles.csv", "summary.csv"};
-  s.derived = {{"convergence.csv", [](const std::vector<std::string>& tables) { return ConvergenceCsv(tables[1]); }}};
+  s.tables = {CyclesTable(), SummaryTable()};
+  s.derived = {{ConvergenceTable(), [](const std::vector<std::string>& tables) { return ConvergenceCsv(tables[1]); }}};
   s.replayable = true;
   s.check = CheckContactStudy;
   s.run = RunContactStudy;

@@ -7,7 +7,12 @@
 
 #include <string>
 
+#include "experiment/result_table.h"
+
 namespace contactlab {
+
+// The declaration of convergence.csv (a table derived from summary.csv: no job keys).
+const ResultTable& ConvergenceTable();
 
 // The convergence table (with header) of SUMMARY_CSV (with header). Rows without a reference
 // (rms_rel_error < 0) are left out.

@@ -2,17 +2,17 @@
 // model of the job is evaluated at each pose (and the reference every reference_every
 // cycles), and the per-cycle rows and per-model summary metrics are collected.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <optional>
 
 #include "contact/coherence_guard.h"
-#include "pointshell_contact/pointshell_contact_params.h"
-#include "experiment/contact_placement.h"
-#include "experiment/metrics.h"
-#include "experiment/runner.h"
 #include "deform/body_dynamics.h"
+#include "experiment/contact_placement.h"
+#include "experiment/studies/contact/contact_study.h"
+#include "experiment/studies/contact/metrics.h"
+#include "pointshell_contact/pointshell_contact_params.h"
+#include "haptics/contact_cycle.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -63,11 +63,6 @@ void RecordDeformation(BodyDynamics& dynamics, bool is_B, double us, CycleRow* r
   row->elastic_energy += dynamics.PotentialEnergy();
   row->kinetic_energy += dynamics.KineticEnergy();
   row->max_displacement = std::max(row->max_displacement, dynamics.MaxDisplacement());
-}
-
-// Microseconds since T0.
-double MicrosecondsSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
 }
 
 // The median of V (reordered).
@@ -222,31 +217,53 @@ struct JobSetup {
   CoherenceGuard& coherence;
 };
 
-// Steps the deformable bodies after cycle K's query (held fixed during it) into ROW, their q in
-// Q_ROW (the row's slot of the storage).
-void StepBodies(SceneDynamics& dynamics, double* q_row, CycleRow* row, ModelTrace* trace) {
-  const int r_A = dynamics.A ? dynamics.A->r() : 0;
-  const int r_B = dynamics.B ? dynamics.B->r() : 0;
-  if (dynamics.A) {
-    const auto ts = std::chrono::steady_clock::now();
-    dynamics.A->Step();
-    RecordDeformation(*dynamics.A, false, MicrosecondsSince(ts), row);
+// Steps the deformable bodies of CYCLE at the end of a cycle (their deformation held fixed during
+// its query) and records them into ROW, their q in Q_ROW (the row's slot of the storage).
+void StepBodies(ContactCycle& cycle, double* q_row, CycleRow* row, ModelTrace* trace) {
+  BodyDynamics* A = cycle.dynamics_A();
+  BodyDynamics* B = cycle.dynamics_B();
+  const int r_A = A ? A->r() : 0;
+  const int r_B = B ? B->r() : 0;
+  const ContactCycleSteps steps = cycle.StepDeformations();
+  if (A) {
+    RecordDeformation(*A, false, 1e-3 * double(steps.step_A_ns), row);
     trace->step_times.push_back(row->step_us);
-    std::copy_n(dynamics.A->state().q.data(), r_A, q_row);
+    std::copy_n(A->state().q.data(), r_A, q_row);
     row->q = {q_row, std::size_t(r_A)};
   }
-  if (dynamics.B) {
-    const auto ts = std::chrono::steady_clock::now();
-    dynamics.B->Step();
-    RecordDeformation(*dynamics.B, true, MicrosecondsSince(ts), row);
+  if (B) {
+    RecordDeformation(*B, true, 1e-3 * double(steps.step_B_ns), row);
     trace->step_times_B.push_back(row->step_B_us);
-    std::copy_n(dynamics.B->state().q.data(), r_B, q_row + r_A);
+    std::copy_n(B->state().q.data(), r_B, q_row + r_A);
     row->q_B = {q_row + r_A, std::size_t(r_B)};
   }
 }
 
-// Model NAME along the job's motion, cycle by cycle: its rows appended to RESULT (viewing
-// STORAGE, allocated before: recording allocates nothing), what its summary needs in TRACE.
+// The row of cycle K of model NAME: the moving body at X_MOVING, the model's result R of query Q,
+// its depth in cells of SPACING (0: not measured on B's grid).
+CycleRow MakeCycleRow(const JobSetup& setup, const std::string& name, std::int64_t k, const Pose& X_moving,
+                      const ContactQuery& q, const ContactResult& r, double spacing) {
+  CycleRow row;
+  row.job = setup.job.index;
+  row.model = name;
+  row.cycle = k;
+  row.t = double(k) * setup.motion.dt;
+  row.position = X_moving.translation;
+  row.rotation = X_moving.rotation;
+  OnMovingBody(setup.motion.moving_is_B, q, r.on_B, &row.force, &row.torque);
+  row.contacts = r.stats.points_in_contact;
+  row.nodes = r.stats.nodes_visited;
+  row.level = r.stats.level_rendered;
+  row.max_penetration = r.stats.max_penetration;
+  row.depth_voxels = spacing > 0 ? r.stats.max_penetration / spacing : 0.0;
+  row.contact_area = r.stats.contact_area;
+  row.patches = r.stats.patches;
+  return row;
+}
+
+// Model NAME along the job's motion, cycle by cycle (the cycle sequence of the haptic loop,
+// haptics/contact_cycle.h): its rows appended to RESULT (viewing STORAGE, allocated before:
+// recording allocates nothing), what its summary needs in TRACE.
 void RunModel(const JobSetup& setup, const std::string& name, CycleStorage& storage, JobResult* result,
               ModelTrace* trace) {
   const Scene& scene = setup.job.scene;
@@ -257,52 +274,27 @@ void RunModel(const JobSetup& setup, const std::string& name, CycleStorage& stor
   const double spacing =
       FindContactModel(name)->needs.depth_in_field_voxels ? setup.assets.B.field()->spacing() : 0.0;
   const std::size_t q_stride = std::size_t((dynamics.A ? dynamics.A->r() : 0) + (dynamics.B ? dynamics.B->r() : 0));
-  dynamics.Reset();
-  setup.coherence.Start(motion.At(0));
+  ContactCycle cycle(model.get(), dynamics.A.get(), dynamics.B.get(), &setup.coherence);
+  cycle.Start(motion.At(0));
   for (std::int64_t k = 0; k < motion.cycles; ++k) {
+    // The query at the moving body's pose: faster than the coherence assumes, this cycle
+    // traverses in full; a deformation a step left non-finite (diverged) is not queried.
     const Pose X_moving = motion.At(k);
-    // Faster than the coherence assumes: this cycle traverses in full, coherence restarts.
-    if (setup.coherence.Check(X_moving)) model->ResetCoherence();
     ContactQuery q;
     q.X_WA = motion.moving_is_B ? motion.X_WA0 : X_moving;
     q.X_WB = motion.moving_is_B ? X_moving : motion.X_WB0;
     q.cycle = k;
     q.node_budget = scene.node_budget;
-    if (dynamics.A) q.deformation_A = dynamics.A->Prepare();
-    if (dynamics.B) q.deformation_B = dynamics.B->Prepare();
-    // A deformation that left finite numbers (a diverged step) is not queried, as in the haptic
-    // cycle.
-    const bool finite = RestartDiverged({dynamics.A.get(), dynamics.B.get()});
-    const auto t0 = std::chrono::steady_clock::now();
-    ContactResult r;
-    if (finite) {
-      r = model->Evaluate(q);
-    } else {
-      r.stats.faults = 1;
-    }
-    const double us = MicrosecondsSince(t0);
-    CycleRow row;
-    row.job = setup.job.index;
-    row.model = name;
-    row.cycle = k;
-    row.t = double(k) * motion.dt;
-    row.position = X_moving.translation;
-    row.rotation = X_moving.rotation;
-    OnMovingBody(motion.moving_is_B, q, r.on_B, &row.force, &row.torque);
-    row.contacts = r.stats.points_in_contact;
-    row.nodes = r.stats.nodes_visited;
-    row.level = r.stats.level_rendered;
-    row.max_penetration = r.stats.max_penetration;
-    row.depth_voxels = spacing > 0 ? r.stats.max_penetration / spacing : 0.0;
-    row.contact_area = r.stats.contact_area;
-    row.patches = r.stats.patches;
-    row.time_us = us;
+    ContactCycleQuery done;
+    const ContactResult r = cycle.Evaluate(X_moving, &q, &done);
+    CycleRow row = MakeCycleRow(setup, name, k, X_moving, q, r, spacing);
+    row.time_us = 1e-3 * double(done.query_ns);
     trace->contact_faults += r.stats.faults > 0 ? 1 : 0;  // the model refused the query: no force
     if (setup.reference.Due(k)) {
       row.reference_force = setup.reference.Force(k, q, motion.moving_is_B);
       row.has_reference = true;
     }
-    StepBodies(dynamics, storage.q.data() + result->cycles.size() * q_stride, &row, trace);
+    StepBodies(cycle, storage.q.data() + result->cycles.size() * q_stride, &row, trace);
     trace->Add(row, X_moving);
     result->cycles.push_back(row);
   }

@@ -1,12 +1,13 @@
-// The closed-loop study (experiment/closed_loop_study.h): one job builds the scene's assets, finds
+// The closed-loop study (closed_loop_study.h): one job builds the scene's assets, finds
 // where the hand touches, and runs the simulated loop per model and motion.
-#include "experiment/closed_loop_study.h"
+#include "experiment/studies/closed_loop/closed_loop_study.h"
 
 #include <algorithm>
 #include <cstdio>
 
 #include "contact/model_registry.h"
-#include "experiment/result_csv.h"
+#include "experiment/csv_line.h"
+#include "experiment/result_table.h"
 #include "experiment/run_metadata.h"
 #include "experiment/runner.h"
 #include "experiment/scene_assets.h"
@@ -21,8 +22,8 @@ const ParamTable<LoopSpec>& LoopParams() {
       {"push", LoopMotion::kPush}, {"slide", LoopMotion::kSlide}, {"corner", LoopMotion::kCorner}};
   static const ParamTable<LoopSpec> table(
       "loop",
-      "The simulated haptic loop of a closed-loop study (experiment/closed_loop_study.h): the coupling, the "
-      "damping and the hand's motions.",
+      "The simulated haptic loop of a closed-loop study (experiment/studies/closed_loop/closed_loop_study.h): the "
+      "coupling, the damping and the hand's motions.",
       {
           P::Number("k_vc", PARAM_MEMBER(loop.k_vc), Above(0), NoUpperBound(), "linear coupling stiffness")
               .Unit("N/m").Sweepable().Example("5000"),
@@ -90,44 +91,65 @@ LoopJobResult RunClosedLoopJob(const Job& job, const RunOptions& options) {
 namespace {
 
 // stability.csv's declared columns (after experiment, job and the sweep axes not named here).
-struct LoopColumn {
-  const char* name;
-  void (*write)(const LoopRow&, CsvLine&);
-};
-const LoopColumn kLoopColumns[] = {
-    {"model", [](const LoopRow& r, CsvLine& l) { l.Text(r.model); }},
-    {"motion", [](const LoopRow& r, CsvLine& l) { l.Text(LoopMotionName(r.motion)); }},
-    {"k_vc", [](const LoopRow& r, CsvLine& l) { l.Num("%.6g", r.loop.k_vc); }},
-    {"k_vc_rot", [](const LoopRow& r, CsvLine& l) { l.Num("%.6g", r.loop.k_vc_rot); }},
-    {"energy_into_hand_J", [](const LoopRow& r, CsvLine& l) { l.Num("%.6e", r.metrics.energy_into_hand); }},
-    {"peak_stored_energy_J", [](const LoopRow& r, CsvLine& l) { l.Num("%.6e", r.metrics.peak_stored_energy); }},
-    {"passive", [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.passive()); }},
-    {"early_position_rms_m", [](const LoopRow& r, CsvLine& l) { l.Num("%.6e", r.metrics.early_position_rms); }},
-    {"late_position_rms_m", [](const LoopRow& r, CsvLine& l) { l.Num("%.6e", r.metrics.late_position_rms); }},
-    {"early_force_rms_N", [](const LoopRow& r, CsvLine& l) { l.Num("%.6e", r.metrics.early_force_rms); }},
-    {"late_force_rms_N", [](const LoopRow& r, CsvLine& l) { l.Num("%.6e", r.metrics.late_force_rms); }},
-    {"hold_force_mean_N", [](const LoopRow& r, CsvLine& l) { l.Num("%.6e", r.metrics.hold_force_mean); }},
-    {"settled", [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.settled()); }},
-    {"max_contact_force_N", [](const LoopRow& r, CsvLine& l) { l.Num("%.6g", r.metrics.max_contact_force); }},
-    {"max_device_force_N", [](const LoopRow& r, CsvLine& l) { l.Num("%.6g", r.metrics.max_device_force); }},
-    {"clamped_cycles", [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.clamped_cycles); }},
-    {"non_finite_cycles", [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.non_finite_cycles); }},
-    {"solve_failures", [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.solve_failures); }},
-    {"coherence_resets", [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.coherence_resets); }},
-    {"contact_faults", [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.contact_faults); }},
-    {"max_q_norm", [](const LoopRow& r, CsvLine& l) { l.Num("%.6g", r.metrics.max_q_norm); }},
-    {"max_points_in_contact", [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.max_points_in_contact); }},
-    {"cycles", [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.cycles); }},
-    {"stable", [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.stable()); }},
-    {"verdict", [](const LoopRow& r, CsvLine& l) { l.Text(StabilityVerdict(r.metrics)); }},
-    {"wall_s", [](const LoopRow& r, CsvLine& l) { l.Num("%.3f", r.metrics.wall_seconds); }},
+const TableColumn<LoopRow> kLoopColumns[] = {
+    {"model", "", "the contact model, by its registered name",
+     [](const LoopRow& r, CsvLine& l) { l.Text(r.model); }},
+    {"motion", "", "the hand's motion: push, slide or corner",
+     [](const LoopRow& r, CsvLine& l) { l.Text(LoopMotionName(r.motion)); }},
+    {"k_vc", "N/m", "linear coupling stiffness",
+     [](const LoopRow& r, CsvLine& l) { l.Num("%.6g", r.loop.k_vc); }},
+    {"k_vc_rot", "N m/rad", "rotational coupling stiffness",
+     [](const LoopRow& r, CsvLine& l) { l.Num("%.6g", r.loop.k_vc_rot); }},
+    {"energy_into_hand_J", "J", "passivity observer: work of the device wrench on the handle over the run (positive: the loop put energy in)",
+     [](const LoopRow& r, CsvLine& l) { l.Num("%.6e", r.metrics.energy_into_hand); }},
+    {"peak_stored_energy_J", "J", "largest coupling-spring energy seen",
+     [](const LoopRow& r, CsvLine& l) { l.Num("%.6e", r.metrics.peak_stored_energy); }},
+    {"passive", "", "1 when energy_into_hand_J is at most max(1e-6 J, 1 % of peak_stored_energy_J), else 0",
+     [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.passive()); }},
+    {"early_position_rms_m", "m", "RMS of H's position about its trend over the first 200 ms of the hold",
+     [](const LoopRow& r, CsvLine& l) { l.Num("%.6e", r.metrics.early_position_rms); }},
+    {"late_position_rms_m", "m", "the same over the last 200 ms of the hold",
+     [](const LoopRow& r, CsvLine& l) { l.Num("%.6e", r.metrics.late_position_rms); }},
+    {"early_force_rms_N", "N", "RMS of the device force about its trend over the first 200 ms of the hold",
+     [](const LoopRow& r, CsvLine& l) { l.Num("%.6e", r.metrics.early_force_rms); }},
+    {"late_force_rms_N", "N", "the same over the last 200 ms of the hold",
+     [](const LoopRow& r, CsvLine& l) { l.Num("%.6e", r.metrics.late_force_rms); }},
+    {"hold_force_mean_N", "N", "|mean device force| over the last 200 ms of the hold",
+     [](const LoopRow& r, CsvLine& l) { l.Num("%.6e", r.metrics.hold_force_mean); }},
+    {"settled", "", "1 when late_position_rms_m < 20 um and late_force_rms_N < 0.05 N, else 0",
+     [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.settled()); }},
+    {"max_contact_force_N", "N", "largest contact force",
+     [](const LoopRow& r, CsvLine& l) { l.Num("%.6g", r.metrics.max_contact_force); }},
+    {"max_device_force_N", "N", "largest force written to the device, after the safety filter",
+     [](const LoopRow& r, CsvLine& l) { l.Num("%.6g", r.metrics.max_device_force); }},
+    {"clamped_cycles", "", "cycles whose force or torque the safety filter clamped",
+     [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.clamped_cycles); }},
+    {"non_finite_cycles", "", "cycles whose non-finite wrench the safety filter zeroed",
+     [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.non_finite_cycles); }},
+    {"solve_failures", "", "cycles whose virtual-coupling solve failed",
+     [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.solve_failures); }},
+    {"coherence_resets", "", "cycles where H outran model.max_point_speed, each resetting the model",
+     [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.coherence_resets); }},
+    {"contact_faults", "", "cycles whose query the model refused (no force)",
+     [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.contact_faults); }},
+    {"max_q_norm", "", "largest |q| of a deformable body (0: both rigid)",
+     [](const LoopRow& r, CsvLine& l) { l.Num("%.6g", r.metrics.max_q_norm); }},
+    {"max_points_in_contact", "", "most points in contact in one cycle",
+     [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.max_points_in_contact); }},
+    {"cycles", "", "cycles simulated (1 kHz)",
+     [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.cycles); }},
+    {"stable", "", "1 when finite, without faults, passive and settled, else 0",
+     [](const LoopRow& r, CsvLine& l) { l.Int(r.metrics.stable()); }},
+    {"verdict", "", "why the run is not stable (non-finite, solve failed, contact faults, active, oscillates), or ok",
+     [](const LoopRow& r, CsvLine& l) { l.Text(StabilityVerdict(r.metrics)); }},
+    {"wall_s", "s", "wall time of the run",
+     [](const LoopRow& r, CsvLine& l) { l.Num("%.3f", r.metrics.wall_seconds); }},
 };
 
-bool IsLoopColumn(const std::string& name) {
-  for (const LoopColumn& c : kLoopColumns) {
-    if (name == c.name) return true;
-  }
-  return false;
+const ResultTable& StabilityTable() {
+  static const ResultTable table = DeclareTable("stability.csv", "one row per job, model and motion",
+                                                TableKeys::kJobAndOtherAxes, kLoopColumns);
+  return table;
 }
 
 // Every job's loop section parses (an error names the job's sweep values).
@@ -169,26 +191,13 @@ void RunClosedLoopStudy(const ExperimentConfig& config, const RunOptions& option
 }  // namespace
 
 std::string StabilityCsv(const ExperimentConfig& config, const std::vector<LoopJobResult>& results) {
-  std::string out;
-  {
-    CsvLine h(&out);
-    h.Text("experiment");
-    h.Text("job");
-    for (const SweepAxis& a : config.sweep) {
-      if (!IsLoopColumn(a.name)) h.Text(a.name);
-    }
-    for (const LoopColumn& c : kLoopColumns) h.Text(c.name);
-  }
-  out += '\n';
+  const ResultTable& table = StabilityTable();
+  std::string out = table.Header(config);
   for (const LoopJobResult& r : results) {
     for (const LoopRow& row : r.rows) {
       CsvLine line(&out);
-      line.Text(config.name);
-      line.Int(r.job.index);
-      for (const auto& [axis, value] : r.job.axis_values) {
-        if (!IsLoopColumn(axis)) line.Text(value);
-      }
-      for (const LoopColumn& c : kLoopColumns) c.write(row, line);
+      table.AppendKeys(config, r.job, &line);
+      AppendCells(kLoopColumns, row, &line);
       out += '\n';
     }
   }
@@ -201,7 +210,7 @@ void RegisterClosedLoopStudy() {
   s.description = "passivity and settling of the simulated haptic loop per model and motion (sec. 5)";
   s.sections = {"models", "loop"};
   for (const std::string& key : LoopParams().SweepKeys()) s.aliases.push_back({key, "loop." + key});
-  s.tables = {"stability.csv"};
+  s.tables = {StabilityTable()};
   s.check = CheckClosedLoopStudy;
   s.run = RunClosedLoopStudy;
   s.reference = [] { return LoopParams().Reference("loop"); };

@@ -1,4 +1,4 @@
-#include "experiment/metrics.h"
+#include "experiment/studies/contact/metrics.h"
 
 #include <algorithm>
 #include <cmath>

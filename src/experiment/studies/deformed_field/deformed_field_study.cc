@@ -1,7 +1,7 @@
-// The deformed-field study (experiment/deformed_field_study.h): one job poses the field body,
+// The deformed-field study (deformed_field_study.h): one job poses the field body,
 // builds the exact reference for that pose and measures the proxy field against it; the study
 // runs the jobs and writes field_error.csv, field_slice.csv and meta.json.
-#include "experiment/deformed_field_study.h"
+#include "experiment/studies/deformed_field/deformed_field_study.h"
 
 #include <tbb/parallel_for.h>
 
@@ -11,7 +11,8 @@
 #include <cmath>
 #include <limits>
 
-#include "experiment/result_csv.h"
+#include "experiment/csv_line.h"
+#include "experiment/result_table.h"
 #include "experiment/run_metadata.h"
 #include "experiment/study.h"
 #include "experiment/scene_assets.h"
@@ -117,87 +118,91 @@ std::vector<FieldSliceRow> Slice(const FieldStudySpec& spec, const DeformedDista
 }
 
 // field_error.csv's declared columns (after experiment, job and the sweep axes not named here).
-struct ErrorColumn {
-  const char* name;
-  void (*write)(const FieldErrorRow&, CsvLine&);
-};
-const ErrorColumn kErrorColumns[] = {
-    {"proxies", [](const FieldErrorRow& r, CsvLine& l) { l.Int(r.proxies); }},
-    {"neighbours", [](const FieldErrorRow& r, CsvLine& l) { l.Int(r.neighbours); }},
-    {"domains", [](const FieldErrorRow& r, CsvLine& l) { l.Int(r.domains); }},
-    {"domain_kind", [](const FieldErrorRow& r, CsvLine& l) { l.Text(r.explicit_domains ? "regions" : "auto"); }},
-    {"slots", [](const FieldErrorRow& r, CsvLine& l) { l.Int(r.slots); }},
-    {"r", [](const FieldErrorRow& r, CsvLine& l) { l.Int(r.r); }},
-    {"cell_m", [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.6g", r.cell); }},
-    {"body_size_m", [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.6g", r.body_size); }},
-    {"max_displacement_m", [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.6g", r.max_displacement); }},
-    {"points", [](const FieldErrorRow& r, CsvLine& l) { l.Int(r.points); }},
-    {"rms_cells", [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.5g", r.rms / r.cell); }},
-    {"max_cells", [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.5g", r.max / r.cell); }},
-    {"mean_cells", [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.5g", r.mean / r.cell); }},
-    {"rms_m", [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.6g", r.rms); }},
-    {"max_m", [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.6g", r.max); }},
-    {"false_inside_m3", [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.6g", r.false_inside_volume); }},
-    {"query_ns", [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.2f", r.query_ns); }},
-    {"update_ns", [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.1f", r.update_ns); }},
-    {"exact_ns", [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.1f", r.exact_ns); }},
+const TableColumn<FieldErrorRow> kErrorColumns[] = {
+    {"proxies", "", "proxies of the deformed distance field",
+     [](const FieldErrorRow& r, CsvLine& l) { l.Int(r.proxies); }},
+    {"neighbours", "", "k, the nearest proxies blended per query",
+     [](const FieldErrorRow& r, CsvLine& l) { l.Int(r.neighbours); }},
+    {"domains", "", "domains combined by minimum",
+     [](const FieldErrorRow& r, CsvLine& l) { l.Int(r.domains); }},
+    {"domain_kind", "", "how the domains were made: regions (given planes or boxes) or auto (clusters)",
+     [](const FieldErrorRow& r, CsvLine& l) { l.Text(r.explicit_domains ? "regions" : "auto"); }},
+    {"slots", "", "proxy slots over all domains",
+     [](const FieldErrorRow& r, CsvLine& l) { l.Int(r.slots); }},
+    {"r", "", "reduced coordinates of the field body",
+     [](const FieldErrorRow& r, CsvLine& l) { l.Int(r.r); }},
+    {"cell_m", "m", "the rest field's grid spacing",
+     [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.6g", r.cell); }},
+    {"body_size_m", "m", "largest side of the rest mesh's bounding box",
+     [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.6g", r.body_size); }},
+    {"max_displacement_m", "m", "largest surface displacement of the pose",
+     [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.6g", r.max_displacement); }},
+    {"points", "", "band points measured",
+     [](const FieldErrorRow& r, CsvLine& l) { l.Int(r.points); }},
+    {"rms_cells", "", "RMS of approximate - exact distance in the contact band, in cells of cell_m",
+     [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.5g", r.rms / r.cell); }},
+    {"max_cells", "", "largest |approximate - exact| in the band, in cells",
+     [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.5g", r.max / r.cell); }},
+    {"mean_cells", "", "mean approximate - exact in the band, in cells",
+     [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.5g", r.mean / r.cell); }},
+    {"rms_m", "m", "RMS of approximate - exact distance in the band",
+     [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.6g", r.rms); }},
+    {"max_m", "m", "largest |approximate - exact| in the band",
+     [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.6g", r.max); }},
+    {"false_inside_m3", "m^3", "volume the approximate field calls inside and the exact one outside (mirroring)",
+     [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.6g", r.false_inside_volume); }},
+    {"query_ns", "ns", "one deformed-field distance query, median over the timing passes",
+     [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.2f", r.query_ns); }},
+    {"update_ns", "ns", "one update of the field's state to a new q",
+     [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.1f", r.update_ns); }},
+    {"exact_ns", "ns", "one exact reference distance (BVH and pseudo-normal)",
+     [](const FieldErrorRow& r, CsvLine& l) { l.Num("%.1f", r.exact_ns); }},
 };
 
-bool IsErrorColumn(const std::string& name) {
-  for (const ErrorColumn& c : kErrorColumns) {
-    if (name == c.name) return true;
-  }
-  return false;
+// field_slice.csv's declared columns (after experiment, job and every sweep axis).
+const TableColumn<FieldSliceRow> kSliceColumns[] = {
+    {"i", "", "grid index along the plane's first axis", [](const FieldSliceRow& r, CsvLine& l) { l.Int(r.i); }},
+    {"j", "", "grid index along the plane's second axis", [](const FieldSliceRow& r, CsvLine& l) { l.Int(r.j); }},
+    {"x", "m", "the grid point, body frame, x", [](const FieldSliceRow& r, CsvLine& l) { l.Num("%.7g", r.x[0]); }},
+    {"y", "m", "the grid point, body frame, y", [](const FieldSliceRow& r, CsvLine& l) { l.Num("%.7g", r.x[1]); }},
+    {"z", "m", "the grid point, body frame, z", [](const FieldSliceRow& r, CsvLine& l) { l.Num("%.7g", r.x[2]); }},
+    {"exact_m", "m", "exact signed distance to the deformed surface",
+     [](const FieldSliceRow& r, CsvLine& l) { l.Num("%.7g", r.exact); }},
+    {"approx_m", "m", "the deformed distance field's distance",
+     [](const FieldSliceRow& r, CsvLine& l) { l.Num("%.7g", r.approx); }},
+};
+
+const ResultTable& ErrorTable() {
+  static const ResultTable table =
+      DeclareTable("field_error.csv", "one row per job", TableKeys::kJobAndOtherAxes, kErrorColumns);
+  return table;
 }
-
-void Prefix(const ExperimentConfig& config, const Job& job, bool skip_declared, CsvLine* line) {
-  line->Text(config.name);
-  line->Int(job.index);
-  for (const auto& [axis, value] : job.axis_values) {
-    if (!(skip_declared && IsErrorColumn(axis))) line->Text(value);
-  }
+const ResultTable& SliceTable() {
+  static const ResultTable table = DeclareTable("field_slice.csv", "one row per slice grid point of a job that writes it",
+                                                TableKeys::kJobAndAllAxes, kSliceColumns);
+  return table;
 }
 
 std::string ErrorCsv(const ExperimentConfig& config, const std::vector<FieldJobResult>& results) {
-  std::string out;
-  {
-    CsvLine h(&out);
-    h.Text("experiment");
-    h.Text("job");
-    for (const SweepAxis& a : config.sweep) {
-      if (!IsErrorColumn(a.name)) h.Text(a.name);
-    }
-    for (const ErrorColumn& c : kErrorColumns) h.Text(c.name);
-  }
-  out += '\n';
+  const ResultTable& table = ErrorTable();
+  std::string out = table.Header(config);
   for (const FieldJobResult& r : results) {
     CsvLine line(&out);
-    Prefix(config, r.job, true, &line);
-    for (const ErrorColumn& c : kErrorColumns) c.write(r.error, line);
+    table.AppendKeys(config, r.job, &line);
+    AppendCells(kErrorColumns, r.error, &line);
     out += '\n';
   }
   return out;
 }
 
 std::string SliceCsv(const ExperimentConfig& config, const std::vector<FieldJobResult>& results) {
-  std::string out;
-  {
-    CsvLine h(&out);
-    h.Text("experiment");
-    h.Text("job");
-    for (const SweepAxis& a : config.sweep) h.Text(a.name);
-    for (const char* c : {"i", "j", "x", "y", "z", "exact_m", "approx_m"}) h.Text(c);
-  }
-  out += '\n';
+  const ResultTable& table = SliceTable();
+  std::string out = table.Header(config);
   for (const FieldJobResult& r : results) {
-    for (const FieldSliceRow& s : r.slice) {
+    for (const FieldSliceRow& row : r.slice) {
       CsvLine line(&out);
-      Prefix(config, r.job, false, &line);
-      line.Int(s.i);
-      line.Int(s.j);
-      for (int c = 0; c < 3; ++c) line.Num("%.7g", s.x[c]);
-      line.Num("%.7g", s.exact);
-      line.Num("%.7g", s.approx);
+      table.AppendKeys(config, r.job, &line);
+      AppendCells(kSliceColumns, row, &line);
       out += '\n';
     }
   }
@@ -398,7 +403,7 @@ void RegisterDeformedFieldStudy() {
   s.sections = {"deformation", "measure"};
   s.required = {"deformation"};
   s.aliases = {{"max_displacement", "deformation.max_displacement"}};
-  s.tables = {"field_error.csv", "field_slice.csv"};
+  s.tables = {ErrorTable(), SliceTable()};
   s.timing = true;  // it measures query times: one job at a time
   s.check = CheckFieldStudy;
   s.run = RunFieldStudy;

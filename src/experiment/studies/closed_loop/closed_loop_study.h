@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "experiment/closed_loop_stability.h"
+#include "experiment/studies/closed_loop/closed_loop_stability.h"
 #include "experiment/experiment_config.h"
 #include "util/param_table.h"
 
