@@ -130,14 +130,20 @@ py::dict Query(ModelHandle& h, const DoubleArray& X_WA, const DoubleArray& X_WB,
   return d;
 }
 
+// The number of queries of a batch of NA poses of A and NB of B, broadcast as NumPy does: a
+// single pose is used for every query of the other side (so one against none is none), else
+// the counts must agree. Throws Error naming both counts.
+std::size_t BatchSize(std::size_t na, std::size_t nb) {
+  if (na == 1) return nb;
+  if (nb == 1 || nb == na) return na;
+  Fail("query_many", "poses_A has " + std::to_string(na) + " poses and poses_B " + std::to_string(nb) +
+                         "; give as many of each, or one pose for either");
+}
+
 py::dict QueryMany(ModelHandle& h, const DoubleArray& poses_A, const DoubleArray& poses_B, bool reset) {
   const std::vector<Pose> A = PosesFromArray(poses_A, "poses_A");
   const std::vector<Pose> B = PosesFromArray(poses_B, "poses_B");
-  if (A.size() != B.size() && A.size() != 1 && B.size() != 1) {
-    Fail("query_many", "poses_A has " + std::to_string(A.size()) + " poses and poses_B " + std::to_string(B.size()) +
-                           "; give as many of each, or one pose for either");
-  }
-  const py::ssize_t n = py::ssize_t(std::max(A.size(), B.size()));
+  const py::ssize_t n = py::ssize_t(BatchSize(A.size(), B.size()));
   py::array_t<double> wrench({n, py::ssize_t(6)});
   py::array_t<double> K({n, py::ssize_t(6), py::ssize_t(6)});
   double* w = wrench.mutable_data();
@@ -218,9 +224,11 @@ void BindModel(py::module_& m) {
            "_B for deformable bodies. Raises contactlab.Error when the model refuses the query.")
       .def("query_many", &QueryMany, py::arg("poses_A"), py::arg("poses_B"), py::kw_only(), py::arg("reset") = true,
            "N queries: POSES_A and POSES_B are (N, 7) or (N, 4, 4) arrays (either may be one pose, used for "
-           "every query). The GIL is released while they run. Returns a dict: wrench (N, 6), force and "
-           "torque (N, 3) views of it, K_B (N, 6, 6), stats (dict of (N,) arrays; faults counts refused "
-           "queries, which give zero). Each row equals query() at the same poses.")
+           "every query, as NumPy broadcasts; one pose against an empty batch is an empty batch). The GIL is "
+           "released while they run. Returns a dict: wrench (N, 6), force and torque (N, 3) views of it, "
+           "K_B (N, 6, 6), stats (dict of (N,) arrays; faults counts refused queries, which give zero). "
+           "Each row equals query() at the same poses. An empty batch (N = 0) is no error: every array "
+           "has its shape with N = 0.")
       .def("reset", [](ModelHandle& h) {
         py::gil_scoped_release release;
         std::lock_guard<std::mutex> lock(h.mutex);

@@ -79,3 +79,33 @@ def test_queries_release_the_gil(plate_scene):
         t.join()
     for a, b in zip(alone, together):
         assert np.array_equal(a, b)
+
+
+@pytest.mark.parametrize("model_name", ["pointshell", "vps"])
+def test_query_many_of_an_empty_batch_returns_empty_arrays(plate_scene, model_name):
+    """An empty batch, against one pose or another empty batch, gives N = 0 rows of every array
+    (NumPy's broadcasting: a single pose is used for every one of no queries)."""
+    model = plate_scene.model(model_name)
+    A, B = plate_scene.A.pose, plate_scene.B.pose
+    cases = [
+        (np.zeros((0, 7)), B),
+        (A, np.zeros((0, 7))),
+        (np.zeros((0, 4, 4)), np.eye(4)),
+        (np.eye(4), np.zeros((0, 4, 4))),
+        (np.zeros((0, 7)), np.zeros((0, 4, 4))),
+        (A[np.newaxis], np.zeros((0, 7))),
+    ]
+    for poses_A, poses_B in cases:
+        batch = model.query_many(poses_A, poses_B)
+        assert batch["wrench"].shape == (0, 6)
+        assert batch["force"].shape == (0, 3)
+        assert batch["torque"].shape == (0, 3)
+        assert batch["K_B"].shape == (0, 6, 6)
+        assert set(batch["stats"]) == set(model.query(A, B)["stats"])
+        for key, values in batch["stats"].items():
+            assert values.shape == (0,), key
+    # An empty batch beside a batch of two is no broadcast: the counts must agree.
+    with pytest.raises(contactlab.Error, match=r"poses_A has 0 poses and poses_B 2"):
+        model.query_many(np.zeros((0, 7)), np.tile(B, (2, 1)))
+    # The model still answers afterwards.
+    assert model.query_many(A, B)["wrench"].shape == (1, 6)
