@@ -42,9 +42,13 @@ struct ModelHandle {
 };
 
 // Evaluates one query at X_WA, X_WB: from a fresh state (Reset, cycle 0: what the command's
-// `contact` does) when RESET, else as the next haptic cycle. Holds H.mutex.
+// `contact` does) when RESET, else as the next haptic cycle. Holds H.mutex. The one check of
+// every model's result on both paths (query, query_many): a non-finite wrench or K_B is an
+// error, never a result, as the command's `contact` refuses it; Error names the model, and ROW
+// (>= 0) the query of a batch.
 ContactResult EvaluateLocked(ModelHandle& h, const Pose& X_WA, const Pose& X_WB, bool reset,
-                             const BodyDeformation* deformation_A, const BodyDeformation* deformation_B) {
+                             const BodyDeformation* deformation_A, const BodyDeformation* deformation_B,
+                             py::ssize_t row = -1) {
   ContactQuery q;
   q.X_WA = X_WA;
   q.X_WB = X_WB;
@@ -56,7 +60,12 @@ ContactResult EvaluateLocked(ModelHandle& h, const Pose& X_WA, const Pose& X_WB,
     h.cycle = 0;
   }
   q.cycle = h.cycle++;
-  return h.model->Evaluate(q);
+  ContactResult r = h.model->Evaluate(q);
+  if (!r.on_B.force.allFinite() || !r.on_B.torque.allFinite() || !r.K_B.allFinite()) {
+    Fail((row < 0 ? "" : "query_many[" + std::to_string(row) + "]: ") + h.name,
+         "gave a non-finite wrench or stiffness at these poses and coordinates");
+  }
+  return r;
 }
 
 // Every ContactStats field (contact/contact_stats_fields.h): counts as int, the rest as float.
@@ -112,11 +121,8 @@ py::dict Query(ModelHandle& h, const DoubleArray& X_WA, const DoubleArray& X_WB,
     r = EvaluateLocked(h, pose_A, pose_B, reset, deform_A ? &deformation_A : nullptr,
                        deform_B ? &deformation_B : nullptr);
   }
-  // As the command: a refused query or a non-finite result is an error, never a result.
+  // As the command: a refused query is an error, never a result (a non-finite one raised above).
   if (r.stats.faults > 0) Fail(h.name, "refused the query (a deformation that does not fit its body); no wrench");
-  if (!r.on_B.force.allFinite() || !r.on_B.torque.allFinite() || !r.K_B.allFinite()) {
-    Fail(h.name, "gave a non-finite wrench or stiffness at these poses and coordinates");
-  }
   py::dict d;
   d["model"] = h.name;
   d["force"] = Vector(r.on_B.force.data(), 3);
@@ -160,7 +166,7 @@ py::dict QueryMany(ModelHandle& h, const DoubleArray& poses_A, const DoubleArray
     py::gil_scoped_release release;
     std::lock_guard<std::mutex> lock(h.mutex);
     for (py::ssize_t i = 0; i < n; ++i) {
-      const ContactResult r = EvaluateLocked(h, A[A.size() == 1 ? 0 : i], B[B.size() == 1 ? 0 : i], reset, dA, dB);
+      const ContactResult r = EvaluateLocked(h, A[A.size() == 1 ? 0 : i], B[B.size() == 1 ? 0 : i], reset, dA, dB, i);
       Eigen::Map<Vector6d>(w + 6 * i) = r.on_B.AsVector();
       Eigen::Map<Eigen::Matrix<double, 6, 6, Eigen::RowMajor>>(k + 36 * i) = r.K_B;
       for (std::size_t f = 0; f < kFields; ++f) values[std::size_t(i) * kFields + f] = kContactStatFields[f].value(r.stats);
@@ -221,14 +227,16 @@ void BindModel(py::module_& m) {
            "contact` evaluates; False: as the next haptic cycle (temporal coherence). Q_A / Q_B: reduced "
            "coordinates (r,) of a deformable body (default: at rest). Returns a dict: force (3,), torque "
            "(3,), wrench (6,), K_B (6, 6), stats (dict of the ContactStats fields), and reduced_force_A / "
-           "_B for deformable bodies. Raises contactlab.Error when the model refuses the query.")
+           "_B for deformable bodies. Raises contactlab.Error when the model refuses the query or gives a "
+           "non-finite wrench or K_B.")
       .def("query_many", &QueryMany, py::arg("poses_A"), py::arg("poses_B"), py::kw_only(), py::arg("reset") = true,
            "N queries: POSES_A and POSES_B are (N, 7) or (N, 4, 4) arrays (either may be one pose, used for "
            "every query, as NumPy broadcasts; one pose against an empty batch is an empty batch). The GIL is "
            "released while they run. Returns a dict: wrench (N, 6), force and torque (N, 3) views of it, "
            "K_B (N, 6, 6), stats (dict of (N,) arrays; faults counts refused queries, which give zero). "
-           "Each row equals query() at the same poses. An empty batch (N = 0) is no error: every array "
-           "has its shape with N = 0.")
+           "Each row equals query() at the same poses. Raises contactlab.Error naming the row (query_many[i]) "
+           "when a model gives a non-finite wrench or K_B, as query() does. An empty batch (N = 0) is no "
+           "error: every array has its shape with N = 0.")
       .def("reset", [](ModelHandle& h) {
         py::gil_scoped_release release;
         std::lock_guard<std::mutex> lock(h.mutex);
