@@ -6,12 +6,14 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "bindings.h"
@@ -30,22 +32,54 @@ namespace py = pybind11;
 namespace contactlab::python {
 namespace {
 
-// A model and what it evaluates with. Queries lock MUTEX after releasing the GIL, so a model
-// written in Python (which takes the GIL in Evaluate) cannot deadlock against another thread.
+// A model and what it evaluates with. Calls hold MUTEX (ModelLock), taken after releasing the
+// GIL, so a model written in Python (which takes the GIL in Evaluate) cannot deadlock against
+// another thread; OWNER, the thread holding it, lets a call from inside the model's own
+// evaluation fail instead of waiting for itself.
 struct ModelHandle {
   std::shared_ptr<SceneHandle> scene_handle;  // keeps the bodies' data alive
   Scene scene;                                // the scene with the keyword overrides applied
   std::string name;
   std::unique_ptr<ContactModel> model;
   std::mutex mutex;
-  std::int64_t cycle = 0;  // the next query's cycle when queries are not reset
+  std::atomic<std::thread::id> owner{};  // the thread holding MUTEX; none when free
+  std::int64_t cycle = 0;                // the next query's cycle when queries are not reset
+};
+
+// Holds H's mutex for one call (CALL: its Python name) with the GIL released, the GIL taken
+// back after the mutex is let go. Throws Error naming the model when this thread already holds
+// it: a Python model's function calling its own Model (query, query_many, reset) would
+// otherwise wait for itself forever. Construct with the GIL held.
+class ModelLock {
+ public:
+  ModelLock(ModelHandle& h, const char* call) : h_(h) {
+    if (h.owner.load() == std::this_thread::get_id()) {
+      Fail(h.name, std::string(call) + "() called from inside this model's own evaluation (its Python "
+                   "function calling its own Model); a model cannot query itself");
+    }
+    release_.emplace();
+    lock_ = std::unique_lock<std::mutex>(h.mutex);
+    h.owner.store(std::this_thread::get_id());
+  }
+  ~ModelLock() {
+    h_.owner.store(std::thread::id());
+    lock_.unlock();
+    release_.reset();
+  }
+  ModelLock(const ModelLock&) = delete;
+  ModelLock& operator=(const ModelLock&) = delete;
+
+ private:
+  ModelHandle& h_;
+  std::optional<py::gil_scoped_release> release_;
+  std::unique_lock<std::mutex> lock_;
 };
 
 // Evaluates one query at X_WA, X_WB: from a fresh state (Reset, cycle 0: what the command's
-// `contact` does) when RESET, else as the next haptic cycle. Holds H.mutex. The one check of
-// every model's result on both paths (query, query_many): a non-finite wrench or K_B is an
-// error, never a result, as the command's `contact` refuses it; Error names the model, and ROW
-// (>= 0) the query of a batch.
+// `contact` does) when RESET, else as the next haptic cycle. Called under a ModelLock of H.
+// The one check of every model's result on both paths (query, query_many): a non-finite wrench
+// or K_B is an error, never a result, as the command's `contact` refuses it; Error names the
+// model, and ROW (>= 0) the query of a batch.
 ContactResult EvaluateLocked(ModelHandle& h, const Pose& X_WA, const Pose& X_WB, bool reset,
                              const BodyDeformation* deformation_A, const BodyDeformation* deformation_B,
                              py::ssize_t row = -1) {
@@ -116,8 +150,7 @@ py::dict Query(ModelHandle& h, const DoubleArray& X_WA, const DoubleArray& X_WB,
   const bool deform_A = assets.A.deformable(), deform_B = assets.B.deformable();
   ContactResult r;
   {
-    py::gil_scoped_release release;
-    std::lock_guard<std::mutex> lock(h.mutex);
+    const ModelLock lock(h, "query");
     r = EvaluateLocked(h, pose_A, pose_B, reset, deform_A ? &deformation_A : nullptr,
                        deform_B ? &deformation_B : nullptr);
   }
@@ -163,8 +196,7 @@ py::dict QueryMany(ModelHandle& h, const DoubleArray& poses_A, const DoubleArray
   const BodyDeformation* dA = assets.A.deformable() ? &deformation_A : nullptr;
   const BodyDeformation* dB = assets.B.deformable() ? &deformation_B : nullptr;
   {
-    py::gil_scoped_release release;
-    std::lock_guard<std::mutex> lock(h.mutex);
+    const ModelLock lock(h, "query_many");
     for (py::ssize_t i = 0; i < n; ++i) {
       const ContactResult r = EvaluateLocked(h, A[A.size() == 1 ? 0 : i], B[B.size() == 1 ? 0 : i], reset, dA, dB, i);
       Eigen::Map<Vector6d>(w + 6 * i) = r.on_B.AsVector();
@@ -228,7 +260,8 @@ void BindModel(py::module_& m) {
            "coordinates (r,) of a deformable body (default: at rest). Returns a dict: force (3,), torque "
            "(3,), wrench (6,), K_B (6, 6), stats (dict of the ContactStats fields), and reduced_force_A / "
            "_B for deformable bodies. Raises contactlab.Error when the model refuses the query or gives a "
-           "non-finite wrench or K_B.")
+           "non-finite wrench or K_B, or when called from inside this model's own evaluation (a Python "
+           "model's function querying its own Model).")
       .def("query_many", &QueryMany, py::arg("poses_A"), py::arg("poses_B"), py::kw_only(), py::arg("reset") = true,
            "N queries: POSES_A and POSES_B are (N, 7) or (N, 4, 4) arrays (either may be one pose, used for "
            "every query, as NumPy broadcasts; one pose against an empty batch is an empty batch). The GIL is "
@@ -238,8 +271,7 @@ void BindModel(py::module_& m) {
            "when a model gives a non-finite wrench or K_B, as query() does. An empty batch (N = 0) is no "
            "error: every array has its shape with N = 0.")
       .def("reset", [](ModelHandle& h) {
-        py::gil_scoped_release release;
-        std::lock_guard<std::mutex> lock(h.mutex);
+        const ModelLock lock(h, "reset");
         h.model->Reset();
         h.cycle = 0;
       }, "Forgets temporal state (coherence, level-of-detail hysteresis).")

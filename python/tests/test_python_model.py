@@ -40,3 +40,62 @@ def test_query_many_of_a_non_finite_result_raises_as_query_does(scene, result):
     # The failing row of a batch is named.
     with pytest.raises(contactlab.Error, match=r"query_many\[0\]: " + message):
         model.query_many(np.tile(POSE_A, (3, 1)), POSE_B)
+
+
+# Run in a child interpreter, so that a model waiting for itself fails the test on a timeout
+# instead of hanging the suite: each way a model's function may call its own Model.
+SELF_QUERY = """
+import sys
+import numpy as np
+import contactlab
+sys.path.insert(0, {tests!r})
+from conftest import SMALL_SCENE
+
+scene = contactlab.Scene.from_yaml(SMALL_SCENE)
+pose_A, pose_B = np.array({pose_A!r}), np.array({pose_B!r})
+models = {{}}
+calls = {{
+    "query": lambda: models["self"].query(pose_A, pose_B),
+    "query_many": lambda: models["self"].query_many(pose_A, pose_B),
+    "reset": lambda: models["self"].reset(),
+}}
+reenter = [True]
+for name, call in calls.items():
+    def law(X_WA, X_WB, call=call):
+        if reenter[0]:
+            call()
+        return np.zeros(6)
+    reenter[0] = True
+    contactlab.register_model("py-self-" + name, law)
+    models["self"] = scene.model("py-self-" + name)
+    for outer in ("query", "query_many"):
+        try:
+            getattr(models["self"], outer)(pose_A, pose_B)
+            print(name, outer, "returned")
+        except contactlab.Error as e:
+            print(name, outer, "raised", type(e).__name__, str(e).replace("\\n", " "))
+    # The same Model still answers once its function no longer calls it.
+    reenter[0] = False
+    assert np.array_equal(models["self"].query(pose_A, pose_B)["wrench"], np.zeros(6))
+    assert models["self"].query_many(pose_A, pose_B)["wrench"].shape == (1, 6)
+"""
+
+
+def test_model_queried_from_its_own_python_function_raises():
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    code = SELF_QUERY.format(tests=str(Path(__file__).parent), pose_A=POSE_A.tolist(), pose_B=POSE_B.tolist())
+    try:
+        p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    except subprocess.TimeoutExpired:
+        pytest.fail("a Python model calling its own Model waited for itself (no answer in 60 s)")
+    assert p.returncode == 0, p.stderr
+    lines = p.stdout.splitlines()
+    assert len(lines) == 6, p.stdout
+    for line in lines:
+        inner, outer, what = line.split(" ", 3)[:3]
+        assert what == "raised", line
+        # The error names the model and the call made from inside its own evaluation.
+        assert f"py-self-{inner}: {inner}() called from inside this model's own evaluation" in line, line
