@@ -6,7 +6,8 @@
 
 namespace contactlab::python {
 
-// contactlab.Error (a RuntimeError) and the translation of contactlab::Error into it.
+// contactlab.Error (a RuntimeError), contactlab.ArgumentError (a contactlab.Error and a
+// ValueError), and the translation of contactlab::Error and ArgumentError into them.
 void BindErrors(pybind11::module_& m);
 // Scene and Body (scene_bindings.cc).
 void BindScene(pybind11::module_& m);

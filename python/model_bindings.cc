@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -128,9 +129,13 @@ py::array_t<double> Matrix6(const Matrix6d& K) {
 }
 
 // Reduced coordinates Q for BODY, checked as the command's --q-a / --q-b are (their count, finite
-// values, a finite deformation U q), with WHERE naming the argument.
+// values, a finite deformation U q), with WHERE naming the argument; ArgumentError when Q is not
+// a 1-D array of finite values.
 ReducedState ReducedFrom(const DoubleArray& q, BodyAssets& body, const std::string& where) {
-  if (q.ndim() != 1) Fail(where, "reduced coordinates are a 1-D array (r,)");
+  if (q.ndim() != 1) FailArgument(where, "reduced coordinates are a 1-D array (r,)");
+  for (py::ssize_t i = 0; i < q.shape(0); ++i) {
+    if (!std::isfinite(q.data()[i])) FailArgument(where, "value " + std::to_string(i + 1) + " is not a finite number");
+  }
   std::ostringstream text;
   text.precision(17);
   for (py::ssize_t i = 0; i < q.shape(0); ++i) text << (i ? "," : "") << q.data()[i];
@@ -171,12 +176,12 @@ py::dict Query(ModelHandle& h, const DoubleArray& X_WA, const DoubleArray& X_WB,
 
 // The number of queries of a batch of NA poses of A and NB of B, broadcast as NumPy does: a
 // single pose is used for every query of the other side (so one against none is none), else
-// the counts must agree. Throws Error naming both counts.
+// the counts must agree. Throws ArgumentError naming both counts.
 std::size_t BatchSize(std::size_t na, std::size_t nb) {
   if (na == 1) return nb;
   if (nb == 1 || nb == na) return na;
-  Fail("query_many", "poses_A has " + std::to_string(na) + " poses and poses_B " + std::to_string(nb) +
-                         "; give as many of each, or one pose for either");
+  FailArgument("query_many", "poses_A has " + std::to_string(na) + " poses and poses_B " + std::to_string(nb) +
+                                 "; give as many of each, or one pose for either");
 }
 
 py::dict QueryMany(ModelHandle& h, const DoubleArray& poses_A, const DoubleArray& poses_B, bool reset) {

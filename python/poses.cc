@@ -1,10 +1,8 @@
-// Poses from NumPy arrays (python/poses.h).
+// Poses and points from NumPy arrays (python/poses.h).
 #include "poses.h"
 
 #include <Eigen/Geometry>
 #include <cmath>
-
-#include "util/error.h"
 
 namespace py = pybind11;
 
@@ -20,10 +18,10 @@ std::string ShapeText(const DoubleArray& a) {
 // The pose of the 7 numbers at V, as ParsePose reads them from a command line.
 Pose PoseFrom7(const double* v, const std::string& where) {
   for (int i = 0; i < 7; ++i) {
-    if (!std::isfinite(v[i])) Fail(where, "pose component " + std::to_string(i) + " is not finite");
+    if (!std::isfinite(v[i])) FailArgument(where, "pose component " + std::to_string(i) + " is not finite");
   }
   const Eigen::Quaterniond q(v[3], v[4], v[5], v[6]);
-  if (q.norm() < 1e-12) Fail(where, "pose quaternion is zero");
+  if (q.norm() < 1e-12) FailArgument(where, "pose quaternion is zero");
   return {UnitQuaternion(q), Eigen::Vector3d(v[0], v[1], v[2])};
 }
 
@@ -33,23 +31,38 @@ Pose PoseFrom4x4(const double* v, const std::string& where) {
   for (int r = 0; r < 4; ++r) {
     for (int c = 0; c < 4; ++c) X(r, c) = v[4 * r + c];
   }
-  if (!X.allFinite()) Fail(where, "pose matrix has a value that is not finite");
+  if (!X.allFinite()) FailArgument(where, "pose matrix has a value that is not finite");
   if ((X.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).cwiseAbs().maxCoeff() > 1e-12) {
-    Fail(where, "pose matrix: the last row must be 0 0 0 1");
+    FailArgument(where, "pose matrix: the last row must be 0 0 0 1");
   }
   const Eigen::Matrix3d R = X.topLeftCorner<3, 3>();
   if ((R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-6 || R.determinant() < 0) {
-    Fail(where, "pose matrix: the upper-left 3x3 block is not a rotation (orthonormal, determinant +1)");
+    FailArgument(where, "pose matrix: the upper-left 3x3 block is not a rotation (orthonormal, determinant +1)");
   }
   return {Eigen::Quaterniond(R).normalized(), X.topRightCorner<3, 1>()};
 }
 
 }  // namespace
 
+PointRows PointsFromArray(const DoubleArray& a, const std::string& where) {
+  const bool one = a.ndim() == 1 && a.shape(0) == 3;
+  if (!one && !(a.ndim() == 2 && a.shape(1) == 3)) {
+    FailArgument(where, "points must be an (N, 3) array (body frame, metres); got shape " + ShapeText(a));
+  }
+  const PointRows points(a.data(), one ? 1 : a.shape(0), 3);
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    if (!points.row(i).allFinite()) {
+      FailArgument(where, (one ? std::string("points") : "points[" + std::to_string(i) + "]") +
+                              " has a coordinate that is not finite");
+    }
+  }
+  return points;
+}
+
 Pose PoseFromArray(const DoubleArray& a, const std::string& where) {
   if (a.ndim() == 1 && a.shape(0) == 7) return PoseFrom7(a.data(), where);
   if (a.ndim() == 2 && a.shape(0) == 4 && a.shape(1) == 4) return PoseFrom4x4(a.data(), where);
-  Fail(where, "a pose is a 7-vector (x, y, z, qw, qx, qy, qz) or a 4x4 matrix; got shape " + ShapeText(a));
+  FailArgument(where, "a pose is a 7-vector (x, y, z, qw, qx, qy, qz) or a 4x4 matrix; got shape " + ShapeText(a));
 }
 
 std::vector<Pose> PosesFromArray(const DoubleArray& a, const std::string& where) {
@@ -65,8 +78,8 @@ std::vector<Pose> PosesFromArray(const DoubleArray& a, const std::string& where)
       poses.push_back(PoseFrom4x4(a.data() + 16 * i, where + "[" + std::to_string(i) + "]"));
     }
   } else {
-    Fail(where, "poses are an (N, 7) array of (x, y, z, qw, qx, qy, qz) rows or an (N, 4, 4) array of matrices; "
-                "got shape " + ShapeText(a));
+    FailArgument(where, "poses are an (N, 7) array of (x, y, z, qw, qx, qy, qz) rows or an (N, 4, 4) array of "
+                        "matrices; got shape " + ShapeText(a));
   }
   return poses;
 }

@@ -88,22 +88,14 @@ PointshellArrays PointshellOf(Body& body, int level) {
 }
 
 py::object DistanceOf(Body& body, const DoubleArray& points) {
-  if (!(points.ndim() == 2 && points.shape(1) == 3) && !(points.ndim() == 1 && points.shape(0) == 3)) {
-    std::string what = "points must be an (N, 3) array (body frame, metres); got shape (";
-    for (py::ssize_t i = 0; i < points.ndim(); ++i) {
-      if (i > 0) what += ", ";
-      what += std::to_string(points.shape(i));
-    }
-    Fail(std::string(body.assets().body_name()) + ": distance(points)", what + ")");
-  }
+  const PointRows p_BQ = PointsFromArray(points, std::string(body.assets().body_name()) + ": distance(points)");
   const std::shared_ptr<const DistanceField> field = body.assets().field();
-  const py::ssize_t n = points.ndim() == 1 ? 1 : points.shape(0);
+  const py::ssize_t n = py::ssize_t(p_BQ.rows());
   py::array_t<double> d(n);
-  const double* p = points.data();
   double* out = d.mutable_data();
   {
     py::gil_scoped_release release;
-    for (py::ssize_t i = 0; i < n; ++i) out[i] = field->Distance(Eigen::Vector3d(p[3 * i], p[3 * i + 1], p[3 * i + 2]));
+    for (py::ssize_t i = 0; i < n; ++i) out[i] = field->Distance(p_BQ.row(i).transpose());
   }
   if (points.ndim() == 1) return py::float_(out[0]);
   return d;
@@ -146,7 +138,9 @@ void BindScene(py::module_& m) {
                              "the body's triangle mesh (Mesh: vertices, triangles), body frame, metres")
       .def("distance", &DistanceOf, py::arg("points"),
            "Signed distances of POINTS, (N, 3) float64 in the body frame (metres), in the body's distance "
-           "field: (N,) float64 (a float for one (3,) point), negative inside. Builds the field (through the cache) on first use.")
+           "field: (N,) float64 (a float for one (3,) point), negative inside. Builds the field (through the cache) on first use. "
+           "Raises contactlab.ArgumentError (a ValueError) naming the point when the shape is wrong or a coordinate "
+           "is not finite.")
       .def("pointshell", &PointshellOf, py::arg("level") = -1,
            "The body's pointshell up to tree level LEVEL (-1: the deepest): Pointshell with points and "
            "normals, (P, 3) float64 each, body frame. Builds it (through the cache) on first use.")

@@ -9,10 +9,13 @@
     results = contactlab.load_results(out)              # results.summary, results.cycles: DataFrames
 
 Units are SI (metres, newtons); poses are (x, y, z, qw, qx, qy, qz) 7-vectors or 4x4 matrices.
-Errors raise contactlab.Error (a RuntimeError) with the library's message (file, line, key).
+Errors raise contactlab.Error (a RuntimeError) with the library's message (file, line, key); a
+bad argument (shape, a value that is not finite) raises contactlab.ArgumentError, which is both a
+contactlab.Error and a ValueError.
 """
 
 from ._core import (  # noqa: F401
+    ArgumentError,
     Body,
     Error,
     Mesh,

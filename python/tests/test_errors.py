@@ -94,3 +94,38 @@ def test_run_errors_name_the_config(tmp_path, plate_scene_file):
     assert not (tmp_path / "out").exists()
     with pytest.raises(contactlab.Error, match="no-such-results"):
         contactlab.load_results(tmp_path / "no-such-results")
+
+
+def test_distance_of_a_nan_point_raises_value_error_naming_the_argument(small_scene_file):
+    """No non-finite number passes the argument conversion as a point or a pose: it raises
+    contactlab.ArgumentError, a ValueError (and a contactlab.Error), naming the argument."""
+    scene = contactlab.Scene.load(str(small_scene_file))
+    with pytest.raises(ValueError, match=r"block: distance\(points\): points has a coordinate that is not finite"):
+        scene.B.distance(np.array([0, np.nan, 0.0]))
+    assert issubclass(contactlab.ArgumentError, ValueError)
+    assert issubclass(contactlab.ArgumentError, contactlab.Error)
+    with pytest.raises(ValueError, match=r"ring: distance\(points\): points\[1\] has a coordinate that is not finite"):
+        scene.A.distance(np.array([[0, 0, 0.01], [0, 0, np.inf]]))
+    # Finite points are answered as before, a (3,) point as a float.
+    assert np.isfinite(scene.B.distance(np.array([0, 0, 0.01])))
+    assert scene.B.distance(np.zeros((0, 3))).shape == (0,)
+    # Poses, one or a batch, 7-vectors or matrices.
+    model = scene.model("pointshell")
+    good = np.array([0, 0, 0.01, 1, 0, 0, 0.0])
+    with pytest.raises(ValueError, match="X_WB: pose component 2 is not finite"):
+        model.query(good, np.array([0, 0, np.nan, 1, 0, 0, 0]))
+    X = np.eye(4)
+    X[1, 3] = np.nan
+    with pytest.raises(ValueError, match="X_WA: pose matrix has a value that is not finite"):
+        model.query(X, good)
+    with pytest.raises(ValueError, match=r"poses_A\[1\]: pose component 4 is not finite"):
+        model.query_many(np.array([good, [0, 0, 0, 1, np.nan, 0, 0]]), good)
+    with pytest.raises(ValueError, match=r"poses_B\[0\]: pose matrix has a value that is not finite"):
+        model.query_many(good, X[np.newaxis])
+    with pytest.raises(ValueError, match=r"q_A: value 2 is not a finite number"):
+        model.query(good, good, q_A=np.array([0, np.nan]))
+    # Other bad arguments of the same conversion are ValueErrors too.
+    with pytest.raises(ValueError, match=r"points must be an \(N, 3\) array"):
+        scene.B.distance(np.zeros((4, 2)))
+    with pytest.raises(ValueError, match=r"poses_A has 3 poses and poses_B 2"):
+        model.query_many(np.tile(good, (3, 1)), np.tile(good, (2, 1)))
