@@ -1,5 +1,6 @@
-// The common contact interface (DESIGN.md): every model — the paper's pointshell-vs-field
-// model and each baseline — answers one query per haptic cycle through it.
+// The common contact interface (docs/architecture.md, "The contact interface"): every model —
+// the paper's pointshell-vs-field model and each baseline — answers one query per haptic cycle
+// through it.
 //
 // Conventions. Body A is the pointshell (or first) body, B the distance-field (or second)
 // body. The result is the wrench ON B, torque about B's origin, world frame, SI units. Its

@@ -1,6 +1,7 @@
 // Every field of ContactStats by name: what reports all of them (`contactlab contact --json`,
 // the Python module's query and query_many) reads this list, so a new field is one row here.
-// cycles.csv has its own column table (experiment/result_csv.cc), with formats per column.
+// cycles.csv has its own column table (experiment/studies/contact/result_csv.cc), with formats
+// per column.
 #pragma once
 
 #include <array>
