@@ -7,7 +7,7 @@
 // Sphere Trees (Weller & Zachmann 2009). Its magnitude is a law of its own: k_V |∇V| grows with
 // the area of the overlap's boundary, where the paper's force (eq. 2, L/l rule) grows with the
 // mean depth and FCL's and Bullet's with their contact counts, so magnitudes are compared after
-// a per-model stiffness calibration (experiment/metrics.h, ErrorAgainstReference).
+// a per-model stiffness calibration (experiment/studies/contact/metrics.h, ErrorAgainstReference).
 //
 // k_V = k_C L / sqrt(area of A's surface) (N/m^2): a flat face of area A_c pressed in feels
 // k_V A_c at every depth, and scaling the whole scene by s scales the force by s, as in the

@@ -3,7 +3,8 @@
 // g = N, formed and summed several points per instruction (Google Highway, the instruction set
 // chosen at run time as for sdf/batch_distance.h). The paper's model collects its points in
 // contact in a HalfspaceContactBuffer and adds them a buffer at a time, for every combination of
-// rigid or deformable pointshell and grid or deformed field (contact/pointshell_field_model.h).
+// rigid or deformable pointshell and grid or deformed field
+// (src/pointshell_contact/pointshell_field_model.h).
 #pragma once
 
 #include <cstdint>
