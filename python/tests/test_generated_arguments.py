@@ -275,6 +275,26 @@ def test_reduced_coordinates_of_a_rigid_body_raise_naming_them(model, q):
     assert got[0] == "raised" and "q_A" in got[2], got
 
 
+@pytest.fixture(scope="module")
+def deformable_model(data_dir):
+    scene = contactlab.Scene.load(str(data_dir / "scenes" / "cantilever-probe.yaml"))
+    assert scene.A.deformable
+    return scene.model(), scene.A.pose, scene.B.pose
+
+
+@settings(GENERATED, max_examples=40)
+@given(q=st.one_of(
+    forms(hnp.arrays(np.float64, st.sampled_from([(10,), (10,), (3,), (0,), (2, 5)]),
+                     elements=st.one_of(st.floats(-1e-3, 1e-3), st.sampled_from(SPECIAL)))),
+    JUNK.filter(lambda q: q is not None)))
+def test_reduced_coordinates_of_a_deformable_body_in_any_form_or_named(deformable_model, q):
+    """The cantilever's ten coordinates answer as their float64 form does, or raise naming q_A."""
+    model, X_WA, X_WB = deformable_model
+    got = check_conversion(lambda v: model.query(X_WA, X_WB, q_A=v), q, "q_A")
+    if got[0] == "ok":
+        assert np.isfinite(got[1]["reduced_force_A"]).all()
+
+
 @GENERATED
 @given(returned=st.one_of(
     forms(hnp.arrays(np.float64, st.sampled_from([(6,), (5,), (2, 3)]), elements=st.floats(-10, 10))), JUNK))
