@@ -63,7 +63,8 @@ DoubleArray DoublesFromObject(py::handle obj, const std::string& where) {
     try {
       a = py::module_::import("numpy").attr("asarray")(obj);
     } catch (py::error_already_set& e) {
-      if (!e.matches(PyExc_Exception)) throw;  // KeyboardInterrupt, SystemExit, MemoryError pass
+      // KeyboardInterrupt, SystemExit and MemoryError pass as they are.
+      if (!e.matches(PyExc_Exception) || e.matches(PyExc_MemoryError)) throw;
       if (e.matches(PyExc_ValueError)) FailArgument(where, std::string("not an array of numbers: ") + e.what());
       throw py::type_error(where + ": not an array of numbers: " + e.what());
     }
