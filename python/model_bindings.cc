@@ -128,10 +128,11 @@ py::array_t<double> Matrix6(const Matrix6d& K) {
   return a;
 }
 
-// Reduced coordinates Q for BODY, checked as the command's --q-a / --q-b are (their count, finite
-// values, a finite deformation U q), with WHERE naming the argument; ArgumentError when Q is not
-// a 1-D array of finite values.
-ReducedState ReducedFrom(const DoubleArray& q, BodyAssets& body, const std::string& where) {
+// Reduced coordinates VALUES for BODY, checked as the command's --q-a / --q-b are (their count,
+// finite values, a finite deformation U q): ArgumentError naming WHERE when any check fails,
+// TypeError when VALUES are not real numbers (DoublesFromObject).
+ReducedState ReducedFrom(py::handle values, BodyAssets& body, const std::string& where) {
+  const DoubleArray q = DoublesFromObject(values, where);
   if (q.ndim() != 1) FailArgument(where, "reduced coordinates are a 1-D array (r,)");
   for (py::ssize_t i = 0; i < q.shape(0); ++i) {
     if (!std::isfinite(q.data()[i])) FailArgument(where, "value " + std::to_string(i + 1) + " is not a finite number");
@@ -139,17 +140,23 @@ ReducedState ReducedFrom(const DoubleArray& q, BodyAssets& body, const std::stri
   std::ostringstream text;
   text.precision(17);
   for (py::ssize_t i = 0; i < q.shape(0); ++i) text << (i ? "," : "") << q.data()[i];
-  return ParseReducedCoordinates(text.str(), body, where);
+  // The command's check of --q-a (count, a deformation that fits) is of this argument.
+  try {
+    return ParseReducedCoordinates(text.str(), body, where);
+  } catch (const ArgumentError&) {
+    throw;
+  } catch (const Error& e) {
+    throw ArgumentError(e.what());
+  }
 }
 
-py::dict Query(ModelHandle& h, const DoubleArray& X_WA, const DoubleArray& X_WB, bool reset,
-               std::optional<DoubleArray> q_A, std::optional<DoubleArray> q_B) {
-  const Pose pose_A = PoseFromArray(X_WA, "X_WA");
-  const Pose pose_B = PoseFromArray(X_WB, "X_WB");
+py::dict Query(ModelHandle& h, py::handle X_WA, py::handle X_WB, bool reset, py::handle q_A, py::handle q_B) {
+  const Pose pose_A = PoseFromArray(DoublesFromObject(X_WA, "X_WA"), "X_WA");
+  const Pose pose_B = PoseFromArray(DoublesFromObject(X_WB, "X_WB"), "X_WB");
   SceneAssets& assets = h.scene_handle->assets;
   std::unique_ptr<ReducedState> state_A, state_B;
-  if (q_A) state_A = std::make_unique<ReducedState>(ReducedFrom(*q_A, assets.A, "q_A"));
-  if (q_B) state_B = std::make_unique<ReducedState>(ReducedFrom(*q_B, assets.B, "q_B"));
+  if (!q_A.is_none()) state_A = std::make_unique<ReducedState>(ReducedFrom(q_A, assets.A, "q_A"));
+  if (!q_B.is_none()) state_B = std::make_unique<ReducedState>(ReducedFrom(q_B, assets.B, "q_B"));
   ReducedVector force_A, force_B;
   const BodyDeformation deformation_A{state_A.get(), &force_A}, deformation_B{state_B.get(), &force_B};
   const bool deform_A = assets.A.deformable(), deform_B = assets.B.deformable();
@@ -184,9 +191,9 @@ std::size_t BatchSize(std::size_t na, std::size_t nb) {
                                  "; give as many of each, or one pose for either");
 }
 
-py::dict QueryMany(ModelHandle& h, const DoubleArray& poses_A, const DoubleArray& poses_B, bool reset) {
-  const std::vector<Pose> A = PosesFromArray(poses_A, "poses_A");
-  const std::vector<Pose> B = PosesFromArray(poses_B, "poses_B");
+py::dict QueryMany(ModelHandle& h, py::handle poses_A, py::handle poses_B, bool reset) {
+  const std::vector<Pose> A = PosesFromArray(DoublesFromObject(poses_A, "poses_A"), "poses_A");
+  const std::vector<Pose> B = PosesFromArray(DoublesFromObject(poses_B, "poses_B"), "poses_B");
   const py::ssize_t n = py::ssize_t(BatchSize(A.size(), B.size()));
   py::array_t<double> wrench({n, py::ssize_t(6)});
   py::array_t<double> K({n, py::ssize_t(6), py::ssize_t(6)});
@@ -264,7 +271,9 @@ void BindModel(py::module_& m) {
            "contact` evaluates; False: as the next haptic cycle (temporal coherence). Q_A / Q_B: reduced "
            "coordinates (r,) of a deformable body (default: at rest). Returns a dict: force (3,), torque "
            "(3,), wrench (6,), K_B (6, 6), stats (dict of the ContactStats fields), and reduced_force_A / "
-           "_B for deformable bodies. Raises contactlab.Error when the model refuses the query or gives a "
+           "_B for deformable bodies. Raises contactlab.ArgumentError (a ValueError) naming the argument when a "
+           "pose or Q has the wrong shape or a value that is not finite, TypeError when it is not real "
+           "numbers (complex, strings, None); contactlab.Error when the model refuses the query or gives a "
            "non-finite wrench or K_B, or when called from inside this model's own evaluation (a Python "
            "model's function querying its own Model).")
       .def("query_many", &QueryMany, py::arg("poses_A"), py::arg("poses_B"), py::kw_only(), py::arg("reset") = true,
@@ -272,7 +281,8 @@ void BindModel(py::module_& m) {
            "every query, as NumPy broadcasts; one pose against an empty batch is an empty batch). The GIL is "
            "released while they run. Returns a dict: wrench (N, 6), force and torque (N, 3) views of it, "
            "K_B (N, 6, 6), stats (dict of (N,) arrays; faults counts refused queries, which give zero). "
-           "Each row equals query() at the same poses. Raises contactlab.Error naming the row (query_many[i]) "
+           "Each row equals query() at the same poses. Bad poses raise as query() does, naming poses_A[i] or "
+           "poses_B[i]. Raises contactlab.Error naming the row (query_many[i]) "
            "when a model gives a non-finite wrench or K_B, as query() does. An empty batch (N = 0) is no "
            "error: every array has its shape with N = 0.")
       .def("reset", [](ModelHandle& h) {

@@ -4,6 +4,8 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "geometry/triangle_mesh.h"
+
 namespace py = pybind11;
 
 namespace contactlab::python {
@@ -11,8 +13,12 @@ namespace {
 
 std::string ShapeText(const DoubleArray& a) {
   std::string s = "(";
-  for (py::ssize_t i = 0; i < a.ndim(); ++i) s += (i ? ", " : "") + std::to_string(a.shape(i));
-  return s + (a.ndim() == 1 ? ",)" : ")");
+  for (py::ssize_t i = 0; i < a.ndim(); ++i) {
+    if (i > 0) s += ", ";
+    s += std::to_string(a.shape(i));
+  }
+  s += a.ndim() == 1 ? ",)" : ")";
+  return s;
 }
 
 // The pose of the 7 numbers at V, as ParsePose reads them from a command line.
@@ -35,14 +41,48 @@ Pose PoseFrom4x4(const double* v, const std::string& where) {
   if ((X.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).cwiseAbs().maxCoeff() > 1e-12) {
     FailArgument(where, "pose matrix: the last row must be 0 0 0 1");
   }
+  // Written so that a NaN fails (R^T R of huge finite entries can overflow to inf - inf) without
+  // relying on Eigen's maxCoeff, which may skip a NaN.
   const Eigen::Matrix3d R = X.topLeftCorner<3, 3>();
-  if ((R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-6 || R.determinant() < 0) {
+  const Eigen::Matrix3d E = R.transpose() * R - Eigen::Matrix3d::Identity();
+  const bool orthonormal = (E.array().abs() <= 1e-6).all();
+  if (!orthonormal || !(R.determinant() > 0)) {
     FailArgument(where, "pose matrix: the upper-left 3x3 block is not a rotation (orthonormal, determinant +1)");
   }
   return {Eigen::Quaterniond(R).normalized(), X.topRightCorner<3, 1>()};
 }
 
+// The dtype kinds NumPy converts to float64 without losing meaning: bool, signed and unsigned
+// integers, floating point.
+bool IsRealKind(char kind) { return kind == 'b' || kind == 'i' || kind == 'u' || kind == 'f'; }
+
 }  // namespace
+
+DoubleArray DoublesFromObject(py::handle obj, const std::string& where) {
+  py::array a;
+  if (py::isinstance<py::array>(obj)) {
+    a = py::reinterpret_borrow<py::array>(obj);
+  } else {
+    // Lists, tuples, scalars, buffers and objects with __array__, as NumPy reads them.
+    try {
+      a = py::module_::import("numpy").attr("asarray")(obj);
+    } catch (py::error_already_set& e) {
+      // KeyboardInterrupt, SystemExit and MemoryError pass as they are.
+      if (!e.matches(PyExc_Exception) || e.matches(PyExc_MemoryError)) throw;
+      if (e.matches(PyExc_ValueError)) FailArgument(where, std::string("not an array of numbers: ") + e.what());
+      throw py::type_error(where + ": not an array of numbers: " + e.what());
+    }
+  }
+  const py::dtype dtype = a.dtype();
+  if (!IsRealKind(dtype.kind())) {
+    throw py::type_error(where + ": expected real numbers (an array of float, int or bool); got dtype " +
+                         py::str(py::object(dtype)).cast<std::string>() + " from " +
+                         py::str(py::type::handle_of(obj)).cast<std::string>());
+  }
+  DoubleArray out = DoubleArray::ensure(a);
+  if (!out) throw py::type_error(where + ": cannot be converted to float64");
+  return out;
+}
 
 PointRows PointsFromArray(const DoubleArray& a, const std::string& where) {
   const bool one = a.ndim() == 1 && a.shape(0) == 3;
@@ -51,9 +91,11 @@ PointRows PointsFromArray(const DoubleArray& a, const std::string& where) {
   }
   const PointRows points(a.data(), one ? 1 : a.shape(0), 3);
   for (Eigen::Index i = 0; i < points.rows(); ++i) {
-    if (!points.row(i).allFinite()) {
-      FailArgument(where, (one ? std::string("points") : "points[" + std::to_string(i) + "]") +
-                              " has a coordinate that is not finite");
+    const std::string point = one ? std::string("points") : "points[" + std::to_string(i) + "]";
+    if (!points.row(i).allFinite()) FailArgument(where, point + " has a coordinate that is not finite");
+    // Beyond the bound of every coordinate (a field's float lookup gave +inf from about 2e19 m).
+    if (points.row(i).cwiseAbs().maxCoeff() > kMaxCoordinate) {
+      FailArgument(where, point + " has a coordinate beyond the limit of +-1e9 m");
     }
   }
   return points;

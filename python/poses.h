@@ -16,14 +16,25 @@
 
 namespace contactlab::python {
 
-using DoubleArray = pybind11::array_t<double, pybind11::array::c_style | pybind11::array::forcecast>;
+// float64, C-contiguous and aligned (a view of a byte buffer at an odd offset is copied: the
+// conversion reads it through double pointers).
+using DoubleArray = pybind11::array_t<double, pybind11::array::c_style | pybind11::array::forcecast |
+                                                  pybind11::detail::npy_api::NPY_ARRAY_ALIGNED_>;
+
+// OBJ (an array, a nested list or tuple, a scalar, anything NumPy's asarray takes) as a float64
+// C-contiguous array, converted as np.asarray(OBJ).astype(np.float64) would, of real numbers only:
+// bool, integer and floating dtypes pass; complex, strings, datetimes, objects (None) and
+// structured arrays raise TypeError naming WHERE (forcecast would drop an imaginary part, parse
+// '1.5' and count days as metres). Throws ArgumentError naming WHERE when NumPy refuses OBJ as an
+// array (a ragged list). Any shape passes; the callers check theirs.
+DoubleArray DoublesFromObject(pybind11::handle obj, const std::string& where);
 
 // (N, 3) points, row-major, viewing the array's data (no copy).
 using PointRows = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>;
 
 // The points of an (N, 3) array, or of one (3,) point as N = 1 (metres, in the frame the call
 // names). Throws ArgumentError naming WHERE when the shape is neither or a coordinate is not
-// finite. The view lives as long as A.
+// finite or beyond kMaxCoordinate (geometry/triangle_mesh.h). The view lives as long as A.
 PointRows PointsFromArray(const DoubleArray& a, const std::string& where);
 
 // One pose from a (7,) or (4, 4) array. Throws ArgumentError naming WHERE when the shape is neither,

@@ -55,18 +55,24 @@ class PythonContactModel final : public ContactModel {
         wrench = out[py::int_(0)];
         K = out[py::int_(1)];
       }
-      const auto w = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(wrench);
-      if (!w || w.size() != 6) Fail(name_, "its Python function must return a wrench (6 numbers) or (wrench, K_B)");
+      // Real numbers only, converted as the arguments of a call are (poses.h); a wrong type or
+      // shape is this model's error, not the caller's.
+      const DoubleArray w = DoublesFromObject(wrench, "its Python function's wrench");
+      if (w.size() != 6) Fail(name_, "its Python function must return a wrench (6 numbers) or (wrench, K_B)");
       for (int i = 0; i < 3; ++i) r.on_B.force[i] = w.data()[i], r.on_B.torque[i] = w.data()[3 + i];
       if (K && !K.is_none()) {
-        const auto k = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(K);
-        if (!k || k.ndim() != 2 || k.shape(0) != 6 || k.shape(1) != 6) Fail(name_, "its Python function's K_B must be 6x6");
+        const DoubleArray k = DoublesFromObject(K, "its Python function's K_B");
+        if (k.ndim() != 2 || k.shape(0) != 6 || k.shape(1) != 6) Fail(name_, "its Python function's K_B must be 6x6");
         for (int i = 0; i < 6; ++i) {
           for (int j = 0; j < 6; ++j) r.K_B(i, j) = k.data()[6 * i + j];
         }
       }
     } catch (py::error_already_set& e) {
       Fail(name_, std::string("its Python function raised ") + e.what());
+    } catch (const py::builtin_exception& e) {
+      Fail(name_, std::string("returned no numbers: ") + e.what());
+    } catch (const ArgumentError& e) {
+      Fail(name_, std::string("returned no numbers: ") + e.what());
     }
     r.stats.points_in_contact = r.on_B.force.squaredNorm() > 0 ? 1 : 0;
     return r;

@@ -87,8 +87,10 @@ PointshellArrays PointshellOf(Body& body, int level) {
   return out;
 }
 
-py::object DistanceOf(Body& body, const DoubleArray& points) {
-  const PointRows p_BQ = PointsFromArray(points, std::string(body.assets().body_name()) + ": distance(points)");
+py::object DistanceOf(Body& body, py::handle points_object) {
+  const std::string where = std::string(body.assets().body_name()) + ": distance(points)";
+  const DoubleArray points = DoublesFromObject(points_object, where);
+  const PointRows p_BQ = PointsFromArray(points, where);
   const std::shared_ptr<const DistanceField> field = body.assets().field();
   const py::ssize_t n = py::ssize_t(p_BQ.rows());
   py::array_t<double> d(n);
@@ -140,7 +142,7 @@ void BindScene(py::module_& m) {
            "Signed distances of POINTS, (N, 3) float64 in the body frame (metres), in the body's distance "
            "field: (N,) float64 (a float for one (3,) point), negative inside. Builds the field (through the cache) on first use. "
            "Raises contactlab.ArgumentError (a ValueError) naming the point when the shape is wrong or a coordinate "
-           "is not finite.")
+           "is not finite or beyond +-1e9 m, TypeError when POINTS are not real numbers (complex, strings, None).")
       .def("pointshell", &PointshellOf, py::arg("level") = -1,
            "The body's pointshell up to tree level LEVEL (-1: the deepest): Pointshell with points and "
            "normals, (P, 3) float64 each, body frame. Builds it (through the cache) on first use.")

@@ -5,9 +5,9 @@
 # runtime libraries, which hold libFuzzer, for the fuzz targets, tests/fuzz/; cpp-httplib, three.js
 # and Chromium for the 3D viewer and its browser tests, src/view/; OpenVDB for the reference
 # field that cross-checks our field builder, baselines/reference/, and its benchmark; pybind11, pytest
-# and pandas for the Python module, python/; MkDocs with the Material theme for the documentation
-# site, mkdocs.yml and docs/, built by the test Docs.MkdocsStrict). Does nothing when
-# everything is present; uses sudo when not root.
+# and pandas for the Python module, python/, and Hypothesis for its generated-argument tests;
+# MkDocs with the Material theme for the documentation site, mkdocs.yml and docs/, built by the
+# test Docs.MkdocsStrict). Does nothing when everything is present; uses sudo when not root.
 set -euo pipefail
 
 packages=(
@@ -21,7 +21,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-14-dev
   python3 python3-numpy python3-matplotlib python3-yaml
-  pybind11-dev python3-pybind11 python3-pytest python3-pandas
+  pybind11-dev python3-pybind11 python3-pytest python3-pandas python3-hypothesis
   libcpp-httplib-dev libjs-three chromium
   slurm-wlm munge
   mkdocs mkdocs-material

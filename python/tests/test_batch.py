@@ -60,8 +60,7 @@ def test_matrices_give_the_poses_of_their_quaternions(plate_scene):
     np.testing.assert_allclose(single["wrench"], from_quaternions[0], rtol=0, atol=1e-6 * scale)
 
 
-def test_queries_release_the_gil(plate_scene):
-    """Two threads querying two models at once give what each gives alone."""
+def test_two_threads_querying_two_models_get_what_each_gets_alone(plate_scene):
     import threading
 
     models = [plate_scene.model("pointshell"), plate_scene.model("pointshell-linear")]
@@ -79,6 +78,64 @@ def test_queries_release_the_gil(plate_scene):
         t.join()
     for a, b in zip(alone, together):
         assert np.array_equal(a, b)
+
+
+def ran_while_the_gil_was_free(call):
+    """Whether another Python thread ran while CALL() ran, seen by the calling thread the moment
+    CALL returns. The interpreter's switch interval is made huge, so no thread is ever made to
+    give up the GIL: the other thread, woken before CALL starts, can run only when the calling
+    thread lets the GIL go of its own accord, and between waking it and reading its flag this
+    thread does so nowhere but inside CALL. A CALL that holds the GIL therefore always reads
+    False; one that releases it reads True unless CALL ends before the woken thread is scheduled
+    at all (the callers repeat with longer calls)."""
+    import sys
+    import threading
+
+    wake, ran, done = threading.Event(), threading.Event(), threading.Event()
+    seen = []
+
+    def other():
+        wake.wait()
+        ran.set()
+        done.wait()
+
+    def caller():
+        wake.set()
+        call()
+        seen.append(ran.is_set())  # before this thread could give the GIL away
+        done.set()
+
+    interval = sys.getswitchinterval()
+    sys.setswitchinterval(1000.0)
+    try:
+        threads = [threading.Thread(target=other), threading.Thread(target=caller)]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+    finally:
+        sys.setswitchinterval(interval)
+    return seen == [True]
+
+
+def test_query_many_releases_the_gil(plate_scene):
+    """Another Python thread runs while a batch is evaluated (a held GIL fails every attempt)."""
+    model = plate_scene.model("pointshell")
+    for n in (2000, 8000, 32000):
+        poses_A = np.tile(plate_scene.A.pose, (n, 1))
+        if ran_while_the_gil_was_free(lambda: model.query_many(poses_A, plate_scene.B.pose)):
+            return
+    pytest.fail("no other thread ran during query_many of up to 32,000 queries: the GIL was held")
+
+
+def test_distance_releases_the_gil(plate_scene):
+    """Another Python thread runs while Body.distance evaluates many points."""
+    plate_scene.B.distance(np.zeros(3))  # the field is built (holding the GIL) before
+    for n in (100000, 400000, 1600000):
+        points = np.random.default_rng(1).uniform(-0.05, 0.05, size=(n, 3))
+        if ran_while_the_gil_was_free(lambda: plate_scene.B.distance(points)):
+            return
+    pytest.fail("no other thread ran during distance() of up to 1,600,000 points: the GIL was held")
 
 
 @pytest.mark.parametrize("model_name", ["pointshell", "vps"])
