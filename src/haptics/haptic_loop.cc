@@ -7,9 +7,12 @@
 #include <time.h>
 
 #include <cerrno>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <iomanip>
+#include <optional>
 #include <sstream>
 
 #include "haptics/cpu_affinity.h"
@@ -87,6 +90,10 @@ HapticLoop::HapticLoop(HapticCycle& cycle, const HapticLoopOptions& options, Loo
   if (!(options_.rate_hz > 0 && options_.rate_hz <= 100000)) Fail("haptic loop", "rate_hz must lie in (0, 100000]");
   if (!(options_.spin_seconds >= 0 && options_.spin_seconds < 1.0 / options_.rate_hz))
     Fail("haptic loop", "spin_seconds must lie in [0, 1/rate_hz)");
+  // NaN compares false with everything: without this check it would run forever ("<= 0"
+  // is false too), and a huge duration would overflow the clock's nanoseconds.
+  if (!std::isfinite(options_.duration_seconds) || options_.duration_seconds > kMaxLoopSeconds)
+    Fail("haptic loop", "duration_seconds must be a finite number of seconds, at most 1e8 (<= 0: until stopped)");
   if (options_.fifo_priority < 1 || options_.fifo_priority > 99) Fail("haptic loop", "fifo_priority must lie in [1, 99]");
   if (options_.cpu < -1 || options_.cpu >= ConfiguredCpuCount())
     Fail("haptic loop", "cpu must be -1 (not pinned) or a CPU of this machine (0.." +

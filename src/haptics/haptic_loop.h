@@ -21,9 +21,13 @@
 
 namespace contactlab {
 
+// Longest run a loop is given (HapticLoopOptions::duration_seconds, `session --duration`): about
+// three years, far inside the int64 nanoseconds of the loop's clock (292 years).
+inline constexpr double kMaxLoopSeconds = 1e8;
+
 struct HapticLoopOptions {
   double rate_hz = 1000;              // cycle rate
-  double duration_seconds = 0;        // run time; <= 0 runs until RequestStop or SIGINT
+  double duration_seconds = 0;        // run time, at most kMaxLoopSeconds; <= 0 runs until RequestStop or SIGINT
   bool try_realtime = true;           // try SCHED_FIFO + mlockall (warn on stderr if refused)
   int fifo_priority = 80;             // SCHED_FIFO priority when granted
   double spin_seconds = 50e-6;        // sleep until this long before the deadline, then spin

@@ -204,6 +204,25 @@ TEST(CliInputs, NegativeBudgetOnTheCommandLineIsRejectedLikeInTheScene) {
   EXPECT_NE(o.output.find("--budget"), std::string::npos) << o.output;
 }
 
+// `session --duration nan` ran for ever and `--k-vc nan`, `--touch nan` fell back to the
+// defaults: the program refuses each before the session starts (exit 105, a CLI11 validation
+// error naming the option); an over-long duration is refused naming its limit.
+TEST(CliInputs, NanDurationCouplingOrTouchIsRefusedBeforeTheSessionStarts) {
+  testing::TempDir dir;
+  std::ofstream(dir / "scene.yaml") << kScene;
+  const std::string session = "session " + (dir / "scene.yaml").string() + " --no-realtime --quiet ";
+  for (const std::string option : {"--duration nan", "--k-vc nan", "--touch nan", "--duration inf", "--k-vc=-inf"}) {
+    const Outcome o = RunCli(session + option);
+    EXPECT_EQ(o.exit_code, 105) << option << ": " << o.output;
+    EXPECT_NE(o.output.find(option.substr(0, option.find_first_of(" =")) + ": '"), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("is not a finite number"), std::string::npos) << o.output;
+    EXPECT_EQ(o.output.find("session: scene"), std::string::npos) << o.output;
+  }
+  const Outcome huge = RunCli(session + "--duration 1e300");
+  EXPECT_EQ(huge.exit_code, 105) << huge.output;
+  EXPECT_NE(huge.output.find("--duration"), std::string::npos) << huge.output;
+}
+
 TEST(CliInputs, TooManyLevelsIsRefusedNamingTheLimit) {
   testing::TempDir dir;
   std::ofstream(dir / "tet.obj") << kTetrahedron;
