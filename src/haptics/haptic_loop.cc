@@ -289,23 +289,43 @@ std::string FormatLargestMisses(const LargestMisses& misses, std::int64_t period
   return os.str();
 }
 
+std::string FormatTimingHistogram(const char* name, const TimingHistogram& h) {
+  std::ostringstream os;
+  const auto quantile = [&](double q) {
+    const std::optional<double> s = h.QuantileSeconds(q);
+    std::ostringstream v;
+    if (s) {
+      v << *s * 1e6;
+    } else {
+      v << ">" << static_cast<long long>(TimingHistogram::kLimitSeconds * 1e6);
+    }
+    return v.str();
+  };
+  os << "  " << name << " us: p50 " << quantile(0.5) << "  p99 " << quantile(0.99) << "  p99.9 " << quantile(0.999)
+     << "  max " << h.max_seconds() * 1e6 << "  (n " << h.count();
+  // Samples past the 1 us bins are said so: how many, and how finely they are resolved.
+  if (h.beyond_fine() > 0) {
+    os << "; over " << TimingHistogram::kFineLimitSeconds * 1e6 << " us: " << h.beyond_fine() << ", resolved to "
+       << std::setprecision(2) << TimingHistogram::kCoarseRelativeWidth * 100 << std::setprecision(6) << " %";
+  }
+  if (h.overflow() > 0) {
+    os << "; over " << static_cast<long long>(TimingHistogram::kLimitSeconds * 1e6) << " us: " << h.overflow()
+       << ", not resolved";
+  }
+  os << ")\n";
+  return os.str();
+}
+
 std::string FormatLoopReport(const HapticLoopReport& r) {
   std::ostringstream os;
-  auto us = [](double s) { return s * 1e6; };
   os << "cycles " << r.cycles << ", deadline misses " << r.deadline_misses << " (overrun " << r.misses_overrun
      << ", preempted " << r.misses_preempted << "), skipped " << r.skipped_cycles << ", watchdog zeroes "
      << r.watchdog_zeroes << (r.realtime_scheduling ? ", SCHED_FIFO" : ", normal scheduling")
      << (r.memory_locked ? ", mlocked" : ", not mlocked");
   if (r.pinned_cpu >= 0) os << ", pinned to CPU " << r.pinned_cpu;
   os << (r.stopped_by_signal ? ", stopped by signal" : "") << "\n";
-  auto line = [&](const char* name, const TimingHistogram& h) {
-    os << "  " << name << " us: p50 " << us(h.QuantileSeconds(0.5)) << "  p99 " << us(h.QuantileSeconds(0.99))
-       << "  p99.9 " << us(h.QuantileSeconds(0.999)) << "  max " << us(h.max_seconds()) << "  (n " << h.count() << ")\n";
-  };
-  line("work        ", r.work);
-  line("work cpu    ", r.cpu);
-  line("wake latency", r.wake_latency);
-  line("period      ", r.period);
+  os << FormatTimingHistogram("work        ", r.work) << FormatTimingHistogram("work cpu    ", r.cpu)
+     << FormatTimingHistogram("wake latency", r.wake_latency) << FormatTimingHistogram("period      ", r.period);
   os << "  safety: non-finite " << r.safety.non_finite << ", force clamped " << r.safety.force_clamped
      << ", torque clamped " << r.safety.torque_clamped << ", device silent " << r.safety.device_silent
      << ", loop stalls " << r.safety.loop_stalls << ", faults " << r.safety.faults << "\n";

@@ -147,6 +147,11 @@ std::string FormatDeviceInputStats(const DeviceInputStats& s);
 // cause; PERIOD_NS is the loop's period (the rule's threshold, printed in the title).
 std::string FormatLargestMisses(const LargestMisses& misses, std::int64_t period_ns);
 
+// One histogram's line of the report: "  NAME us: p50 A  p99 B  p99.9 C  max D  (n N)", and when
+// samples exceed the 1 us bins "; over 5000 us: K, resolved to 1.1 %" (and past the histogram's
+// range "; over L us: K, not resolved", a percentile there printed as ">L").
+std::string FormatTimingHistogram(const char* name, const TimingHistogram& histogram);
+
 // A human-readable summary of REPORT (percentiles in microseconds): cycles, misses split into
 // overrun and preempted (deadline_miss.h), the timing histograms, the safety counters and the
 // table of the largest misses.
