@@ -1,12 +1,16 @@
 // Tests of the device backends other than UDP: replay CSV (slerp, errors naming file and
 // line), the dlopen'ed example plugin, spacenav without a device (and its input-only
 // capabilities in a session), the device factory.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <memory>
+#include <utility>
 
 #include "haptics/device_factory.h"
 #include "haptics/halfspace_contact_model.h"
@@ -94,9 +98,27 @@ TEST(PluginDevice, ExamplePluginLoadsReadsWritesAndZeroes) {
 }
 
 TEST(PluginDevice, LoadFailuresNameTheLibraryAndTheCause) {
-  ExpectErrorMentions([] { PluginDevice d("/nonexistent/libnothing.so", ""); }, {"libnothing.so", "dlopen"});
+  ExpectErrorMentions([] { PluginDevice d("/nonexistent/libnothing.so", ""); }, {"libnothing.so", "not found"});
   ExpectErrorMentions([] { PluginDevice d(CONTACTLAB_EXAMPLE_PLUGIN_PATH, "radius=oops"); },
                       {"libcontactlab_example_device.so", "refused", "radius=oops"});
+}
+
+// `--device plugin:FIFO` blocked forever in dlopen, which opens and reads the named file. A
+// plugin that is a named pipe, a folder or a device is now refused by name before dlopen. The
+// pipe holds a few bytes and has a writer, so that dlopen, if it were reached, would fail at
+// once ("file too short") instead of hanging the test.
+TEST(PluginDevice, NamedPipeFolderOrDeviceIsRefusedByNameWithoutBlockingInDlopen) {
+  testing::TempDir dir;
+  const std::filesystem::path fifo = dir / "libfifo.so";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const int pipe_fd = ::open(fifo.c_str(), O_RDWR | O_NONBLOCK);
+  ASSERT_GE(pipe_fd, 0);
+  ASSERT_EQ(::write(pipe_fd, "not an ELF file", 15), 15);
+  ExpectErrorMentions([&] { PluginDevice d(fifo, ""); }, {"libfifo.so", "is a named pipe, not a device plugin library"});
+  ExpectErrorMentions([&] { MakeDevice("plugin:" + fifo.string()); }, {"libfifo.so", "is a named pipe"});
+  ::close(pipe_fd);
+  ExpectErrorMentions([&] { PluginDevice d(dir.path(), ""); }, {"is a folder, not a device plugin library"});
+  ExpectErrorMentions([] { PluginDevice d("/dev/zero", ""); }, {"/dev/zero", "is a character device"});
 }
 
 TEST(DeviceFactory, MakesEachKindAndRejectsBadSpecs) {
