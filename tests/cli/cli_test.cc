@@ -696,6 +696,28 @@ TEST(CliDeformable, CoordinatesWhoseDeformationOverflowsAreRefusedNamingTheOptio
   EXPECT_EQ(o.exit_code, 0) << o.output;
 }
 
+// Finite coordinates whose deformation is finite but beyond the coordinates any reader accepts
+// (q = 1e30: a mesh of 5.6e30 m that mesh-info then refused) are refused where they are parsed,
+// naming the option and the limit; large coordinates within it export a mesh that mesh-info reads.
+TEST(CliDeformable, CoordinatesThatDeformBeyondTheMeshReadersLimitAreRefusedNotExported) {
+  testing::TempDir dir;
+  std::ofstream(dir / "beam.yaml") << kBeamScene;
+  const std::string scene = (dir / "beam.yaml").string() + " --cache " + (dir / "cache").string();
+  for (const char* q : {"1e30,1e30,1e30,1e30", "0,0,0,1e12"}) {
+    const Outcome o = RunCli("body-export " + scene + " --body beam --q " + q + " --mesh " + (dir / "far.obj").string());
+    EXPECT_EQ(o.exit_code, 1) << q;
+    EXPECT_NE(o.output.find("--q (body 'beam'): these coordinates move node "), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("beyond the 1e9 m every mesh, field and body must stay within"), std::string::npos)
+        << o.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "far.obj")) << q;
+  }
+  const Outcome big = RunCli("body-export " + scene + " --body beam --q 100,-100,100,-100 --mesh " +
+                             (dir / "big.obj").string());
+  ASSERT_EQ(big.exit_code, 0) << big.output;
+  const Outcome info = RunCli("mesh-info " + (dir / "big.obj").string() + " --json");
+  EXPECT_EQ(info.exit_code, 0) << info.output;
+}
+
 // Messages that say what is wrong: a word among the coordinates is not a number (not a count),
 // a negative --level is out of range (not "all levels"), and an anchor that holds no vertex is
 // named by the file and line that give it.
