@@ -14,6 +14,7 @@
 #include "haptics/haptic_loop.h"
 #include "haptics/sim_device.h"
 #include "haptics/udp_device.h"
+#include "util/finite_options.h"
 
 namespace contactlab {
 namespace {
@@ -56,6 +57,7 @@ int main(int argc, char** argv) {
   app.add_flag("--quick", quick, "1 second run");
   app.add_flag("--no-realtime", no_rt, "do not try SCHED_FIFO / mlockall");
   app.add_option("--device", device_spec, "device spec instead of the sim (e.g. udp:27016, plugin:lib.so; see device_factory.h)");
+  RequireFiniteNumbers(app);
   CLI11_PARSE(app, argc, argv);
   if (quick && app.count("--seconds") == 0) seconds = 1.0;
 

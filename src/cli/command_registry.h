@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <memory>
 #include <vector>
 
 namespace contactlab::cli {
@@ -15,5 +16,9 @@ std::vector<CommandAdder>& CommandRegistry();
 struct CommandRegistration {
   explicit CommandRegistration(CommandAdder adder) { CommandRegistry().push_back(std::move(adder)); }
 };
+
+// The `contactlab` program's command line: every registered subcommand, with every
+// floating-point option of every subcommand refusing NaN and infinities (util/finite_options.h).
+std::unique_ptr<CLI::App> MakeCommandLineApp();
 
 }  // namespace contactlab::cli

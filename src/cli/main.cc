@@ -7,27 +7,15 @@
 #include "util/error.h"
 #include "util/temporary_files.h"
 
-namespace contactlab::cli {
-
-std::vector<CommandAdder>& CommandRegistry() {
-  static std::vector<CommandAdder> registry;
-  return registry;
-}
-
-}  // namespace contactlab::cli
-
 int main(int argc, char** argv) {
   // SIGINT/SIGTERM while an output is being written removes its temporary file.
   contactlab::InstallTemporaryFileCleanupOnSignals();
   contactlab::RegisterContactModels();
-  CLI::App app{"ContactLab: a testbed for 6-DoF haptic contact (Barbič & James 2008 and baselines)"};
-  app.set_version_flag("--version", std::string("contactlab ") + CONTACTLAB_VERSION);
-  app.require_subcommand(1);
-  for (const auto& add : contactlab::cli::CommandRegistry()) add(app);
+  const std::unique_ptr<CLI::App> app = contactlab::cli::MakeCommandLineApp();
   try {
-    app.parse(argc, argv);
+    app->parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return app->exit(e);
   } catch (const contactlab::Error& e) {
     std::cerr << "contactlab: error: " << e.what() << "\n";
     return 1;

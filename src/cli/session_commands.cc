@@ -415,7 +415,9 @@ const CommandRegistration kSessionCommands([](CLI::App& app) {
   cmd->add_option("--device-peer", args->device_peers,
                   "IPv4 address of a device computer a udp device bound off the loopback accepts (repeatable; "
                   "required with udp:ADDRESS:PORT)");
-  cmd->add_option("--duration", args->duration, "session length, seconds")->check(CLI::PositiveNumber);
+  cmd->add_option("--duration", args->duration, "session length, seconds (at most 1e8)")
+      ->check(CLI::PositiveNumber)
+      ->check(CLI::Range(0.0, kMaxLoopSeconds));
   cmd->add_option("--log", args->log, "CSV log of poses, wrenches and timings (replayable trajectory)");
   cmd->add_option("--model", args->model, "contact model (default: the scene's first)");
   cmd->add_option("--k-vc", args->k_vc, "virtual coupling stiffness, N/m")->check(CLI::PositiveNumber);

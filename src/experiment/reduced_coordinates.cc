@@ -1,9 +1,11 @@
 #include "experiment/reduced_coordinates.h"
 
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "experiment/scene_assets.h"
+#include "geometry/triangle_mesh.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
 #include "util/parse_number.h"
@@ -55,13 +57,24 @@ ReducedState ParseReducedCoordinates(const std::string& text, BodyAssets& body, 
   }
   // Finite coordinates may still deform the body beyond what doubles hold (q = 1e308): every
   // node's displacement U_v q, its squared length and its displaced position must be finite.
+  // And within the coordinates ContactLab accepts anywhere (kMaxCoordinate, the mesh readers'
+  // limit): q = 1e30 exported a mesh of 1e30 m that no command would read back, and squared
+  // distances of such points overflow.
   const auto model = body.reduced_model();
   const Eigen::VectorXd u = model->basis * state.q;
   for (int v = 0; v < model->mesh.num_vertices(); ++v) {
     const Eigen::Vector3d u_v = u.segment<3>(3 * v);
-    if (!u_v.allFinite() || !std::isfinite(u_v.squaredNorm()) || !(model->mesh.vertices[v] + u_v).allFinite()) {
+    const Eigen::Vector3d x_v = model->mesh.vertices[v] + u_v;
+    if (!u_v.allFinite() || !std::isfinite(u_v.squaredNorm()) || !x_v.allFinite()) {
       Fail(source, "these coordinates deform the body beyond finite numbers (node " + std::to_string(v) +
                        " moves by " + std::to_string(u_v.norm()) + " m); give smaller values");
+    }
+    if (!(x_v.cwiseAbs().maxCoeff() <= kMaxCoordinate)) {
+      char at[64];
+      std::snprintf(at, sizeof at, "%.3g", x_v.cwiseAbs().maxCoeff());
+      Fail(source, "these coordinates move node " + std::to_string(v) + " of the simulation mesh to |coordinate| " +
+                       at + " m, beyond the 1e9 m every mesh, field and body must stay within (the mesh "
+                       "readers' limit, kMaxCoordinate); give smaller values");
     }
   }
   return state;

@@ -13,8 +13,9 @@ class BodyAssets;
 
 // Parses TEXT for BODY, which must be deformable with r reduced coordinates. Throws Error
 // naming OPTION (e.g. "--q-a") for a rigid body, a wrong count of values, a value that is not
-// a finite number, coordinates whose deformation U q is not finite (they overflow), or an
-// unreadable file.
+// a finite number, coordinates whose deformation U q is not finite (they overflow) or moves a
+// node of the simulation mesh beyond kMaxCoordinate (geometry/triangle_mesh.h: what the mesh
+// readers accept), or an unreadable file.
 ReducedState ParseReducedCoordinates(const std::string& text, BodyAssets& body, const std::string& option);
 
 }  // namespace contactlab

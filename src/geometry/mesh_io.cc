@@ -50,12 +50,21 @@ void CheckSavable(const TriangleMesh& mesh, const std::filesystem::path& path) {
       Fail(path.string(), "cannot save: triangle " + std::to_string(t) + " has a vertex index out of range");
     }
   }
-  // No program reads "inf" or "nan" back as a coordinate.
+  // No program reads "inf" or "nan" back as a coordinate, and LoadMesh refuses any beyond
+  // kMaxCoordinate: nothing is written that the readers would refuse.
   for (int v = 0; v < n; ++v) {
     if (!mesh.vertices[v].allFinite()) {
       Fail(path.string(), "cannot save: vertex " + std::to_string(v) + " has a non-finite coordinate (" +
                               std::to_string(mesh.vertices[v].x()) + ", " + std::to_string(mesh.vertices[v].y()) +
                               ", " + std::to_string(mesh.vertices[v].z()) + "); nothing written");
+    }
+    if (!(mesh.vertices[v].cwiseAbs().maxCoeff() <= kMaxCoordinate)) {
+      char buf[200];
+      std::snprintf(buf, sizeof buf,
+                    "cannot save: vertex %d has |coordinate| %.3g m, beyond the %.0e m the mesh readers accept; "
+                    "nothing written",
+                    v, mesh.vertices[v].cwiseAbs().maxCoeff(), kMaxCoordinate);
+      Fail(path.string(), buf);
     }
   }
 }

@@ -38,8 +38,9 @@ TriangleMesh LoadMesh(const std::filesystem::path& path, const MeshLoadOptions& 
 
 // Writes MESH as OBJ, OFF, STL (binary) or PLY (binary) by extension, atomically (temporary
 // file renamed onto PATH). OBJ, OFF and PLY (double) keep positions exactly; STL rounds them
-// to float. Throws Error naming PATH for an unknown extension, an index out of range, or a
-// failed write.
+// to float. Throws Error naming PATH for an unknown extension, an index out of range, a
+// coordinate that is not finite or beyond kMaxCoordinate (what LoadMesh refuses), or a failed
+// write; nothing is written then.
 void SaveMesh(const TriangleMesh& mesh, const std::filesystem::path& path);
 
 }  // namespace contactlab

@@ -1,6 +1,7 @@
 // Haptic device factory (sim, replay, udp, spacenav, plugin).
 #include "haptics/device_factory.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -37,9 +38,14 @@ double ParseNumber(const std::string& text, const std::string& spec, const char*
   Fail("device spec '" + spec + "'", std::string(what) + " '" + text + "' is not a number");
 }
 
+// A port is written in decimal digits: "1e3" or "0x50" or "80.0" are not ports, though they
+// spell numbers.
 std::uint16_t ParsePort(const std::string& text, const std::string& spec) {
-  const double v = ParseNumber(text, spec, "port");
-  if (v < 0 || v > 65535 || v != std::floor(v)) Fail("device spec '" + spec + "'", "port " + text + " is not in 0..65535");
+  const bool digits = !text.empty() && text.size() <= 5 &&
+                      std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+  const long v = digits ? std::stol(text) : -1;
+  if (v < 0 || v > 65535)
+    Fail("device spec '" + spec + "'", "port '" + QuoteToken(text) + "' is not in 0..65535 (decimal digits)");
   return std::uint16_t(v);
 }
 
@@ -89,7 +95,9 @@ std::unique_ptr<HapticDevice> MakeDevice(const std::string& spec, const DeviceOp
     if (f.size() > 1) p.peer_port = ParsePort(f[1], spec);
     for (const std::string& peer : options.peers) {
       std::uint32_t a = 0;
-      if (!ParseIpv4(peer, &a)) Fail("--device-peer", "'" + peer + "' is not an IPv4 address (a.b.c.d)");
+      if (!ParseIpv4(peer, &a)) Fail("--device-peer", "'" + QuoteToken(peer) + "' is not an IPv4 address (a.b.c.d)");
+      if (const char* kind = NotAHostAddress(a))
+        Fail("--device-peer", peer + " is " + kind + ": no datagram comes from it (give the device computer's address)");
       p.allowed_peers.push_back(a);
     }
     p.capabilities = SimDeviceParams::DefaultCapabilities();

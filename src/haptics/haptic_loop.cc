@@ -7,9 +7,12 @@
 #include <time.h>
 
 #include <cerrno>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <iomanip>
+#include <optional>
 #include <sstream>
 
 #include "haptics/cpu_affinity.h"
@@ -87,6 +90,10 @@ HapticLoop::HapticLoop(HapticCycle& cycle, const HapticLoopOptions& options, Loo
   if (!(options_.rate_hz > 0 && options_.rate_hz <= 100000)) Fail("haptic loop", "rate_hz must lie in (0, 100000]");
   if (!(options_.spin_seconds >= 0 && options_.spin_seconds < 1.0 / options_.rate_hz))
     Fail("haptic loop", "spin_seconds must lie in [0, 1/rate_hz)");
+  // NaN compares false with everything: without this check it would run forever ("<= 0"
+  // is false too), and a huge duration would overflow the clock's nanoseconds.
+  if (!std::isfinite(options_.duration_seconds) || options_.duration_seconds > kMaxLoopSeconds)
+    Fail("haptic loop", "duration_seconds must be a finite number of seconds, at most 1e8 (<= 0: until stopped)");
   if (options_.fifo_priority < 1 || options_.fifo_priority > 99) Fail("haptic loop", "fifo_priority must lie in [1, 99]");
   if (options_.cpu < -1 || options_.cpu >= ConfiguredCpuCount())
     Fail("haptic loop", "cpu must be -1 (not pinned) or a CPU of this machine (0.." +
@@ -282,23 +289,43 @@ std::string FormatLargestMisses(const LargestMisses& misses, std::int64_t period
   return os.str();
 }
 
+std::string FormatTimingHistogram(const char* name, const TimingHistogram& h) {
+  std::ostringstream os;
+  const auto quantile = [&](double q) {
+    const std::optional<double> s = h.QuantileSeconds(q);
+    std::ostringstream v;
+    if (s) {
+      v << *s * 1e6;
+    } else {
+      v << ">" << static_cast<long long>(TimingHistogram::kLimitSeconds * 1e6);
+    }
+    return v.str();
+  };
+  os << "  " << name << " us: p50 " << quantile(0.5) << "  p99 " << quantile(0.99) << "  p99.9 " << quantile(0.999)
+     << "  max " << h.max_seconds() * 1e6 << "  (n " << h.count();
+  // Samples past the 1 us bins are said so: how many, and how finely they are resolved.
+  if (h.beyond_fine() > 0) {
+    os << "; over " << TimingHistogram::kFineLimitSeconds * 1e6 << " us: " << h.beyond_fine() << ", resolved to "
+       << std::setprecision(2) << TimingHistogram::kCoarseRelativeWidth * 100 << std::setprecision(6) << " %";
+  }
+  if (h.overflow() > 0) {
+    os << "; over " << static_cast<long long>(TimingHistogram::kLimitSeconds * 1e6) << " us: " << h.overflow()
+       << ", not resolved";
+  }
+  os << ")\n";
+  return os.str();
+}
+
 std::string FormatLoopReport(const HapticLoopReport& r) {
   std::ostringstream os;
-  auto us = [](double s) { return s * 1e6; };
   os << "cycles " << r.cycles << ", deadline misses " << r.deadline_misses << " (overrun " << r.misses_overrun
      << ", preempted " << r.misses_preempted << "), skipped " << r.skipped_cycles << ", watchdog zeroes "
      << r.watchdog_zeroes << (r.realtime_scheduling ? ", SCHED_FIFO" : ", normal scheduling")
      << (r.memory_locked ? ", mlocked" : ", not mlocked");
   if (r.pinned_cpu >= 0) os << ", pinned to CPU " << r.pinned_cpu;
   os << (r.stopped_by_signal ? ", stopped by signal" : "") << "\n";
-  auto line = [&](const char* name, const TimingHistogram& h) {
-    os << "  " << name << " us: p50 " << us(h.QuantileSeconds(0.5)) << "  p99 " << us(h.QuantileSeconds(0.99))
-       << "  p99.9 " << us(h.QuantileSeconds(0.999)) << "  max " << us(h.max_seconds()) << "  (n " << h.count() << ")\n";
-  };
-  line("work        ", r.work);
-  line("work cpu    ", r.cpu);
-  line("wake latency", r.wake_latency);
-  line("period      ", r.period);
+  os << FormatTimingHistogram("work        ", r.work) << FormatTimingHistogram("work cpu    ", r.cpu)
+     << FormatTimingHistogram("wake latency", r.wake_latency) << FormatTimingHistogram("period      ", r.period);
   os << "  safety: non-finite " << r.safety.non_finite << ", force clamped " << r.safety.force_clamped
      << ", torque clamped " << r.safety.torque_clamped << ", device silent " << r.safety.device_silent
      << ", loop stalls " << r.safety.loop_stalls << ", faults " << r.safety.faults << "\n";

@@ -21,9 +21,13 @@
 
 namespace contactlab {
 
+// Longest run a loop is given (HapticLoopOptions::duration_seconds, `session --duration`): about
+// three years, far inside the int64 nanoseconds of the loop's clock (292 years).
+inline constexpr double kMaxLoopSeconds = 1e8;
+
 struct HapticLoopOptions {
   double rate_hz = 1000;              // cycle rate
-  double duration_seconds = 0;        // run time; <= 0 runs until RequestStop or SIGINT
+  double duration_seconds = 0;        // run time, at most kMaxLoopSeconds; <= 0 runs until RequestStop or SIGINT
   bool try_realtime = true;           // try SCHED_FIFO + mlockall (warn on stderr if refused)
   int fifo_priority = 80;             // SCHED_FIFO priority when granted
   double spin_seconds = 50e-6;        // sleep until this long before the deadline, then spin
@@ -142,6 +146,11 @@ std::string FormatDeviceInputStats(const DeviceInputStats& s);
 // from release, wake-up lateness, work, work CPU time (us), nodes, contacts, level, step time,
 // cause; PERIOD_NS is the loop's period (the rule's threshold, printed in the title).
 std::string FormatLargestMisses(const LargestMisses& misses, std::int64_t period_ns);
+
+// One histogram's line of the report: "  NAME us: p50 A  p99 B  p99.9 C  max D  (n N)", and when
+// samples exceed the 1 us bins "; over 5000 us: K, resolved to 1.1 %" (and past the histogram's
+// range "; over L us: K, not resolved", a percentile there printed as ">L").
+std::string FormatTimingHistogram(const char* name, const TimingHistogram& histogram);
 
 // A human-readable summary of REPORT (percentiles in microseconds): cycles, misses split into
 // overrun and preempted (deadline_miss.h), the timing histograms, the safety counters and the

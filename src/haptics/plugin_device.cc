@@ -5,13 +5,19 @@
 
 #include <cmath>
 
+#include "util/atomic_file.h"
 #include "util/error.h"
 
 namespace contactlab {
 
 PluginDevice::PluginDevice(const std::filesystem::path& library, const std::string& config) {
   const std::string where = "device plugin " + library.string();
-  library_ = dlopen(library.c_str(), RTLD_NOW | RTLD_LOCAL);
+  // The library is a file, checked before dlopen, which would block forever reading a named
+  // pipe and misname a folder or a device. A name without a folder is the working folder's
+  // file, as for every other input (dlopen would search the library path for it instead).
+  const std::filesystem::path file = library.has_parent_path() ? library : std::filesystem::path(".") / library;
+  CheckInputFile(file, "device plugin library");
+  library_ = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (library_ == nullptr) {
     const char* e = dlerror();
     Fail(where, std::string("dlopen failed: ") + (e ? e : "unknown error"));

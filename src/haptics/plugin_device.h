@@ -13,9 +13,11 @@ namespace contactlab {
 
 class PluginDevice final : public HapticDevice {
  public:
-  // Loads LIBRARY, looks up contactlab_device_plugin_v1, checks the ABI version and table
-  // size, and opens the device with CONFIG. Throws Error naming the library and what failed
-  // (dlopen message, missing symbol, wrong ABI version, null function pointer, open refused).
+  // Loads LIBRARY (a path; a name without a folder is in the working folder, never searched on
+  // the library path), looks up contactlab_device_plugin_v1, checks the ABI version and table
+  // size, and opens the device with CONFIG. Throws Error naming the library and what failed (not
+  // found, not a regular file: a named pipe, folder or device is refused without blocking;
+  // dlopen message, missing symbol, wrong ABI version, null function pointer, open refused).
   PluginDevice(const std::filesystem::path& library, const std::string& config);
   ~PluginDevice() override;  // closes the device, then dlclose
   PluginDevice(const PluginDevice&) = delete;

@@ -39,6 +39,14 @@ bool ParseIpv4(const std::string& text, std::uint32_t* address) {
   return true;
 }
 
+const char* NotAHostAddress(std::uint32_t address) {
+  if ((address >> 24) == 0) return "the unspecified address";
+  if (address == 0xffffffffu) return "the broadcast address";
+  if ((address >> 28) == 0xe) return "a multicast address";
+  if ((address >> 28) == 0xf) return "a reserved address";
+  return nullptr;
+}
+
 namespace {
 bool IsLoopback(std::uint32_t address) { return (address >> 24) == 127; }
 }  // namespace
@@ -48,6 +56,10 @@ UdpDevice::UdpDevice(const UdpDeviceParams& params) : params_(params) {
   if (!IsLoopback(params.bind_address) && params.allowed_peers.empty()) {
     Fail(where, "binding " + Ipv4Text(params.bind_address) +
                     " (off the loopback) needs the senders to accept: --device-peer ADDRESS, once per device computer");
+  }
+  for (const std::uint32_t peer : params.allowed_peers) {
+    if (const char* kind = NotAHostAddress(peer))
+      Fail(where, "allowed peer " + Ipv4Text(peer) + " is " + kind + ", never the sender of a datagram");
   }
   if (params.allowed_peers.size() == 1) peer_address_.store(params.allowed_peers.front());
   if (!(params.stale_seconds > 0 && params.stale_seconds < 1e6)) Fail(where, "stale_seconds must lie in (0, 1e6)");

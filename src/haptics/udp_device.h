@@ -57,11 +57,18 @@ struct UdpStats {
 std::string Ipv4Text(std::uint32_t address);
 bool ParseIpv4(const std::string& text, std::uint32_t* address);
 
+// Why ADDRESS (host order) can never be the source of a datagram, so it cannot be an allowed
+// peer (nor where wrench packets go): "the unspecified address" (0.0.0.0/8), "a multicast
+// address" (224.0.0.0/4), "the broadcast address" (255.255.255.255) or "a reserved address"
+// (240.0.0.0/4); nullptr for a host's address.
+const char* NotAHostAddress(std::uint32_t address);
+
 class UdpDevice final : public HapticDevice {
  public:
   // Opens a non-blocking UDP socket bound to bind_address:listen_port. Throws Error naming the
-  // address and port when the socket cannot be opened or bound, or when an address off the
-  // loopback comes without allowed peers.
+  // address and port when the socket cannot be opened or bound, when an address off the
+  // loopback comes without allowed peers, or when an allowed peer is no host's address
+  // (NotAHostAddress).
   explicit UdpDevice(const UdpDeviceParams& params);
   ~UdpDevice() override;
   UdpDevice(const UdpDevice&) = delete;

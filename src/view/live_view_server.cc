@@ -2,7 +2,7 @@
 
 // After the headers that include Eigen: httplib.h brings <resolv.h>, whose macro _res breaks
 // Eigen's headers.
-#include <httplib.h>
+#include "view/request_gate.h"
 
 #include <chrono>
 #include <cstdio>
@@ -113,7 +113,11 @@ LiveViewServer::LiveViewServer(ServedPage page, const LiveSnapshotHistory& sourc
       source_(source),
       marks_(marks),
       marks_every_cycles_(marks_every_cycles),
-      server_(std::make_unique<httplib::Server>()) {
+      server_(std::make_unique<GatedHttpServer>(
+          RequestGateLimits{.workers = kLiveViewStreamLimit + kLiveViewSpareThreads,
+                            .max_waiting = kLiveViewWaitingLimit,
+                            .head_timeout = std::chrono::seconds(kLiveViewHeadSeconds)},
+          [](std::string_view target) { return target == "/stream"; })) {
   if (marks_every_cycles_ <= 0) Fail("live view", "marks must be at least 1 cycle apart");
   if (port < 0 || port > 65535) Fail("--view", "port " + std::to_string(port) + " is not in 0..65535");
   LimitConnections();
@@ -123,15 +127,11 @@ LiveViewServer::LiveViewServer(ServedPage page, const LiveSnapshotHistory& sourc
   BindAndServe(port);
 }
 
-// A thread per stream the limit allows and spares for everything else: a stream holds its
-// thread for its whole life. Idle and stalled connections are cut, so they cannot hold the
-// spares. Only GET and HEAD: anything else is refused before its body is read (a POST without a
-// body would otherwise wait for one until the read timeout).
+// A thread per stream the limit allows and spares for everything else (the gate's workers): a
+// stream holds its thread for its whole life, a connection none until its request arrived in
+// full (request_gate.h). Only GET and HEAD: anything else is refused before its body is read (a
+// POST without a body would otherwise wait for one until the read timeout).
 void LiveViewServer::LimitConnections() {
-  server_->new_task_queue = [] { return new httplib::ThreadPool(kLiveViewStreamLimit + kLiveViewSpareThreads); };
-  server_->set_read_timeout(2, 0);
-  server_->set_write_timeout(2, 0);
-  server_->set_keep_alive_timeout(1);
   server_->set_pre_routing_handler([](const httplib::Request& req, httplib::Response& res) {
     if (req.method == "GET" || req.method == "HEAD") return httplib::Server::HandlerResponse::Unhandled;
     res.status = 405;
@@ -296,6 +296,7 @@ void LiveViewServer::BindAndServe(int port) {
     }
     port_ = port;
   }
+  server_->WidenBacklog();
   thread_ = std::thread([this] { server_->listen_after_bind(); });
   for (int i = 0; i < 2000 && !server_->is_running(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(1));
 }
@@ -320,6 +321,7 @@ void LiveViewServer::Stop() {
   }
   if (server_) server_->stop();
   if (thread_.joinable()) thread_.join();
+  if (server_) server_->StopGate();
 }
 
 }  // namespace contactlab

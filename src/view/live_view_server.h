@@ -26,7 +26,6 @@
 #include "view/viewer_page.h"
 
 namespace httplib {
-class Server;
 class DataSink;
 }
 
@@ -95,11 +94,19 @@ std::string PackPointStates(const std::vector<PointState>& states);
 // base64 of PackPointStates}.
 std::string MarksJson(const PointMarkSweep& sweep);
 
-// Event streams a live view serves at once; one more is answered 503. The server's thread pool
-// holds a thread per open stream and kLiveViewSpareThreads more, so the page, /snapshot and
-// /marks are always answered however many streams are open.
+// Event streams a live view serves at once; one more is answered 503. The server answers
+// complete requests with a thread per open stream and kLiveViewSpareThreads more, so the page,
+// /snapshot and /marks are always answered however many streams are open. A connection holds
+// none of them while its request head arrives (view/request_gate.h): every head must arrive in
+// full within kLiveViewHeadSeconds of the connection (or of the previous response), however it
+// trickles, else the connection is closed; idle connections wait at one gate thread, at most
+// kLiveViewWaitingLimit of them (the oldest closed past it).
 inline constexpr int kLiveViewStreamLimit = 16;
 inline constexpr int kLiveViewSpareThreads = 4;
+inline constexpr int kLiveViewHeadSeconds = 2;
+inline constexpr int kLiveViewWaitingLimit = 256;
+
+class GatedHttpServer;
 
 class LiveViewServer {
  public:
@@ -108,8 +115,9 @@ class LiveViewServer {
   // order, starting from the newest when the stream opens or from the first when none was published
   // yet) and the newest one at "/snapshot" (JSON; 204 before the first), on 127.0.0.1:PORT (0: a
   // free port). At most kLiveViewStreamLimit streams at once (503 past it); methods other than GET
-  // and HEAD get 405 without their body being read; a client that sends nothing or stops reading is
-  // cut after a few seconds. With MARKS, the stream also sends "event: marks" + "data: MarksJson"
+  // and HEAD get 405 without their body being read; a request head must arrive within
+  // kLiveViewHeadSeconds, each read and write of an answer within 2 s, and a whole answer other
+  // than a stream within 10 s, else the connection is cut. With MARKS, the stream also sends "event: marks" + "data: MarksJson"
   // when a newer sweep completed at least MARKS_EVERY_CYCLES haptic cycles after the last one it
   // sent, and "/marks" returns the newest (204 before the first). SOURCE and MARKS must outlive the
   // server. Throws Error naming the address when it cannot bind.
@@ -162,7 +170,7 @@ class LiveViewServer {
   PointMarkSweep marks_sweep_;
   std::string marks_json_;
   int port_ = 0;
-  std::unique_ptr<httplib::Server> server_;
+  std::unique_ptr<GatedHttpServer> server_;
   std::thread thread_;
   // The streams: opened so far, still open, and whether the server is stopping (streams_mutex_).
   std::mutex streams_mutex_;

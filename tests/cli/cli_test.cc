@@ -204,6 +204,25 @@ TEST(CliInputs, NegativeBudgetOnTheCommandLineIsRejectedLikeInTheScene) {
   EXPECT_NE(o.output.find("--budget"), std::string::npos) << o.output;
 }
 
+// `session --duration nan` ran for ever and `--k-vc nan`, `--touch nan` fell back to the
+// defaults: the program refuses each before the session starts (exit 105, a CLI11 validation
+// error naming the option); an over-long duration is refused naming its limit.
+TEST(CliInputs, NanDurationCouplingOrTouchIsRefusedBeforeTheSessionStarts) {
+  testing::TempDir dir;
+  std::ofstream(dir / "scene.yaml") << kScene;
+  const std::string session = "session " + (dir / "scene.yaml").string() + " --no-realtime --quiet ";
+  for (const std::string option : {"--duration nan", "--k-vc nan", "--touch nan", "--duration inf", "--k-vc=-inf"}) {
+    const Outcome o = RunCli(session + option);
+    EXPECT_EQ(o.exit_code, 105) << option << ": " << o.output;
+    EXPECT_NE(o.output.find(option.substr(0, option.find_first_of(" =")) + ": '"), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("is not a finite number"), std::string::npos) << o.output;
+    EXPECT_EQ(o.output.find("session: scene"), std::string::npos) << o.output;
+  }
+  const Outcome huge = RunCli(session + "--duration 1e300");
+  EXPECT_EQ(huge.exit_code, 105) << huge.output;
+  EXPECT_NE(huge.output.find("--duration"), std::string::npos) << huge.output;
+}
+
 TEST(CliInputs, TooManyLevelsIsRefusedNamingTheLimit) {
   testing::TempDir dir;
   std::ofstream(dir / "tet.obj") << kTetrahedron;
@@ -675,6 +694,28 @@ TEST(CliDeformable, CoordinatesWhoseDeformationOverflowsAreRefusedNamingTheOptio
   // A quaternion too large for its norm still names a rotation (normalised without overflow).
   o = RunCli("contact " + scene + " --pose-a 0,0,0,1e308,1e308,0,0 --json");
   EXPECT_EQ(o.exit_code, 0) << o.output;
+}
+
+// Finite coordinates whose deformation is finite but beyond the coordinates any reader accepts
+// (q = 1e30: a mesh of 5.6e30 m that mesh-info then refused) are refused where they are parsed,
+// naming the option and the limit; large coordinates within it export a mesh that mesh-info reads.
+TEST(CliDeformable, CoordinatesThatDeformBeyondTheMeshReadersLimitAreRefusedNotExported) {
+  testing::TempDir dir;
+  std::ofstream(dir / "beam.yaml") << kBeamScene;
+  const std::string scene = (dir / "beam.yaml").string() + " --cache " + (dir / "cache").string();
+  for (const char* q : {"1e30,1e30,1e30,1e30", "0,0,0,1e12"}) {
+    const Outcome o = RunCli("body-export " + scene + " --body beam --q " + q + " --mesh " + (dir / "far.obj").string());
+    EXPECT_EQ(o.exit_code, 1) << q;
+    EXPECT_NE(o.output.find("--q (body 'beam'): these coordinates move node "), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("beyond the 1e9 m every mesh, field and body must stay within"), std::string::npos)
+        << o.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "far.obj")) << q;
+  }
+  const Outcome big = RunCli("body-export " + scene + " --body beam --q 100,-100,100,-100 --mesh " +
+                             (dir / "big.obj").string());
+  ASSERT_EQ(big.exit_code, 0) << big.output;
+  const Outcome info = RunCli("mesh-info " + (dir / "big.obj").string() + " --json");
+  EXPECT_EQ(info.exit_code, 0) << info.output;
 }
 
 // Messages that say what is wrong: a word among the coordinates is not a number (not a count),

@@ -260,6 +260,32 @@ TEST(MeshWriter, ANonFiniteVertexIsRefusedAndNothingWritten) {
   EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
 }
 
+// A finite vertex beyond kMaxCoordinate (body-export of a body deformed by q = 1e30 wrote one
+// at 5.6e30 m) is refused in every format, as LoadMesh would refuse it; nothing is written. A mesh
+// at the limit itself round-trips.
+TEST(MeshWriter, AVertexTheReadersWouldRefuseIsNotWritten) {
+  TriangleMesh mesh = RoundTripSubject();
+  TempDir dir;
+  for (const double far : {5.6e30, -2 * kMaxCoordinate}) {
+    mesh.vertices[7].z() = far;
+    for (const char* ext : {"obj", "off", "ply", "stl"}) {
+      const auto path = dir / (std::string("far.") + ext);
+      try {
+        SaveMesh(mesh, path);
+        ADD_FAILURE() << "no error for " << ext << " at " << far;
+      } catch (const Error& e) {
+        const std::string msg = e.what();
+        EXPECT_EQ(msg.rfind(path.string() + ": cannot save: vertex 7 has |coordinate|", 0), 0u) << msg;
+        EXPECT_NE(msg.find("beyond the 1e+09 m the mesh readers accept"), std::string::npos) << msg;
+      }
+    }
+    EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
+  }
+  mesh.vertices[7].z() = -kMaxCoordinate;
+  SaveMesh(mesh, dir / "edge.obj");
+  EXPECT_EQ(LoadMesh(dir / "edge.obj").vertices[7].z(), -kMaxCoordinate);
+}
+
 TEST(StlWriter, RoundTripKeepsEveryCornerToFloatPrecisionAndWelds) {
   const TriangleMesh mesh = RoundTripSubject();
   TempDir dir;

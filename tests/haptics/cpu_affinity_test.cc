@@ -8,6 +8,7 @@
 #include <sched.h>
 
 #include <algorithm>
+#include <cmath>
 #include <atomic>
 #include <string>
 #include <thread>
@@ -207,6 +208,27 @@ TEST(HapticLoop, CpuOptionOutsideTheMachineIsRefused) {
     HapticLoopOptions opt;
     opt.cpu = bad;
     EXPECT_NE(ErrorOf([&] { HapticLoop loop(cycle, opt); }).find("cpu must be"), std::string::npos) << bad;
+  }
+}
+
+// A NaN duration compared false with "<= 0 runs until stopped" and with the end time, so the
+// loop ran forever; an infinite or huge one overflows the clock's nanoseconds. Both are refused
+// when the loop is made, before any cycle.
+TEST(HapticLoop, NanInfiniteOrHugeDurationIsRefusedInsteadOfRunningForever) {
+  HalfspaceContactModel model(MakeBoxSamplePoints(Eigen::Vector3d(0.02, 0.02, 0.01), 3), 1000.0);
+  SimDevice device(SimDeviceParams{}, [](double) { return Pose::Identity(); });
+  HapticCycle cycle(device, &model, HapticCycleConfig{});
+  for (double bad : {std::nan(""), HUGE_VAL, 1e300, 1.5 * kMaxLoopSeconds}) {
+    HapticLoopOptions opt;
+    opt.duration_seconds = bad;
+    EXPECT_NE(ErrorOf([&] { HapticLoop loop(cycle, opt); }).find("duration_seconds must be a finite number"),
+              std::string::npos)
+        << bad;
+  }
+  for (double good : {0.0, -1.0, 0.5, kMaxLoopSeconds}) {
+    HapticLoopOptions opt;
+    opt.duration_seconds = good;
+    EXPECT_EQ(ErrorOf([&] { HapticLoop loop(cycle, opt); }), "") << good;
   }
 }
 

@@ -1,12 +1,16 @@
 // Tests of the device backends other than UDP: replay CSV (slerp, errors naming file and
 // line), the dlopen'ed example plugin, spacenav without a device (and its input-only
 // capabilities in a session), the device factory.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <memory>
+#include <utility>
 
 #include "haptics/device_factory.h"
 #include "haptics/halfspace_contact_model.h"
@@ -17,6 +21,7 @@
 #include "haptics/safety_filter.h"
 #include "haptics/sim_device.h"
 #include "haptics/spacenav_device.h"
+#include "haptics/udp_device.h"
 #include "haptics/workspace_mapping.h"
 #include "test_support.h"
 #include "util/error.h"
@@ -94,9 +99,27 @@ TEST(PluginDevice, ExamplePluginLoadsReadsWritesAndZeroes) {
 }
 
 TEST(PluginDevice, LoadFailuresNameTheLibraryAndTheCause) {
-  ExpectErrorMentions([] { PluginDevice d("/nonexistent/libnothing.so", ""); }, {"libnothing.so", "dlopen"});
+  ExpectErrorMentions([] { PluginDevice d("/nonexistent/libnothing.so", ""); }, {"libnothing.so", "not found"});
   ExpectErrorMentions([] { PluginDevice d(CONTACTLAB_EXAMPLE_PLUGIN_PATH, "radius=oops"); },
                       {"libcontactlab_example_device.so", "refused", "radius=oops"});
+}
+
+// `--device plugin:FIFO` blocked forever in dlopen, which opens and reads the named file. A
+// plugin that is a named pipe, a folder or a device is now refused by name before dlopen. The
+// pipe holds a few bytes and has a writer, so that dlopen, if it were reached, would fail at
+// once ("file too short") instead of hanging the test.
+TEST(PluginDevice, NamedPipeFolderOrDeviceIsRefusedByNameWithoutBlockingInDlopen) {
+  testing::TempDir dir;
+  const std::filesystem::path fifo = dir / "libfifo.so";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const int pipe_fd = ::open(fifo.c_str(), O_RDWR | O_NONBLOCK);
+  ASSERT_GE(pipe_fd, 0);
+  ASSERT_EQ(::write(pipe_fd, "not an ELF file", 15), 15);
+  ExpectErrorMentions([&] { PluginDevice d(fifo, ""); }, {"libfifo.so", "is a named pipe, not a device plugin library"});
+  ExpectErrorMentions([&] { MakeDevice("plugin:" + fifo.string()); }, {"libfifo.so", "is a named pipe"});
+  ::close(pipe_fd);
+  ExpectErrorMentions([&] { PluginDevice d(dir.path(), ""); }, {"is a folder, not a device plugin library"});
+  ExpectErrorMentions([] { PluginDevice d("/dev/zero", ""); }, {"/dev/zero", "is a character device"});
 }
 
 TEST(DeviceFactory, MakesEachKindAndRejectsBadSpecs) {
@@ -108,6 +131,33 @@ TEST(DeviceFactory, MakesEachKindAndRejectsBadSpecs) {
   ExpectErrorMentions([] { MakeDevice("udp:70000"); }, {"udp:70000", "0..65535"});
   ExpectErrorMentions([] { MakeDevice("sim:circle:x"); }, {"radius", "'x'"});
   ExpectErrorMentions([] { MakeDevice("replay:/nonexistent/t.csv"); }, {"/nonexistent/t.csv"});
+}
+
+// A port is decimal digits: "udp:127.0.0.1:1e3" was read as port 1000 (a number, not a port).
+// An allowed peer is a host's address: 0.0.0.0, 255.255.255.255 or a multicast group never send
+// a datagram (and the one allowed peer is where wrench packets go), so they are refused naming
+// --device-peer.
+TEST(DeviceFactory, PortsAreDecimalDigitsAndPeersAreAddressesDatagramsCanComeFrom) {
+  for (const char* spec : {"udp:1e3", "udp:127.0.0.1:1e3", "udp:0:1e3", "udp:+80", "udp:0x50", "udp:99999"}) {
+    ExpectErrorMentions([&] { MakeDevice(spec); }, {spec, "is not in 0..65535 (decimal digits)"});
+  }
+  EXPECT_EQ(MakeDevice("udp:00000")->name(), "udp");
+  const std::pair<const char*, const char*> not_hosts[] = {{"0.0.0.0", "the unspecified address"},
+                                                           {"0.1.2.3", "the unspecified address"},
+                                                           {"255.255.255.255", "the broadcast address"},
+                                                           {"224.0.0.1", "a multicast address"},
+                                                           {"239.255.255.250", "a multicast address"},
+                                                           {"240.0.0.1", "a reserved address"}};
+  for (const auto& [peer, kind] : not_hosts) {
+    ExpectErrorMentions([&] { MakeDevice("udp:0.0.0.0:0", DeviceOptions{{peer}}); }, {"--device-peer", peer, kind});
+    UdpDeviceParams p;
+    ASSERT_TRUE(ParseIpv4(peer, &p.bind_address));
+    p.allowed_peers = {p.bind_address};
+    p.bind_address = 0x7f000001;
+    ExpectErrorMentions([&] { UdpDevice d(p); }, {"allowed peer", peer, kind});
+  }
+  // A host's address, on or off the loopback, is an allowed peer.
+  EXPECT_EQ(MakeDevice("udp:127.0.0.1:0", DeviceOptions{{"192.168.1.20", "127.0.0.1"}})->name(), "udp");
 }
 
 TEST(SpacenavDevice, OpeningWithoutDaemonFailsWithAClearMessage) {

@@ -7,11 +7,15 @@
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
+#include <poll.h>
+#include <sys/resource.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
+#include <cerrno>
 #include <chrono>
 #include <span>
 #include <cmath>
@@ -413,6 +417,106 @@ TEST(LiveView, StreamsPastTheLimitCannotStarveThePage) {
   server.Stop();
   for (std::thread& t : watchers) t.join();
   for (int i = 0; i < kLiveViewStreamLimit; ++i) EXPECT_EQ(status[i], 200) << "stream " << i;
+}
+
+// Waits up to TIMEOUT_MS for EVENTS on FD; true when they came.
+bool PollFor(int fd, short events, int timeout_ms) {
+  pollfd p{fd, events, 0};
+  return poll(&p, 1, timeout_ms) > 0;
+}
+
+// A loopback TCP connection to PORT, non-blocking; -1 when it cannot be made.
+int ConnectNonBlocking(int port) {
+  const int fd = socket(AF_INET, SOCK_STREAM | SOCK_NONBLOCK, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(std::uint16_t(port));
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (connect(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address) != 0 && errno != EINPROGRESS) {
+    close(fd);
+    return -1;
+  }
+  return fd;
+}
+
+// Idle connections and clients that send their request a header line at a time (slowloris) held
+// every thread of the server's pool, each waiting for the rest of its request, the read timeout
+// counted afresh for every line: the page went unanswered while they lasted (about 20 s for 400
+// idle ones, for ever for 24 trickling ones). Now a connection holds no thread until its request
+// head is complete, and each head must arrive within kLiveViewHeadSeconds however it trickles:
+// with 400 idle and 24 trickling connections open the page is answered, and every one of them is
+// then closed by the server. Waits are bounded polls, each round of which sends every trickling
+// client one more header line (the trickle's pace is the test's pace, not a clock's).
+TEST(LiveView, IdleAndTricklingConnectionsCannotStarveThePageAndAreCutInBoundedTime) {
+  rlimit files{};
+  getrlimit(RLIMIT_NOFILE, &files);
+  files.rlim_cur = std::max<rlim_t>(files.rlim_cur, std::min<rlim_t>(files.rlim_max, 4096));
+  setrlimit(RLIMIT_NOFILE, &files);
+  auto source = std::make_unique<LiveSnapshotHistory>();
+  LiveViewServer server(ServedPage{"<html>live</html>"}, *source, 0);
+  constexpr int kIdle = 400, kTrickling = 24;
+  std::vector<int> idle, trickling;
+  for (int i = 0; i < kIdle; ++i) idle.push_back(ConnectNonBlocking(server.port()));
+  for (int i = 0; i < kTrickling; ++i) trickling.push_back(ConnectNonBlocking(server.port()));
+  for (const int fd : idle) ASSERT_GE(fd, 0);
+  for (const int fd : trickling) ASSERT_GE(fd, 0);
+  int line = 0;
+  const auto trickle = [&] {
+    for (const int fd : trickling) {
+      const std::string text = line == 0 ? "GET / HTTP/1.1\r\n" : "X-Line-" + std::to_string(line) + ": 1\r\n";
+      send(fd, text.data(), text.size(), MSG_NOSIGNAL);  // fails once the server closed it
+    }
+    ++line;
+  };
+  trickle();
+
+  // The page, while they all are open: answered while the trickling clients still trickle (they
+  // never finish) and before the idle ones could have timed out a pool-full at a time (20 s); the
+  // 10 s bound is a hang guard.
+  const auto guard = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  const int page = ConnectNonBlocking(server.port());
+  ASSERT_GE(page, 0);
+  const std::string get = "GET / HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n";
+  while (!PollFor(page, POLLOUT, 100) && std::chrono::steady_clock::now() < guard) trickle();
+  ASSERT_EQ(send(page, get.data(), get.size(), MSG_NOSIGNAL), ssize_t(get.size()));
+  std::string reply;
+  char buffer[4096];
+  while (reply.find("</html>") == std::string::npos && std::chrono::steady_clock::now() < guard) {
+    if (!PollFor(page, POLLIN, 100)) {
+      trickle();
+      continue;
+    }
+    const ssize_t n = recv(page, buffer, sizeof buffer, 0);
+    if (n <= 0) break;
+    reply.append(buffer, std::size_t(n));
+  }
+  close(page);
+  EXPECT_EQ(reply.rfind("HTTP/1.1 200", 0), 0u) << reply;
+  EXPECT_NE(reply.find("<html>live</html>"), std::string::npos) << reply;
+
+  // Every idle and trickling connection is closed by the server (the trickling ones while still
+  // sending): each within its head deadline of kLiveViewHeadSeconds, all within a 5 times longer
+  // hang guard.
+  std::vector<int> open = idle;
+  open.insert(open.end(), trickling.begin(), trickling.end());
+  const auto close_guard = std::chrono::steady_clock::now() + std::chrono::seconds(5 * kLiveViewHeadSeconds);
+  while (!open.empty() && std::chrono::steady_clock::now() < close_guard) {
+    std::vector<pollfd> polled;
+    for (const int fd : open) polled.push_back(pollfd{fd, POLLIN, 0});
+    if (poll(polled.data(), polled.size(), 100) == 0) trickle();
+    std::vector<int> still;
+    for (std::size_t k = 0; k < open.size(); ++k) {
+      const ssize_t n = (polled[k].revents != 0) ? recv(open[k], buffer, sizeof buffer, MSG_DONTWAIT) : -1;
+      if (n == 0 || (n < 0 && polled[k].revents != 0 && errno != EAGAIN)) {
+        close(open[k]);
+      } else {
+        still.push_back(open[k]);
+      }
+    }
+    open = std::move(still);
+  }
+  EXPECT_TRUE(open.empty()) << open.size() << " connections still open after " << 5 * kLiveViewHeadSeconds << " s";
+  for (const int fd : open) close(fd);
 }
 
 // Contact marks of every point: in contact on odd cycles, clear on even ones.

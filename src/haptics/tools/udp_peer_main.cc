@@ -14,6 +14,7 @@
 #include <cstring>
 
 #include "haptics/udp_protocol.h"
+#include "util/finite_options.h"
 
 namespace {
 
@@ -39,6 +40,7 @@ int main(int argc, char** argv) {
   app.add_option("--period", period, "seconds per revolution")->check(CLI::PositiveNumber);
   app.add_flag("--inject-faults", inject, "every 100th cycle also send a short, a corrupted, a duplicate and an old packet");
   app.add_flag("--quiet", quiet, "print only the summary");
+  RequireFiniteNumbers(app);
   CLI11_PARSE(app, argc, argv);
 
   // Socket bound to loopback; poses go to 127.0.0.1:host_port.
