@@ -5,6 +5,7 @@
 #include "contact/register_contact_models.h"
 #include "cli/command_registry.h"
 #include "util/error.h"
+#include "util/input_files.h"
 #include "util/temporary_files.h"
 
 namespace contactlab::cli {
@@ -17,8 +18,10 @@ std::vector<CommandAdder>& CommandRegistry() {
 }  // namespace contactlab::cli
 
 int main(int argc, char** argv) {
-  // SIGINT/SIGTERM while an output is being written removes its temporary file.
+  // SIGINT, SIGTERM, SIGHUP or SIGQUIT while an output is being written removes its temporary.
   contactlab::InstallTemporaryFileCleanupOnSignals();
+  // Every file the command reads is recorded, and no output of it may replace one.
+  const contactlab::InputFileRecord inputs;
   contactlab::RegisterContactModels();
   CLI::App app{"ContactLab: a testbed for 6-DoF haptic contact (Barbič & James 2008 and baselines)"};
   app.set_version_flag("--version", std::string("contactlab ") + CONTACTLAB_VERSION);
