@@ -15,6 +15,7 @@
 #include "python_contact_model.h"
 #include "util/data_path.h"
 #include "util/error.h"
+#include "util/input_files.h"
 #include "util/output_target.h"
 
 namespace py = pybind11;
@@ -25,6 +26,7 @@ namespace {
 std::string Run(const std::string& config_path, std::optional<std::string> out, const std::vector<std::string>& overrides,
                 const std::string& profile, const std::vector<int>& jobs, int parallel, std::optional<std::string> cache,
                 bool use_cache, bool progress) {
+  const InputFileRecord inputs;  // no file this run reads is one of its outputs
   const ExperimentConfig config = LoadExperimentConfig(RequireDataFile(config_path), overrides, profile);
   ExpandJobs(config);  // every sweep point parses before anything runs
   if (parallel < 0) Fail("run", "parallel must be >= 0 (0: all cores)");
@@ -33,8 +35,11 @@ std::string Run(const std::string& config_path, std::optional<std::string> out, 
   if (jobs.size() == 1 && !out) options.out_dir /= "job-" + std::to_string(jobs.front());
   // The results folder and its files are checked before any job runs.
   const Study& study = StudyOf(config);
-  CheckOutputFolder(options.out_dir, "out");
-  for (const std::string& file : study.Files()) CheckOutputTarget(options.out_dir / file, "out");
+  CheckOutputFolderWritable(options.out_dir, "out");
+  for (const std::string& file : study.Files()) {
+    CheckOutputTarget(options.out_dir / file, "out");
+    CheckOutputIsNoRecordedInput(options.out_dir / file, "out");
+  }
   if (cache) options.assets.cache_dir = *cache;
   options.assets.use_cache = use_cache;
   options.assets.verbose = false;

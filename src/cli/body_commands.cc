@@ -104,7 +104,7 @@ struct SceneBody {
 SceneBody LoadSceneBody(const std::string& scene_arg, const std::string& body_name, const std::string& q_text,
                         const std::string& cache, const std::string& out, const char* out_option,
                         const std::vector<std::filesystem::path>& other_inputs = {}) {
-  CheckOutputTarget(out, out_option);
+  CheckOutputWritable(out, out_option);
   const std::filesystem::path scene_file = RequireDataFile(scene_arg);
   CheckOutputIsNotInput(out, scene_file, out_option);
   for (const auto& in : other_inputs) CheckOutputIsNotInput(out, in, out_option);

@@ -40,7 +40,7 @@ struct ReduceArgs {
 
 void RunReduce(const ReduceArgs& args) {
   const std::filesystem::path path = RequireDataFile(args.mesh);
-  CheckOutputTarget(args.out, "--out");
+  CheckOutputWritable(args.out, "--out");
   CheckOutputIsNotInput(args.out, path, "--out");
   const std::string source = path.filename().string();
   StVKMaterial material;
@@ -170,7 +170,7 @@ const CommandRegistration kDeformCommands([](CLI::App& app) {
   exp->add_option("--out", ex->out, "output .vtk file")->required();
   exp->add_option("--scale", ex->scale, "displacement per unit reduced coordinate (multiplies the basis)");
   exp->callback([ex] {
-    CheckOutputTarget(ex->out, "--out");
+    CheckOutputWritable(ex->out, "--out");
     CheckOutputIsNotInput(ex->out, ex->model, "--out");
     const ReducedModel model = LoadReducedModel(ex->model);
     ExportModesVtk(model, ex->out, ex->scale);

@@ -5,11 +5,14 @@
 #include "contact/register_contact_models.h"
 #include "cli/command_registry.h"
 #include "util/error.h"
+#include "util/input_files.h"
 #include "util/temporary_files.h"
 
 int main(int argc, char** argv) {
-  // SIGINT/SIGTERM while an output is being written removes its temporary file.
+  // SIGINT, SIGTERM, SIGHUP or SIGQUIT while an output is being written removes its temporary.
   contactlab::InstallTemporaryFileCleanupOnSignals();
+  // Every file the command reads is recorded, and no output of it may replace one.
+  const contactlab::InputFileRecord inputs;
   contactlab::RegisterContactModels();
   const std::unique_ptr<CLI::App> app = contactlab::cli::MakeCommandLineApp();
   try {

@@ -46,10 +46,10 @@ bool HasExtension(const std::filesystem::path& path, const std::string& ext) {
 
 void RunPointshell(const PointshellArgs& args) {
   const std::filesystem::path path = RequireDataFile(args.input);
-  CheckOutputTarget(args.out, "--out");
+  CheckOutputWritable(args.out, "--out");
   CheckOutputIsNotInput(args.out, path, "--out");
   if (!args.report.empty()) {
-    CheckOutputTarget(args.report, "--report");
+    CheckOutputWritable(args.report, "--report");
     CheckOutputIsNotInput(args.report, path, "--report");
     CheckOutputIsNotInput(args.report, args.out, "--report");
   }
@@ -173,7 +173,7 @@ const CommandRegistration kPointshellCommands([](CLI::App& app) {
   exp->add_option("--level", ex->level, "tree level (default: the deepest)");
   exp->add_option("--out", ex->out, "output file, .ply or .csv")->required();
   exp->callback([ex] {
-    CheckOutputTarget(ex->out, "--out");
+    CheckOutputWritable(ex->out, "--out");
     CheckOutputIsNotInput(ex->out, ex->shell, "--out");
     const Pointshell shell = LoadPointshell(ex->shell);
     const int level = ex->level.value_or(shell.num_levels() - 1);

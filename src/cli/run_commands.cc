@@ -21,6 +21,7 @@
 #include "util/atomic_file.h"
 #include "util/data_path.h"
 #include "util/error.h"
+#include "util/input_files.h"
 #include "util/output_target.h"
 
 namespace contactlab::cli {
@@ -55,7 +56,7 @@ void SubmitToSlurm(const RunArgs& args, const ExperimentConfig& config, int jobs
   if (!args.cache.empty()) command.run_args.insert(command.run_args.end(), {"--cache", fs::absolute(args.cache).string()});
   if (args.no_cache) command.run_args.push_back("--no-cache");
   command.out_dir = fs::absolute(args.out.empty() ? fs::path("results") / config.name : fs::path(args.out)).lexically_normal();
-  CheckOutputFolder(command.out_dir, "--out");
+  CheckOutputFolderWritable(command.out_dir, "--out");
   command.name = config.name;
   command.jobs = jobs;
   const fs::path dir = WriteSlurmScripts(command, args.slurm_options);
@@ -87,6 +88,7 @@ auto RunRemovingNewEmptyFolders(const std::filesystem::path& out_dir, Work&& wor
     return work();
   } catch (...) {
     for (const fs::path& p : created) {
+      if (!fs::exists(p, ec)) continue;  // the results folder itself is made only at the commit
       if (!fs::is_directory(p, ec) || !fs::is_empty(p, ec) || !fs::remove(p, ec)) break;
     }
     throw;
@@ -108,10 +110,14 @@ void RunRun(const RunArgs& args) {
   RunOptions options;
   options.out_dir = args.out.empty() ? std::filesystem::path("results") / config.name : std::filesystem::path(args.out);
   if (args.jobs.size() == 1 && args.out.empty()) options.out_dir /= "job-" + std::to_string(args.jobs.front());
-  // The results folder and its files are checked before any job runs.
+  // The results folder and its files are checked before any job runs: writable, and none of
+  // them a file the config named (the config itself, its scene, its trajectory).
   const Study& study = StudyOf(config);
-  CheckOutputFolder(options.out_dir, "--out");
-  for (const std::string& file : study.Files()) CheckOutputTarget(options.out_dir / file, "--out");
+  CheckOutputFolderWritable(options.out_dir, "--out");
+  for (const std::string& file : study.Files()) {
+    CheckOutputTarget(options.out_dir / file, "--out");
+    CheckOutputIsNoRecordedInput(options.out_dir / file, "--out");
+  }
   options.assets.cache_dir = args.cache;
   options.assets.use_cache = !args.no_cache;
   options.assets.verbose = false;
@@ -172,7 +178,7 @@ const CommandRegistration kRunCommands([](CLI::App& app) {
     } else if (paths.empty()) {
       Fail("merge", "no result folders given (DIRS or --sweep DIR --jobs N)");
     }
-    CheckOutputFolder(margs->out, "--out");
+    CheckOutputFolderWritable(margs->out, "--out");
     for (const auto& p : paths) CheckOutputIsNotInput(margs->out, p, "--out");
     MergeResults(paths, margs->out, MergeOptions{.partial = margs->partial});
     std::printf("merged %zu folders into %s\n", paths.size(), margs->out.c_str());
@@ -207,6 +213,7 @@ const CommandRegistration kParams([](CLI::App& app) {
     if (out->empty()) {
       std::cout << text;
     } else {
+      CheckOutputWritable(*out, "--out");
       WriteFileAtomically(*out, text);
     }
   });

@@ -31,7 +31,7 @@ struct SdfArgs {
 
 void RunSdf(const SdfArgs& args) {
   const std::filesystem::path path = RequireDataFile(args.mesh);
-  CheckOutputTarget(args.out, "--out");
+  CheckOutputWritable(args.out, "--out");
   CheckOutputIsNotInput(args.out, path, "--out");
   DistanceFieldOptions options;
   options.resolution = args.resolution;
@@ -57,7 +57,7 @@ struct SdfEvalArgs {
 };
 
 void RunSdfEval(const SdfEvalArgs& args) {
-  CheckOutputTarget(args.out, "--out");
+  CheckOutputWritable(args.out, "--out");
   CheckOutputIsNotInput(args.out, args.field, "--out");
   CheckOutputIsNotInput(args.out, args.points, "--out");
   const DistanceField field = LoadDistanceField(args.field);

@@ -104,7 +104,7 @@ struct CheckedOptions {
 CheckedOptions CheckSessionOptions(const SessionArgs& args) {
   CheckedOptions checked;
   if (args.cpu_given) checked.cpu = ParseLoopCpu(args.cpu, "--cpu");
-  if (!args.log.empty()) CheckOutputTarget(args.log, "--log");  // before the session, not after it
+  if (!args.log.empty()) CheckOutputWritable(args.log, "--log");  // before the session, not after it
   if (args.view_wait) {
     if (!args.view) Fail("--view-wait", "needs --view");
     checked.viewers = 1;

@@ -77,7 +77,7 @@ struct ViewArgs {
 };
 
 void RunView(const ViewArgs& args) {
-  CheckOutputTarget(args.out, "--out");
+  CheckOutputWritable(args.out, "--out");
   RequireThreeJs();
   if (args.job && *args.job < 0) Fail("--job", std::to_string(*args.job) + " is not a job index (jobs count from 0)");
   if (args.max_points < 16) Fail("--max-points", "must be at least 16, got " + std::to_string(args.max_points));

@@ -11,6 +11,7 @@
 
 #include "experiment/csv_line.h"
 #include "util/atomic_file.h"
+#include "util/atomic_folder.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -61,6 +62,17 @@ void RequireFiniteCells(const std::filesystem::path& file, const std::string& te
     }
     at = eol + 1;
   }
+}
+
+// Whether NAME is a file some study's run writes (a table, a derived file, meta.json): an old
+// results folder's such files go when new results replace it, whichever study wrote them.
+bool IsResultFileName(const std::string& name) {
+  for (const Study& study : Studies()) {
+    for (const std::string& file : study.Files()) {
+      if (file == name) return true;
+    }
+  }
+  return false;
 }
 
 }  // namespace
@@ -173,10 +185,11 @@ void WriteStudyResults(const Study& study, const std::filesystem::path& out_dir,
   }
   // And the columns each table declares, so that a reader finds their units and meanings.
   counted["columns"] = study.ColumnsJson();
-  std::filesystem::create_directories(out_dir);
-  for (std::size_t t = 0; t < tables.size(); ++t) WriteFileAtomically(out_dir / study.tables[t].file, tables[t]);
-  for (const Study::Derived& d : study.derived) WriteFileAtomically(out_dir / d.table.file, d.compute(tables));
-  WriteFileAtomically(out_dir / "meta.json", counted.dump(2) + "\n");
+  TemporaryFolder folder(out_dir, [](const std::string& name) { return !IsResultFileName(name); });
+  for (std::size_t t = 0; t < tables.size(); ++t) folder.Write(study.tables[t].file, tables[t]);
+  for (const Study::Derived& d : study.derived) folder.Write(d.table.file, d.compute(tables));
+  folder.Write("meta.json", counted.dump(2) + "\n");
+  folder.Commit();
 }
 
 }  // namespace contactlab

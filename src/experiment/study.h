@@ -84,10 +84,12 @@ const Study& StudyOf(const ExperimentConfig& config);
 // when meta.json is missing or unreadable or names no registered study.
 const Study& StudyOfResults(const std::filesystem::path& dir);
 
-// Writes a run's results into OUT_DIR (created): STUDY's tables (TABLES, their text in the order
-// of study.tables), the derived files computed from them, and META as meta.json with the row
-// count and the declared columns of each table, each file atomically. Runs and merges both write
-// through it.
+// Writes a run's results into OUT_DIR: STUDY's tables (TABLES, their text in the order of
+// study.tables), the derived files computed from them, and META as meta.json with the row count
+// and the declared columns of each table, as one commit (util/atomic_folder.h): a reader sees
+// the old folder or the new one, and a failure leaves the old one as it was. Of an old folder's
+// entries the result files of any study and meta.json are replaced; every other entry (Slurm
+// scripts, job folders, figures, notes) is kept. Runs and merges both write through it.
 void WriteStudyResults(const Study& study, const std::filesystem::path& out_dir, const std::vector<std::string>& tables,
                        const nlohmann::json& meta);
 

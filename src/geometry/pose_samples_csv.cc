@@ -2,7 +2,7 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "util/atomic_file.h"
@@ -14,8 +14,8 @@ PoseSamples ReadPoseSamplesCsv(const std::filesystem::path& file) {
   const std::string name = file.string();
   // A named pipe would block the open; a folder or device is named for what it is.
   if (const std::string kind = NonRegularFileKind(file); !kind.empty()) Fail(name, "is " + kind + ", not a trajectory file");
-  std::ifstream in(file);
-  if (!in) Fail(name, "cannot open the trajectory file");
+  // Read whole through the one input reader, which records it as an input of the command.
+  std::istringstream in(ReadWholeFile(file));
   PoseSamples out;
   std::string line;
   long line_no = 0;

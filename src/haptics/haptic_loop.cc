@@ -78,8 +78,8 @@ void InstallStopSignalHandlers() {
   std::memset(&sa, 0, sizeof(sa));
   sa.sa_handler = OnStopSignal;
   sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
+  // Every signal that asks a terminal program to stop: Ctrl-C, kill, a closed terminal, Ctrl-\.
+  for (const int signal_number : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) sigaction(signal_number, &sa, nullptr);
 }
 
 bool StopSignalRequested() { return g_stop_signal.load(std::memory_order_relaxed); }

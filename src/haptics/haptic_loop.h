@@ -2,7 +2,7 @@
 // millisecond): absolute deadlines, SCHED_FIFO and mlockall when permitted, a cycle-time
 // histogram, deadline-miss counting with a skip-ahead catch-up policy, a watchdog thread, a
 // lock-free ring of cycle records for a graphics or logging consumer, and a clean stop on
-// SIGINT that leaves the device at zero force. Each cycle's thread CPU time is measured beside
+// SIGINT (also SIGTERM, SIGHUP, SIGQUIT) that leaves the device at zero force. Each cycle's thread CPU time is measured beside
 // its wall time, so that a deadline miss has a cause (deadline_miss.h: overrun or preempted)
 // and the largest ten are kept. Optionally the loop thread runs pinned to one core
 // (cpu_affinity.h). Its time comes from a LoopClock: the monotonic clock in a session,
@@ -32,7 +32,7 @@ struct HapticLoopOptions {
   int fifo_priority = 80;             // SCHED_FIFO priority when granted
   double spin_seconds = 50e-6;        // sleep until this long before the deadline, then spin
   double watchdog_seconds = 0.01;     // watchdog thread zeroes the device if the loop stalls this long; <= 0 disables
-  bool honour_sigint = true;          // stop when the SIGINT/SIGTERM flag is raised
+  bool honour_sigint = true;          // stop when a stop signal arrived (SIGINT, TERM, HUP, QUIT)
   // Core the loop thread pins itself to (pthread_setaffinity_np); -1: not pinned. The watchdog
   // thread takes itself off it. Keeping the caller's other threads off it is the caller's
   // part (KeepThisThreadOffCpu before it starts them; the session's --cpu does).
@@ -131,9 +131,10 @@ class HapticLoop {
 // Monotonic clock (CLOCK_MONOTONIC), nanoseconds.
 std::int64_t MonotonicNowNs();
 
-// Installs SIGINT and SIGTERM handlers that only set an atomic flag (async-signal-safe).
+// Installs SIGINT, SIGTERM, SIGHUP and SIGQUIT handlers that only set an atomic flag
+// (async-signal-safe), so that any of them stops the loop as cleanly as Ctrl-C.
 void InstallStopSignalHandlers();
-// True once SIGINT/SIGTERM arrived after InstallStopSignalHandlers.
+// True once one of those signals arrived after InstallStopSignalHandlers.
 bool StopSignalRequested();
 // Clears the flag (tests, or a new session).
 void ClearStopSignal();

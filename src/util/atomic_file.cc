@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "util/error.h"
+#include "util/input_files.h"
 #include "util/number_text.h"
 #include "util/output_target.h"
 #include "util/temporary_files.h"
@@ -22,6 +23,7 @@ namespace fs = std::filesystem;
 
 TemporaryOutput::TemporaryOutput(fs::path path) : path_(std::move(path)) {
   CheckOutputTarget(path_, "the output");
+  CheckOutputIsNoRecordedInput(path_, "the output");
   // Unique per process and per call, so threads writing the same target never collide.
   static std::atomic<unsigned> counter{0};
   temporary_ = path_.string() + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
@@ -42,8 +44,9 @@ TemporaryOutput::~TemporaryOutput() {
 }
 
 void TemporaryOutput::Commit() {
-  // The target may have been replaced by something else while we wrote.
+  // The target may have been replaced by something else, or read as an input, while we wrote.
   CheckOutputTarget(path_, "the output");
+  CheckOutputIsNoRecordedInput(path_, "the output");
   std::error_code ec;
   fs::rename(temporary_, path_, ec);
   if (ec) Fail(path_.string(), "cannot rename the finished temporary file: " + ec.message());
@@ -136,6 +139,7 @@ std::string ReadWholeFile(const fs::path& path) {
     bytes.append(buffer, std::size_t(n));
   }
   ::close(fd);
+  RecordInputFile(path);
   return bytes;
 }
 

@@ -10,9 +10,10 @@
 namespace contactlab {
 
 // A temporary file "PATH.tmp-<pid>-<n>" beside PATH that becomes PATH at Commit. Construction
-// checks PATH (CheckOutputTarget: absent or a regular file, never a device, folder or pipe),
-// creates the parent folder and registers the temporary for removal on SIGINT/SIGTERM; the
-// destructor removes it unless committed. Throws Error naming PATH.
+// checks PATH (CheckOutputTarget: absent or a regular file, never a device, folder or pipe; and
+// never a file the command read, util/input_files.h), creates the parent folder and registers
+// the temporary for removal on a signal; the destructor removes it unless committed. Throws
+// Error naming PATH.
 class TemporaryOutput {
  public:
   explicit TemporaryOutput(std::filesystem::path path);
@@ -42,8 +43,9 @@ void WriteFileAtomically(const std::filesystem::path& path,
 // Convenience: writes BYTES atomically.
 void WriteFileAtomically(const std::filesystem::path& path, std::string_view bytes);
 
-// Reads a whole regular file; throws Error naming PATH when it does not exist, is not a regular
-// file (a folder, a named pipe, a device, a socket: refused without blocking), or cannot be read.
+// Reads a whole regular file and records it as an input of the command (util/input_files.h);
+// throws Error naming PATH when it does not exist, is not a regular file (a folder, a named pipe,
+// a device, a socket: refused without blocking), or cannot be read.
 std::string ReadWholeFile(const std::filesystem::path& path);
 
 // Throws Error naming PATH unless it exists and is a regular file (after symlinks); the message

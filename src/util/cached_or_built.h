@@ -10,6 +10,7 @@
 #include <system_error>
 
 #include "util/error.h"
+#include "util/input_files.h"
 
 namespace contactlab {
 
@@ -34,6 +35,7 @@ std::shared_ptr<const T> CachedOrBuilt(const std::filesystem::path& cached, bool
   auto value = std::make_shared<const T>(build());
   if (!cached.empty()) {
     std::filesystem::create_directories(cached.parent_path(), ec);
+    const CacheEntryWrite cache_entry;  // another job may have read the entry another job saved
     save(*value, cached);
   }
   return value;

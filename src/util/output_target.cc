@@ -1,8 +1,15 @@
 #include "util/output_target.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
 #include <string>
 
 #include "util/error.h"
+#include "util/input_files.h"
 
 namespace contactlab {
 namespace fs = std::filesystem;
@@ -20,7 +27,53 @@ const char* KindOf(fs::file_type type) {
   }
 }
 
+// FOLDER, or the nearest folder above it that exists (the current folder for a relative path
+// that has none).
+fs::path NearestExistingFolder(const fs::path& folder) {
+  std::error_code ec;
+  fs::path p = folder.empty() ? fs::path(".") : folder;
+  while (!fs::exists(p, ec) && p.has_relative_path() && p.has_parent_path() && p != p.parent_path()) {
+    p = p.parent_path();
+  }
+  if (!fs::exists(p, ec)) return ".";
+  return p;
+}
+
+// Creates and removes a probe file in FOLDER (an existing path); throws Error naming OUTPUT and
+// WHAT when it cannot.
+void ProbeWritableFolder(const fs::path& folder, const fs::path& output, std::string_view what) {
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec)) {
+    Fail(output.string(), std::string(what) + ": " + folder.string() + " is not a folder");
+  }
+  static std::atomic<unsigned> counter{0};
+  const fs::path probe = folder / (".contactlab-probe-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+  if (fd < 0) {
+    const int err = errno;
+    Fail(output.string(), std::string(what) + ": cannot write in " + folder.string() + ": " + std::strerror(err) +
+                              " (checked before the work)");
+  }
+  ::close(fd);
+  ::unlink(probe.c_str());
+}
+
 }  // namespace
+
+void CheckOutputWritable(const fs::path& path, std::string_view what) {
+  CheckOutputTarget(path, what);
+  CheckOutputIsNoRecordedInput(path, what);
+  ProbeWritableFolder(NearestExistingFolder(path.parent_path()), path, what);
+}
+
+void CheckOutputFolderWritable(const fs::path& folder, std::string_view what) {
+  CheckOutputFolder(folder, what);
+  std::error_code ec;
+  const fs::path absolute = fs::absolute(folder, ec).lexically_normal();
+  const fs::path named = absolute.has_filename() ? absolute : absolute.parent_path();
+  ProbeWritableFolder(NearestExistingFolder(named.parent_path()), folder, what);
+  if (fs::is_directory(named, ec)) ProbeWritableFolder(named, folder, what);
+}
 
 void CheckOutputTarget(const fs::path& path, std::string_view what) {
   if (path.empty()) Fail(what, "the output path is empty");

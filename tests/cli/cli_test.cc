@@ -823,5 +823,178 @@ TEST(CliDeformable, BodyEvalGivesTheRigidFieldAndTheDeformedFieldOnTheDeformedSu
   EXPECT_FALSE(std::filesystem::exists(dir / "no.csv"));
 }
 
+
+// A plate as a 12-triangle box mesh file (0.05 x 0.05 x 0.01 m, faces outward), for the scene
+// whose mesh is a file the session reads.
+const char* kPlateObj =
+    "v -0.025 -0.025 -0.005\nv 0.025 -0.025 -0.005\nv 0.025 0.025 -0.005\nv -0.025 0.025 -0.005\n"
+    "v -0.025 -0.025 0.005\nv 0.025 -0.025 0.005\nv 0.025 0.025 0.005\nv -0.025 0.025 0.005\n"
+    "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\nf 2 3 7\nf 2 7 6\n";
+
+// `session --log` naming a file the session reads (its scene, its replay file, a mesh of the
+// scene) used to overwrite it with the log: only the scene's explicit path was ever compared,
+// and not even that. Every input read is now recorded and no output may replace one.
+TEST(CliOutputs, SessionLogNamingItsSceneReplayFileOrMeshIsRefusedAndTheInputKept) {
+  testing::TempDir dir;
+  std::string scene = kScene;
+  scene.replace(scene.find("\"box:0.05,0.05,0.01,2\""), 22, "\"plate.obj\"");
+  std::ofstream(dir / "scene.yaml") << scene;
+  std::ofstream(dir / "plate.obj") << kPlateObj;
+  const std::string cache = " --cache " + (dir / "cache").string();
+  const std::string session = "session " + (dir / "scene.yaml").string() + " --duration 0.2 --no-realtime --quiet" + cache;
+  const Outcome recorded = RunCli(session + " --device sim --log " + (dir / "replay.csv").string());
+  ASSERT_EQ(recorded.exit_code, 0) << recorded.output;
+  const std::string replay = ReadWholeFile(dir / "replay.csv");
+  for (const char* input : {"scene.yaml", "replay.csv", "plate.obj"}) {
+    SCOPED_TRACE(input);
+    const std::string before = ReadWholeFile(dir / input);
+    // The input by another spelling: a symlink to it.
+    std::filesystem::create_symlink(dir / input, dir / "log-link.csv");
+    for (const std::filesystem::path& log : {dir / input, dir / "log-link.csv"}) {
+      const Outcome o = RunCli(session + " --device replay:" + (dir / "replay.csv").string() + " --log " + log.string());
+      EXPECT_EQ(o.exit_code, 1) << o.output;
+      EXPECT_NE(o.output.find("is the input"), std::string::npos) << o.output;
+      EXPECT_EQ(o.output.find("internal error"), std::string::npos) << o.output;
+      EXPECT_EQ(ReadWholeFile(dir / input), before);
+    }
+    std::filesystem::remove(dir / "log-link.csv");
+  }
+  EXPECT_EQ(ReadWholeFile(dir / "replay.csv"), replay);
+}
+
+// `run RESULTS/summary.csv --out RESULTS`: a config kept in its results folder under the name of
+// a result file used to be replaced by the results; it is refused before any job runs. A config
+// under any other name in the folder is kept with the new results.
+TEST(CliOutputs, RunConfigInsideItsResultsFolderIsNeverOverwritten) {
+  testing::TempDir dir;
+  std::ofstream(dir / "scene.yaml") << kScene;
+  std::filesystem::create_directory(dir / "r");
+  const std::string config = "name: e\nscene: ../scene.yaml\n" + testing::PressTrajectoryYaml(0.02) + "\n";
+  std::ofstream(dir / "r" / "summary.csv") << config;
+  const std::string cache = " --cache " + (dir / "cache").string();
+  const Outcome o = RunCli("run " + (dir / "r" / "summary.csv").string() + " --out " + (dir / "r").string() + cache);
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  EXPECT_NE(o.output.find("is the input"), std::string::npos) << o.output;
+  EXPECT_EQ(ReadWholeFile(dir / "r" / "summary.csv"), config);
+  EXPECT_FALSE(std::filesystem::exists(dir / "cache"));  // refused before any job ran
+  std::filesystem::rename(dir / "r" / "summary.csv", dir / "r" / "exp.yaml");
+  const Outcome kept = RunCli("run " + (dir / "r" / "exp.yaml").string() + " --out " + (dir / "r").string() + cache);
+  ASSERT_EQ(kept.exit_code, 0) << kept.output;
+  EXPECT_EQ(ReadWholeFile(dir / "r" / "exp.yaml"), config);
+  EXPECT_TRUE(std::filesystem::exists(dir / "r" / "summary.csv"));
+}
+
+// Shell commands that run what follows with FOLDER on a read-only file system (a tmpfs mounted
+// read-only in a private mount namespace, which stops root as well as mode 0555 would stop a
+// user), or an empty string when this machine cannot make one.
+std::string ReadOnlyMountBefore(const std::filesystem::path& folder) {
+  if (std::system("unshare -rm true > /dev/null 2>&1") != 0) return "";
+  return "unshare -rm sh -c 'mount -t tmpfs -o ro none " + folder.string() + " && exec \"$0\" \"$@\"'";
+}
+
+// `run --out` and `merge --out` on a read-only file system used to compute every job and then
+// fail with "internal error: filesystem error", the results lost; both are refused before any
+// work, naming the option and the reason.
+TEST(CliOutputs, OutputOnAReadOnlyFileSystemIsRefusedBeforeTheWork) {
+  TwoJobRuns runs;
+  const std::filesystem::path& dir = runs.dir.path();
+  std::filesystem::create_directory(dir / "ro");
+  const std::string prefix = ReadOnlyMountBefore(dir / "ro");
+  if (prefix.empty()) GTEST_SKIP() << "no private mount namespace here (unshare -rm) to make a read-only file system";
+  const std::string cache = " --cache " + (dir / "cache2").string();
+  Outcome o = RunCliAfter(prefix, "run " + (dir / "exp.yaml").string() + " --out " + (dir / "ro" / "res").string() + cache);
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  EXPECT_NE(o.output.find("--out: cannot write in " + (dir / "ro").string() + ": Read-only file system"),
+            std::string::npos) << o.output;
+  EXPECT_EQ(o.output.find("internal error"), std::string::npos) << o.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "cache2"));  // no field was built: no job ran
+  o = RunCliAfter(prefix, runs.Merge("f0 f1", "ro/merged"));
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  EXPECT_NE(o.output.find("Read-only file system"), std::string::npos) << o.output;
+  EXPECT_EQ(o.output.find("internal error"), std::string::npos) << o.output;
+}
+
+// The files of a results folder, name and bytes.
+std::vector<std::pair<std::string, std::string>> FolderFiles(const std::filesystem::path& folder) {
+  std::vector<std::pair<std::string, std::string>> files;
+  for (const auto& e : std::filesystem::directory_iterator(folder)) {
+    files.emplace_back(e.path().filename().string(), e.is_regular_file() ? ReadWholeFile(e.path()) : "(folder)");
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+// A disk that fills between the files of one results commit used to leave a new cycles.csv
+// beside the old summary.csv and meta.json, which the viewer and load_results read as one run.
+// The folder is now written beside it and exchanged in one step: a failed rewrite leaves every
+// old file as it was and nothing else behind; a good one replaces every result file.
+TEST(CliOutputs, DiskFullBetweenTheFilesOfAResultsCommitLeavesTheOldResultsWhole) {
+  testing::TempDir dir;
+  std::ofstream(dir / "scene.yaml") << kScene;
+  std::ofstream(dir / "exp.yaml") << "name: e\nscene: scene.yaml\n" << testing::PressTrajectoryYaml(0.02) << "\n";
+  const std::string cache = " --cache " + (dir / "cache").string();
+  const std::string run = "run " + (dir / "exp.yaml").string() + " --out " + (dir / "r").string() + cache;
+  ASSERT_EQ(RunCli(run).exit_code, 0);
+  std::ofstream(dir / "r" / "notes.txt") << "kept";
+  const auto old_files = FolderFiles(dir / "r");
+  // A new run of the same config with a longer trajectory: its cycles.csv is written first and
+  // its meta.json last; a file size limit between their sizes fails the commit between them.
+  std::ofstream(dir / "exp.yaml") << "name: e\nscene: scene.yaml\n" << testing::PressTrajectoryYaml(0.03) << "\n";
+  const std::size_t first = ReadWholeFile(dir / "r" / "cycles.csv").size();
+  const std::size_t last = ReadWholeFile(dir / "r" / "meta.json").size();
+  ASSERT_LT(first * 3 / 2 + 1024, last) << "the limit must fall between the first file's size and the last's";
+  const std::string limit = "trap '' XFSZ; ulimit -f " + std::to_string((first * 3 / 2 + 1024) / 512) + ";";
+  const Outcome full = RunCliAfter(limit, run);
+  EXPECT_EQ(full.exit_code, 1) << full.output;
+  EXPECT_NE(full.output.find("meta.json"), std::string::npos) << full.output;
+  EXPECT_EQ(FolderFiles(dir / "r"), old_files);
+  EXPECT_EQ(CountFiles(dir.path()), 4) << "scene.yaml, exp.yaml, cache/ and r/ only";
+  // Without the limit every result file is new and the notes are kept.
+  ASSERT_EQ(RunCli(run).exit_code, 0);
+  const auto old_cycles = std::find_if(old_files.begin(), old_files.end(), [](const auto& f) { return f.first == "cycles.csv"; });
+  ASSERT_NE(old_cycles, old_files.end());
+  EXPECT_NE(ReadWholeFile(dir / "r" / "cycles.csv"), old_cycles->second);
+  EXPECT_EQ(ReadWholeFile(dir / "r" / "notes.txt"), "kept");
+  EXPECT_EQ(CountFiles(dir.path()), 4);
+}
+
+// SIGHUP (a closed terminal) to a session used to kill it with exit 129, the log lost and its
+// half-written temporary left behind. Every stop signal now ends the session as Ctrl-C does: the
+// log complete, every row whole, committed under its name. The signal is sent once the session
+// printed its start line (the log is open by then).
+TEST(CliOutputs, HangupOrQuitToASessionLeavesACompleteLog) {
+  testing::TempDir dir;
+  std::ofstream(dir / "scene.yaml") << kScene;
+  const std::string cache = " --cache " + (dir / "cache").string();
+  ASSERT_EQ(RunCli("contact " + (dir / "scene.yaml").string() + cache).exit_code, 0);  // fills the cache
+  for (const char* signal : {"HUP", "QUIT", "TERM", "INT"}) {
+    SCOPED_TRACE(signal);
+    const std::filesystem::path log = dir / (std::string(signal) + ".csv");
+    const std::string pid = (dir / "pid").string();
+    const std::string session = "sh -c 'echo $$ > " + pid + "; exec " + CONTACTLAB_CLI + " session " +
+                                (dir / "scene.yaml").string() + " --device sim --duration 600 --no-realtime --quiet --log " +
+                                log.string() + cache + "'";
+    const Outcome o = testing::RunShellCommand("{ " + session + "; echo \"exit $?\"; } | { IFS= read -r first; echo \"$first\"; kill -" +
+                                               signal + " $(cat " + pid + "); cat; }");
+    EXPECT_NE(o.output.find("session: scene"), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("\nexit 0\n"), std::string::npos) << o.output;
+    ASSERT_TRUE(std::filesystem::exists(log)) << o.output;
+    const std::string text = ReadWholeFile(log);
+    ASSERT_FALSE(text.empty());
+    EXPECT_EQ(text.back(), '\n');
+    std::istringstream lines(text);
+    std::string line;
+    std::getline(lines, line);  // the comment
+    std::getline(lines, line);
+    const long cells = std::count(line.begin(), line.end(), ',');
+    long rows = 0;
+    while (std::getline(lines, line)) {
+      EXPECT_EQ(std::count(line.begin(), line.end(), ','), cells) << "row " << rows;
+      ++rows;
+    }
+  }
+  EXPECT_EQ(CountFiles(dir.path()), 7) << "scene.yaml, cache/, pid and the four logs; no temporary";
+}
+
 }  // namespace
 }  // namespace contactlab

@@ -310,9 +310,9 @@ TEST(ClosedLoop, TheRecordCarriesTheModelsProxy) {
 }
 
 // The loop runs in simulated time and waits before its 200th release; the test sees 199
-// cycles pushing on the plane, raises SIGINT and lets the loop go: the waiting cycle runs,
-// the loop stops at the next cycle boundary and leaves the device at zero.
-TEST(HapticLoop, SigintStopsTheLoopAndLeavesZeroForce) {
+// cycles pushing on the plane, raises SIGNAL_NUMBER and lets the loop go: the waiting cycle
+// runs, the loop stops at the next cycle boundary and leaves the device at zero.
+void ExpectSignalStopsTheLoopAndLeavesZeroForce(int signal_number) {
   HalfspaceContactModel model(MakeBoxSamplePoints(Eigen::Vector3d(0.02, 0.02, 0.01), 3), 1000.0);
   SimDevice device(SimDeviceParams{}, [](double) { return Pose::FromTranslation(Eigen::Vector3d(0, 0, 0.005)); });
   HapticCycleConfig config;
@@ -337,17 +337,27 @@ TEST(HapticLoop, SigintStopsTheLoopAndLeavesZeroForce) {
   }
   EXPECT_EQ(n, 199);
   EXPECT_GT(std::abs(last.device_force[2]), 0.1);
-  std::raise(SIGINT);
+  std::raise(signal_number);
   clock.Resume();
   const HapticLoopReport report = loop.Join();
-  std::signal(SIGINT, SIG_DFL);
-  std::signal(SIGTERM, SIG_DFL);
+  for (const int s : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) std::signal(s, SIG_DFL);
   ClearStopSignal();
   EXPECT_TRUE(report.stopped_by_signal);
   EXPECT_EQ(report.cycles, 200);
   EXPECT_EQ(report.deadline_misses, 0);
   EXPECT_EQ(device.held_wrench().force, Eigen::Vector3d::Zero());
   EXPECT_EQ(device.held_wrench().torque, Eigen::Vector3d::Zero());
+}
+
+TEST(HapticLoop, SigintStopsTheLoopAndLeavesZeroForce) { ExpectSignalStopsTheLoopAndLeavesZeroForce(SIGINT); }
+
+// SIGHUP (the terminal closed) and SIGQUIT (Ctrl-\) used to kill a session outright, its log
+// lost: they stop the loop exactly as SIGINT does (SIGTERM too).
+TEST(HapticLoop, SighupSigquitAndSigtermStopTheLoopLikeSigint) {
+  for (const int signal_number : {SIGHUP, SIGQUIT, SIGTERM}) {
+    SCOPED_TRACE(signal_number);
+    ExpectSignalStopsTheLoopAndLeavesZeroForce(signal_number);
+  }
 }
 
 // One cycle of a 300 ms run stalls for 40 ms of simulated time, four times the watchdog's

@@ -3,12 +3,15 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <string>
 
 #include "test_support.h"
+#include "util/atomic_folder.h"
 #include "util/error.h"
+#include "util/input_files.h"
 #include "util/output_target.h"
 #include "util/temporary_files.h"
 
@@ -179,6 +182,135 @@ TEST(TemporaryOutput, UncommittedTemporaryIsRemoved) {
     EXPECT_EQ(CountFiles(dir.path()), 1);
   }
   EXPECT_EQ(CountFiles(dir.path()), 0);
+}
+
+
+// An output onto a file the command read, however it is named (the path, a symlink, a hard
+// link), is refused and the file kept; outside a record of inputs nothing is refused.
+TEST(InputFiles, OutputOntoAFileTheCommandReadIsRefusedUnderAnyName) {
+  testing::TempDir dir;
+  const auto input = dir / "scene.yaml";
+  WriteFileAtomically(input, std::string_view("the input\n"));
+  std::filesystem::create_symlink(input, dir / "link.yaml");
+  std::filesystem::create_hard_link(input, dir / "hard.yaml");
+  {
+    const InputFileRecord record;
+    EXPECT_EQ(ReadWholeFile(dir / "link.yaml"), "the input\n");
+    for (const std::filesystem::path& out : {input, dir / "link.yaml", dir / "hard.yaml", dir / "." / "scene.yaml"}) {
+      SCOPED_TRACE(out.string());
+      try {
+        WriteFileAtomically(out, std::string_view("the output\n"));
+        ADD_FAILURE() << "the input was overwritten";
+      } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("is the input"), std::string::npos) << e.what();
+      }
+      EXPECT_THROW(CheckOutputWritable(out, "--out"), Error);
+    }
+    EXPECT_EQ(ReadWholeFile(input), "the input\n");
+    EXPECT_NO_THROW(WriteFileAtomically(dir / "other.yaml", std::string_view("x")));
+    // An input read after the output was opened is caught at the commit.
+    TemporaryOutput late(dir / "late.txt");
+    WriteFileAtomically(late.temporary(), std::string_view("the output\n"));
+    WriteFileAtomically(dir / "late.txt", std::string_view("read late\n"));
+    ReadWholeFile(dir / "late.txt");
+    EXPECT_THROW(late.Commit(), Error);
+    EXPECT_EQ(ReadWholeFile(dir / "late.txt"), "read late\n");
+  }
+  EXPECT_NO_THROW(WriteFileAtomically(input, std::string_view("rewritten\n")));  // no record: allowed
+}
+
+// A results folder in which a failure strikes between two files: the old folder stays whole
+// (every old file, none new), and no staging folder is left. A commit replaces every file it
+// writes and every file KEEP does not keep, and keeps the others.
+TEST(AtomicFolder, FailureBetweenFilesLeavesTheOldFolderWhole) {
+  testing::TempDir dir;
+  const auto out = dir / "results";
+  std::filesystem::create_directories(out / "slurm");
+  for (const char* name : {"cycles.csv", "summary.csv", "meta.json", "notes.txt"}) {
+    WriteFileAtomically(out / name, std::string("old ") + name);
+  }
+  const auto keep = [](const std::string& name) { return name != "cycles.csv" && name != "summary.csv" && name != "meta.json"; };
+  EXPECT_THROW(
+      {
+        TemporaryFolder folder(out, keep);
+        folder.Write("cycles.csv", "new cycles");
+        throw Error("the disk is full");
+      },
+      Error);
+  EXPECT_EQ(CountFiles(dir.path()), 1);  // no staging folder beside it
+  for (const char* name : {"cycles.csv", "summary.csv", "meta.json", "notes.txt"}) {
+    EXPECT_EQ(ReadWholeFile(out / name), std::string("old ") + name);
+  }
+  {
+    TemporaryFolder folder(out, keep);
+    folder.Write("cycles.csv", "new cycles");
+    folder.Write("meta.json", "new meta");
+    folder.Commit();
+  }
+  EXPECT_EQ(CountFiles(dir.path()), 1);
+  EXPECT_EQ(ReadWholeFile(out / "cycles.csv"), "new cycles");
+  EXPECT_EQ(ReadWholeFile(out / "meta.json"), "new meta");
+  EXPECT_FALSE(std::filesystem::exists(out / "summary.csv"));  // an old result file goes
+  EXPECT_EQ(ReadWholeFile(out / "notes.txt"), "old notes.txt");
+  EXPECT_TRUE(std::filesystem::is_directory(out / "slurm"));
+  // A new folder where there was none.
+  {
+    TemporaryFolder folder(dir / "a" / "b", keep);
+    folder.Write("meta.json", "first");
+    folder.Commit();
+  }
+  EXPECT_EQ(ReadWholeFile(dir / "a" / "b" / "meta.json"), "first");
+}
+
+// An old result file that is an input of the command is never removed by the commit.
+TEST(AtomicFolder, ReplacingAFileTheCommandReadIsRefused) {
+  testing::TempDir dir;
+  const auto out = dir / "results";
+  WriteFileAtomically(out / "summary.csv", std::string_view("read as the config"));
+  const InputFileRecord record;
+  ReadWholeFile(out / "summary.csv");
+  TemporaryFolder folder(out, [](const std::string&) { return false; });
+  folder.Write("cycles.csv", "new");
+  EXPECT_THROW(folder.Commit(), Error);
+  EXPECT_EQ(ReadWholeFile(out / "summary.csv"), "read as the config");
+  EXPECT_FALSE(std::filesystem::exists(out / "cycles.csv"));
+}
+
+// SIGHUP while a results folder is being written: the staging folder and its files are removed
+// before the process dies of the signal, and the old folder is as it was.
+TEST(AtomicFolderDeathTest, SignalWhileWritingAFolderLeavesNoStagingFolder) {
+  GTEST_FLAG_SET(death_test_style, "fast");
+  testing::TempDir dir;
+  WriteFileAtomically(dir / "results" / "meta.json", std::string_view("old"));
+  EXPECT_EXIT(
+      {
+        InstallTemporaryFileCleanupOnSignals();
+        TemporaryFolder folder(dir / "results", [](const std::string&) { return true; });
+        folder.Write("cycles.csv", "new");
+        folder.Write("meta.json", "new");
+        ::raise(SIGHUP);
+      },
+      ::testing::KilledBySignal(SIGHUP), "");
+  EXPECT_EQ(CountFiles(dir.path()), 1);
+  EXPECT_EQ(ReadWholeFile(dir / "results" / "meta.json"), "old");
+}
+
+// Before the work: an output whose folder cannot be written (here a regular file where its
+// folder should be) is refused naming the option.
+TEST(OutputTarget, UnwritableOutputFolderIsRefusedBeforeTheWork) {
+  testing::TempDir dir;
+  WriteFileAtomically(dir / "file", std::string_view("x"));
+  EXPECT_THROW(CheckOutputWritable(dir / "file" / "out.csv", "--out"), Error);
+  EXPECT_THROW(CheckOutputFolderWritable(dir / "file" / "results", "--out"), Error);
+  EXPECT_NO_THROW(CheckOutputWritable(dir / "new" / "out.csv", "--out"));
+  EXPECT_NO_THROW(CheckOutputFolderWritable(dir / "new" / "results", "--out"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "new"));  // the check makes no folder
+  EXPECT_EQ(CountFiles(dir.path()), 1);                // and leaves no probe
+  if (::geteuid() == 0) return;  // root writes through mode bits; the CLI test uses a read-only mount
+  std::filesystem::create_directory(dir / "locked");
+  std::filesystem::permissions(dir / "locked", std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
+  EXPECT_THROW(CheckOutputWritable(dir / "locked" / "out.csv", "--out"), Error);
+  std::filesystem::permissions(dir / "locked", std::filesystem::perms::owner_all);
 }
 
 }  // namespace
