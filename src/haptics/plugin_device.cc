@@ -7,6 +7,7 @@
 
 #include "util/atomic_file.h"
 #include "util/error.h"
+#include "util/input_files.h"
 
 namespace contactlab {
 
@@ -17,6 +18,7 @@ PluginDevice::PluginDevice(const std::filesystem::path& library, const std::stri
   // file, as for every other input (dlopen would search the library path for it instead).
   const std::filesystem::path file = library.has_parent_path() ? library : std::filesystem::path(".") / library;
   CheckInputFile(file, "device plugin library");
+  RecordInputFile(file);  // an input like any other: no output of the session may replace it
   library_ = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (library_ == nullptr) {
     const char* e = dlerror();

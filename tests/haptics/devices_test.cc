@@ -25,6 +25,7 @@
 #include "haptics/workspace_mapping.h"
 #include "test_support.h"
 #include "util/error.h"
+#include "util/input_files.h"
 
 namespace contactlab {
 namespace {
@@ -79,6 +80,21 @@ TEST(ReplayDevice, BadCsvRowsAreReportedWithFileAndLine) {
   WriteText(file, "t,x,y,z,qw,qx,qy,qz\n");
   ExpectErrorMentions([&] { ReadTrajectoryCsv(file); }, {"bad.csv", "no samples"});
   ExpectErrorMentions([&] { ReadTrajectoryCsv(dir / "missing.csv"); }, {"missing.csv", "cannot open"});
+}
+
+// A plugin library is one of the session's inputs: no output (a --log) may replace it, under
+// its own name or through a symlink.
+TEST(PluginDevice, ThePluginLibraryIsAnInputNoOutputMayReplace) {
+  testing::TempDir dir;
+  std::filesystem::copy_file(CONTACTLAB_EXAMPLE_PLUGIN_PATH, dir / "device.so");
+  std::filesystem::create_symlink(dir / "device.so", dir / "link.csv");
+  InputFileRecord record;
+  CheckOutputIsNoRecordedInput(dir / "device.so", "--log");  // not read yet: nothing to refuse
+  PluginDevice dev(dir / "device.so", "radius=0.05");
+  for (const char* name : {"device.so", "link.csv"}) {
+    ExpectErrorMentions([&] { CheckOutputIsNoRecordedInput(dir / name, "--log"); }, {name, "--log", "device.so"});
+  }
+  CheckOutputIsNoRecordedInput(dir / "log.csv", "--log");
 }
 
 TEST(PluginDevice, ExamplePluginLoadsReadsWritesAndZeroes) {
