@@ -4,6 +4,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "geometry/rotation_math.h"
@@ -73,6 +74,14 @@ PointshellCcdModel::PointshellCcdModel(std::shared_ptr<const Pointshell> shell_A
                                        std::shared_ptr<const DistanceField> field_B, const PointshellCcdParams& params)
     : search_(std::move(shell_A), std::move(field_B)), params_(params) {
   params_.Check("pointshell-ccd");
+  // Below kMinProxyOffsetCells the proxy lags or stalls (pointshell_ccd_model.h).
+  const double least = kMinProxyOffsetCells * search_.field().spacing();
+  if (!(params_.offset >= least)) {
+    char text[160];
+    std::snprintf(text, sizeof text, "proxy offset %.6g m is below %g cells of B's field (%.6g m)", params_.offset,
+                  kMinProxyOffsetCells, least);
+    Fail("pointshell-ccd", text);
+  }
   const std::size_t capacity = std::size_t(std::min(params_.max_constraints, std::max(1, search_.shell().num_points())));
   near_.resize(capacity);
   moment_.resize(capacity);

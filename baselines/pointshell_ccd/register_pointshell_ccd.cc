@@ -32,8 +32,10 @@ const ParamTable<ProxySpec>& ProxyParams() {
           P::Number("proxy_rot_stiffness", PARAM_MEMBER(rot_stiffness), AtLeast(0), NoUpperBound(),
                     "pointshell-ccd: rotational spring (0: proxy_stiffness times the squared radius of B's field box)")
               .Unit("N m/rad").Sweepable().Example("2"),
-          P::Number("proxy_offset", PARAM_MEMBER(offset), Above(0), AtMost(4),
-                    "pointshell-ccd: distance from B's surface at which a point of the proxy stops, in cells of B's field")
+          P::Number("proxy_offset", PARAM_MEMBER(offset), AtLeast(kMinProxyOffsetCells), AtMost(4),
+                    "pointshell-ccd: distance from B's surface at which a point of the proxy stops, in cells of B's "
+                    "field. At least 0.01: a point in contact advances by at least half the offset a step, so a "
+                    "smaller offset lets the proxy slide only a few micrometres a cycle and it lags or stalls")
               .Sweepable().Example("0.1"),
           P::Integer("proxy_iterations", PARAM_MEMBER(iterations), 1, 64,
                      "pointshell-ccd: constrained steps (active set, solve, time of impact) per cycle")

@@ -42,7 +42,7 @@ int CutTetrahedron(const LatticeCell& cell, const int* tet, PolyVertex* poly, Ei
 bool LoadCell(const float* phi_M, const float* phi_L, int ci, int cj, int ck, const PressureLaw& law, bool clip_M,
               bool clip_L, LatticeCell* cell) {
   cell->positive = 0;
-  cell->outside_M = cell->outside_L = cell->inside_M = cell->inside_L = true;
+  cell->outside_M = cell->outside_L = cell->overlapped = true;
   for (int c = 0; c < 8; ++c) {
     const int di = c & 1, dj = (c >> 1) & 1, dk = (c >> 2) & 1;
     const int v = VertexIndex(ci + di, cj + dj, ck + dk);
@@ -53,8 +53,7 @@ bool LoadCell(const float* phi_M, const float* phi_L, int ci, int cj, int ck, co
     cell->positive += cell->g[c] > 0;
     cell->outside_M = cell->outside_M && corner.phi_M > 0;
     cell->outside_L = cell->outside_L && corner.phi_L > 0;
-    cell->inside_M = cell->inside_M && corner.phi_M <= 0;
-    cell->inside_L = cell->inside_L && corner.phi_L <= 0;
+    cell->overlapped = cell->overlapped && corner.phi_M + corner.phi_L <= 0;
   }
   return !(cell->positive == 0 || cell->positive == 8 || (clip_M && cell->outside_M) || (clip_L && cell->outside_L));
 }
@@ -65,17 +64,16 @@ void PlaceCorners(const Eigen::Vector3d& x0, double h, int ci, int cj, int ck, L
   }
 }
 
-double IntegrateCell(const LatticeCell& cell, const PressureLaw& law, bool clip_M, bool clip_L, PressureSums* sums,
-                     SurfaceRecord* record) {
+double IntegrateCell(const LatticeCell& cell, const PressureLaw& law, PressureSums* sums, SurfaceRecord* record) {
   double cell_area = 0;
   for (const auto& tet : kTets) {
     PolyVertex buffers[2][kMaxPolygon];
     Eigen::Vector3d toward;
     int m = CutTetrahedron(cell, tet, buffers[0], &toward);
     if (m == 0) continue;
-    // A cell inside a body at every corner is inside it throughout (the fields are linear on
-    // each tetrahedron): nothing to clip.
-    const PolyVertex* poly = ClipToInsides(buffers, &m, clip_M && !cell.inside_M, clip_L && !cell.inside_L);
+    // A cell where the bodies overlap at every corner overlaps throughout (the fields are
+    // linear on each tetrahedron): nothing to clip.
+    const PolyVertex* poly = cell.overlapped ? buffers[0] : ClipToOverlap(buffers, &m);
     if (m < 3) continue;
     IntegratePolygon(poly, m, toward, law, sums, &cell_area, record);
   }

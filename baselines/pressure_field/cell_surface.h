@@ -1,6 +1,6 @@
 // The contact surface inside one lattice cell (Elandt et al. 2019 on a sampled field): the cell
 // is split into six Kuhn tetrahedra, on each of which the gap and both fields are linear; the
-// gap's zero set there is a triangle or a quad, clipped to each compliant body's inside and
+// gap's zero set there is a triangle or a quad, clipped to where the bodies overlap and
 // integrated exactly.
 #pragma once
 
@@ -13,12 +13,14 @@
 namespace contactlab {
 
 // One cell of the lattice: its corners by bit (x = 1, y = 2, z = 4) with both fields there,
-// the gap at each, and whether every corner lies outside or inside each body.
+// the gap at each, whether every corner lies outside each body, and whether the bodies
+// overlap at every corner.
 struct LatticeCell {
   PolyVertex corner[8];
   double g[8];
   int positive = 0;  // corners with g > 0
-  bool outside_M = true, outside_L = true, inside_M = true, inside_L = true;
+  bool outside_M = true, outside_L = true;
+  bool overlapped = true;  // phi_M + phi_L <= 0 at every corner
 };
 
 // Loads the cell whose first vertex is (CI, CJ, CK) in a block with the fields PHI_M and PHI_L
@@ -33,8 +35,7 @@ bool LoadCell(const float* phi_M, const float* phi_L, int ci, int cj, int ck, co
 void PlaceCorners(const Eigen::Vector3d& x0, double h, int ci, int cj, int ck, LatticeCell* cell);
 
 // Integrates the surface in CELL over its six tetrahedra into SUMS (and RECORD when not null),
-// clipped to the inside of M when CLIP_M and of L when CLIP_L. Returns the cell's surface area.
-double IntegrateCell(const LatticeCell& cell, const PressureLaw& law, bool clip_M, bool clip_L, PressureSums* sums,
-                     SurfaceRecord* record);
+// clipped to where the bodies overlap (ClipToOverlap). Returns the cell's surface area.
+double IntegrateCell(const LatticeCell& cell, const PressureLaw& law, PressureSums* sums, SurfaceRecord* record);
 
 }  // namespace contactlab

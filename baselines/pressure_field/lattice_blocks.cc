@@ -32,7 +32,7 @@ bool FitLattice(const Aabb& box_M, const Aabb& box_L, const Eigen::Vector3d& o_L
 
 std::int64_t CullBlocks(const DistanceField& field_L, const DistanceField& field_M, const Pose& X_ML,
                         const PressureLaw& law, const Eigen::Vector3d& origin, const Eigen::Vector3i& cells,
-                        double h, int root, double lipschitz, double lip_gap, std::array<std::int32_t, 3>* blocks,
+                        double h, int root, double lipschitz, std::array<std::int32_t, 3>* blocks,
                         std::int64_t capacity, std::int64_t* nodes) {
   const double margin = kCullMargin * h;
   struct Node {
@@ -54,7 +54,7 @@ std::int64_t CullBlocks(const DistanceField& field_L, const DistanceField& field
     const double phi_M = field_M.Distance(X_ML * c);
     const double reach = lipschitz * r + margin;
     if (phi_M > reach || phi_L > reach) continue;
-    if (std::abs(law.Gap(phi_M, phi_L)) > lip_gap * (r + margin)) continue;
+    if (std::abs(law.Gap(phi_M, phi_L)) > lipschitz * (r + margin)) continue;  // the gap is as steep as a field
     // Larger than a block: its eight octants.
     if (n.size > kBlock) {
       const std::int32_t s = n.size / 2;

@@ -29,13 +29,14 @@ bool FitLattice(const Aabb& box_M, const Aabb& box_L, const Eigen::Vector3d& o_L
                 Eigen::Vector3d* origin, Eigen::Vector3i* cells);
 
 // The lattice's blocks that may hold surface, by an octree from a cube of ROOT cells: a node
-// is dropped when its centre proves, by the fields' Lipschitz bound LIPSCHITZ (and LIP_GAP for
-// the gap), that it lies outside a body or holds no zero of LAW's gap. FIELD_L is in the
-// lattice's frame, FIELD_M at X_ML. Writes up to CAPACITY blocks' first cells to BLOCKS (the
-// rest are not rendered) and returns their number; adds the nodes examined to *NODES.
+// is dropped when its centre proves, by the fields' Lipschitz bound LIPSCHITZ (the gap's too:
+// it weighs the fields by weights that sum to 1), that it lies outside a body or holds no zero
+// of LAW's gap. FIELD_L is in the lattice's frame, FIELD_M at X_ML. Writes up to CAPACITY
+// blocks' first cells to BLOCKS (the rest are not rendered) and returns their number; adds the
+// nodes examined to *NODES.
 std::int64_t CullBlocks(const DistanceField& field_L, const DistanceField& field_M, const Pose& X_ML,
                         const PressureLaw& law, const Eigen::Vector3d& origin, const Eigen::Vector3i& cells,
-                        double h, int root, double lipschitz, double lip_gap, std::array<std::int32_t, 3>* blocks,
+                        double h, int root, double lipschitz, std::array<std::int32_t, 3>* blocks,
                         std::int64_t capacity, std::int64_t* nodes);
 
 // FIELD (the lattice body's) at the kBlockVerts vertices of the block whose first cell is BLK,

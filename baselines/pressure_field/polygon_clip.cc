@@ -21,19 +21,9 @@ int ClipInside(const PolyVertex* in, int n, Select value, PolyVertex* out) {
 
 }  // namespace
 
-const PolyVertex* ClipToInsides(PolyVertex (&buffers)[2][kMaxPolygon], int* m, bool clip_M, bool clip_L) {
-  PolyVertex* poly = buffers[0];
-  if (clip_M) {
-    PolyVertex* out = buffers[1];
-    *m = ClipInside(poly, *m, [](const PolyVertex& v) { return v.phi_M; }, out);
-    poly = out;
-  }
-  if (clip_L) {
-    PolyVertex* out = poly == buffers[0] ? buffers[1] : buffers[0];
-    *m = ClipInside(poly, *m, [](const PolyVertex& v) { return v.phi_L; }, out);
-    poly = out;
-  }
-  return poly;
+const PolyVertex* ClipToOverlap(PolyVertex (&buffers)[2][kMaxPolygon], int* m) {
+  *m = ClipInside(buffers[0], *m, [](const PolyVertex& v) { return v.phi_M + v.phi_L; }, buffers[1]);
+  return buffers[1];
 }
 
 }  // namespace contactlab

@@ -1,6 +1,6 @@
-// Convex polygons of the pressure-field contact surface and their clipping to each compliant
-// body's inside (Sutherland-Hodgman against a field linear on the polygon; Elandt et al. 2019
-// keep the surface where both bodies overlap).
+// Convex polygons of the pressure-field contact surface and their clipping to where the bodies
+// overlap (Sutherland-Hodgman against a field linear on the polygon; Elandt et al. 2019 keep
+// the surface where both bodies overlap).
 #pragma once
 
 #include <Eigen/Core>
@@ -18,12 +18,15 @@ inline PolyVertex Lerp(const PolyVertex& a, const PolyVertex& b, double t) {
   return {a.x + t * (b.x - a.x), a.phi_M + t * (b.phi_M - a.phi_M), a.phi_L + t * (b.phi_L - a.phi_L)};
 }
 
-// Vertices a polygon buffer holds: a tetrahedron's quad clipped twice needs 6.
+// Vertices a polygon buffer holds: a tetrahedron's quad clipped once needs 5.
 constexpr int kMaxPolygon = 8;
 
-// Clips the convex polygon in BUFFERS[0] (*M vertices) to phi_M <= 0 when CLIP_M, then to
-// phi_L <= 0 when CLIP_L; each clip writes into the other buffer. Returns the buffer that holds
-// the result, *M its vertex count.
-const PolyVertex* ClipToInsides(PolyVertex (&buffers)[2][kMaxPolygon], int* m, bool clip_M, bool clip_L);
+// Clips the convex polygon in BUFFERS[0] (*M vertices), a piece of the contact surface, to the
+// bodies' overlap phi_M + phi_L <= 0, into BUFFERS[1]. Returns BUFFERS[1], *M its vertex count.
+// On the surface the two bodies' depths have one sign (each is its compliance times the
+// pressure; a rigid body's is 0), so this is the clip to both insides; clipping by their sum,
+// the local overlap, keeps it well conditioned when one body is much stiffer than the other,
+// whose depth is then rounding-sized and of either sign.
+const PolyVertex* ClipToOverlap(PolyVertex (&buffers)[2][kMaxPolygon], int* m);
 
 }  // namespace contactlab

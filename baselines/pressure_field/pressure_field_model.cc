@@ -30,7 +30,9 @@ PressureFieldModel::PressureFieldModel(PressureFieldSide A, PressureFieldSide B,
       Fail(where, std::string(body) + "'s field is a polygon soup's offset band, not a volume with a pressure field");
     }
     if (!(s->field->min_value() < 0)) Fail(where, std::string(body) + "'s field has no inside (no negative sample)");
-    if (!s->rigid && !(s->modulus > 0)) Fail(where, std::string(body) + "'s modulus must be > 0");
+    if (!s->rigid && !(s->modulus > 0 && std::isfinite(s->modulus))) {
+      Fail(where, std::string(body) + "'s modulus must be finite and > 0 (an infinite one is a rigid body)");
+    }
   }
   if (A.rigid && B.rigid) Fail(where, "both bodies are rigid: a pressure field needs one compliant body");
   if (!(options_.lipschitz >= 1) || !(options_.fd_step > 0) || options_.max_blocks < 1 || options_.lattice < 1) {
@@ -43,8 +45,10 @@ PressureFieldModel::PressureFieldModel(PressureFieldSide A, PressureFieldSide B,
   lattice_is_A_ = A.field->spacing() < B.field->spacing();
   L_ = lattice_is_A_ ? std::move(A) : std::move(B);
   M_ = lattice_is_A_ ? std::move(B) : std::move(A);
-  kL_ = L_.rigid ? 0 : L_.modulus / -double(L_.field->min_value());
-  kM_ = M_.rigid ? 0 : M_.modulus / -double(M_.field->min_value());
+  // Each body's compliance: metres of depth per pascal of pressure (pressure_law.h).
+  const double c_L = L_.rigid ? 0 : -double(L_.field->min_value()) / L_.modulus;
+  const double c_M = M_.rigid ? 0 : -double(M_.field->min_value()) / M_.modulus;
+  law_ = PressureLaw::FromCompliances(c_M, c_L);
   h_ = L_.field->spacing() * options_.lattice;
   // Every block of L's box at spacing h fits (capped).
   const Eigen::Vector3d extent = L_.field->box().size() / (h_ * kBlock);
@@ -81,10 +85,7 @@ bool PressureFieldModel::FindBlocks(const Pose& X_LM, std::int64_t* nodes) {
   int root = kBlock;
   while (root < cells_.maxCoeff()) root *= 2;
   // The blocks that may hold surface, then L's field at their vertices.
-  const double lip = options_.lipschitz;
-  const bool both = !M_.rigid && !L_.rigid;
-  const double lip_g = both ? lip * (kM_ + kL_) : lip;
-  num_blocks_ = CullBlocks(fL, fM, X_LM.Inverse(), Law(), origin_, cells_, h_, root, lip, lip_g, blocks_.data(),
+  num_blocks_ = CullBlocks(fL, fM, X_LM.Inverse(), law_, origin_, cells_, h_, root, options_.lipschitz, blocks_.data(),
                            std::int64_t(blocks_.size()), nodes);
   for (std::int64_t b = 0; b < num_blocks_; ++b) {
     SampleBlock(fL, origin_, h_, blocks_[std::size_t(b)], block_phi_L_.data() + b * kBlockVerts);
@@ -95,7 +96,7 @@ bool PressureFieldModel::FindBlocks(const Pose& X_LM, std::int64_t* nodes) {
 void PressureFieldModel::Integrate(const Pose& X_LM, bool record, Sums* sums) {
   const DistanceField& fM = *M_.field;
   const LatticeInOther lattice_in_M(X_LM.Inverse(), h_);
-  const PressureLaw law = Law();
+  const PressureLaw& law = law_;
   const bool clip_M = !M_.rigid, clip_L = !L_.rigid;
   SurfaceRecord recorder{&surface_, &surface_pressure_, record_capacity_};
   if (record) {
@@ -118,7 +119,7 @@ void PressureFieldModel::Integrate(const Pose& X_LM, bool record, Sums* sums) {
           // The surface in each cell the gap changes sign over, where no body is wholly away.
           if (!LoadCell(phi_M, phi_L, ci, cj, ck, law, clip_M, clip_L, &cell)) continue;
           PlaceCorners(x0, h_, ci, cj, ck, &cell);
-          const double cell_area = IntegrateCell(cell, law, clip_M, clip_L, sums, record ? &recorder : nullptr);
+          const double cell_area = IntegrateCell(cell, law, sums, record ? &recorder : nullptr);
           sums->area += cell_area;
           // The cells and blocks that carry surface, for patches and K_B.
           if (record && cell_area > 0) block_surface_[std::size_t(bi)] = 1;

@@ -13,10 +13,10 @@
 // Extraction. A lattice of spacing h (`lattice` cells of the finer field; 1 by default), on the
 // grid of the body with the finer field (B's on a tie) and in its frame, covers the overlap of the two fields' boxes. An octree over it culls
 // every block whose centre proves, by the fields' Lipschitz bound, that the block lies outside a
-// body or holds no zero of g = p_A - p_B (-phi_A for a rigid A, phi_B for a rigid B). Surviving
+// body or holds no zero of g = p_A - p_B (scaled to metres, pressure_law.h; -phi_A for a rigid A, phi_B for a rigid B). Surviving
 // 4x4x4-cell blocks sample both fields at their 125 vertices; each cell is split into six
 // tetrahedra (Kuhn), on which g and the fields are linear: the zero set of g is a triangle or
-// quad, clipped to phi <= 0 of each compliant body, and the pressure, linear on it, is
+// quad, clipped to where the bodies overlap (phi_A + phi_B <= 0), and the pressure, linear on it, is
 // integrated exactly. The integrand is symmetric in the two bodies (g changes sign, the normal
 // flips, the pressures trade places), so exchanging the roles changes the result only through
 // the lattice, and not at all when one field is finer: the wrench on A is then exactly the
@@ -86,9 +86,6 @@ class PressureFieldModel final : public ContactModel {
   // Finds the blocks that may hold surface with M at X_LM; false when there is none.
   bool FindBlocks(const Pose& X_LM, std::int64_t* nodes);
   int CountPatches();
-  // The two bodies' pressures and their gap p_M - p_L (up to a positive factor; a rigid side's
-  // pressure counts as infinite inside it), whose zero set is the contact surface.
-  PressureLaw Law() const { return {M_.rigid, L_.rigid, kM_, kL_}; }
   // The wrench on B (world, about B's origin) of SUMS, the lattice body's, at the poses.
   Wrench OnB(const Sums& sums, const Pose& X_WA, const Pose& X_WB) const;
   Pose LatticeToOther(const Pose& X_WA, const Pose& X_WB) const {
@@ -99,7 +96,9 @@ class PressureFieldModel final : public ContactModel {
   bool lattice_is_A_ = false;  // A's field is strictly finer
   PressureFieldSide L_, M_;    // the lattice body and the other
   double depth_A_ = 0, depth_B_ = 0, h_ = 0, radius_B_ = 0;
-  double kL_ = 0, kM_ = 0;  // E / D of each (pressure per metre of depth); 0 for a rigid side
+  // The two bodies' pressures and their gap p_M - p_L (up to a positive factor; a rigid side's
+  // pressure counts as infinite inside it), whose zero set is the contact surface.
+  PressureLaw law_;
   // The lattice of the latest query: origin (L's frame) and cells per axis.
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
   Eigen::Vector3i cells_ = Eigen::Vector3i::Zero();

@@ -8,8 +8,11 @@ const ParamTable<PressureFieldSpec>& PressureFieldParams() {
       "bodies[].pressure_field",
       "The body's pressure field in the pressure-field (hydroelastic) model: p = E e, e = -phi / max(-phi).",
       {
-          P::Number("modulus", PARAM_MEMBER(modulus), Above(0), NoUpperBound(),
-                    "hydroelastic modulus E: the pressure at the body's deepest point")
+          P::Number("modulus", PARAM_MEMBER(modulus), AtLeast(kMinPressureModulus), AtMost(kMaxPressureModulus),
+                    "hydroelastic modulus E: the pressure at the body's deepest point. Bounded to physical values: "
+                    "softer than any gel to a thousand times diamond (1.1e12 Pa); a stiffer body is `rigid`, which "
+                    "1e15 Pa against a 1e5 Pa body already renders to six digits, and moduli toward the double "
+                    "range overflow the pressure, its integral and K_B")
               .Unit("Pa").Sweepable().Example("250000"),
           P::Boolean("rigid", PARAM_MEMBER(rigid),
                      "infinite modulus: the contact surface is this body's boundary inside the other")

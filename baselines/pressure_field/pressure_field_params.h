@@ -7,6 +7,10 @@
 
 namespace contactlab {
 
+// The range of a body's modulus (Pa), and why, in the table row (pressure_field_params.cc).
+constexpr double kMinPressureModulus = 1;
+constexpr double kMaxPressureModulus = 1e15;
+
 // The body's pressure field: p(x) = E e(x), e the field's extent (0 on the surface, 1 at the
 // deepest point), E the modulus. A rigid body has infinite modulus: the contact surface is its
 // boundary inside the other body.

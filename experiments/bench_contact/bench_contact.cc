@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "bench_common.h"
+#include "bench_main.h"
 #include "placed_scene.h"
 #include "roofline.h"
 #include "pointshell_contact/pointshell_contact_model.h"
@@ -121,7 +122,5 @@ int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   contactlab::RegisterAll();
   contactlab::bench::RegisterRooflineBenchmarks();
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return contactlab::bench::RunBenchmarks();
 }

@@ -10,6 +10,7 @@
 #include <random>
 
 #include "bench_common.h"
+#include "bench_main.h"
 #include "deform/embedded_points.h"
 #include "deform/reduced_integrator.h"
 #include "deform/reduced_model.h"
@@ -193,4 +194,4 @@ BENCHMARK(BM_EmbeddedPoints)
 }  // namespace
 }  // namespace contactlab
 
-BENCHMARK_MAIN();
+CONTACTLAB_BENCHMARK_MAIN()

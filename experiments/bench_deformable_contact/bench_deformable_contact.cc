@@ -44,6 +44,7 @@
 #include <time.h>
 
 #include "bench_common.h"
+#include "bench_main.h"
 #include "pointshell_contact/deformable_contact_models.h"
 #include "pointshell_contact/pointshell_contact_model.h"
 #include "deform/reduced_integrator.h"
@@ -527,7 +528,5 @@ void RegisterAll() {
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   contactlab::RegisterAll();
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return contactlab::bench::RunBenchmarks();
 }

@@ -19,6 +19,7 @@
 #include <tuple>
 
 #include "bench_common.h"
+#include "bench_main.h"
 #include "deform/deformed_field_accuracy.h"
 #include "deform/deformed_field_batch.h"
 #include "deform/reduced_model.h"
@@ -449,4 +450,4 @@ BENCHMARK(BM_KdTreeRebuild)
 }  // namespace
 }  // namespace contactlab
 
-BENCHMARK_MAIN();
+CONTACTLAB_BENCHMARK_MAIN()

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "bench_common.h"
+#include "bench_main.h"
 #include "haptics/halfspace_contact_model.h"
 #include "haptics/haptic_cycle.h"
 #include "haptics/safety_filter.h"
@@ -120,7 +121,5 @@ int main(int argc, char** argv) {
     // Smoke run: the dense point set is left out.
     benchmark::SetBenchmarkFilter("^(BM_Coupling|BM_Safety|BM_FullSimulatedCycle/(4|16)$)");
   }
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return contactlab::bench::RunBenchmarks();
 }

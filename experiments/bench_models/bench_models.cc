@@ -25,6 +25,7 @@
 
 #include "contact/register_contact_models.h"
 #include "bench_common.h"
+#include "bench_main.h"
 #include "placed_scene.h"
 #include "pointshell_contact/pointshell_contact_model.h"
 #include "experiment/contact_placement.h"
@@ -278,7 +279,5 @@ void RegisterAll() {
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   contactlab::RegisterAll();
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return contactlab::bench::RunBenchmarks();
 }

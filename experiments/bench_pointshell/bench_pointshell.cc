@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "bench_common.h"
+#include "bench_main.h"
 #include "geometry/mesh_io.h"
 #include "pointshell/build_pointshell.h"
 #include "pointshell/pointshell_quality.h"
@@ -81,4 +82,4 @@ BENCHMARK(BM_BuildRepulsionPointshell)
 }  // namespace
 }  // namespace contactlab
 
-BENCHMARK_MAIN();
+CONTACTLAB_BENCHMARK_MAIN()

@@ -15,6 +15,7 @@
 
 #include "contact/register_contact_models.h"
 #include "bench_common.h"
+#include "bench_main.h"
 #include "experiment/scene.h"
 #include "experiment/scene_assets.h"
 #include "util/data_path.h"
@@ -72,4 +73,4 @@ BENCHMARK(BM_QueryLoop)
 }  // namespace
 }  // namespace contactlab
 
-BENCHMARK_MAIN();
+CONTACTLAB_BENCHMARK_MAIN()

@@ -4,6 +4,7 @@
 #include <benchmark/benchmark.h>
 
 #include "bench_common.h"
+#include "bench_main.h"
 #include "bench_mesh.h"
 #include "sdf/build_distance_field.h"
 
@@ -55,4 +56,4 @@ BENCHMARK(BM_BuildSoupField)
 }  // namespace
 }  // namespace contactlab
 
-BENCHMARK_MAIN();
+CONTACTLAB_BENCHMARK_MAIN()

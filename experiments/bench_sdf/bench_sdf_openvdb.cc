@@ -35,6 +35,7 @@
 
 #include "baselines/reference/openvdb_field.h"
 #include "bench_common.h"
+#include "bench_main.h"
 #include "bench_mesh.h"
 #include "field_queries.h"
 #include "sdf/batch_distance.h"
@@ -293,9 +294,9 @@ void RegisterAll() {
     }
   }
 }
-[[maybe_unused]] const bool kRegistered = (RegisterAll(), true);  // before BENCHMARK_MAIN's main() runs
+[[maybe_unused]] const bool kRegistered = (RegisterAll(), true);  // before main() runs
 
 }  // namespace
 }  // namespace contactlab
 
-BENCHMARK_MAIN();
+CONTACTLAB_BENCHMARK_MAIN()

@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "bench_common.h"
+#include "bench_main.h"
 #include "field_queries.h"
 #include "geometry/procedural_shapes.h"
 #include "sdf/build_distance_field.h"
@@ -63,4 +64,4 @@ BENCHMARK(BM_RandomQueries)
 }  // namespace
 }  // namespace contactlab
 
-BENCHMARK_MAIN();
+CONTACTLAB_BENCHMARK_MAIN()

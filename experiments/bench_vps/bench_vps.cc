@@ -20,6 +20,7 @@
 #include "contact/register_contact_models.h"
 #include "baselines/vps/vps_contact_model.h"
 #include "bench_common.h"
+#include "bench_main.h"
 #include "placed_scene.h"
 #include "pointshell_contact/pointshell_contact_model.h"
 #include "experiment/contact_placement.h"
@@ -101,7 +102,5 @@ void RegisterAll() {
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   contactlab::RegisterAll();
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return contactlab::bench::RunBenchmarks();
 }

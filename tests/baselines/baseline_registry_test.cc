@@ -3,6 +3,10 @@
 // rejects a bad penalty parameter.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <string>
+#include <vector>
+
 #include "contact/register_contact_models.h"
 #include "contact/model_registry.h"
 #include "geometry/procedural_shapes.h"
@@ -84,7 +88,25 @@ TEST(BaselineRegistry, EveryModelAsksForWhatItDeclaresAndPushesTheBoxDown) {
     EXPECT_LT(r.on_B.force.head<2>().norm(), 0.5 * std::abs(r.on_B.force.z()));
     ++models;
   }
-  EXPECT_GE(models, 6);  // pointshell, pointshell-linear, fcl, bullet, vps, vps-repulsion (+ reference)
+  EXPECT_EQ(models, int(ContactModelNames().size()));
+}
+
+// The registry holds exactly the models the build promises, by name: dropping or renaming one
+// (a registration left out of its folder's CMakeLists.txt, say) fails here, not silently in
+// every loop over ContactModelNames().
+TEST(BaselineRegistry, RegistersExactlyTheModelsOfTheBuild) {
+  RegisterContactModels();
+  std::vector<std::string> models = {"bullet",        "fcl",           "inner-spheres",
+                                     "pointshell",    "pointshell-ccd", "pointshell-linear",
+                                     "pressure-field", "vps",           "vps-repulsion"};
+  std::vector<std::string> references;
+#ifdef CONTACTLAB_HAVE_CGAL
+  models.push_back("reference");  // offline: dense quadrature with CGAL's exact distances
+  references = {"eq2-halfspace", "volume"};
+#endif
+  std::sort(models.begin(), models.end());
+  EXPECT_EQ(ContactModelNames(), models);
+  EXPECT_EQ(ReferenceModelNames(), references);
 }
 
 TEST(BaselineRegistry, EveryModelRejectsANegativeStiffness) {

@@ -13,6 +13,9 @@
 #include "baselines/pointshell_ccd/pointshell_ccd_model.h"
 #include "baselines/pointshell_ccd/time_of_impact.h"
 #include "contact/test_shells.h"
+#include "experiment/scene.h"
+#include "util/config_node.h"
+#include "util/error.h"
 
 namespace contactlab {
 namespace {
@@ -323,6 +326,58 @@ TEST(PointshellCcd, SlidesAlongAFaceWithoutTangentialForceAndItsStiffnessMatches
   }
   EXPECT_NEAR(r.K_B(2, 2), -k, 2e-3 * k);  // 1 / (1/k + |r x n|^2 / k_rot)
   EXPECT_NEAR(r.K_B(0, 0), 0, 1e-6 * k);
+}
+
+// proxy_offset 1e-12 (then inside the accepted (0, 4] cells) left the proxy at B's pose: 6.4e-9
+// N for 58.5 N, 28 ms a query. The row starts at kMinProxyOffsetCells, where the proxy still
+// follows the contact: a scene below it is refused naming the key and the range, and so is a
+// model made with a smaller offset in metres.
+TEST(PointshellCcd, OffsetOf1e12CellsIsRefusedRatherThanLeftToStall) {
+  auto scene = [](const std::string& offset) {
+    return "name: proxy\nbodies:\n"
+           "  - {name: ball, mesh: \"sphere:0.01\", role: pointshell}\n"
+           "  - {name: plate, mesh: \"box:0.05,0.05,0.01\", role: field}\n"
+           "model: {proxy_offset: " + offset + "}\n";
+  };
+  try {
+    ParseScene(ConfigNode::LoadString(scene("1e-12"), "proxy.yaml"));
+    ADD_FAILURE() << "proxy_offset 1e-12 was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("proxy_offset: must be in [0.01, 4], got 1e-12"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_NO_THROW(ParseScene(ConfigNode::LoadString(scene("0.01"), "proxy.yaml")));
+  auto field = Halfspace();
+  EXPECT_THROW(PointshellCcdModel(SphereShell(0.01, 8, 3), field, ProxyParams(1e-12 * field->spacing())), Error);
+}
+
+// At both ends of proxy_offset's range (kMinProxyOffsetCells and 4 cells of B's field) the
+// proxy holds the ball's lowest point at the offset above B's face, pressed 2 mm in and slid
+// 2 cm sideways, fresh and along the path: the force is k (z_min - l - z_B), straight down.
+TEST(PointshellCcd, OffsetsAtTheEndsOfTheirRangeGiveTheClosedFormForce) {
+  const double k = 1e4;
+  auto shell = SphereShell(0.01, 8, 3);
+  auto field = Halfspace();
+  double z_min = 0;
+  for (int i = 0; i < shell->num_points(); ++i) z_min = std::min(z_min, double(shell->z[i]));
+  for (const double cells : {kMinProxyOffsetCells, 4.0}) {
+    const double l = cells * field->spacing();
+    PointshellCcdParams params = ProxyParams(l);
+    params.rot_stiffness = k * 1.0;  // as in the sliding test: lift B's face, do not tilt it
+    PointshellCcdModel model(shell, field, params);
+    ContactQuery q;
+    ContactResult r;
+    for (int i = 0; i <= 40; ++i) {
+      q.X_WB = Pose::FromTranslation(Eigen::Vector3d(0.0005 * i, 0.0002 * i, -0.01 + std::min(0.002, 0.0001 * i)));
+      r = model.Evaluate(q);
+    }
+    const double expected = k * ((z_min - l) - q.X_WB.translation.z());
+    EXPECT_NEAR(r.on_B.force.z(), expected, 1e-3 * std::abs(expected)) << cells << " cells, along the path";
+    EXPECT_LT(r.on_B.force.head<2>().norm(), 1e-3 * std::abs(expected)) << cells << " cells";
+    PointshellCcdModel fresh(shell, field, params);
+    const ContactResult f = fresh.Evaluate(q);  // placed at B, 2 mm deep, and pushed out
+    EXPECT_NEAR(f.on_B.force.z(), expected, 1e-3 * std::abs(expected)) << cells << " cells, fresh";
+  }
 }
 
 TEST(PointshellCcd, ResetPlacesTheProxyAtTheNextQueryAndRefusesNothingFinite) {

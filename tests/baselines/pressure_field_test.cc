@@ -8,10 +8,14 @@
 #include <numbers>
 #include <cstdio>
 #include <random>
+#include <string>
 
 #include "baselines/pressure_field/pressure_field_model.h"
+#include "baselines/pressure_field/pressure_field_params.h"
 #include "baselines/volumetric_cases.h"
 #include "contact/test_shells.h"
+#include "experiment/scene.h"
+#include "util/config_node.h"
 #include "geometry/pose.h"
 #include "util/error.h"
 
@@ -52,29 +56,93 @@ double SphereForce(double E, double R, double H) {
 }
 
 
+// MODEL, a compliant ball (A, radius R, modulus E) on a rigid halfspace (B, z < 0), against
+// SphereForce at depths of 1, 4 and 10 mm, on a 1 mm lattice.
+void ExpectSphereOnRigidHalfspace(PressureFieldModel& model, double R, double E, const std::string& what) {
+  for (const double delta : {0.001, 0.004, 0.01}) {
+    const ContactResult r = model.Evaluate(At(Translation(0.0003, -0.0002, R - delta), Pose::Identity()));
+    const double H = R - delta;
+    const double expected = SphereForce(E, R, H);
+    SCOPED_TRACE(::testing::Message() << what << " delta " << delta);
+    // Trilinear interpolation of the ball's distance overestimates it by up to h²/R inside, a
+    // few per cent of the pressure when the depth is one cell; 1 % from two cells on.
+    std::printf("sphere on rigid halfspace, %s, depth %g: force error %+.2f%%\n", what.c_str(), delta,
+                100 * (-r.on_B.force.z() / expected - 1));
+    EXPECT_NEAR(-r.on_B.force.z(), expected, (delta < 0.002 ? 0.04 : 0.01) * expected);  // pushes B down
+    EXPECT_LT(r.on_B.force.head<2>().norm(), 1e-3 * expected);
+    EXPECT_NEAR(r.stats.contact_area, kPi * (R * R - H * H), 0.02 * kPi * (R * R - H * H));
+    EXPECT_EQ(r.stats.patches, 1);
+    EXPECT_NEAR(r.stats.max_penetration, delta, 0.05 * delta);
+    // The pressure's centre is under A's centre: torque about B's origin is c x F.
+    const Eigen::Vector3d c(0.0003, -0.0002, 0);
+    EXPECT_LT((r.on_B.torque - c.cross(r.on_B.force)).norm(), 1e-3 * expected * R);
+  }
+}
+
 TEST(PressureField, CompliantSphereOnRigidHalfspaceMatchesTheClosedForm) {
   const double R = 0.02, E = 1e5;
   // A's field finer than B's (the lattice on A) and equal (the lattice on B).
   for (const double h_B : {0.002, 0.001}) {
     PressureFieldModel model({Ball(R, 0.001), E, false}, {Halfspace(h_B), 0, true});
-    for (const double delta : {0.001, 0.004, 0.01}) {
+    ExpectSphereOnRigidHalfspace(model, R, E, "h_B " + std::to_string(h_B));
+  }
+}
+
+// pressure_lattice > 1: the surface extracted on every 2nd or 4th grid line of the finer field.
+// On a ball field of 0.5 and 0.25 mm the lattice is 1 mm, as in the test above, and must meet
+// the closed form within the same tolerances.
+TEST(PressureField, CoarserLatticeOnAFinerFieldMatchesTheSphereClosedForm) {
+  const double R = 0.02, E = 1e5;
+  for (const int lattice : {2, 4}) {
+    PressureFieldOptions o;
+    o.lattice = lattice;
+    PressureFieldModel model({Ball(R, 0.001 / lattice), E, false}, {Halfspace(0.002), 0, true}, o);
+    ASSERT_NEAR(model.spacing(), 0.001, 1e-12);
+    ExpectSphereOnRigidHalfspace(model, R, E, "lattice " + std::to_string(lattice));
+  }
+}
+
+// A rigid ball of radius R whose lowest point is DELTA deep in a compliant halfspace (modulus E,
+// its field D deep): the pressure E z / D over the ball's cap integrates to E / D times the
+// cap's volume, pi delta^2 (3R - delta) / 3, straight up.
+double RigidBallForce(double E, double D, double R, double delta) {
+  return E / D * kPi * delta * delta * (3 * R - delta) / 3;
+}
+
+// A ball far stiffer than the plate it presses is the rigid ball: the surface is the ball's
+// boundary, carrying the plate's pressure. Stiffness enters as the bodies' compliances in series
+// (pressure_law.h): a modulus of 1e40 Pa once multiplied the fields' rounding into 1e18 N.
+TEST(PressureField, StiffBallOnASoftPlateGivesTheRigidBallForceUpToAModulusOf1e40) {
+  const double R = 0.02, E = 1e5, D = 0.03;  // the halfspace's field reaches 3 cm deep
+  for (const double E_ball : {1e15, 1e20, 1e40, 0.0}) {
+    const bool rigid = E_ball == 0;
+    PressureFieldModel model({Ball(R, 0.001), rigid ? 1e5 : E_ball, rigid}, {Halfspace(0.001), E, false});
+    ASSERT_NEAR(model.depth_B(), D, 1e-9);
+    for (const double delta : {0.002, 0.006}) {
       const ContactResult r = model.Evaluate(At(Translation(0.0003, -0.0002, R - delta), Pose::Identity()));
-      const double H = R - delta;
-      const double expected = SphereForce(E, R, H);
-      SCOPED_TRACE(::testing::Message() << "h_B " << h_B << " delta " << delta);
-      // Trilinear interpolation of the ball's distance overestimates it by up to h²/R inside, a
-      // few per cent of the pressure when the depth is one cell; 1 % from two cells on.
-      std::printf("sphere on rigid halfspace, h_B %g, depth %g: force error %+.2f%%\n", h_B, delta,
-                  100 * (-r.on_B.force.z() / expected - 1));
-      EXPECT_NEAR(-r.on_B.force.z(), expected, (delta < 0.002 ? 0.04 : 0.01) * expected);  // pushes B down
+      const double expected = RigidBallForce(E, D, R, delta);
+      SCOPED_TRACE(::testing::Message() << "ball modulus " << (rigid ? "rigid" : std::to_string(E_ball)) << " delta "
+                                        << delta);
+      std::printf("ball of modulus %g on a 1e5 Pa plate, depth %g: %.6g N, rigid-ball limit %.6g N\n", E_ball, delta,
+                  -r.on_B.force.z(), expected);
+      // Trilinear interpolation of the ball's distance: 2 % low at 2 mm (two cells), 1 % from 6 mm.
+      EXPECT_NEAR(-r.on_B.force.z(), expected, (delta < 0.004 ? 0.03 : 0.01) * expected);
       EXPECT_LT(r.on_B.force.head<2>().norm(), 1e-3 * expected);
-      EXPECT_NEAR(r.stats.contact_area, kPi * (R * R - H * H), 0.02 * kPi * (R * R - H * H));
-      EXPECT_EQ(r.stats.patches, 1);
-      EXPECT_NEAR(r.stats.max_penetration, delta, 0.05 * delta);
-      // The pressure's centre is under A's centre: torque about B's origin is c x F.
-      const Eigen::Vector3d c(0.0003, -0.0002, 0);
-      EXPECT_LT((r.on_B.torque - c.cross(r.on_B.force)).norm(), 1e-3 * expected * R);
+      EXPECT_NEAR(r.stats.contact_area, 2 * kPi * R * delta, 0.03 * 2 * kPi * R * delta);  // the cap's area
     }
+  }
+}
+
+// Moduli at the ends of their range (pressure_field_params.h) give the closed form: two equal
+// spheres meet on the mid-plane, each carrying SphereForce at half the overlap.
+TEST(PressureField, EqualSpheresAtTheModulusBoundsMatchTheClosedForm) {
+  const double R = 0.015, delta = 0.004;
+  for (const double E : {kMinPressureModulus, kMaxPressureModulus}) {
+    PressureFieldModel model({Ball(R, 0.001), E, false}, {Ball(R, 0.001), E, false});
+    const ContactResult r = model.Evaluate(At(Pose::Identity(), Translation(0, 0, 2 * R - delta)));
+    const double expected = SphereForce(E, R, R - delta / 2);
+    EXPECT_NEAR(r.on_B.force.z(), expected, 0.015 * expected) << E;
+    EXPECT_TRUE(r.K_B.allFinite()) << E;
   }
 }
 
@@ -252,6 +320,30 @@ TEST(PressureField, StiffnessMatchesCentralDifferencesOfTheWrench) {
     }
   }
   EXPECT_GE(checked, 5);
+}
+
+// Both bodies at 1e307 Pa once rendered no contact at all (E / depth overflowed); 1e306 gave
+// 8.6e300 N. The modulus row bounds it to physical values (pressure_field_params.h): a scene
+// past either bound is refused when it loads, naming the key and the range, and one at the
+// bounds loads (EqualSpheresAtTheModulusBoundsMatchTheClosedForm renders them).
+TEST(PressureField, ModulusOf1e307IsRefusedWhenTheSceneLoadsNamingTheKeyAndRange) {
+  auto scene = [](const std::string& modulus) {
+    return "name: stiff\nbodies:\n"
+           "  - {name: ball, mesh: \"sphere:0.02\", role: pointshell, pressure_field: {modulus: " + modulus + "}}\n"
+           "  - {name: plate, mesh: \"box:0.05,0.05,0.01\", role: field, pressure_field: {modulus: " + modulus + "}}\n";
+  };
+  for (const std::string modulus : {"1e307", "1.1e15", "0.5"}) {
+    try {
+      ParseScene(ConfigNode::LoadString(scene(modulus), "stiff.yaml"));
+      ADD_FAILURE() << "modulus " << modulus << " was accepted";
+    } catch (const Error& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("pressure_field.modulus: must be in [1, 1e+15], got " + modulus), std::string::npos) << what;
+    }
+  }
+  for (const std::string modulus : {"1", "1e15"}) {
+    EXPECT_NO_THROW(ParseScene(ConfigNode::LoadString(scene(modulus), "stiff.yaml"))) << modulus;
+  }
 }
 
 TEST(PressureField, RefusesSoupsAndTwoRigidBodies) {
