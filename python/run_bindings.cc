@@ -25,8 +25,8 @@ namespace {
 std::string Run(const std::string& config_path, std::optional<std::string> out, const std::vector<std::string>& overrides,
                 const std::string& profile, const std::vector<int>& jobs, int parallel, std::optional<std::string> cache,
                 bool use_cache, bool progress) {
+  // Loading parses and checks every sweep point before anything runs.
   const ExperimentConfig config = LoadExperimentConfig(RequireDataFile(config_path), overrides, profile);
-  ExpandJobs(config);  // every sweep point parses before anything runs
   if (parallel < 0) Fail("run", "parallel must be >= 0 (0: all cores)");
   RunOptions options;
   options.out_dir = out ? std::filesystem::path(*out) : std::filesystem::path("results") / config.name;
