@@ -27,8 +27,8 @@ std::string Run(const std::string& config_path, std::optional<std::string> out, 
                 const std::string& profile, const std::vector<int>& jobs, int parallel, std::optional<std::string> cache,
                 bool use_cache, bool progress) {
   const InputFileRecord inputs;  // no file this run reads is one of its outputs
+  // Loading parses and checks every sweep point before anything runs.
   const ExperimentConfig config = LoadExperimentConfig(RequireDataFile(config_path), overrides, profile);
-  ExpandJobs(config);  // every sweep point parses before anything runs
   if (parallel < 0) Fail("run", "parallel must be >= 0 (0: all cores)");
   RunOptions options;
   options.out_dir = out ? std::filesystem::path(*out) : std::filesystem::path("results") / config.name;

@@ -1,5 +1,7 @@
 """contactlab.load_results: a results folder written by `contactlab run` (or contactlab.run)."""
 
+import csv
+import io
 import json
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -51,9 +53,33 @@ def load_results(folder):
     except (OSError, ValueError) as e:
         raise _core.Error(f"{meta_file}: cannot read: {e}") from None
     tables = {}
-    for csv in sorted(folder.glob("*.csv")):
-        try:
-            tables[csv.stem] = pandas.read_csv(csv)
-        except (OSError, ValueError) as e:
-            raise _core.Error(f"{csv}: cannot read: {e}") from None
+    for table in sorted(folder.glob("*.csv")):
+        tables[table.stem] = _read_table(table, pandas)
     return Results(folder=folder, tables=tables, meta=meta)
+
+
+def _read_table(path, pandas):
+    """PATH as a DataFrame, read as contactlab writes it (RFC 4180: a cell holding a comma, quote
+    or line break is quoted). Every row must have as many cells as the header: pandas alone would
+    take a row one cell longer as an index column and shift every column by one, silently."""
+    try:
+        with open(path, newline="") as f:
+            text = f.read()
+    except (OSError, ValueError) as e:
+        raise _core.Error(f"{path}: cannot read: {e}") from None
+    reader = csv.reader(io.StringIO(text, newline=""), strict=True)
+    try:
+        header = next(reader, None)
+        if header is None:
+            raise _core.Error(f"{path}: is empty (no header line)")
+        start = reader.line_num
+        for row in reader:
+            if row and len(row) != len(header):
+                raise _core.Error(f"{path}:{start + 1}: {len(row)} cells, the header (line 1) has {len(header)}")
+            start = reader.line_num
+    except csv.Error as e:
+        raise _core.Error(f"{path}:{reader.line_num}: not a well-formed CSV row: {e}") from None
+    try:
+        return pandas.read_csv(io.StringIO(text, newline=""), index_col=False)
+    except (ValueError, pandas.errors.ParserError) as e:
+        raise _core.Error(f"{path}: cannot read: {e}") from None

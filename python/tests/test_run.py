@@ -107,3 +107,29 @@ def test_python_model_errors_fail_the_run(config_file, tmp_path):
         contactlab.run(config_file, out=tmp_path / "broken", set={"models": ["py-broken"]})
     with pytest.raises(contactlab.Error, match="'pointshell' is a built-in contact model"):
         contactlab.register_model("pointshell", broken)
+
+
+def test_comma_or_quote_in_the_experiment_or_python_model_name_stays_in_its_column(config_file, tmp_path):
+    name, model = 'check, "quoted"', 'py,half "space"'
+    contactlab.register_model(model, halfspace_ball(20000.0))
+    out = contactlab.run(config_file, out=tmp_path / "comma", set={"name": name, "models": ["pointshell", model]})
+    results = contactlab.load_results(out)
+    for table in ("summary", "cycles"):
+        frame = results[table]
+        assert set(frame["experiment"]) == {name}, table
+        assert set(frame["model"]) == {"pointshell", model}, table
+        assert frame["job"].dtype.kind == "i", table
+    assert (results.summary["max_force_N"] > 0).all()
+    assert results.cycles["fz"].dtype.kind == "f"
+
+
+def test_load_results_refuses_a_row_with_the_wrong_number_of_cells_naming_file_and_line(tmp_path):
+    (tmp_path / "meta.json").write_text("{}")
+    # Every row one cell longer than the header: pandas alone takes the first cell as an index
+    # and shifts every column by one.
+    (tmp_path / "summary.csv").write_text("experiment,model,max_force_N\na,b,pointshell,1.5\na,b,vps,2.5\n")
+    with pytest.raises(contactlab.Error, match=r"summary\.csv:2: 4 cells, the header \(line 1\) has 3"):
+        contactlab.load_results(tmp_path)
+    (tmp_path / "summary.csv").write_text('experiment,model,max_force_N\n"a,b",pointshell,1.5\n"a,b",vps\n')
+    with pytest.raises(contactlab.Error, match=r"summary\.csv:3: 2 cells, the header \(line 1\) has 3"):
+        contactlab.load_results(tmp_path)

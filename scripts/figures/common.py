@@ -58,8 +58,20 @@ def axis(name):
 
 
 def read_csv(path):
+    """PATH as a list of {column: cell} dicts, read as contactlab writes it (RFC 4180 quoting: a
+    name holding a comma stays one cell). Raises ValueError naming the file and line for a row
+    with another number of cells than the header, which DictReader would shift into None."""
     with open(path, newline="") as f:
-        return list(csv.DictReader(f))
+        reader = csv.reader(f, strict=True)
+        header = next(reader, [])
+        rows, start = [], reader.line_num
+        for cells in reader:
+            if cells and len(cells) != len(header):
+                raise ValueError(f"{path}:{start + 1}: {len(cells)} cells, the header (line 1) has {len(header)}")
+            if cells:
+                rows.append(dict(zip(header, cells)))
+            start = reader.line_num
+        return rows
 
 
 # ROW[KEY] as a float; NaN when the column is missing or empty.

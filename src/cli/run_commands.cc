@@ -97,13 +97,13 @@ auto RunRemovingNewEmptyFolders(const std::filesystem::path& out_dir, Work&& wor
 
 void RunRun(const RunArgs& args) {
   const ExperimentConfig config = LoadExperimentConfig(RequireDataFile(args.config), args.overrides, args.profile);
-  const std::vector<Job> jobs = ExpandJobs(config);
+  // Loading checked every job; listing them needs only their labels.
   if (args.list_jobs) {
-    for (const Job& j : jobs) std::printf("%d\t%s\n", j.index, j.Label().c_str());
+    for (std::size_t j = 0, n = JobCount(config); j < n; ++j) std::printf("%zu\t%s\n", j, JobLabel(config, j).c_str());
     return;
   }
   if (args.slurm) {
-    SubmitToSlurm(args, config, static_cast<int>(jobs.size()));
+    SubmitToSlurm(args, config, static_cast<int>(JobCount(config)));
     return;
   }
   if (args.dry_run) Fail("--dry-run", "only applies with --slurm");

@@ -4,6 +4,7 @@
 #include <map>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 
 #include "contact/model_registry.h"
 #include "experiment/study.h"
@@ -345,7 +346,7 @@ std::string Job::Label() const {
 
 ExperimentConfig LoadExperimentConfig(const std::filesystem::path& config_file, const std::vector<std::string>& given,
                                       const std::string& profile) {
-  const std::string text = ReadWholeFile(config_file);
+  const std::string text = ConfigNode::ReadText(config_file);
   YAML::Node root;
   try {
     root = YAML::Load(text);
@@ -394,10 +395,30 @@ void ParseReference(const ConfigNode& root, ExperimentConfig* config) {
   c.reference_every = int(root.PositiveInt("reference_every", 1));
 }
 
+// The number of jobs of SWEEP (the product of its axes' lengths), refused above kMaxSweepJobs
+// before any value is read or any job built; the product is formed so that it cannot overflow.
+void CheckSweepJobCount(const ConfigNode& sweep) {
+  if (!sweep.IsMap()) return;  // ParseSweep names what it is
+  unsigned long long jobs = 1;
+  bool overflow = false;
+  std::string lengths;
+  for (const auto& kv : sweep.yaml()) {
+    const std::size_t n = kv.second.IsSequence() ? kv.second.size() : 1;
+    lengths += (lengths.empty() ? "" : " x ") + std::to_string(n);
+    overflow = overflow || __builtin_mul_overflow(jobs, n, &jobs);
+  }
+  if (overflow || jobs > kMaxSweepJobs) {
+    sweep.Fail(lengths + " values make " + (overflow ? "more than 2^64" : std::to_string(jobs)) +
+               " jobs; a sweep may have at most " + std::to_string(kMaxSweepJobs) +
+               " (split it into several configs, or sweep fewer values)");
+  }
+}
+
 // The sweep axes, in order: an alias of STUDY (or the scene's) or a key path, each with its values.
 std::vector<SweepAxis> ParseSweep(const ConfigNode& root, const Study& study) {
   std::vector<SweepAxis> sweep;
   if (auto s = root.Find("sweep")) {
+    CheckSweepJobCount(*s);
     const std::map<std::string, std::string> aliases = AxisAliases(study);
     for (const std::string& key : s->Keys()) {
       const ConfigNode axis = s->Get(key);
@@ -458,18 +479,16 @@ void CheckEachSweepValue(const ExperimentConfig& c) {
   }
 }
 
-// What each job's registered models refuse of its scene (a deformable body a model treats as
+// What a job's registered models refuse of its scene (a deformable body a model treats as
 // rigid, coherence against a deformed field, ...), said before any job builds its assets. Models
 // not registered in this program are left to the run.
-void CheckModelsAgainstScenes(const ExperimentConfig& c, const std::vector<Job>& jobs) {
-  for (const Job& job : jobs) {
-    const Scene& s = job.scene;
-    const std::string where = c.file + (c.sweep.empty() ? std::string() : " (job " + job.Label() + ")");
-    for (const std::string& name : job.models) {
-      if (FindContactModel(name) == nullptr) continue;
-      CheckContactModel(name, s.model, s.model_params, s.pointshell_body.name, s.pointshell_body.deformable.has_value(),
-                        s.field_body.name, s.field_body.deformable.has_value(), where);
-    }
+void CheckModelsAgainstScene(const ExperimentConfig& c, const Job& job) {
+  const Scene& s = job.scene;
+  const std::string where = c.file + (c.sweep.empty() ? std::string() : " (job " + job.Label() + ")");
+  for (const std::string& name : job.models) {
+    if (FindContactModel(name) == nullptr) continue;
+    CheckContactModel(name, s.model, s.model_params, s.pointshell_body.name, s.pointshell_body.deformable.has_value(),
+                      s.field_body.name, s.field_body.deformable.has_value(), where);
   }
 }
 
@@ -541,9 +560,11 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
   }
   c.sweep = ParseSweep(root, study);
   CheckEachSweepValue(c);
-  const std::vector<Job> jobs = ExpandJobs(c);
-  CheckModelsAgainstScenes(c, jobs);
-  if (study.check) study.check(c, root, jobs);
+  // Every job, built one at a time: what its models refuse of its scene, then its study's checks.
+  ForEachJob(c, [&](const Job& job) {
+    CheckModelsAgainstScene(c, job);
+    if (study.check) study.check(c, root, job);
+  });
   return c;
 }
 
@@ -581,24 +602,41 @@ std::optional<Job> ConfigRoleOrderJob(const ExperimentConfig& config, const Job&
   return std::nullopt;
 }
 
+std::size_t JobCount(const ExperimentConfig& config) {
+  std::size_t total = 1;
+  for (const SweepAxis& a : config.sweep) total *= a.values.size();  // <= kMaxSweepJobs: checked at load
+  return total;
+}
+
+std::string JobLabel(const ExperimentConfig& config, std::size_t index) {
+  const std::vector<std::size_t> pick = AxisPicks(config, index);
+  std::string label;
+  for (std::size_t a = 0; a < config.sweep.size(); ++a) {
+    label += (label.empty() ? "" : " ") + config.sweep[a].name + "=" + config.sweep[a].values[pick[a]];
+  }
+  return label.empty() ? "(single run)" : label;
+}
+
+Job ExpandJob(const ExperimentConfig& config, std::size_t index) {
+  if (index >= JobCount(config)) {
+    throw std::logic_error("job " + std::to_string(index) + " of a sweep of " + std::to_string(JobCount(config)));
+  }
+  try {
+    return BuildJob(config, int(index), AxisPicks(config, index));
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    if (msg.rfind(config.file + ": sweep.", 0) == 0) throw;
+    Fail(config.file + ": job " + std::to_string(index) + " (" + JobLabel(config, index) + ")", msg);
+  }
+}
+
+void ForEachJob(const ExperimentConfig& config, const std::function<void(const Job&)>& visit) {
+  for (std::size_t index = 0, total = JobCount(config); index < total; ++index) visit(ExpandJob(config, index));
+}
+
 std::vector<Job> ExpandJobs(const ExperimentConfig& config) {
   std::vector<Job> jobs;
-  std::size_t total = 1;
-  for (const SweepAxis& a : config.sweep) total *= a.values.size();
-  for (std::size_t index = 0; index < total; ++index) {
-    const std::vector<std::size_t> pick = AxisPicks(config, index);
-    try {
-      jobs.push_back(BuildJob(config, int(index), pick));
-    } catch (const Error& e) {
-      std::string label;
-      for (std::size_t a = 0; a < config.sweep.size(); ++a) {
-        label += (label.empty() ? "" : " ") + config.sweep[a].name + "=" + config.sweep[a].values[pick[a]];
-      }
-      const std::string msg = e.what();
-      if (msg.rfind(config.file + ": sweep.", 0) == 0) throw;
-      Fail(config.file + ": job " + std::to_string(index) + " (" + label + ")", msg);
-    }
-  }
+  ForEachJob(config, [&](const Job& job) { jobs.push_back(job); });
   return jobs;
 }
 

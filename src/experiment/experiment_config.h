@@ -46,7 +46,9 @@
 //                                   second, so the other axes act on the final roles)
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -112,6 +114,24 @@ ExperimentConfig LoadExperimentConfig(const std::filesystem::path& config_file,
                                       const std::vector<std::string>& overrides = {},
                                       const std::string& profile = "");
 ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resolved_yaml);
+
+// The most jobs a sweep may have (the product of its axes' lengths). A config over it is
+// refused when it loads, before any job is built: every job is parsed and checked at load.
+inline constexpr std::size_t kMaxSweepJobs = 10000;
+
+// The number of jobs of CONFIG's sweep (1 without a sweep); at most kMaxSweepJobs.
+std::size_t JobCount(const ExperimentConfig& config);
+
+// Job INDEX (0 <= INDEX < JobCount) of the sweep, built alone. Throws Error naming the config
+// file, the job and its values when its combination does not parse.
+Job ExpandJob(const ExperimentConfig& config, std::size_t index);
+
+// Job INDEX's label ("points=1024 model=vps", as Job::Label), without building the job.
+std::string JobLabel(const ExperimentConfig& config, std::size_t index);
+
+// Calls VISIT with every job in order, each built as it is visited and dropped after it (so a
+// check of every job holds one at a time). Throws as ExpandJob does.
+void ForEachJob(const ExperimentConfig& config, const std::function<void(const Job&)>& visit);
 
 // The cartesian product of the sweep axes, in order (the last axis varies fastest). Throws
 // Error naming the config file, the job and its values when a combination does not parse.

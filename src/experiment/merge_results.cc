@@ -20,25 +20,23 @@ namespace contactlab {
 namespace fs = std::filesystem;
 namespace {
 
-// The data rows of TABLE's TEXT (its header line aside), after checking that the text ends
-// with a line break and that every row has as many cells as the header. Throws Error naming
-// the file (and the line) otherwise.
-long CheckTableRows(const fs::path& file, const std::string& text) {
+// The data rows of TABLE's TEXT (its header aside), after checking that the text ends with a
+// line break and that every row has as many cells as the header (cells read as the tables are
+// written, experiment/csv_line.h). Sets *BODY to the offset where the rows begin. Throws Error
+// naming the file (and the line) otherwise.
+long CheckTableRows(const fs::path& file, const std::string& text, std::size_t* body) {
   if (text.empty()) Fail(file.string(), "is empty (an unfinished job?)");
   if (text.back() != '\n') Fail(file.string(), "does not end with a line break: it was cut short (an unfinished job?)");
-  const std::size_t header_end = text.find('\n');
-  const std::size_t cells = SplitCsvLine(text.substr(0, header_end)).size();
-  long rows = 0, line = 1;
-  for (std::size_t at = header_end + 1; at < text.size();) {
-    const std::size_t eol = text.find('\n', at);
-    ++line;
-    const std::string row = text.substr(at, eol - at);
-    at = eol + 1;
-    if (row.empty()) continue;
-    const std::size_t n = SplitCsvLine(row).size();
-    if (n != cells) {
-      FailAtLine(file.string(), line,
-                 std::to_string(n) + " cells, the header has " + std::to_string(cells) + " (an unfinished job?)");
+  CsvReader reader(text, file.string());
+  std::vector<std::string> header, cells;
+  reader.Next(&header);
+  *body = reader.end();
+  long rows = 0;
+  while (reader.Next(&cells)) {
+    if (cells.size() != header.size()) {
+      FailAtLine(file.string(), reader.line(),
+                 std::to_string(cells.size()) + " cells, the header has " + std::to_string(header.size()) +
+                     " (an unfinished job?)");
     }
     ++rows;
   }
@@ -111,19 +109,19 @@ void MergeResults(const std::vector<fs::path>& job_dirs, const fs::path& out_dir
     for (std::size_t t = 0; t < tables.size(); ++t) {
       const fs::path file = dir / tables[t];
       const std::string text = ReadWholeFile(file);
-      const long n = CheckTableRows(file, text);
+      std::size_t body = 0;
+      const long n = CheckTableRows(file, text, &body);
       if (counted.contains(tables[t]) && counted[tables[t]] != n) {
         Fail(file.string(), std::to_string(n) + " rows, its meta.json counted " + counted[tables[t]].dump() +
                                 " (an unfinished or altered job?)");
       }
-      const auto eol = text.find('\n');
-      const std::string h = text.substr(0, eol + 1);
+      const std::string h = text.substr(0, body);
       if (headers[t].empty()) {
         headers[t] = h;
       } else if (h != headers[t]) {
         Fail(file.string(), "its columns differ from the first folder's");
       }
-      bodies[t] += text.substr(eol + 1);
+      bodies[t] += text.substr(body);
       rows[t] += n;
     }
     wall += m.value("wall_seconds", 0.0);

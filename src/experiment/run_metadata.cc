@@ -32,7 +32,7 @@ nlohmann::json RunMetadata(const ExperimentConfig& config, const std::vector<int
   j["config_file"] = config.file;
   j["resolved_config"] = config.resolved_yaml;
   j["jobs"] = jobs;
-  j["sweep_jobs"] = ExpandJobs(config).size();  // all of the sweep's jobs, for a merge to check
+  j["sweep_jobs"] = JobCount(config);  // all of the sweep's jobs, for a merge to check
   j["parallel_jobs"] = parallel;
   j["wall_seconds"] = wall_seconds;
   j["git_commit"] = ConfigRevision(config.file);  // the checkout holding the config

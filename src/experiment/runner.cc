@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <exception>
+#include <mutex>
 #include <thread>
 
 #include "util/error.h"
@@ -17,19 +18,24 @@
 namespace contactlab {
 namespace fs = std::filesystem;
 
-JobsRun RunJobs(const ExperimentConfig& config, const std::vector<Job>& all, const std::vector<int>& job_indices,
-                const RunOptions& options, const std::function<void(std::size_t, const Job&)>& run) {
+JobsRun RunJobs(const ExperimentConfig& config, const std::vector<int>& job_indices, const RunOptions& options,
+                const std::function<void(std::size_t, const Job&)>& run) {
   JobsRun out;
   out.indices = job_indices;
+  const int total = int(JobCount(config));
   if (out.indices.empty()) {
-    for (const Job& j : all) out.indices.push_back(j.index);
+    for (int j = 0; j < total; ++j) out.indices.push_back(j);
   }
   for (int i : out.indices) {
-    if (i < 0 || i >= int(all.size())) {
-      Fail(config.file, "job " + std::to_string(i) + " does not exist (the sweep has " + std::to_string(all.size()) +
-                            " jobs: 0.." + std::to_string(int(all.size()) - 1) + ")");
+    if (i < 0 || i >= total) {
+      Fail(config.file, "job " + std::to_string(i) + " does not exist (the sweep has " + std::to_string(total) +
+                            " jobs: 0.." + std::to_string(total - 1) + ")");
     }
   }
+  // Each job is built when a worker takes it and dropped when it ends, so a sweep's jobs (each
+  // holding its own copy of the config's documents) are not all in memory at once. They are
+  // built one at a time: each is cloned from the config's documents.
+  std::mutex building;
   int parallel = options.parallel_jobs;
   if (parallel <= 0) parallel = config.timing ? 1 : int(std::max(1u, std::thread::hardware_concurrency()));
   out.parallel = std::max(1, std::min<int>(parallel, int(out.indices.size())));
@@ -45,7 +51,11 @@ JobsRun RunJobs(const ExperimentConfig& config, const std::vector<Job>& all, con
   arena.execute([&] {
     tbb::parallel_for(std::size_t(0), out.indices.size(), [&](std::size_t i) {
       try {
-        run(i, all[std::size_t(out.indices[i])]);
+        const Job job = [&] {
+          const std::lock_guard<std::mutex> lock(building);
+          return ExpandJob(config, std::size_t(out.indices[i]));
+        }();
+        run(i, job);
       } catch (...) {
         errors[i] = std::current_exception();
       }

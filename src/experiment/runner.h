@@ -32,12 +32,14 @@ struct JobsRun {
   double wall_seconds = 0;
 };
 
-// Runs RUN(slot, job) for the jobs JOB_INDICES of ALL, CONFIG's expanded sweep (every job when
-// empty; SLOT counts the jobs run from 0), OPTIONS.parallel_jobs at once (0: all cores, or 1 when
-// the config measures timing), showing progress. Throws Error naming the config for an index
-// outside the sweep. A failing job cancels no other; the first error in job order is rethrown.
-JobsRun RunJobs(const ExperimentConfig& config, const std::vector<Job>& all, const std::vector<int>& job_indices,
-                const RunOptions& options, const std::function<void(std::size_t, const Job&)>& run);
+// Runs RUN(slot, job) for the jobs JOB_INDICES of CONFIG's sweep (every job when empty; SLOT
+// counts the jobs run from 0), OPTIONS.parallel_jobs at once (0: all cores, or 1 when the config
+// measures timing), showing progress. Each job is built when it starts and dropped when it
+// ends (never the whole sweep at once). Throws Error naming the config
+// for an index outside the sweep. A failing job cancels no other; the first error in job order
+// is rethrown.
+JobsRun RunJobs(const ExperimentConfig& config, const std::vector<int>& job_indices, const RunOptions& options,
+                const std::function<void(std::size_t, const Job&)>& run);
 
 // How a merge treats an incomplete sweep.
 struct MergeOptions {

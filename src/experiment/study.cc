@@ -34,33 +34,24 @@ void RequireFiniteCells(const std::filesystem::path& file, const std::string& te
     for (char& c : lower) c = char(std::tolower(static_cast<unsigned char>(c)));
     return lower == "nan" || lower == "inf" || lower == "infinity" || lower.rfind("nan(", 0) == 0;
   };
-  const std::size_t header_end = text.find('\n');
-  if (header_end == std::string::npos) return;
-  const std::vector<std::string> header = SplitCsvLine(text.substr(0, header_end));
-  long line = 1;
-  for (std::size_t at = header_end + 1; at < text.size();) {
-    std::size_t eol = text.find('\n', at);
-    if (eol == std::string::npos) eol = text.size();
-    ++line;
-    std::size_t column = 0;
-    for (std::size_t start = at; start <= eol; ++column) {
-      std::size_t end = text.find(',', start);
-      if (end == std::string::npos || end > eol) end = eol;
-      const std::string_view cell(text.data() + start, end - start);
+  CsvReader reader(text, file.string());
+  std::vector<std::string> header, cells;
+  if (!reader.Next(&header)) return;
+  while (reader.Next(&cells)) {
+    for (std::size_t column = 0; column < cells.size(); ++column) {
       // A cell of numbers separated by spaces (q, q_B) is checked number by number.
+      const std::string_view cell = cells[column];
       for (std::size_t s = 0; s <= cell.size();) {
         std::size_t e = cell.find(' ', s);
         if (e == std::string_view::npos) e = cell.size();
         if (non_finite(cell.substr(s, e - s))) {
-          FailAtLine(file.string(), line,
+          FailAtLine(file.string(), reader.line(),
                      "column " + (column < header.size() ? header[column] : std::to_string(column + 1)) + " is " +
                          std::string(cell.substr(s, e - s)) + ", not a finite number; nothing written");
         }
         s = e + 1;
       }
-      start = end + 1;
     }
-    at = eol + 1;
   }
 }
 
@@ -73,6 +64,15 @@ bool IsResultFileName(const std::string& name) {
     }
   }
   return false;
+}
+
+// The records of the CSV TEXT after its header.
+long CountRows(const std::string& text) {
+  CsvReader reader(text, "table");
+  std::vector<std::string> cells;
+  long rows = -1;
+  while (reader.Next(&cells)) ++rows;
+  return rows < 0 ? 0 : rows;
 }
 
 }  // namespace
@@ -171,17 +171,11 @@ void WriteStudyResults(const Study& study, const std::filesystem::path& out_dir,
   }
   // No table holds a non-finite number: a reader would take "nan" or "inf" as text or fail.
   for (std::size_t t = 0; t < tables.size(); ++t) RequireFiniteCells(out_dir / study.tables[t].file, tables[t]);
-  // meta.json counts each table's rows, so that a merge can tell a complete table from one cut
-  // short at a line break.
+  // meta.json counts each table's rows (records after the header), so that a merge can tell a
+  // complete table from one cut short at a line break.
   nlohmann::json counted = meta;
   for (std::size_t t = 0; t < tables.size(); ++t) {
-    long rows = 0;  // non-empty lines after the header
-    for (std::size_t at = tables[t].find('\n'); at != std::string::npos && at + 1 < tables[t].size();) {
-      const std::size_t eol = tables[t].find('\n', at + 1);
-      if (eol != at + 1) ++rows;
-      at = eol;
-    }
-    counted["table_rows"][study.tables[t].file] = rows;
+    counted["table_rows"][study.tables[t].file] = CountRows(tables[t]);
   }
   // And the columns each table declares, so that a reader finds their units and meanings.
   counted["columns"] = study.ColumnsJson();

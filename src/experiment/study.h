@@ -50,10 +50,10 @@ struct Study {
   std::vector<Derived> derived;
   bool timing = false;      // its numbers are times: jobs run one at a time (metrics.timing may say otherwise)
   bool replayable = false;  // its cycles.csv holds trajectories the viewer replays
-  // Checks what the study reads of CONFIG (its sections, for every job of JOBS, the config's
-  // expanded sweep), after the scene, the models and the sweep parsed. ROOT is the config
+  // Checks what the study reads of CONFIG (its sections) for JOB, after the scene, the models
+  // and the sweep parsed; called for every job of the sweep, one at a time. ROOT is the config
   // document. Throws Error naming file and key.
-  std::function<void(const ExperimentConfig& config, const ConfigNode& root, const std::vector<Job>& jobs)> check;
+  std::function<void(const ExperimentConfig& config, const ConfigNode& root, const Job& job)> check;
   // Runs the jobs JOBS of CONFIG (all of them when empty), writes Files() into OPTIONS.out_dir
   // (each atomically, after every job finished) and prints a table of the results.
   std::function<void(const ExperimentConfig& config, const RunOptions& options, const std::vector<int>& jobs)> run;

@@ -10,12 +10,35 @@
 
 namespace contactlab {
 
+namespace {
+
+[[noreturn]] void FailTooLarge(const std::string& file, std::uintmax_t bytes) {
+  contactlab::Fail(file, "is " + std::to_string(bytes) + " bytes; a config or scene file may hold at most " +
+                             std::to_string(kMaxConfigBytes) + " bytes (1 MiB)");
+}
+
+}  // namespace
+
+std::string ConfigNode::ReadText(const std::filesystem::path& file) {
+  // The size is checked before reading where the file says it (a regular file); what is read is
+  // checked again (a file that grew, or one that reports no size).
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(file, ec)) {
+    const std::uintmax_t bytes = std::filesystem::file_size(file, ec);
+    if (!ec && bytes > kMaxConfigBytes) FailTooLarge(file.string(), bytes);
+  }
+  std::string text = ReadWholeFile(file);
+  if (text.size() > kMaxConfigBytes) FailTooLarge(file.string(), text.size());
+  return text;
+}
+
 ConfigNode ConfigNode::LoadFile(const std::filesystem::path& file) {
-  const std::string text = ReadWholeFile(file);
+  const std::string text = ReadText(file);
   return LoadString(text, file.string());
 }
 
 ConfigNode ConfigNode::LoadString(const std::string& text, const std::string& file_label) {
+  if (text.size() > kMaxConfigBytes) FailTooLarge(file_label, text.size());
   YAML::Node root;
   try {
     root = YAML::Load(text);

@@ -5,6 +5,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cstddef>
 #include <filesystem>
 #include <initializer_list>
 #include <memory>
@@ -14,11 +15,21 @@
 
 namespace contactlab {
 
+// The largest scene or experiment config read, in bytes (1 MiB; the shipped ones are under
+// 4 kB). Checked before a file is read and parsed: the YAML parser takes about a hundred times
+// a text's size in memory, so a 100 MB config would end in std::bad_alloc, not in an Error.
+inline constexpr std::size_t kMaxConfigBytes = std::size_t(1) << 20;
+
 class ConfigNode {
  public:
-  // Parses FILE; throws Error naming it on a YAML syntax error or a missing file.
+  // The text of the config or scene FILE; throws Error naming it when it is missing, not a
+  // regular file, or larger than kMaxConfigBytes (checked before it is read).
+  static std::string ReadText(const std::filesystem::path& file);
+  // Parses FILE (ReadText, then LoadString); throws Error naming it on a YAML syntax error or a
+  // missing or oversized file.
   static ConfigNode LoadFile(const std::filesystem::path& file);
-  // Parses TEXT as if read from FILE_LABEL (for tests and --set overrides).
+  // Parses TEXT as if read from FILE_LABEL (for tests and --set overrides); a TEXT larger than
+  // kMaxConfigBytes is refused before it is parsed.
   static ConfigNode LoadString(const std::string& text, const std::string& file_label);
 
   ConfigNode() : file_(std::make_shared<const std::string>()) {}

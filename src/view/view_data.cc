@@ -374,15 +374,15 @@ void SetJobScene(const ResolvedConfig& resolved, const fs::path& meta_file, Repl
   if (!StudyOf(config).replayable) {
     Fail(meta_file.string(), "is a " + config.study + " study, which has no trajectory to replay");
   }
-  const std::vector<Job> all = ExpandJobs(config);
-  const auto it = std::find_if(all.begin(), all.end(), [&](const Job& j) { return j.index == replay->job; });
-  if (it == all.end()) {
-    Fail(meta_file.string(), "its config has " + std::to_string(all.size()) + " jobs, cycles.csv names job " +
+  const std::size_t total = JobCount(config);
+  if (replay->job < 0 || std::size_t(replay->job) >= total) {
+    Fail(meta_file.string(), "its config has " + std::to_string(total) + " jobs, cycles.csv names job " +
                                  std::to_string(replay->job));
   }
-  replay->scene = it->scene;
-  replay->moving_body = it->moving_body;
-  replay->job_label = it->axis_values.empty() ? "" : it->Label();
+  const Job job = ExpandJob(config, std::size_t(replay->job));
+  replay->scene = job.scene;
+  replay->moving_body = job.moving_body;
+  replay->job_label = job.axis_values.empty() ? "" : job.Label();
   if (replay->experiment.empty()) replay->experiment = config.name;
 }
 

@@ -1,4 +1,5 @@
 #include "experiment/studies/contact/contact_study.h"
+#include "experiment/studies/contact/result_csv.h"
 
 #include <gtest/gtest.h>
 
@@ -273,6 +274,42 @@ bodies:
   EXPECT_EQ(jobs[0].moving_body, "slab");  // the job scene's field body
   const JobResult r = RunJob(config, jobs[0], Options(dir, "out"));
   EXPECT_LT(r.cycles[20].force.z(), 0);  // the slab is pushed down by the cube
+}
+
+// A comma or a quote in the experiment's name and in a swept scene path: each stays one cell
+// (RFC 4180 quoting, spelled out here), so the single-job folders merge as complete and the
+// rows read back with every value in its column.
+TEST(Runner, CommaOrQuoteInTheNameOrASweptScenePathStaysOneCellAndMerges) {
+  TempDir dir;
+  const std::string one = (dir / "plate, \"one\".yaml").string(), two = (dir / "plate,two.yaml").string();
+  for (const std::string& file : {one, two}) std::ofstream(file) << TinyBallPlate().Yaml();
+  const std::string text = Replace(Replace(kConfig, "name: tiny", "name: 'tiny, \"quoted\"'"), "reference_every: 2\n", "");
+  const ExperimentConfig config =
+      Load(dir, text, {"models=[pointshell]", "reference=", "sweep.points=[64]", "sweep.scene=['" + one + "', '" + two + "']"});
+  RunExperiment(config, Options(dir, "job0"), {0});
+  RunExperiment(config, Options(dir, "job1"), {1});
+  MergeResults({dir / "job0", dir / "job1"}, dir / "merged");
+
+  auto quoted = [](const std::string& s) {  // RFC 4180: enclosed in quotes, inner quotes doubled
+    std::string q = "\"";
+    for (const char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return q + "\"";
+  };
+  const auto summary = Lines(dir / "merged" / "summary.csv");
+  ASSERT_EQ(summary.size(), 3u);
+  EXPECT_EQ(summary[0].rfind("experiment,job,points,scene,model,", 0), 0u) << summary[0];
+  EXPECT_EQ(summary[1].rfind(quoted("tiny, \"quoted\"") + ",0,64," + quoted(one) + ",pointshell,", 0), 0u) << summary[1];
+  EXPECT_EQ(summary[2].rfind(quoted("tiny, \"quoted\"") + ",1,64," + quoted(two) + ",pointshell,", 0), 0u) << summary[2];
+  std::vector<CyclesCsvRow> rows;
+  const std::vector<std::string> axes = ReadCyclesCsv(dir / "merged" / "cycles.csv", [&](const CyclesCsvRow& r) {
+    rows.push_back(r);
+  });
+  EXPECT_EQ(axes, (std::vector<std::string>{"points", "scene"}));
+  ASSERT_EQ(rows.size(), 2u * 41);
+  EXPECT_EQ(rows.front().experiment, "tiny, \"quoted\"");
+  EXPECT_EQ(rows.front().axis_values, (std::vector<std::string>{"64", one}));
+  EXPECT_EQ(rows.back().axis_values, (std::vector<std::string>{"64", two}));
+  EXPECT_EQ(rows.back().model, "pointshell");
 }
 
 }  // namespace

@@ -7,6 +7,8 @@
 #include "experiment/experiment_config.h"
 #include "scene_fixtures.h"
 #include "test_support.h"
+#include "util/atomic_file.h"
+#include "util/config_node.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -125,6 +127,59 @@ TEST(Sweep, AnOversizedValueIsRefusedWhenTheConfigLoadsNamingTheLimit) {
   e = ErrorOf(dir, "  levels: [100]\n");
   EXPECT_NE(e.find("sweep.levels value '100'"), std::string::npos) << e;
   EXPECT_NE(e.find("must be between 1 and 12"), std::string::npos) << e;
+}
+
+// The values 1..N as a YAML list.
+std::string Values(int n) {
+  std::string list = "[";
+  for (int i = 1; i <= n; ++i) list += (i > 1 ? ", " : "") + std::to_string(i);
+  return list + "]";
+}
+
+TEST(Sweep, ABillionJobsAreRefusedBeforeAnyIsBuiltNamingTheFileAndTheLimit) {
+  TempDir dir;
+  // 1000 x 1000 x 1000: counted from the axes' lengths, never expanded.
+  const std::string axes = "  scene.model.lipschitz: " + Values(1000) + "\n  trajectory.depth: " + Values(1000) +
+                           "\n  trajectory.duration: " + Values(1000) + "\n";
+  std::string e = ErrorOf(dir, axes);
+  EXPECT_NE(e.find((dir / "config.yaml").string()), std::string::npos) << e;
+  EXPECT_NE(e.find("sweep: 1000 x 1000 x 1000 values make 1000000000 jobs; a sweep may have at most 10000"),
+            std::string::npos)
+      << e;
+  // Seven such axes overflow 64 bits: still refused, not wrapped around to a small count.
+  std::string seven;
+  for (int a = 0; a < 7; ++a) seven += "  scene.bodies[" + std::to_string(a % 2) + "].pose" + std::string(a, 'x') + ": " + Values(1000) + "\n";
+  e = ErrorOf(dir, seven);
+  EXPECT_NE(e.find("values make more than 2^64 jobs; a sweep may have at most 10000"), std::string::npos) << e;
+  EXPECT_EQ(kMaxSweepJobs, 10000u);
+}
+
+TEST(ExperimentConfig, AConfigOrSceneFileOverOneMebibyteIsRefusedBeforeParsingNamingItAndTheLimit) {
+  TempDir dir;
+  // A valid config followed by a comment: only its size is wrong.
+  Load(dir, "  points: [64]\n");
+  const std::string config = ReadWholeFile(dir / "config.yaml");
+  std::ofstream(dir / "big.yaml") << config << "# " << std::string(kMaxConfigBytes, 'x') << "\n";
+  try {
+    LoadExperimentConfig(dir / "big.yaml");
+    FAIL() << "a config of more than 1 MiB was read";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find((dir / "big.yaml").string() + ": is " +
+                                         std::to_string(config.size() + kMaxConfigBytes + 3) +
+                                         " bytes; a config or scene file may hold at most 1048576 bytes"),
+              std::string::npos)
+        << e.what();
+  }
+  // The same for a scene file the config names.
+  std::ofstream(dir / "big-scene.yaml") << kScene << "# " << std::string(kMaxConfigBytes, 'x') << "\n";
+  try {
+    ConfigNode::LoadFile(dir / "big-scene.yaml");
+    FAIL() << "a scene of more than 1 MiB was read";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find((dir / "big-scene.yaml").string() + ": is "), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("at most 1048576 bytes"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(kMaxConfigBytes, 1u << 20);
 }
 
 TEST(Sweep, AnUnknownAxisOrABadPathIsNamed) {

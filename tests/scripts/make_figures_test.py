@@ -252,6 +252,32 @@ class Run(unittest.TestCase):
             self.assertEqual(os.listdir(os.path.join(root, "results", "figures")), ["my_figure.png"])
 
 
+class Reading(unittest.TestCase):
+    """figures.common.read_csv reads the tables as the program writes them (RFC 4180 quoting)."""
+
+    def setUp(self):
+        self.dir = tempfile.mkdtemp()
+        self.addCleanup(shutil.rmtree, self.dir)
+
+    def write(self, text):
+        path = os.path.join(self.dir, "summary.csv")
+        with open(path, "w", newline="") as f:
+            f.write(text)
+        return path
+
+    def test_a_quoted_comma_in_a_scene_path_or_model_name_stays_in_its_column(self):
+        path = self.write('experiment,job,scene,model,max_force_N\n'
+                          '"a,b",0,"scenes/plate,thin.yaml","py ""x,y""",2.5\n')
+        rows = common.read_csv(path)
+        self.assertEqual(rows, [{"experiment": "a,b", "job": "0", "scene": "scenes/plate,thin.yaml",
+                                 "model": 'py "x,y"', "max_force_N": "2.5"}])
+
+    def test_a_row_with_a_comma_unquoted_in_a_name_is_refused_naming_file_and_line(self):
+        path = self.write("experiment,job,model,max_force_N\nok,0,pointshell,2.5\na,b,1,pointshell,3.5\n")
+        with self.assertRaisesRegex(ValueError, re.escape(path) + r":3: 5 cells, the header \(line 1\) has 4"):
+            common.read_csv(path)
+
+
 class Tables(unittest.TestCase):
     header = ["scene", "points", "tree µs (median)", "StVK µs (A / B)", "max jump N"]
 

@@ -153,26 +153,24 @@ const ResultTable& StabilityTable() {
 }
 
 // Every job's loop section parses (an error names the job's sweep values).
-void CheckClosedLoopStudy(const ExperimentConfig& config, const ConfigNode&, const std::vector<Job>& jobs) {
-  for (const Job& job : jobs) {
-    try {
-      (void)ParseLoopSpec(job.config);
-    } catch (const Error& e) {
-      if (config.sweep.empty()) throw;
-      Fail(config.file + " (job " + job.Label() + ")", e.what());
-    }
+void CheckClosedLoopStudy(const ExperimentConfig& config, const ConfigNode&, const Job& job) {
+  try {
+    (void)ParseLoopSpec(job.config);
+  } catch (const Error& e) {
+    if (config.sweep.empty()) throw;
+    Fail(config.file + " (job " + job.Label() + ")", e.what());
   }
 }
 
 // Runs the jobs, writes stability.csv and meta.json, prints one line per run.
 void RunClosedLoopStudy(const ExperimentConfig& config, const RunOptions& options, const std::vector<int>& only) {
-  const std::vector<Job> all = ExpandJobs(config);
+  const std::size_t total = JobCount(config);
   std::fprintf(stderr, "experiment %s (closed-loop study): %zu of %zu jobs, models:", config.name.c_str(),
-               only.empty() ? all.size() : only.size(), all.size());
+               only.empty() ? total : only.size(), total);
   for (const auto& m : config.models) std::fprintf(stderr, " %s", m.c_str());
   std::fprintf(stderr, "\n");
-  std::vector<LoopJobResult> results(only.empty() ? all.size() : only.size());
-  const JobsRun jobs = RunJobs(config, all, only, options, [&](std::size_t i, const Job& job) {
+  std::vector<LoopJobResult> results(only.empty() ? total : only.size());
+  const JobsRun jobs = RunJobs(config, only, options, [&](std::size_t i, const Job& job) {
     results[i] = RunClosedLoopJob(job, options);
   });
   WriteStudyResults(StudyOf(config), options.out_dir, {StabilityCsv(config, results)},

@@ -19,9 +19,8 @@ std::vector<SummaryRow> RunExperiment(const ExperimentConfig& config, const RunO
   if (study.name != kContactStudy) {
     Fail(config.file, "is a " + config.study + " study (" + study.description + "), not a contact study");
   }
-  const std::vector<Job> all = ExpandJobs(config);
-  std::vector<JobResult> results(job_indices.empty() ? all.size() : job_indices.size());
-  const JobsRun jobs = RunJobs(config, all, job_indices, options, [&](std::size_t i, const Job& job) {
+  std::vector<JobResult> results(job_indices.empty() ? JobCount(config) : job_indices.size());
+  const JobsRun jobs = RunJobs(config, job_indices, options, [&](std::size_t i, const Job& job) {
     results[i] = RunJob(config, job, options);
   });
   const std::vector<int>& indices = jobs.indices;
@@ -42,15 +41,15 @@ std::vector<SummaryRow> RunExperiment(const ExperimentConfig& config, const RunO
 
 namespace {
 
-// Every job's trajectory parses (a mapping with a known type and its keys), so errors come
+// The job's trajectory parses (a mapping with a known type and its keys), so errors come
 // before any work.
-void CheckContactStudy(const ExperimentConfig&, const ConfigNode&, const std::vector<Job>& jobs) {
-  for (const Job& job : jobs) (void)ParseTrajectory(job.trajectory_node);
+void CheckContactStudy(const ExperimentConfig&, const ConfigNode&, const Job& job) {
+  (void)ParseTrajectory(job.trajectory_node);
 }
 
 // Runs the jobs and prints one line per job and model.
 void RunContactStudy(const ExperimentConfig& config, const RunOptions& options, const std::vector<int>& only) {
-  const std::size_t total = ExpandJobs(config).size();
+  const std::size_t total = JobCount(config);
   std::fprintf(stderr, "experiment %s: %zu of %zu jobs, models:", config.name.c_str(),
                only.empty() ? total : only.size(), total);
   for (const auto& m : config.models) std::fprintf(stderr, " %s", m.c_str());

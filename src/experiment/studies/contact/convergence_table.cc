@@ -46,10 +46,9 @@ const ResultTable& ConvergenceTable() {
 }
 
 std::string ConvergenceCsv(const std::string& summary_csv) {
-  std::istringstream in(summary_csv);
-  std::string line;
-  std::getline(in, line);
-  const std::vector<std::string> header = SplitCsvLine(line);
+  CsvReader reader(summary_csv, "summary.csv");
+  std::vector<std::string> header, cells;
+  reader.Next(&header);
   auto col = [&](const std::string& name) {
     const auto it = std::find(header.begin(), header.end(), name);
     return it == header.end() ? -1 : int(it - header.begin());
@@ -65,8 +64,7 @@ std::string ConvergenceCsv(const std::string& summary_csv) {
     return name.size() >= 4 && name.compare(name.size() - 4, 4, "seed") == 0;
   };
   std::map<std::string, std::map<double, std::vector<double>>> draws;
-  while (std::getline(in, line)) {
-    const std::vector<std::string> cells = SplitCsvLine(line);
+  while (reader.Next(&cells)) {
     if (int(cells.size()) != int(header.size())) continue;
     std::string key = cells[c_model];
     for (int c = c_job + 1; c < c_model; ++c) {

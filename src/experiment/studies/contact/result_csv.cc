@@ -10,7 +10,6 @@
 #include <tuple>
 #include <utility>
 
-#include "geometry/line_scanner.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
 #include "util/parse_number.h"
@@ -314,9 +313,9 @@ std::vector<std::string> ReadCyclesCsv(const std::filesystem::path& file,
                                        const std::function<void(const CyclesCsvRow&)>& on_row) {
   const std::string name = file.string();
   const std::string text = ReadWholeFile(file);
-  internal::LineScanner scan(text, name);
-  if (!scan.NextLine() || scan.line().empty()) Fail(name, "is empty");
-  const std::vector<std::string> header = SplitCsvLine(std::string(scan.line()));
+  CsvReader scan(text, name);
+  std::vector<std::string> header, cells;
+  if (!scan.Next(&header)) Fail(name, "is empty");
 
   // The columns by name: experiment and job at their first occurrence, each declared column at
   // its last (a sweep axis may share a column's name, as the axis "model" does, and comes
@@ -357,10 +356,8 @@ std::vector<std::string> ReadCyclesCsv(const std::filesystem::path& file,
   };
   std::map<std::pair<int, std::string>, FirstRow> first_rows;
   CyclesCsvRow record;
-  while (scan.NextLine()) {
-    if (scan.line().empty()) continue;
-    const long line = scan.line_number();
-    const std::vector<std::string> cells = SplitCsvLine(std::string(scan.line()));
+  while (scan.Next(&cells)) {
+    const long line = scan.line();
     if (cells.size() != header.size()) {
       FailAtLine(name, line,
                  std::to_string(cells.size()) + " cells, the header (line 1) has " + std::to_string(header.size()));

@@ -342,9 +342,8 @@ FieldJobResult RunDeformedFieldJob(const ExperimentConfig& config, const Job& jo
 
 std::vector<FieldErrorRow> RunDeformedFieldStudy(const ExperimentConfig& config, const RunOptions& options,
                                                  const std::vector<int>& job_indices) {
-  const std::vector<Job> all = ExpandJobs(config);
-  std::vector<FieldJobResult> results(job_indices.empty() ? all.size() : job_indices.size());
-  const JobsRun jobs = RunJobs(config, all, job_indices, options, [&](std::size_t i, const Job& job) {
+  std::vector<FieldJobResult> results(job_indices.empty() ? JobCount(config) : job_indices.size());
+  const JobsRun jobs = RunJobs(config, job_indices, options, [&](std::size_t i, const Job& job) {
     results[i] = RunDeformedFieldJob(config, job, options);
   });
   WriteStudyResults(StudyOf(config), options.out_dir, {ErrorCsv(config, results), SliceCsv(config, results)},
@@ -356,25 +355,23 @@ std::vector<FieldErrorRow> RunDeformedFieldStudy(const ExperimentConfig& config,
 
 namespace {
 
-// Every job's sections parse, its field body is deformable, and the slice's job filter names
+// The job's sections parse, its field body is deformable, and the slice's job filter names
 // sweep axes and their values.
-void CheckFieldStudy(const ExperimentConfig& c, const ConfigNode& root, const std::vector<Job>& jobs) {
-  for (const Job& job : jobs) {
-    const FieldStudySpec spec = ParseFieldStudySpec(job.config);
-    if (!job.scene.field_body.deformable) {
-      Fail(c.file, "study: deformed-field needs a deformable field body, but body '" + job.scene.field_body.name +
-                       "' of " + job.scene.file + (c.sweep.empty() ? "" : " (job " + job.Label() + ")") +
-                       " has no deformable block");
-    }
-    for (const auto& [axis, values] : spec.slice_jobs) {
-      const ConfigNode where = root.Get("measure").Get("slice").Get("jobs").Get(axis);
-      const std::string& name = axis;  // a structured binding cannot be captured by clang 14
-      const auto a = std::find_if(c.sweep.begin(), c.sweep.end(), [&name](const SweepAxis& s) { return s.name == name; });
-      if (a == c.sweep.end()) where.Fail("is not a sweep axis of this config");
-      for (const std::string& v : values) {
-        if (std::find(a->values.begin(), a->values.end(), v) == a->values.end()) {
-          where.Fail("'" + v + "' is not a value (or label) of sweep." + axis);
-        }
+void CheckFieldStudy(const ExperimentConfig& c, const ConfigNode& root, const Job& job) {
+  const FieldStudySpec spec = ParseFieldStudySpec(job.config);
+  if (!job.scene.field_body.deformable) {
+    Fail(c.file, "study: deformed-field needs a deformable field body, but body '" + job.scene.field_body.name +
+                     "' of " + job.scene.file + (c.sweep.empty() ? "" : " (job " + job.Label() + ")") +
+                     " has no deformable block");
+  }
+  for (const auto& [axis, values] : spec.slice_jobs) {
+    const ConfigNode where = root.Get("measure").Get("slice").Get("jobs").Get(axis);
+    const std::string& name = axis;  // a structured binding cannot be captured by clang 14
+    const auto a = std::find_if(c.sweep.begin(), c.sweep.end(), [&name](const SweepAxis& s) { return s.name == name; });
+    if (a == c.sweep.end()) where.Fail("is not a sweep axis of this config");
+    for (const std::string& v : values) {
+      if (std::find(a->values.begin(), a->values.end(), v) == a->values.end()) {
+        where.Fail("'" + v + "' is not a value (or label) of sweep." + axis);
       }
     }
   }
@@ -382,7 +379,7 @@ void CheckFieldStudy(const ExperimentConfig& c, const ConfigNode& root, const st
 
 // Runs the jobs and prints the error table.
 void RunFieldStudy(const ExperimentConfig& config, const RunOptions& options, const std::vector<int>& only) {
-  const std::size_t total = ExpandJobs(config).size();
+  const std::size_t total = JobCount(config);
   std::fprintf(stderr, "experiment %s (deformed-field study): %zu of %zu jobs\n", config.name.c_str(),
                only.empty() ? total : only.size(), total);
   const std::vector<FieldErrorRow> rows = RunDeformedFieldStudy(config, options, only);
