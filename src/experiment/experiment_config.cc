@@ -18,22 +18,20 @@ namespace {
 // Short sweep-axis names and the key paths they stand for.
 // The sweep aliases of a config of STUDY: the scene's (its parameter tables name the keys a sweep
 // may name alone, experiment/scene.h), the harness's own, and the study's.
+// Built afresh at each call (a few dozen keys), never cached: a model registered later (a test's,
+// a Python one) brings its keys with it.
 std::map<std::string, std::string> AxisAliases(const Study& study) {
-  static const std::map<std::string, std::string> common = [] {
-    std::map<std::string, std::string> a;
-    for (const SceneBlock& block : SceneBlocks()) {
-      for (const std::string& key : block.sweep_keys) {
-        if (!a.emplace(block.alias_prefix + key, block.path + key).second) {
-          Fail("sweep aliases", "'" + block.alias_prefix + key + "' names keys of two scene blocks");
-        }
+  std::map<std::string, std::string> a;
+  for (const SceneBlock& block : SceneBlocks()) {
+    for (const std::string& key : block.sweep_keys) {
+      if (!a.emplace(block.alias_prefix + key, block.path + key).second) {
+        Fail("sweep aliases", "'" + block.alias_prefix + key + "' names keys of two scene blocks");
       }
     }
-    a["model"] = "models";
-    a["scene"] = "scene";
-    a["roles"] = "";
-    return a;
-  }();
-  std::map<std::string, std::string> a = common;
+  }
+  a["model"] = "models";
+  a["scene"] = "scene";
+  a["roles"] = "";
   for (const auto& [alias, path] : study.aliases) {
     if (!a.emplace(alias, path).second) {
       Fail("sweep aliases", "study " + study.name + "'s alias '" + alias + "' is already a scene or harness alias");
