@@ -15,7 +15,8 @@
 namespace contactlab {
 
 // Reads T from CACHED with LOAD when CACHED is not empty and names a good entry; otherwise
-// BUILDs it and, when CACHED is not empty, SAVEs it there (its folder made first). A bad entry
+// BUILDs it and, when CACHED is not empty, SAVEs it there (its folder made first; a save that
+// fails with Error is reported on stderr and the built value returned all the same). A bad entry
 // (truncated, corrupt, from another version: LOAD throws Error) is reported on stderr and
 // rebuilt. VERBOSE: says on stderr which it did, naming WHAT.
 template <typename T, typename Load, typename Save, typename Build>
@@ -34,9 +35,15 @@ std::shared_ptr<const T> CachedOrBuilt(const std::filesystem::path& cached, bool
   if (verbose) std::cerr << "building " << what << "\n";
   auto value = std::make_shared<const T>(build());
   if (!cached.empty()) {
-    std::filesystem::create_directories(cached.parent_path(), ec);
-    const CacheEntryWrite cache_entry;  // another job may have read the entry another job saved
-    save(*value, cached);
+    // The cache serves speed only: a cache folder that cannot take the entry (read-only, full,
+    // not a folder) is reported and the value used as built, never a failed command.
+    try {
+      std::filesystem::create_directories(cached.parent_path(), ec);
+      const CacheEntryWrite cache_entry;  // another job may have read the entry another job saved
+      save(*value, cached);
+    } catch (const Error& e) {
+      std::cerr << "warning: not cached (" << e.what() << "); going on without the cache\n";
+    }
   }
   return value;
 }
