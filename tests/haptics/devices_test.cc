@@ -79,7 +79,7 @@ TEST(ReplayDevice, BadCsvRowsAreReportedWithFileAndLine) {
   ExpectErrorMentions([&] { ReadTrajectoryCsv(file); }, {"bad.csv:1", "not finite"});
   WriteText(file, "t,x,y,z,qw,qx,qy,qz\n");
   ExpectErrorMentions([&] { ReadTrajectoryCsv(file); }, {"bad.csv", "no samples"});
-  ExpectErrorMentions([&] { ReadTrajectoryCsv(dir / "missing.csv"); }, {"missing.csv", "cannot open"});
+  ExpectErrorMentions([&] { ReadTrajectoryCsv(dir / "missing.csv"); }, {"missing.csv", "does not exist"});
 }
 
 // A plugin library is one of the session's inputs: no output (a --log) may replace it, under
