@@ -23,7 +23,6 @@ void TimingHistogram::Add(std::int64_t duration_ns) noexcept {
   std::int64_t bin = d / 1000;
   if (d >= kFineLimitNs) {
     // Logarithmic bins: only for a cycle already 5 ms long, so the log costs nothing that matters.
-    ++beyond_fine_;
     const double octaves = std::log2(double(d) / double(kFineLimitNs));
     bin = kFineBins + std::min<std::int64_t>(std::int64_t(octaves * kBinsPerOctave), kBins - kFineBins);
   }
@@ -35,7 +34,13 @@ void TimingHistogram::Add(std::int64_t duration_ns) noexcept {
 
 void TimingHistogram::Clear() noexcept {
   bins_.fill(0);
-  count_ = beyond_fine_ = sum_ns_ = max_ns_ = 0;
+  count_ = sum_ns_ = max_ns_ = 0;
+}
+
+std::int64_t TimingHistogram::beyond_fine() const {
+  std::int64_t n = 0;
+  for (int i = kFineBins; i <= kBins; ++i) n += bins_[std::size_t(i)];
+  return n;
 }
 
 std::optional<double> TimingHistogram::QuantileSeconds(double q) const {

@@ -29,8 +29,9 @@ class TimingHistogram {
   void Clear() noexcept;
 
   std::int64_t count() const { return count_; }
-  // Samples longer than kFineLimitSeconds (in the 1.09 % bins or the overflow bin).
-  std::int64_t beyond_fine() const { return beyond_fine_; }
+  // Samples longer than kFineLimitSeconds (in the 1.09 % bins or the overflow bin), counted from
+  // the bins when read, off the haptic thread.
+  std::int64_t beyond_fine() const;
   // Samples longer than kLimitSeconds.
   std::int64_t overflow() const { return bins_[kBins]; }
   double max_seconds() const { return 1e-9 * double(max_ns_); }
@@ -43,7 +44,6 @@ class TimingHistogram {
  private:
   std::array<std::int64_t, kBins + 1> bins_{};
   std::int64_t count_ = 0;
-  std::int64_t beyond_fine_ = 0;
   std::int64_t sum_ns_ = 0;
   std::int64_t max_ns_ = 0;
 };
