@@ -31,12 +31,16 @@ std::vector<FloatOption> FloatOptions() {
   return found;
 }
 
+// Thrown once a subcommand's options are parsed and checked, in place of running the command.
+struct ParsedWithoutRunning {};
+
 // Parses `contactlab COMMAND NAME VALUE 1 1 ...` (VALUE first of the option's values; NAME=VALUE
-// when VALUE starts with '-', which would otherwise read as an option) with every command's action
-// taken out; returns the CLI11 error's kind and message ("" when none).
+// when VALUE starts with '-', which would otherwise read as an option) and stops before the command
+// runs; returns the CLI11 error's kind and message ("" when none). The command's own action stays
+// in place: it holds the variables its options write into, so replacing it would free them.
 std::string ParseError(const FloatOption& option, const std::string& value, std::string* kind) {
   const auto app = cli::MakeCommandLineApp();
-  for (CLI::App* sub : app->get_subcommands({})) sub->callback(std::function<void()>());
+  for (CLI::App* sub : app->get_subcommands({})) sub->parse_complete_callback([] { throw ParsedWithoutRunning{}; });
   std::vector<std::string> args = {"contactlab", option.command};
   if (value[0] == '-') {
     args.push_back(option.name + "=" + value);
@@ -51,6 +55,7 @@ std::string ParseError(const FloatOption& option, const std::string& value, std:
   } catch (const CLI::ParseError& e) {
     *kind = e.get_name();
     return e.what();
+  } catch (const ParsedWithoutRunning&) {
   }
   *kind = "";
   return "";
