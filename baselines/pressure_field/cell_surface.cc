@@ -2,7 +2,6 @@
 // clipping and integration (cell_surface.h; Elandt et al. 2019).
 #include "baselines/pressure_field/cell_surface.h"
 
-#include "baselines/pressure_field/lattice_blocks.h"
 
 namespace contactlab {
 namespace {
@@ -37,31 +36,66 @@ int CutTetrahedron(const LatticeCell& cell, const int* tet, PolyVertex* poly, Ei
   return m;
 }
 
-}  // namespace
+// A cell's corners by bit (x = 1, y = 2, z = 4) as offsets from its first vertex in a block.
+constexpr int kCornerOffset[8] = {0, 1, kVerts, kVerts + 1, kVerts * kVerts, kVerts * kVerts + 1,
+                                  kVerts * kVerts + kVerts, kVerts * kVerts + kVerts + 1};
 
-bool LoadCell(const float* phi_M, const float* phi_L, int ci, int cj, int ck, const PressureLaw& law, bool clip_M,
-              bool clip_L, LatticeCell* cell) {
-  cell->positive = 0;
-  cell->outside_M = cell->outside_L = cell->overlapped = true;
-  for (int c = 0; c < 8; ++c) {
-    const int di = c & 1, dj = (c >> 1) & 1, dk = (c >> 2) & 1;
-    const int v = VertexIndex(ci + di, cj + dj, ck + dk);
-    PolyVertex& corner = cell->corner[c];
-    corner.phi_M = phi_M[v];
-    corner.phi_L = phi_L[v];
-    cell->g[c] = law.Gap(corner.phi_M, corner.phi_L);
-    cell->positive += cell->g[c] > 0;
-    cell->outside_M = cell->outside_M && corner.phi_M > 0;
-    cell->outside_L = cell->outside_L && corner.phi_L > 0;
-    cell->overlapped = cell->overlapped && corner.phi_M + corner.phi_L <= 0;
+// The AND and the OR of the flags of the cell's eight corners.
+void CornerFlags(const BlockVertices& v, int ci, int cj, int ck, std::uint8_t* all, std::uint8_t* any) {
+  const std::uint8_t* f = v.flags + VertexIndex(ci, cj, ck);
+  std::uint8_t a = 0xFF, o = 0;
+  for (const int off : kCornerOffset) {
+    a &= f[off];
+    o |= f[off];
   }
-  return !(cell->positive == 0 || cell->positive == 8 || (clip_M && cell->outside_M) || (clip_L && cell->outside_L));
+  *all = a;
+  *any = o;
 }
 
-void PlaceCorners(const Eigen::Vector3d& x0, double h, int ci, int cj, int ck, LatticeCell* cell) {
-  for (int c = 0; c < 8; ++c) {
-    cell->corner[c].x = x0 + h * Eigen::Vector3d(ci + (c & 1), cj + ((c >> 1) & 1), ck + ((c >> 2) & 1));
+}  // namespace
+
+void LoadBlockVertices(const float* phi_M, const float* phi_L, const PressureLaw& law, double reach,
+                       const std::uint8_t* needed, BlockVertices* v) {
+  const double reach_g = law.w_M * reach;  // only M's field moves: g = -w_M phi_M + w_L phi_L
+  for (int i = 0; i < kBlockVerts; ++i) {
+    if (needed && !needed[i]) continue;
+    const double pm = phi_M[i], pl = phi_L[i];
+    const double g = law.Gap(pm, pl);
+    v->g[i] = g;
+    v->flags[i] = std::uint8_t((g > 0 ? kGapPositive : 0) | (pm > 0 ? kOutsideM : 0) | (pl > 0 ? kOutsideL : 0) |
+                               (pm + pl <= 0 ? kOverlapped : 0) | (g > -reach_g ? kMayTurnPositive : 0) |
+                               (g <= reach_g ? kMayTurnNonPositive : 0) | (pm <= reach ? kMayBeInsideM : 0));
   }
+}
+
+bool CellMayHoldSurface(const BlockVertices& v, int ci, int cj, int ck, bool clip_M, bool clip_L) {
+  std::uint8_t all, any;
+  CornerFlags(v, ci, cj, ck, &all, &any);
+  return (any & kGapPositive) && !(all & kGapPositive) && !(clip_M && (all & kOutsideM)) &&
+         !(clip_L && (all & kOutsideL));
+}
+
+bool CellMayHoldSurfaceOnceMoved(const BlockVertices& v, int ci, int cj, int ck, bool clip_M, bool clip_L) {
+  std::uint8_t all, any;
+  CornerFlags(v, ci, cj, ck, &all, &any);
+  return (any & kMayTurnPositive) && (any & kMayTurnNonPositive) && !(clip_M && !(any & kMayBeInsideM)) &&
+         !(clip_L && (all & kOutsideL));
+}
+
+void LoadCell(const float* phi_M, const float* phi_L, const BlockVertices& v, const Eigen::Vector3d& x0, double h,
+              int ci, int cj, int ck, LatticeCell* cell) {
+  const int v0 = VertexIndex(ci, cj, ck);
+  bool overlapped = true;
+  for (int c = 0; c < 8; ++c) {
+    const int i = v0 + kCornerOffset[c];
+    PolyVertex& corner = cell->corner[c];
+    corner.phi_M = phi_M[i];
+    corner.phi_L = phi_L[i];
+    corner.x = x0 + h * Eigen::Vector3d(ci + (c & 1), cj + ((c >> 1) & 1), ck + ((c >> 2) & 1));
+    cell->g[c] = v.g[i];
+    overlapped = overlapped && (v.flags[i] & kOverlapped);
+  }
+  cell->overlapped = overlapped;
 }
 
 double IntegrateCell(const LatticeCell& cell, const PressureLaw& law, PressureSums* sums, SurfaceRecord* record) {

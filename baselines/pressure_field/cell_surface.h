@@ -5,34 +5,59 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 
+#include "baselines/pressure_field/lattice_blocks.h"
 #include "baselines/pressure_field/polygon_clip.h"
 #include "baselines/pressure_field/pressure_integration.h"
 #include "baselines/pressure_field/pressure_law.h"
 
 namespace contactlab {
 
-// One cell of the lattice: its corners by bit (x = 1, y = 2, z = 4) with both fields there,
-// the gap at each, whether every corner lies outside each body, and whether the bodies
-// overlap at every corner.
+// One cell of the lattice: its corners by bit (x = 1, y = 2, z = 4) with both fields there, the
+// gap at each, and whether the bodies overlap at every corner.
 struct LatticeCell {
   PolyVertex corner[8];
   double g[8];
-  int positive = 0;  // corners with g > 0
-  bool outside_M = true, outside_L = true;
   bool overlapped = true;  // phi_M + phi_L <= 0 at every corner
 };
 
-// Loads the cell whose first vertex is (CI, CJ, CK) in a block with the fields PHI_M and PHI_L
-// at its vertices (lattice_blocks.h), corners' fields, gaps and flags only. Returns whether the
-// cell may hold surface: g changes sign over it and no compliant body (CLIP_M, CLIP_L) lies
-// wholly outside it. Only then are its corners placed (PlaceCorners).
-bool LoadCell(const float* phi_M, const float* phi_L, int ci, int cj, int ck, const PressureLaw& law, bool clip_M,
-              bool clip_L, LatticeCell* cell);
+// What each vertex of a block says about the cells that share it, as bits (BlockVertices).
+enum VertexFlag : std::uint8_t {
+  kGapPositive = 1,         // g > 0
+  kOutsideM = 2,            // phi_M > 0
+  kOutsideL = 4,            // phi_L > 0
+  kOverlapped = 8,          // phi_M + phi_L <= 0
+  kMayTurnPositive = 16,    // g > -w_M reach: g may be > 0 once M's field moves by the reach
+  kMayTurnNonPositive = 32, // g <= w_M reach
+  kMayBeInsideM = 64,       // phi_M <= reach
+};
 
-// Places the corners of CELL (CI, CJ, CK) of the block whose first vertex is X0 (the lattice
-// body's frame), spacing H.
-void PlaceCorners(const Eigen::Vector3d& x0, double h, int ci, int cj, int ck, LatticeCell* cell);
+// The gap and the flags at a block's kBlockVerts vertices (lattice_blocks.h), computed once per
+// block and shared by the up to eight cells around each vertex.
+struct BlockVertices {
+  double g[kBlockVerts];
+  std::uint8_t flags[kBlockVerts];
+};
+
+// Fills V from the fields PHI_M and PHI_L at a block's vertices, at the vertices NEEDED marks
+// (null: all). REACH: how far M's field may move at any vertex in a later evaluation (metres; 0
+// when there is none), for CellMayHoldSurfaceOnceMoved.
+void LoadBlockVertices(const float* phi_M, const float* phi_L, const PressureLaw& law, double reach,
+                       const std::uint8_t* needed, BlockVertices* v);
+
+// The cells' tests, from the flags of their eight corners: the cell whose first vertex is (CI, CJ,
+// CK) may hold surface when g changes sign over it and no compliant body (CLIP_M, CLIP_L) lies
+// wholly outside it; and may hold surface once M's field has moved by up to the reach
+// LoadBlockVertices was given (a superset: every cell that may hold surface may once moved).
+bool CellMayHoldSurface(const BlockVertices& v, int ci, int cj, int ck, bool clip_M, bool clip_L);
+bool CellMayHoldSurfaceOnceMoved(const BlockVertices& v, int ci, int cj, int ck, bool clip_M, bool clip_L);
+
+// Loads the corners' fields and gaps of the cell (CI, CJ, CK) of a block with the fields PHI_M and
+// PHI_L at its vertices and V from them, and places the corners: the block's first vertex is X0
+// (the lattice body's frame), its spacing H.
+void LoadCell(const float* phi_M, const float* phi_L, const BlockVertices& v, const Eigen::Vector3d& x0, double h,
+              int ci, int cj, int ck, LatticeCell* cell);
 
 // Integrates the surface in CELL over its six tetrahedra into SUMS (and RECORD when not null),
 // clipped to where the bodies overlap (ClipToOverlap). Returns the cell's surface area.

@@ -89,13 +89,17 @@ LatticeInOther::LatticeInOther(const Pose& X_ML_in, double h) : X_ML(X_ML_in) {
 }
 
 void SampleBlockInOther(const DistanceField& field, const LatticeInOther& lattice, const Eigen::Vector3d& x0,
-                        float* phi) {
+                        float* phi, const std::uint8_t* needed) {
   const Eigen::Vector3d a0 = lattice.X_ML * x0;
   for (int k = 0; k < kVerts; ++k) {
     for (int j = 0; j < kVerts; ++j) {
       Eigen::Vector3d a = a0 + double(j) * lattice.step_j + double(k) * lattice.step_k;
+      // The same additions whichever vertices are needed, so a vertex's sample never depends on
+      // which others were taken.
       for (int i = 0; i < kVerts; ++i, a += lattice.step_i) {
-        phi[VertexIndex(i, j, k)] = field.Distance(float(a.x()), float(a.y()), float(a.z()));
+        const int v = VertexIndex(i, j, k);
+        if (needed && !needed[v]) continue;
+        phi[v] = field.Distance(float(a.x()), float(a.y()), float(a.z()));
       }
     }
   }

@@ -54,8 +54,8 @@ struct LatticeInOther {
 };
 
 // M's FIELD at the kBlockVerts vertices of the block whose first vertex is X0 (L's frame),
-// into PHI.
+// into PHI: at the vertices NEEDED marks (null: all), the others left as they are.
 void SampleBlockInOther(const DistanceField& field, const LatticeInOther& lattice, const Eigen::Vector3d& x0,
-                        float* phi);
+                        float* phi, const std::uint8_t* needed = nullptr);
 
 }  // namespace contactlab

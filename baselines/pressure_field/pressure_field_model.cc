@@ -50,6 +50,10 @@ PressureFieldModel::PressureFieldModel(PressureFieldSide A, PressureFieldSide B,
   const double c_M = M_.rigid ? 0 : -double(M_.field->min_value()) / M_.modulus;
   law_ = PressureLaw::FromCompliances(c_M, c_L);
   h_ = L_.field->spacing() * options_.lattice;
+  // K_B's difference steps: a hundredth of a cell, and the rotation that moves B's farthest
+  // point by as much.
+  step_x_ = options_.fd_step * h_;
+  step_w_ = options_.fd_step * h_ / std::max(radius_B_, h_);
   // Every block of L's box at spacing h fits (capped).
   const Eigen::Vector3d extent = L_.field->box().size() / (h_ * kBlock);
   const double fit = std::ceil(extent.x() + 1) * std::ceil(extent.y() + 1) * std::ceil(extent.z() + 1);
@@ -57,6 +61,7 @@ PressureFieldModel::PressureFieldModel(PressureFieldSide A, PressureFieldSide B,
   blocks_.resize(std::size_t(capacity));
   block_phi_L_.resize(std::size_t(capacity) * kBlockVerts);
   block_surface_.resize(std::size_t(capacity));
+  block_candidates_.resize(std::size_t(capacity));
   surface_cells_.resize(std::size_t(capacity) * kBlock * kBlock * kBlock);
   parent_.resize(surface_cells_.size());
 }
@@ -93,11 +98,24 @@ bool PressureFieldModel::FindBlocks(const Pose& X_LM, std::int64_t* nodes) {
   return num_blocks_ > 0;
 }
 
+double PressureFieldModel::StepReach(const Pose& X_LM, const std::array<std::int32_t, 3>& blk) const {
+  // B's origin in the lattice body's frame, and the farthest the block reaches from it.
+  const Eigen::Vector3d o_B = lattice_is_A_ ? X_LM.translation : Eigen::Vector3d::Zero();
+  const double half = 0.5 * kBlock * h_;
+  const Eigen::Vector3d centre = origin_ + h_ * Eigen::Vector3d(blk[0], blk[1], blk[2]) + Eigen::Vector3d::Constant(half);
+  const double radius = (centre - o_B).norm() + std::sqrt(3.0) * half;
+  // A vertex moves by at most step_x (a translation step) or step_w radius (a rotation step
+  // about B's origin) in M's frame. A trilinear field's gradient is at most sqrt(3) times its
+  // bound along an axis: twice the Lipschitz bound, and a thousandth of a cell for the rounding.
+  return 2 * options_.lipschitz * (step_x_ + step_w_ * radius) + 1e-3 * h_;
+}
+
 void PressureFieldModel::Integrate(const Pose& X_LM, bool record, Sums* sums) {
   const DistanceField& fM = *M_.field;
   const LatticeInOther lattice_in_M(X_LM.Inverse(), h_);
   const PressureLaw& law = law_;
   const bool clip_M = !M_.rigid, clip_L = !L_.rigid;
+  const bool keep_candidates = record && options_.stiffness;
   SurfaceRecord recorder{&surface_, &surface_pressure_, record_capacity_};
   if (record) {
     num_surface_cells_ = 0;
@@ -106,19 +124,41 @@ void PressureFieldModel::Integrate(const Pose& X_LM, bool record, Sums* sums) {
     std::fill(block_surface_.begin(), block_surface_.begin() + num_blocks_, std::uint8_t(0));
   }
   float phi_M[kBlockVerts];
+  std::uint8_t needed[kBlockVerts];
+  BlockVertices vertices;
   LatticeCell cell;
   for (std::int64_t bi = 0; bi < num_blocks_; ++bi) {
-    // M's field at the block's vertices (L's are kept from FindBlocks).
     const auto& blk = blocks_[std::size_t(bi)];
     const float* phi_L = block_phi_L_.data() + bi * kBlockVerts;
     const Eigen::Vector3d x0 = origin_ + h_ * Eigen::Vector3d(blk[0], blk[1], blk[2]);
-    SampleBlockInOther(fM, lattice_in_M, x0, phi_M);
+    // The cells to look at: all of them, or for a stiffness step only those the recording pass
+    // found may hold surface once B has moved by a step, and M's field at their corners only.
+    const std::uint64_t cells = record ? ~std::uint64_t(0) : block_candidates_[std::size_t(bi)];
+    if (!record) {
+      std::fill_n(needed, kBlockVerts, std::uint8_t(0));
+      for (int c = 0; c < kBlock * kBlock * kBlock; ++c) {
+        if (!(cells >> c & 1)) continue;
+        const int v0 = VertexIndex(c % kBlock, c / kBlock % kBlock, c / (kBlock * kBlock));
+        for (int dk = 0; dk < 2; ++dk) {
+          for (int dj = 0; dj < 2; ++dj) needed[v0 + kVerts * (dj + kVerts * dk)] = needed[v0 + kVerts * (dj + kVerts * dk) + 1] = 1;
+        }
+      }
+    }
+    SampleBlockInOther(fM, lattice_in_M, x0, phi_M, record ? nullptr : needed);
+    LoadBlockVertices(phi_M, phi_L, law, keep_candidates ? StepReach(X_LM, blk) : 0, record ? nullptr : needed,
+                      &vertices);
+    std::uint64_t candidates = 0;
     for (int ck = 0; ck < kBlock; ++ck) {
       for (int cj = 0; cj < kBlock; ++cj) {
         for (int ci = 0; ci < kBlock; ++ci) {
+          const int c = ci + kBlock * (cj + kBlock * ck);
+          if (!(cells >> c & 1)) continue;
+          if (keep_candidates && CellMayHoldSurfaceOnceMoved(vertices, ci, cj, ck, clip_M, clip_L)) {
+            candidates |= std::uint64_t(1) << c;
+          }
           // The surface in each cell the gap changes sign over, where no body is wholly away.
-          if (!LoadCell(phi_M, phi_L, ci, cj, ck, law, clip_M, clip_L, &cell)) continue;
-          PlaceCorners(x0, h_, ci, cj, ck, &cell);
+          if (!CellMayHoldSurface(vertices, ci, cj, ck, clip_M, clip_L)) continue;
+          LoadCell(phi_M, phi_L, vertices, x0, h_, ci, cj, ck, &cell);
           const double cell_area = IntegrateCell(cell, law, sums, record ? &recorder : nullptr);
           sums->area += cell_area;
           // The cells and blocks that carry surface, for patches and K_B.
@@ -130,6 +170,7 @@ void PressureFieldModel::Integrate(const Pose& X_LM, bool record, Sums* sums) {
         }
       }
     }
+    if (keep_candidates) block_candidates_[std::size_t(bi)] = candidates;
   }
 }
 
@@ -139,6 +180,7 @@ void PressureFieldModel::KeepSurfaceBlocks() {
     if (!block_surface_[std::size_t(b)]) continue;
     if (kept != b) {
       blocks_[std::size_t(kept)] = blocks_[std::size_t(b)];
+      block_candidates_[std::size_t(kept)] = block_candidates_[std::size_t(b)];
       std::copy_n(block_phi_L_.begin() + b * kBlockVerts, kBlockVerts, block_phi_L_.begin() + kept * kBlockVerts);
     }
     ++kept;
@@ -189,9 +231,9 @@ ContactResult PressureFieldModel::Evaluate(const ContactQuery& query) {
   if (options_.stiffness && base.area > 0) {
     KeepSurfaceBlocks();
     // Forward differences in B's pose over the blocks with surface: a step of 1/100 cell moves
-    // the surface into another block only where it passes within that of a block's face.
-    const double step_x = options_.fd_step * h_, step_w = options_.fd_step * h_ / std::max(radius_B_, h_);
-    r.K_B = ForwardDifferenceStiffness(query.X_WB, r.on_B.AsVector(), step_x, step_w, [&](const Pose& X_WB) {
+    // the surface into another block only where it passes within that of a block's face. In
+    // those blocks only the cells that may hold surface once moved are integrated again.
+    r.K_B = ForwardDifferenceStiffness(query.X_WB, r.on_B.AsVector(), step_x_, step_w_, [&](const Pose& X_WB) {
       Sums s;
       Integrate(LatticeToOther(query.X_WA, X_WB), /*record=*/false, &s);
       return OnB(s, query.X_WA, X_WB);

@@ -24,7 +24,10 @@
 
 // K_B by forward differences of the wrench (six re-evaluations of the blocks that carry surface,
 // the lattice body's samples reused), so it is the derivative of this discretisation, up to
-// O(step) and to surface that a step would carry into a block that had none.
+// O(step) and to surface that a step would carry into a block that had none. A re-evaluation
+// visits only the cells that may hold surface once B has moved by a step (the gap within a
+// Lipschitz bound of the step of zero at a corner) and samples M at their corners only: the
+// cells it skips hold none, so K_B is the same as from whole blocks.
 // Stats: contact_area, patches (connected pieces, by cells sharing a face, edge or corner),
 // max_penetration (largest -(phi_A + phi_B) on the surface: the local overlap), points_in_contact
 // (cells carrying surface), nodes_visited (octree nodes and cells examined).
@@ -70,6 +73,8 @@ class PressureFieldModel final : public ContactModel {
   double depth_A() const { return depth_A_; }  // max(-phi_A), metres
   double depth_B() const { return depth_B_; }
   double spacing() const { return h_; }       // the lattice spacing
+  double step_x() const { return step_x_; }   // K_B's translation step (metres)
+  double step_w() const { return step_w_; }   // and rotation step (radians, about B's origin)
 
   // The contact surface of the latest Evaluate: the triangles the wrench was integrated over,
   // clipped to both insides, with the pressure at each corner.
@@ -81,6 +86,9 @@ class PressureFieldModel final : public ContactModel {
   // The wrench on the lattice body L (L's frame, about L's origin) from the blocks found, with
   // the other body M at X_LM. RECORD: also the cells with surface and the surface record.
   void Integrate(const Pose& X_LM, bool record, Sums* sums);
+  // How far M's field may move at a vertex of the block BLK when B's pose takes a stiffness
+  // step (metres; a bound).
+  double StepReach(const Pose& X_LM, const std::array<std::int32_t, 3>& blk) const;
   // Keeps the blocks that carried surface (block_surface_), in front.
   void KeepSurfaceBlocks();
   // Finds the blocks that may hold surface with M at X_LM; false when there is none.
@@ -96,6 +104,7 @@ class PressureFieldModel final : public ContactModel {
   bool lattice_is_A_ = false;  // A's field is strictly finer
   PressureFieldSide L_, M_;    // the lattice body and the other
   double depth_A_ = 0, depth_B_ = 0, h_ = 0, radius_B_ = 0;
+  double step_x_ = 0, step_w_ = 0;  // K_B's difference steps (metres, radians)
   // The two bodies' pressures and their gap p_M - p_L (up to a positive factor; a rigid side's
   // pressure counts as infinite inside it), whose zero set is the contact surface.
   PressureLaw law_;
@@ -109,6 +118,8 @@ class PressureFieldModel final : public ContactModel {
   std::vector<std::array<std::int32_t, 3>> blocks_;
   std::vector<float> block_phi_L_;
   std::vector<std::uint8_t> block_surface_;  // the block carried surface in the latest Evaluate
+  // The block's cells (bit ci + 4 cj + 16 ck) that may hold surface once B takes a stiffness step.
+  std::vector<std::uint64_t> block_candidates_;
   std::int64_t num_blocks_ = 0;
   // Cells carrying surface (linear index in the lattice), for patches.
   std::vector<std::int64_t> surface_cells_;
