@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <Eigen/Eigenvalues>
+
 #include "geometry/rotation_math.h"
 #include "util/error.h"
 
@@ -21,8 +23,9 @@ struct PairSums {
   double max_depth = 0;
   std::int32_t pairs = 0;
 
-  // A's sphere (centre a in B's frame, radius ra) and B's (b, rb); K_V the volume stiffness.
-  void Add(const Eigen::Vector3d& a, double ra, const Eigen::Vector3d& b, double rb, double k_V) {
+  // A's sphere (centre a in B's frame, radius ra) and B's (b, rb); K_V the volume stiffness;
+  // EXACT: K the exact derivative, else the halfspace rule (inner_sphere_model.h).
+  void Add(const Eigen::Vector3d& a, double ra, const Eigen::Vector3d& b, double rb, double k_V, bool exact) {
     const Eigen::Vector3d ab = b - a;
     const double d = ab.norm();
     if (d >= ra + rb) return;
@@ -43,6 +46,14 @@ struct PairSums {
     const Eigen::Vector3d f = k_V * kPi * disc * u;
     force += f;
     torque += a.cross(f);
+    if (!exact) {
+      // A spring along the line of centres: -k_n w w^T, w = (u, a x u) (= (u, b x u)).
+      const double k_n = k_V * kPi * std::max(0.0, -ddisc);
+      Vector6d w;
+      w << u, a.cross(u);
+      K.noalias() -= k_n * w * w.transpose();
+      return;
+    }
     const Eigen::Matrix3d uu = u * u.transpose();
     const Eigen::Matrix3d Kb = k_V * kPi * (ddisc * uu + (disc / d) * (Eigen::Matrix3d::Identity() - uu));
     const Eigen::Matrix3d Sa = Skew(a), Sb = Skew(b);
@@ -56,8 +67,8 @@ struct PairSums {
 }  // namespace
 
 InnerSphereModel::InnerSphereModel(std::shared_ptr<const SpherePacking> A, std::shared_ptr<const SpherePacking> B,
-                                   double k_V, std::int64_t max_pairs)
-    : A_(std::move(A)), B_(std::move(B)), k_V_(k_V) {
+                                   double k_V, SphereStiffness stiffness, std::int64_t max_pairs)
+    : A_(std::move(A)), B_(std::move(B)), k_V_(k_V), stiffness_(stiffness) {
   if (!A_ || !B_ || A_->radii.empty() || B_->radii.empty()) Fail("inner-spheres", "needs a sphere packing of each body");
   if (!(k_V_ > 0)) Fail("inner-spheres", "the volume stiffness k_V must be > 0");
   if (max_pairs < 2) Fail("inner-spheres", "max_pairs must be at least 2");
@@ -73,6 +84,7 @@ ContactResult InnerSphereModel::Evaluate(const ContactQuery& query) {
   const Eigen::Matrix3d R_BA = X_BA.R();
   const Eigen::Vector3d& p_BA = X_BA.translation;
   PairSums sums;
+  const bool exact = stiffness_ != SphereStiffness::kHalfspace;
   std::int64_t visited = 0;
   const std::int64_t budget = query.node_budget;
   const std::int64_t capacity = std::int64_t(level_.size());
@@ -83,7 +95,7 @@ ContactResult InnerSphereModel::Evaluate(const ContactQuery& query) {
   bool degraded = false;
   // Counts a pair through its proxies (the budget or the pair buffer ran out).
   auto approximate = [&](const SphereTreeNode& na, const SphereTreeNode& nb) {
-    sums.Add(R_BA * na.proxy_center + p_BA, na.proxy_radius, nb.proxy_center, nb.proxy_radius, k_V_);
+    sums.Add(R_BA * na.proxy_center + p_BA, na.proxy_radius, nb.proxy_center, nb.proxy_radius, k_V_, exact);
     degraded = true;
   };
   while (count > 0) {
@@ -96,7 +108,7 @@ ContactResult InnerSphereModel::Evaluate(const ContactQuery& query) {
       const Eigen::Vector3d ca = R_BA * na.center + p_BA;
       if ((ca - nb.center).squaredNorm() >= (na.radius + nb.radius) * (na.radius + nb.radius)) continue;
       if (na.leaf() && nb.leaf()) {
-        sums.Add(ca, A_->radii[std::size_t(na.sphere)], nb.center, B_->radii[std::size_t(nb.sphere)], k_V_);
+        sums.Add(ca, A_->radii[std::size_t(na.sphere)], nb.center, B_->radii[std::size_t(nb.sphere)], k_V_, exact);
         // A leaf's bounding sphere is its sphere (centre and radius).
         continue;
       }
@@ -125,6 +137,12 @@ ContactResult InnerSphereModel::Evaluate(const ContactQuery& query) {
   T.block<3, 3>(0, 0) = R;
   T.block<3, 3>(3, 3) = R;
   r.K_B = T * sums.K * T.transpose();
+  if (stiffness_ == SphereStiffness::kProjected) {  // the nearest negative semidefinite matrix
+    const Matrix6d S = 0.5 * (r.K_B + r.K_B.transpose());
+    Eigen::SelfAdjointEigenSolver<Matrix6d> es(S);
+    Vector6d ev = es.eigenvalues().cwiseMin(0.0);
+    r.K_B = es.eigenvectors() * ev.asDiagonal() * es.eigenvectors().transpose();
+  }
   r.stats.points_in_contact = sums.pairs;
   r.stats.nodes_visited = visited;
   r.stats.level_rendered = levels_done;

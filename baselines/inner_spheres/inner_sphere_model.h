@@ -7,7 +7,23 @@
 // the volume law of the "volume" reference (k_V = k_C L / sqrt(area of A's surface)), so the
 // two compare directly. A pair's lens shrinks at the rate of its intersection disc's area π a²
 // as the centres part, so each pair pushes B along the line of centres with k_V π a², about
-// A's sphere's centre (torque), and K_B is the exact derivative of that sum.
+// A's sphere's centre (torque).
+//
+// K_B (the static virtual coupling's gradient; Weller & Zachmann give none) is one of three;
+// the wrench is the same under all, so the choice is the coupling's, not the method's.
+//  - kExact: the exact derivative of the wrench (-k_V times the Hessian of V). The summed lens
+//    volume is not convex: a disc turns with its line of centres (+k_V π a²/d across it), a
+//    pair softens once its smaller sphere is more than about half inside the larger (a² falls
+//    as the centres close: the lens saturates at the smaller ball; deeper, a sphere sits in
+//    the gaps between the other body's spheres) and the force turns under rotation. These give
+//    K_B positive eigenvalues of up to ~10^4 N/m on the closed-loop scenes; where they exceed
+//    a soft k_vc, the coupling's Newton step (K_VC + K_B) delta = -W climbs the energy instead
+//    of descending it and the loop puts energy into the hand (docs/results-models.md).
+//  - kProjected (default): the symmetric part of the exact derivative with its positive
+//    eigenvalues set to zero: negative semidefinite, and equal to the exact one where that is.
+//  - kHalfspace: each pair as the sec. 5 halfspace rule of the paper's model treats a point, a
+//    spring along its line of centres, K_pair = -k_n w w^T with w = (u, a x u) and
+//    k_n = k_V π max(0, -d(a²)/dd) >= 0: negative semidefinite, without the terms above.
 //
 // The traversal descends both trees breadth first, level by level, splitting the larger of two
 // overlapping bounding spheres. A query's node budget (graceful degradation, as in the paper's
@@ -29,18 +45,23 @@
 
 namespace contactlab {
 
+// Which K_B the model reports (above).
+enum class SphereStiffness { kHalfspace, kExact, kProjected };
+
 class InnerSphereModel final : public ContactModel {
  public:
-  // K_V: the volume stiffness, N/m^2. MAX_PAIRS: pairs held per traversal level (beyond: the
-  // pair counts through its proxies). Throws Error for an empty packing or k_V <= 0.
+  // K_V: the volume stiffness, N/m^2. STIFFNESS: the K_B reported. MAX_PAIRS: pairs held per
+  // traversal level (beyond: the pair counts through its proxies). Throws Error for an empty
+  // packing or k_V <= 0.
   InnerSphereModel(std::shared_ptr<const SpherePacking> A, std::shared_ptr<const SpherePacking> B, double k_V,
-                   std::int64_t max_pairs = 1 << 20);
+                   SphereStiffness stiffness = SphereStiffness::kProjected, std::int64_t max_pairs = 1 << 20);
 
   std::string_view name() const override { return "inner-spheres"; }
   ContactResult Evaluate(const ContactQuery& query) override;
   void Reset() override {}
 
   double k_V() const { return k_V_; }
+  SphereStiffness stiffness() const { return stiffness_; }
   // The penetration volume V of the latest Evaluate, m^3.
   double volume() const { return volume_; }
   const SpherePacking& packing_A() const { return *A_; }
@@ -53,6 +74,7 @@ class InnerSphereModel final : public ContactModel {
   std::shared_ptr<const SpherePacking> A_, B_;
   SphereTree tree_A_, tree_B_;
   double k_V_ = 0;
+  SphereStiffness stiffness_ = SphereStiffness::kProjected;
   double volume_ = 0;
   std::vector<Pair> level_, next_;
 };

@@ -40,6 +40,28 @@ const ParamTable<InnerSphereSpec>& InnerSphereParams() {
   return table;
 }
 
+// The model's own key in the scene's model section: which K_B it reports (inner_sphere_model.h).
+struct InnerSpherePairSpec {
+  SphereStiffness stiffness = SphereStiffness::kProjected;
+};
+
+const ParamTable<InnerSpherePairSpec>& InnerSpherePairParams() {
+  using P = ParamRows<InnerSpherePairSpec>;
+  static const ParamTable<InnerSpherePairSpec> table(
+      "inner-spheres", "The gradient K_B the inner-spheres model hands to the virtual coupling.",
+      {
+          P::Mapped("sphere_stiffness", PARAM_MEMBER(stiffness),
+                    std::vector<std::pair<std::string, SphereStiffness>>{{"halfspace", SphereStiffness::kHalfspace},
+                                                                        {"exact", SphereStiffness::kExact},
+                                                                        {"projected", SphereStiffness::kProjected}},
+                    "inner-spheres: K_B, the exact derivative of the wrench with its positive eigenvalues set to "
+                    "zero (projected), each sphere pair a spring along its line of centres (halfspace, the sec. 5 "
+                    "rule), or the exact derivative (exact; not negative semidefinite: soft couplings go active)")
+              .Sweepable().Example("exact"),
+      });
+  return table;
+}
+
 std::shared_ptr<const SpherePacking> PackingOf(ContactBody& body) {
   const InnerSphereSpec& spec = body.model_blocks().Get(InnerSphereParams());
   const std::string where = "inner-spheres: body '" + std::string(body.body_name()) + "'";
@@ -65,7 +87,8 @@ std::unique_ptr<ContactModel> MakeInnerSpheres(const ContactModelInputs& in) {
   // The volume reference's stiffness (baselines/reference/volume_reference.h).
   CheckPenaltyParams(in.params.penalty, "inner-spheres");
   const double k_V = in.params.penalty.VolumeStiffness(in.A.mesh()->SurfaceArea());
-  return std::make_unique<InnerSphereModel>(PackingOf(in.A), PackingOf(in.B), k_V);
+  return std::make_unique<InnerSphereModel>(PackingOf(in.A), PackingOf(in.B), k_V,
+                                            in.Params(InnerSpherePairParams()).stiffness);
 }
 
 }  // namespace
@@ -77,6 +100,7 @@ void RegisterInnerSphereContactModels() {
                      "grad V (Weller & Zachmann 2009)",
       .needs = {.field_A = true, .field_B = true, .mesh_A = true, .mesh_B = true},
       .make = MakeInnerSpheres,
+      .pair_params = ParamBlock(InnerSpherePairParams()),
       .body_blocks = {ParamBlock(InnerSphereParams(), "inner_spheres", "its sphere packing in the inner-spheres model")},
   });
 }

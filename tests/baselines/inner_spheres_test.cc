@@ -10,11 +10,15 @@
 #include <numbers>
 #include <random>
 
+#include <Eigen/Eigenvalues>
+
 #include "baselines/inner_spheres/inner_sphere_model.h"
 #include "baselines/inner_spheres/sphere_packing.h"
 #include "baselines/volumetric_cases.h"
 #include "contact/test_shells.h"
 #include "geometry/pose.h"
+#include "geometry/rotation_math.h"
+#include "haptics/virtual_coupling.h"
 #include "util/error.h"
 #include "test_support.h"
 
@@ -140,7 +144,7 @@ class InnerSpherePair : public ::testing::Test {
 };
 
 TEST_F(InnerSpherePair, StiffnessIsTheDerivativeOfTheWrench) {
-  InnerSphereModel model(a_, b_, 1e6);
+  InnerSphereModel model(a_, b_, 1e6, SphereStiffness::kExact);
   int checked = 0;
   for (const Overlap& o : RandomOverlaps(10, 0.01)) {
     Overlap p = o;
@@ -154,6 +158,129 @@ TEST_F(InnerSpherePair, StiffnessIsTheDerivativeOfTheWrench) {
     EXPECT_LT((r.K_B - K).norm(), 1e-4 * K.norm()) << r.K_B << "\nvs\n" << K;
   }
   EXPECT_GE(checked, 5);
+}
+
+// The wrench is minus the gradient of the potential k_V V: central differences of the volume
+// (the lens closed form, summed) in B's pose, translation and rotation. The force is
+// conservative, so no cycle of poses does work on B.
+TEST_F(InnerSpherePair, WrenchIsMinusTheGradientOfTheVolumePotential) {
+  const double k_V = 1e6;
+  InnerSphereModel model(a_, b_, k_V);
+  int checked = 0;
+  for (const Overlap& o : RandomOverlaps(10, 0.01)) {
+    const Pose X_WA{o.X_WA.rotation, Eigen::Vector3d(0.3 * o.X_WA.translation.x(), 0.3 * o.X_WA.translation.y(), 0.006)};
+    const ContactResult r = model.Evaluate(At(X_WA, Pose::Identity()));
+    if (r.stats.points_in_contact < 3) continue;
+    ++checked;
+    Vector6d grad;
+    const double h = 1e-7;
+    for (int i = 0; i < 6; ++i) {
+      Eigen::Vector3d step = Eigen::Vector3d::Zero();
+      step[i % 3] = h;
+      auto V = [&](double sign) {
+        Pose X_WB = Pose::Identity();
+        if (i < 3) {
+          X_WB.translation = sign * step;
+        } else {
+          X_WB.rotation = RotationFromVector(sign * step);
+        }
+        model.Evaluate(At(X_WA, X_WB));
+        return model.volume();
+      };
+      grad[i] = (V(1) - V(-1)) / (2 * h);
+    }
+    const Vector6d W = r.on_B.AsVector();
+    EXPECT_LT((W + k_V * grad).norm(), 1e-5 * W.norm()) << W.transpose() << "\nvs\n" << -k_V * grad.transpose();
+  }
+  EXPECT_GE(checked, 5);
+}
+
+// K_B against the exact derivative: projected (the default) and halfspace are symmetric and
+// negative semidefinite; projected is the exact one's symmetric part with its positive
+// eigenvalues set to zero, equal to it where that is already negative semidefinite.
+TEST_F(InnerSpherePair, StableStiffnessesAreNegativeSemidefiniteAndProjectTheExactOne) {
+  InnerSphereModel exact(a_, b_, 1e6, SphereStiffness::kExact), projected(a_, b_, 1e6),
+      halfspace(a_, b_, 1e6, SphereStiffness::kHalfspace);
+  ASSERT_EQ(projected.stiffness(), SphereStiffness::kProjected);
+  int indefinite = 0, checked = 0;
+  for (const Overlap& o : RandomOverlaps(12, 0.012)) {
+    const ContactResult e = exact.Evaluate(At(o.X_WA, o.X_WB));
+    if (e.stats.points_in_contact == 0) continue;
+    ++checked;
+    const ContactResult p = projected.Evaluate(At(o.X_WA, o.X_WB)), h = halfspace.Evaluate(At(o.X_WA, o.X_WB));
+    EXPECT_EQ(p.on_B.AsVector(), e.on_B.AsVector());
+    EXPECT_EQ(h.on_B.AsVector(), e.on_B.AsVector());
+    const double scale = e.K_B.norm();
+    const Matrix6d S = 0.5 * (e.K_B + e.K_B.transpose());
+    Eigen::SelfAdjointEigenSolver<Matrix6d> es(S);
+    if (es.eigenvalues().maxCoeff() > 1e-9 * scale) ++indefinite;
+    Matrix6d clamped = es.eigenvectors() * es.eigenvalues().cwiseMin(0.0).asDiagonal() * es.eigenvectors().transpose();
+    EXPECT_LT((p.K_B - clamped).norm(), 1e-9 * scale);
+    for (const Matrix6d* K : {&p.K_B, &h.K_B}) {
+      EXPECT_LT((*K - K->transpose()).norm(), 1e-9 * scale);
+      EXPECT_LE(Eigen::SelfAdjointEigenSolver<Matrix6d>(*K).eigenvalues().maxCoeff(), 1e-9 * scale);
+    }
+  }
+  EXPECT_GE(checked, 6);
+  EXPECT_GE(indefinite, 1);  // the exact derivative is not negative semidefinite: the case is tested
+}
+
+// The static virtual coupling (haptics/virtual_coupling.h) at a soft k_vc, the device pose held
+// deep in contact: each Newton step moves H on the total energy E = coupling spring + k_V V
+// (the volume as its closed form gives it, not the wrench). With a negative semidefinite K_B
+// no step climbs; with the exact derivative steps climb (the energy the closed loop puts into
+// the hand, docs/results-models.md).
+// Returns the energy the counted steps climbed, as a fraction of the largest energy seen.
+double ClimbingCouplingSteps(InnerSphereModel& model, double k_vc, double depth, double tilt) {
+  VirtualCouplingParams params;
+  params.k_vc = k_vc;
+  params.max_force = 1e6;   // the linear spring: its energy below is exact
+  params.max_torque = 1e6;
+  const Pose X_WA = Translation(0.001, -0.002, 0.012);
+  const Pose X_WD{Eigen::Quaterniond(Eigen::AngleAxisd(tilt, Eigen::Vector3d(1, 1, 0).normalized())),
+                  Eigen::Vector3d(0, 0, depth)};
+  auto energy = [&](const Pose& X_WH) {
+    model.Evaluate(At(X_WA, X_WH));
+    const double u = (X_WD.translation - X_WH.translation).squaredNorm();
+    const double phi = CalcRotationVector(X_WD.rotation * X_WH.rotation.conjugate()).squaredNorm();
+    return 0.5 * params.k_vc * u + 0.5 * params.k_vc_rot * phi + model.k_V() * model.volume();
+  };
+  StaticVirtualCoupling coupling(params);
+  coupling.Reset(Pose::Identity());
+  double climbed = 0;
+  double E = energy(coupling.X_WH()), largest = E;
+  for (int i = 0; i < 300; ++i) {
+    const ContactResult r = model.Evaluate(At(X_WA, coupling.X_WH()));
+    coupling.Update(X_WD, r.on_B, r.K_B);
+    const double next = energy(coupling.X_WH());
+    // From free space (K_B = 0) the first step into contact may overshoot, as any penalty
+    // model's: the steps counted start in contact.
+    if (r.stats.points_in_contact > 0 && next > E) climbed += next - E;
+    E = next;
+    largest = std::max(largest, E);
+  }
+  return climbed / largest;
+}
+
+TEST_F(InnerSpherePair, CouplingStepsDescendTheEnergyAtSoftCouplings) {
+  InnerSphereModel projected(a_, b_, 1e6), halfspace(a_, b_, 1e6, SphereStiffness::kHalfspace),
+      exact(a_, b_, 1e6, SphereStiffness::kExact);
+  double exact_climbing = 0;
+  for (const double k_vc : {400.0, 2000.0}) {
+    for (const double depth : {0.004, 0.008, 0.012}) {
+      for (const double tilt : {0.0, 0.3}) {
+        const double p = ClimbingCouplingSteps(projected, k_vc, depth, tilt);
+        const double h = ClimbingCouplingSteps(halfspace, k_vc, depth, tilt);
+        const double e = ClimbingCouplingSteps(exact, k_vc, depth, tilt);
+        std::printf("k_vc %g depth %g tilt %g: energy climbed / largest: projected %.2e halfspace %.2e exact %.2e\n",
+                    k_vc, depth, tilt, p, h, e);
+        EXPECT_LT(p, 1e-3) << k_vc << " " << depth << " " << tilt;
+        EXPECT_LT(h, 1e-3) << k_vc << " " << depth << " " << tilt;
+        exact_climbing = std::max(exact_climbing, e);
+      }
+    }
+  }
+  EXPECT_GT(exact_climbing, 1.0);
 }
 
 TEST_F(InnerSpherePair, NewtonsThirdLawAndFrameCovariance) {
