@@ -2,7 +2,6 @@
 // clipping and integration (cell_surface.h; Elandt et al. 2019).
 #include "baselines/pressure_field/cell_surface.h"
 
-
 namespace contactlab {
 namespace {
 
@@ -40,25 +39,13 @@ int CutTetrahedron(const LatticeCell& cell, const int* tet, PolyVertex* poly, Ei
 constexpr int kCornerOffset[8] = {0, 1, kVerts, kVerts + 1, kVerts * kVerts, kVerts * kVerts + 1,
                                   kVerts * kVerts + kVerts, kVerts * kVerts + kVerts + 1};
 
-// The AND and the OR of the flags of the cell's eight corners.
-void CornerFlags(const BlockVertices& v, int ci, int cj, int ck, std::uint8_t* all, std::uint8_t* any) {
-  const std::uint8_t* f = v.flags + VertexIndex(ci, cj, ck);
-  std::uint8_t a = 0xFF, o = 0;
-  for (const int off : kCornerOffset) {
-    a &= f[off];
-    o |= f[off];
-  }
-  *all = a;
-  *any = o;
-}
-
 }  // namespace
 
 void LoadBlockVertices(const float* phi_M, const float* phi_L, const PressureLaw& law, double reach,
-                       const std::uint8_t* needed, BlockVertices* v) {
+                       const VertexMask* needed, BlockVertices* v) {
   const double reach_g = law.w_M * reach;  // only M's field moves: g = -w_M phi_M + w_L phi_L
   for (int i = 0; i < kBlockVerts; ++i) {
-    if (needed && !needed[i]) continue;
+    if (needed && !needed->Has(i)) continue;
     const double pm = phi_M[i], pl = phi_L[i];
     const double g = law.Gap(pm, pl);
     v->g[i] = g;
@@ -68,18 +55,29 @@ void LoadBlockVertices(const float* phi_M, const float* phi_L, const PressureLaw
   }
 }
 
-bool CellMayHoldSurface(const BlockVertices& v, int ci, int cj, int ck, bool clip_M, bool clip_L) {
-  std::uint8_t all, any;
-  CornerFlags(v, ci, cj, ck, &all, &any);
-  return (any & kGapPositive) && !(all & kGapPositive) && !(clip_M && (all & kOutsideM)) &&
-         !(clip_L && (all & kOutsideL));
+CellFlags CornerFlags(const BlockVertices& v, int ci, int cj, int ck) {
+  const std::uint8_t* f = v.flags + VertexIndex(ci, cj, ck);
+  CellFlags out{0xFF, 0};
+  for (const int off : kCornerOffset) {
+    out.all &= f[off];
+    out.any |= f[off];
+  }
+  return out;
 }
 
-bool CellMayHoldSurfaceOnceMoved(const BlockVertices& v, int ci, int cj, int ck, bool clip_M, bool clip_L) {
-  std::uint8_t all, any;
-  CornerFlags(v, ci, cj, ck, &all, &any);
-  return (any & kMayTurnPositive) && (any & kMayTurnNonPositive) && !(clip_M && !(any & kMayBeInsideM)) &&
-         !(clip_L && (all & kOutsideL));
+bool MayHoldSurface(CellFlags f, bool clip_M, bool clip_L) {
+  return (f.any & kGapPositive) && !(f.all & kGapPositive) && !(clip_M && (f.all & kOutsideM)) &&
+         !(clip_L && (f.all & kOutsideL));
+}
+
+bool MayHoldSurfaceOnceMoved(CellFlags f, bool clip_M, bool clip_L) {
+  return (f.any & kMayTurnPositive) && (f.any & kMayTurnNonPositive) && !(clip_M && !(f.any & kMayBeInsideM)) &&
+         !(clip_L && (f.all & kOutsideL));
+}
+
+void AddCellCorners(int ci, int cj, int ck, VertexMask* mask) {
+  const int v0 = VertexIndex(ci, cj, ck);
+  for (const int off : kCornerOffset) mask->Add(v0 + off);
 }
 
 void LoadCell(const float* phi_M, const float* phi_L, const BlockVertices& v, const Eigen::Vector3d& x0, double h,

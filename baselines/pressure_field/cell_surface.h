@@ -40,18 +40,27 @@ struct BlockVertices {
   std::uint8_t flags[kBlockVerts];
 };
 
-// Fills V from the fields PHI_M and PHI_L at a block's vertices, at the vertices NEEDED marks
+// Fills V from the fields PHI_M and PHI_L at a block's vertices, at the vertices in NEEDED
 // (null: all). REACH: how far M's field may move at any vertex in a later evaluation (metres; 0
-// when there is none), for CellMayHoldSurfaceOnceMoved.
+// when there is none), for MayHoldSurfaceOnceMoved.
 void LoadBlockVertices(const float* phi_M, const float* phi_L, const PressureLaw& law, double reach,
-                       const std::uint8_t* needed, BlockVertices* v);
+                       const VertexMask* needed, BlockVertices* v);
 
-// The cells' tests, from the flags of their eight corners: the cell whose first vertex is (CI, CJ,
-// CK) may hold surface when g changes sign over it and no compliant body (CLIP_M, CLIP_L) lies
-// wholly outside it; and may hold surface once M's field has moved by up to the reach
-// LoadBlockVertices was given (a superset: every cell that may hold surface may once moved).
-bool CellMayHoldSurface(const BlockVertices& v, int ci, int cj, int ck, bool clip_M, bool clip_L);
-bool CellMayHoldSurfaceOnceMoved(const BlockVertices& v, int ci, int cj, int ck, bool clip_M, bool clip_L);
+// The AND and the OR of the flags of the eight corners of the cell whose first vertex is (CI,
+// CJ, CK).
+struct CellFlags {
+  std::uint8_t all, any;
+};
+CellFlags CornerFlags(const BlockVertices& v, int ci, int cj, int ck);
+
+// The cells' tests, from their corners' flags: the cell may hold surface when g changes sign over
+// it and no compliant body (CLIP_M, CLIP_L) lies wholly outside it; and may hold surface once M's
+// field has moved by up to the reach LoadBlockVertices was given (a superset of the first).
+bool MayHoldSurface(CellFlags f, bool clip_M, bool clip_L);
+bool MayHoldSurfaceOnceMoved(CellFlags f, bool clip_M, bool clip_L);
+
+// Adds the eight corners of the cell (CI, CJ, CK) to MASK.
+void AddCellCorners(int ci, int cj, int ck, VertexMask* mask);
 
 // Loads the corners' fields and gaps of the cell (CI, CJ, CK) of a block with the fields PHI_M and
 // PHI_L at its vertices and V from them, and places the corners: the block's first vertex is X0

@@ -89,7 +89,7 @@ LatticeInOther::LatticeInOther(const Pose& X_ML_in, double h) : X_ML(X_ML_in) {
 }
 
 void SampleBlockInOther(const DistanceField& field, const LatticeInOther& lattice, const Eigen::Vector3d& x0,
-                        float* phi, const std::uint8_t* needed) {
+                        float* phi, const VertexMask* needed) {
   const Eigen::Vector3d a0 = lattice.X_ML * x0;
   for (int k = 0; k < kVerts; ++k) {
     for (int j = 0; j < kVerts; ++j) {
@@ -98,7 +98,7 @@ void SampleBlockInOther(const DistanceField& field, const LatticeInOther& lattic
       // which others were taken.
       for (int i = 0; i < kVerts; ++i, a += lattice.step_i) {
         const int v = VertexIndex(i, j, k);
-        if (needed && !needed[v]) continue;
+        if (needed && !needed->Has(v)) continue;
         phi[v] = field.Distance(float(a.x()), float(a.y()), float(a.z()));
       }
     }

@@ -22,6 +22,15 @@ constexpr double kCullMargin = 0.5;        // cells: blocks kept within this of 
 // A block's vertex (I, J, K) in its kBlockVerts samples, x fastest.
 inline int VertexIndex(int i, int j, int k) { return i + kVerts * (j + kVerts * k); }
 
+// A set of a block's vertices, one bit each.
+struct VertexMask {
+  static_assert(kBlockVerts <= 128);
+  std::uint64_t bits[2] = {0, 0};
+
+  bool Has(int v) const { return (bits[v >> 6] >> (v & 63)) & 1; }
+  void Add(int v) { bits[v >> 6] |= std::uint64_t(1) << (v & 63); }
+};
+
 // The lattice of spacing H (metres) on the lattice body L's grid (origin O_L, L's frame) that
 // covers the overlap of L's box BOX_L and the other body's box BOX_M placed at X_LM: its
 // *ORIGIN and *CELLS per axis. False (and nothing written) when the boxes do not overlap.
@@ -54,8 +63,8 @@ struct LatticeInOther {
 };
 
 // M's FIELD at the kBlockVerts vertices of the block whose first vertex is X0 (L's frame),
-// into PHI: at the vertices NEEDED marks (null: all), the others left as they are.
+// into PHI: at the vertices in NEEDED (null: all), the others left as they are.
 void SampleBlockInOther(const DistanceField& field, const LatticeInOther& lattice, const Eigen::Vector3d& x0,
-                        float* phi, const std::uint8_t* needed = nullptr);
+                        float* phi, const VertexMask* needed = nullptr);
 
 }  // namespace contactlab

@@ -62,6 +62,7 @@ PressureFieldModel::PressureFieldModel(PressureFieldSide A, PressureFieldSide B,
   block_phi_L_.resize(std::size_t(capacity) * kBlockVerts);
   block_surface_.resize(std::size_t(capacity));
   block_candidates_.resize(std::size_t(capacity));
+  block_candidate_corners_.resize(std::size_t(capacity));
   surface_cells_.resize(std::size_t(capacity) * kBlock * kBlock * kBlock);
   parent_.resize(surface_cells_.size());
 }
@@ -124,7 +125,6 @@ void PressureFieldModel::Integrate(const Pose& X_LM, bool record, Sums* sums) {
     std::fill(block_surface_.begin(), block_surface_.begin() + num_blocks_, std::uint8_t(0));
   }
   float phi_M[kBlockVerts];
-  std::uint8_t needed[kBlockVerts];
   BlockVertices vertices;
   LatticeCell cell;
   for (std::int64_t bi = 0; bi < num_blocks_; ++bi) {
@@ -134,30 +134,23 @@ void PressureFieldModel::Integrate(const Pose& X_LM, bool record, Sums* sums) {
     // The cells to look at: all of them, or for a stiffness step only those the recording pass
     // found may hold surface once B has moved by a step, and M's field at their corners only.
     const std::uint64_t cells = record ? ~std::uint64_t(0) : block_candidates_[std::size_t(bi)];
-    if (!record) {
-      std::fill_n(needed, kBlockVerts, std::uint8_t(0));
-      for (int c = 0; c < kBlock * kBlock * kBlock; ++c) {
-        if (!(cells >> c & 1)) continue;
-        const int v0 = VertexIndex(c % kBlock, c / kBlock % kBlock, c / (kBlock * kBlock));
-        for (int dk = 0; dk < 2; ++dk) {
-          for (int dj = 0; dj < 2; ++dj) needed[v0 + kVerts * (dj + kVerts * dk)] = needed[v0 + kVerts * (dj + kVerts * dk) + 1] = 1;
-        }
-      }
-    }
-    SampleBlockInOther(fM, lattice_in_M, x0, phi_M, record ? nullptr : needed);
-    LoadBlockVertices(phi_M, phi_L, law, keep_candidates ? StepReach(X_LM, blk) : 0, record ? nullptr : needed,
-                      &vertices);
+    const VertexMask* needed = record ? nullptr : &block_candidate_corners_[std::size_t(bi)];
+    SampleBlockInOther(fM, lattice_in_M, x0, phi_M, needed);
+    LoadBlockVertices(phi_M, phi_L, law, keep_candidates ? StepReach(X_LM, blk) : 0, needed, &vertices);
     std::uint64_t candidates = 0;
+    VertexMask corners;
     for (int ck = 0; ck < kBlock; ++ck) {
       for (int cj = 0; cj < kBlock; ++cj) {
         for (int ci = 0; ci < kBlock; ++ci) {
           const int c = ci + kBlock * (cj + kBlock * ck);
           if (!(cells >> c & 1)) continue;
-          if (keep_candidates && CellMayHoldSurfaceOnceMoved(vertices, ci, cj, ck, clip_M, clip_L)) {
+          const CellFlags flags = CornerFlags(vertices, ci, cj, ck);
+          if (keep_candidates && MayHoldSurfaceOnceMoved(flags, clip_M, clip_L)) {
             candidates |= std::uint64_t(1) << c;
+            AddCellCorners(ci, cj, ck, &corners);
           }
           // The surface in each cell the gap changes sign over, where no body is wholly away.
-          if (!CellMayHoldSurface(vertices, ci, cj, ck, clip_M, clip_L)) continue;
+          if (!MayHoldSurface(flags, clip_M, clip_L)) continue;
           LoadCell(phi_M, phi_L, vertices, x0, h_, ci, cj, ck, &cell);
           const double cell_area = IntegrateCell(cell, law, sums, record ? &recorder : nullptr);
           sums->area += cell_area;
@@ -170,7 +163,10 @@ void PressureFieldModel::Integrate(const Pose& X_LM, bool record, Sums* sums) {
         }
       }
     }
-    if (keep_candidates) block_candidates_[std::size_t(bi)] = candidates;
+    if (keep_candidates) {
+      block_candidates_[std::size_t(bi)] = candidates;
+      block_candidate_corners_[std::size_t(bi)] = corners;
+    }
   }
 }
 
@@ -181,6 +177,7 @@ void PressureFieldModel::KeepSurfaceBlocks() {
     if (kept != b) {
       blocks_[std::size_t(kept)] = blocks_[std::size_t(b)];
       block_candidates_[std::size_t(kept)] = block_candidates_[std::size_t(b)];
+      block_candidate_corners_[std::size_t(kept)] = block_candidate_corners_[std::size_t(b)];
       std::copy_n(block_phi_L_.begin() + b * kBlockVerts, kBlockVerts, block_phi_L_.begin() + kept * kBlockVerts);
     }
     ++kept;

@@ -40,6 +40,7 @@
 #include <string_view>
 #include <vector>
 
+#include "baselines/pressure_field/lattice_blocks.h"
 #include "baselines/pressure_field/pressure_law.h"
 #include "contact/contact_model.h"
 #include "sdf/distance_field.h"
@@ -120,6 +121,7 @@ class PressureFieldModel final : public ContactModel {
   std::vector<std::uint8_t> block_surface_;  // the block carried surface in the latest Evaluate
   // The block's cells (bit ci + 4 cj + 16 ck) that may hold surface once B takes a stiffness step.
   std::vector<std::uint64_t> block_candidates_;
+  std::vector<VertexMask> block_candidate_corners_;  // their corners, where M is sampled
   std::int64_t num_blocks_ = 0;
   // Cells carrying surface (linear index in the lattice), for patches.
   std::vector<std::int64_t> surface_cells_;
