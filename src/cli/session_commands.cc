@@ -12,7 +12,9 @@
 // viewers opened the view's stream. The report splits deadline misses into overrun and
 // preempted and lists the largest ten; the log carries each cycle's CPU time (cpu_us).
 // --cpu N pins the loop thread to core N and keeps every other thread of the session off it
-// (docs/sessions.md).
+// (docs/sessions.md). The loop runs at the scene's rate, 1 / model.cycle_seconds (1 kHz by
+// default); --rate HZ sets the scene's cycle to 1 / HZ, so that the loop, the contact model's
+// coherence and the deformable bodies' steps all count in the same cycle.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -59,6 +61,7 @@ struct SessionArgs {
   std::string log;
   std::string cache;
   double duration = 10;
+  double rate = -1;  // --rate: the loop's rate, Hz (sets model.cycle_seconds); <= 0: the scene's
   double k_vc = -1;
   double touch = -1;
   bool no_realtime = false;
@@ -131,12 +134,21 @@ AssetOptions SessionAssetOptions(const SessionArgs& args) {
   return options;
 }
 
+// The session's scene: the file, with --rate's cycle (1 / HZ) as its model.cycle_seconds. Throws
+// Error naming the scene file when its cycle gives no loop rate.
+Scene LoadSessionScene(const SessionArgs& args) {
+  Scene scene = LoadScene(RequireDataFile(args.scene));
+  if (args.rate > 0) scene.model.cycle_seconds = 1.0 / args.rate;
+  (void)LoopRateOfCycle(scene.model.cycle_seconds, args.scene + ": model.cycle_seconds");
+  return scene;
+}
+
 // The scene side of a session: the scene, its fields and pointshells (built or read from the
 // cache), the contact model (--model, or the scene's first) and the haptic body's start pose
 // (--touch: where it touches the other body, moved toward it; else the scene's pose).
 struct SessionScene {
   explicit SessionScene(const SessionArgs& args)
-      : scene(LoadScene(RequireDataFile(args.scene))),
+      : scene(LoadSessionScene(args)),
         assets(scene, SessionAssetOptions(args)),
         model_name(args.model.empty() ? scene.models.front() : args.model),
         model(MakeSceneContactModel(model_name, scene, assets)),
@@ -188,9 +200,12 @@ HapticCycleConfig MakeSessionCycleConfig(const SessionArgs& args, SessionScene& 
   return config;
 }
 
-// The loop's options: --duration, --no-realtime (no SCHED_FIFO, no mlockall) and --cpu.
-HapticLoopOptions SessionLoopOptions(const SessionArgs& args, int cpu) {
+// The loop's options: the scene's rate (1 / model.cycle_seconds, after --rate), --duration,
+// --no-realtime (no SCHED_FIFO, no mlockall) and --cpu.
+HapticLoopOptions SessionLoopOptions(const SessionArgs& args, const Scene& scene, int cpu) {
   HapticLoopOptions options;
+  options.rate_hz = LoopRateOfCycle(scene.model.cycle_seconds, args.scene + ": model.cycle_seconds");
+  options.spin_seconds = LoopSpinSeconds(options.rate_hz);
   options.duration_seconds = args.duration;
   options.try_realtime = !args.no_realtime;
   options.cpu = cpu;
@@ -268,16 +283,16 @@ SessionView StartSessionView(const SessionArgs& args, SessionScene& s, int port,
   return view;
 }
 
-// The start lines on stdout: scene, model, device, length and deformable bodies; where the
+// The start lines on stdout: scene, model, device, length, rate and deformable bodies; where the
 // device is (a udp device's bound port, also when udp:0 picked it); the view's address; with
 // --cpu, the loop's core and the other threads' cores.
 void PrintSessionStart(const SessionArgs& args, const SessionScene& s, const SceneDynamics& dynamics,
-                       const HapticDevice& device, const LiveViewServer* server, int cpu) {
+                       const HapticDevice& device, const LiveViewServer* server, int cpu, double rate_hz) {
   std::string deformable;
   if (dynamics.A) deformable += ", " + s.scene.pointshell_body.name + " deformable, r = " + std::to_string(dynamics.A->r());
   if (dynamics.B) deformable += ", " + s.scene.field_body.name + " deformable, r = " + std::to_string(dynamics.B->r());
-  std::printf("session: scene %s, model %s, device %s, %.1f s (Ctrl-C stops)%s\n", s.scene.name.c_str(),
-              s.model_name.c_str(), args.device.c_str(), args.duration, deformable.c_str());
+  std::printf("session: scene %s, model %s, device %s, %.1f s at %g Hz (Ctrl-C stops)%s\n", s.scene.name.c_str(),
+              s.model_name.c_str(), args.device.c_str(), args.duration, rate_hz, deformable.c_str());
   std::printf("device: %s\n", device.description().c_str());
   if (server) std::printf("view: %s\n", server->url().c_str());
   if (cpu >= 0)
@@ -384,12 +399,12 @@ void RunSession(const SessionArgs& args) {
   std::unique_ptr<ContactPointMarks> marks = args.view ? MakeViewPointMarks(s) : nullptr;
   HapticCycle cycle(device.mapped, s.model.get(), MakeSessionCycleConfig(args, s, dynamics, marks.get()));
   InstallStopSignalHandlers();
-  const HapticLoopOptions loop_options = SessionLoopOptions(args, checked.cpu);
+  const HapticLoopOptions loop_options = SessionLoopOptions(args, s.scene, checked.cpu);
   HapticLoop loop(cycle, loop_options);
   SessionLog log(args, s);
   const SessionView view =
       args.view ? StartSessionView(args, s, checked.port, marks.get(), loop_options.rate_hz) : SessionView{};
-  PrintSessionStart(args, s, dynamics, *device.device, view.server.get(), checked.cpu);
+  PrintSessionStart(args, s, dynamics, *device.device, view.server.get(), checked.cpu, loop_options.rate_hz);
   // --view-wait: the session starts once its viewers opened the stream (or Ctrl-C: it ends
   // at once), so that they see it from its first cycle.
   if (checked.viewers > 0) {
@@ -408,7 +423,7 @@ void RunSession(const SessionArgs& args) {
 
 const CommandRegistration kSessionCommands([](CLI::App& app) {
   auto args = std::make_shared<SessionArgs>();
-  CLI::App* cmd = app.add_subcommand("session", "Run a live haptic session on a scene with a device at 1 kHz");
+  CLI::App* cmd = app.add_subcommand("session", "Run a live haptic session on a scene with a device at the scene's rate (1 kHz unless --rate)");
   cmd->add_option("SCENE", args->scene, "scene YAML file (its field body is the haptic body)")->required();
   cmd->add_option("--device", args->device,
                   "sim | sim:circle[:R[:PERIOD]] | replay:FILE.csv | udp:[ADDRESS:]PORT[:PEER] | spacenav | plugin:LIB.so");
@@ -418,6 +433,10 @@ const CommandRegistration kSessionCommands([](CLI::App& app) {
   cmd->add_option("--duration", args->duration, "session length, seconds (at most 1e8)")
       ->check(CLI::PositiveNumber)
       ->check(CLI::Range(0.0, kMaxLoopSeconds));
+  cmd->add_option("--rate", args->rate,
+                  "the haptic loop's rate, Hz, up to 100000: sets the scene's model.cycle_seconds to 1 / HZ "
+                  "(default: the scene's, 1 kHz unless it sets another)")
+      ->check(CLI::Range(1.0, 100000.0));
   cmd->add_option("--log", args->log, "CSV log of poses, wrenches and timings (replayable trajectory)");
   cmd->add_option("--model", args->model, "contact model (default: the scene's first)");
   cmd->add_option("--k-vc", args->k_vc, "virtual coupling stiffness, N/m")->check(CLI::PositiveNumber);

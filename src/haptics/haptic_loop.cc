@@ -6,6 +6,7 @@
 #include <sys/mman.h>
 #include <time.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <csignal>
@@ -65,6 +66,20 @@ std::int64_t LoopClock::ThreadCpuNs() {
 LoopClock& MonotonicLoopClock() {
   static MonotonicClock clock;
   return clock;
+}
+
+std::int64_t LoopPeriodNs(double rate_hz) { return std::max<std::int64_t>(1, std::llround(1e9 / rate_hz)); }
+
+double LoopSpinSeconds(double rate_hz) { return std::min(50e-6, 0.5 / rate_hz); }
+
+double LoopRateOfCycle(double cycle_seconds, const std::string& where) {
+  if (!(std::isfinite(cycle_seconds) && cycle_seconds >= 1e-5)) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%g", cycle_seconds);
+    Fail(where, std::string("a haptic cycle of ") + text +
+                    " s gives no loop rate in (0, 100 kHz]: cycle_seconds must be at least 1e-5 s");
+  }
+  return 1.0 / cycle_seconds;
 }
 
 std::int64_t MonotonicNowNs() {
@@ -189,10 +204,13 @@ void HapticLoop::ThreadMain() {
                    std::strerror(errno));
   }
 
-  const std::int64_t period_ns = std::int64_t(1e9 / options_.rate_hz);
+  const std::int64_t period_ns = LoopPeriodNs(options_.rate_hz);
   r.period_ns = period_ns;
+  r.rate_hz = 1e9 / double(period_ns);
   const std::int64_t spin_ns = std::int64_t(options_.spin_seconds * 1e9);
+  r.spin_ns = spin_ns;
   const std::int64_t start_ns = clock_.NowNs();
+  const std::int64_t start_cpu_ns = clock_.ThreadCpuNs();
   const std::int64_t end_ns =
       options_.duration_seconds > 0 ? start_ns + std::int64_t(options_.duration_seconds * 1e9) : INT64_MAX;
   cycle_.Start(start_ns);
@@ -222,6 +240,7 @@ void HapticLoop::ThreadMain() {
 
     r.work.Add(rec.work_ns);
     r.cpu.Add(rec.cpu_ns);
+    r.work_cpu_ns += rec.cpu_ns;
     r.wake_latency.Add(t0 - release);
     if (prev_start >= 0) r.period.Add(t0 - prev_start);
     prev_start = t0;
@@ -253,6 +272,8 @@ void HapticLoop::ThreadMain() {
     }
   }
 
+  r.run_ns = clock_.NowNs() - start_ns;
+  r.loop_cpu_ns = clock_.ThreadCpuNs() - start_cpu_ns;
   // Clean stop: zero wrench, then let the watchdog go.
   cycle_.WriteZero(clock_.NowNs());
   if (r.memory_locked) munlockall();
@@ -318,6 +339,18 @@ std::string FormatTimingHistogram(const char* name, const TimingHistogram& h) {
 
 std::string FormatLoopReport(const HapticLoopReport& r) {
   std::ostringstream os;
+  // The rate, and what waiting for it costs the loop's core: the loop thread's CPU time over the
+  // run, split into the cycles' work and the rest (the sleep's overhead and the spin before
+  // each release).
+  os << "rate " << r.rate_hz << " Hz (period " << double(r.period_ns) * 1e-3 << " us, spin " << double(r.spin_ns) * 1e-3
+     << " us before each release)";
+  if (r.run_ns > 0) {
+    const double busy = 100.0 * double(r.loop_cpu_ns) / double(r.run_ns);
+    const double work = 100.0 * double(r.work_cpu_ns) / double(r.run_ns);
+    os << std::fixed << std::setprecision(1) << "; loop thread on its core " << busy << " % of the run: work " << work
+       << " %, waiting " << std::max(0.0, busy - work) << " %" << std::defaultfloat << std::setprecision(6);
+  }
+  os << "\n";
   os << "cycles " << r.cycles << ", deadline misses " << r.deadline_misses << " (overrun " << r.misses_overrun
      << ", preempted " << r.misses_preempted << "), skipped " << r.skipped_cycles << ", watchdog zeroes "
      << r.watchdog_zeroes << (r.realtime_scheduling ? ", SCHED_FIFO" : ", normal scheduling")

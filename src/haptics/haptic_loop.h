@@ -1,5 +1,5 @@
-// The real-time haptic loop at 1 kHz (Barbič & James 2008, sec. 5: one haptic cycle per
-// millisecond): absolute deadlines, SCHED_FIFO and mlockall when permitted, a cycle-time
+// The real-time haptic loop (Barbič & James 2008, sec. 5: one haptic cycle per millisecond; here
+// any rate up to 100 kHz, a session's from its scene's model.cycle_seconds): absolute deadlines, SCHED_FIFO and mlockall when permitted, a cycle-time
 // histogram, deadline-miss counting with a skip-ahead catch-up policy, a watchdog thread, a
 // lock-free ring of cycle records for a graphics or logging consumer, and a clean stop on
 // SIGINT (also SIGTERM, SIGHUP, SIGQUIT) that leaves the device at zero force. Each cycle's thread CPU time is measured beside
@@ -30,7 +30,8 @@ struct HapticLoopOptions {
   double duration_seconds = 0;        // run time, at most kMaxLoopSeconds; <= 0 runs until RequestStop or SIGINT
   bool try_realtime = true;           // try SCHED_FIFO + mlockall (warn on stderr if refused)
   int fifo_priority = 80;             // SCHED_FIFO priority when granted
-  double spin_seconds = 50e-6;        // sleep until this long before the deadline, then spin
+  double spin_seconds = 50e-6;        // sleep until this long before the deadline, then spin (< 1/rate_hz;
+                                      // LoopSpinSeconds gives one for any rate)
   double watchdog_seconds = 0.01;     // watchdog thread zeroes the device if the loop stalls this long; <= 0 disables
   bool honour_sigint = true;          // stop when a stop signal arrived (SIGINT, TERM, HUP, QUIT)
   // Core the loop thread pins itself to (pthread_setaffinity_np); -1: not pinned. The watchdog
@@ -45,6 +46,11 @@ struct HapticLoopReport {
   std::int64_t misses_overrun = 0;    // of which the work's thread CPU time exceeded the period
   std::int64_t misses_preempted = 0;  // of which it did not: the thread was not running
   std::int64_t period_ns = 0;         // the loop's period
+  double rate_hz = 0;                 // the loop's rate (1e9 / period_ns)
+  std::int64_t spin_ns = 0;           // how long before each release the loop stops sleeping and spins
+  std::int64_t run_ns = 0;            // wall time from the first release to the stop
+  std::int64_t loop_cpu_ns = 0;       // the loop thread's CPU time over run_ns: work plus waiting
+  std::int64_t work_cpu_ns = 0;       // of which the cycles' work (the sum of the cpu histogram's samples)
   std::int64_t skipped_cycles = 0;    // releases skipped by the catch-up policy
   std::int64_t watchdog_zeroes = 0;   // times the watchdog thread zeroed the device
   bool realtime_scheduling = false;   // SCHED_FIFO granted
@@ -127,6 +133,19 @@ class HapticLoop {
   std::thread thread_;
   std::thread watchdog_;
 };
+
+// The loop's period for RATE_HZ, nanoseconds to the nearest (the loop runs at 1e9 / period).
+std::int64_t LoopPeriodNs(double rate_hz);
+
+// How long before a release a loop at RATE_HZ stops sleeping and spins: 50 us (the wake-up
+// latency of an absolute-time sleep on a stock kernel is tens of microseconds), at most half
+// the period, so that from 10 kHz the loop sleeps for half of each period and spins for the
+// other half.
+double LoopSpinSeconds(double rate_hz);
+
+// The loop rate of a haptic cycle of CYCLE_SECONDS (a scene's model.cycle_seconds): 1 /
+// CYCLE_SECONDS. Throws Error naming WHERE when it does not lie in (0, 100 kHz].
+double LoopRateOfCycle(double cycle_seconds, const std::string& where);
 
 // Monotonic clock (CLOCK_MONOTONIC), nanoseconds.
 std::int64_t MonotonicNowNs();

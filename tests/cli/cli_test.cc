@@ -223,6 +223,43 @@ TEST(CliInputs, NanDurationCouplingOrTouchIsRefusedBeforeTheSessionStarts) {
   EXPECT_NE(huge.output.find("--duration"), std::string::npos) << huge.output;
 }
 
+// The session loop runs at the scene's rate, 1 / model.cycle_seconds, and --rate sets both;
+// a cycle that gives no rate in (0, 100 kHz] is refused naming the scene file and the key, a
+// --rate outside it naming the option, before the session starts.
+TEST(CliSession, TheLoopRunsAtTheScenesCycleOrAtTheRateAsked) {
+  testing::TempDir dir;
+  std::string scene = kScene;
+  const std::string model = "model: {k_C: 1000}";
+  ASSERT_NE(scene.find(model), std::string::npos);
+  scene.replace(scene.find(model), model.size(), "model: {k_C: 1000, cycle_seconds: 0.0005}");
+  std::ofstream(dir / "scene.yaml") << scene;
+  const std::string session = "session " + (dir / "scene.yaml").string() + " --device sim --duration 0.1 --no-realtime --quiet";
+  const Outcome own = RunCli(session);
+  ASSERT_EQ(own.exit_code, 0) << own.output;
+  EXPECT_NE(own.output.find("0.1 s at 2000 Hz"), std::string::npos) << own.output;
+  EXPECT_NE(own.output.find("rate 2000 Hz (period 500 us"), std::string::npos) << own.output;
+  const Outcome asked = RunCli(session + " --rate 5000");
+  ASSERT_EQ(asked.exit_code, 0) << asked.output;
+  EXPECT_NE(asked.output.find("rate 5000 Hz (period 200 us, spin 50 us"), std::string::npos) << asked.output;
+  const Outcome fast = RunCli(session + " --rate 40000");
+  ASSERT_EQ(fast.exit_code, 0) << fast.output;
+  EXPECT_NE(fast.output.find("rate 40000 Hz (period 25 us, spin 12.5 us"), std::string::npos) << fast.output;
+
+  std::string tiny = kScene;
+  tiny.replace(tiny.find(model), model.size(), "model: {k_C: 1000, cycle_seconds: 1e-6}");
+  std::ofstream(dir / "tiny.yaml") << tiny;
+  const Outcome refused = RunCli("session " + (dir / "tiny.yaml").string() + " --duration 0.1 --no-realtime --quiet");
+  EXPECT_NE(refused.exit_code, 0) << refused.output;
+  EXPECT_NE(refused.output.find("tiny.yaml: model.cycle_seconds"), std::string::npos) << refused.output;
+  EXPECT_EQ(refused.output.find("session: scene"), std::string::npos) << refused.output;
+  for (const std::string bad : {"0", "200000", "nan", "-1000"}) {
+    const Outcome o = RunCli(session + " --rate " + bad);
+    EXPECT_EQ(o.exit_code, 105) << bad << ": " << o.output;
+    EXPECT_NE(o.output.find("--rate"), std::string::npos) << o.output;
+    EXPECT_EQ(o.output.find("session: scene"), std::string::npos) << o.output;
+  }
+}
+
 TEST(CliInputs, TooManyLevelsIsRefusedNamingTheLimit) {
   testing::TempDir dir;
   std::ofstream(dir / "tet.obj") << kTetrahedron;

@@ -1,11 +1,12 @@
 // Tests of deadline misses with a cause (haptics/deadline_miss.h): the top-ten keeper against a
 // brute-force sort, and the overrun / preempted rule on hand-made records and in the loop under
-// simulated time.
+// simulated time, at 1 kHz and at the other rates a scene's cycle sets.
 #include "haptics/deadline_miss.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 #include <string>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "haptics/haptic_loop.h"
 #include "haptics/sim_device.h"
 #include "haptics/simulated_loop_clock.h"
+#include "util/error.h"
 
 namespace contactlab {
 namespace {
@@ -153,6 +155,72 @@ TEST(HapticLoop, MissesAreSplitIntoOverrunAndPreemptedByTheCyclesCpuTime) {
   EXPECT_EQ(report.cpu.count(), report.work.count());
   EXPECT_DOUBLE_EQ(report.cpu.max_seconds(), 3e-3);
   EXPECT_NE(FormatLoopReport(report).find("deadline misses 3 (overrun 1, preempted 2)"), std::string::npos);
+}
+
+// A scene's cycle is the loop's rate: 1 / cycle_seconds, refused outside (0, 100 kHz] with the
+// place named; the spin before each release is 50 us, at most half the period.
+TEST(HapticLoop, TheRateIsTheInverseOfTheCycleAndTheSpinFitsInThePeriod) {
+  EXPECT_DOUBLE_EQ(LoopRateOfCycle(1e-3, "scene"), 1000.0);
+  EXPECT_DOUBLE_EQ(LoopRateOfCycle(1e-4, "scene"), 10000.0);
+  EXPECT_DOUBLE_EQ(LoopRateOfCycle(2e-3, "scene"), 500.0);
+  EXPECT_EQ(LoopPeriodNs(1000), kMs);
+  EXPECT_EQ(LoopPeriodNs(10000), 100'000);
+  EXPECT_EQ(LoopPeriodNs(3000), 333'333);  // to the nearest nanosecond
+  for (const double bad : {1e-6, 0.0, -1e-3, std::nan(""), HUGE_VAL}) {
+    try {
+      (void)LoopRateOfCycle(bad, "s.yaml: model.cycle_seconds");
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("s.yaml: model.cycle_seconds"), std::string::npos) << e.what();
+    }
+  }
+  for (const double hz : {1.0, 500.0, 1000.0, 10000.0, 20000.0, 100000.0}) {
+    const double spin = LoopSpinSeconds(hz);
+    EXPECT_LE(spin, 50e-6) << hz;
+    EXPECT_LE(spin, 0.5 / hz) << hz;
+    EXPECT_GT(spin, 0.0) << hz;
+  }
+  EXPECT_DOUBLE_EQ(LoopSpinSeconds(1000), 50e-6);
+  EXPECT_DOUBLE_EQ(LoopSpinSeconds(20000), 25e-6);
+}
+
+// At 10 kHz in simulated time the loop runs a cycle every 100 us: 0.2 s is 2,000 cycles with
+// every period 100 us, and a cycle that computes for 150 us (inside a 1 kHz budget) is an
+// overrun here, one that computes 90 us is not a miss. The report states the rate and the loop
+// thread's CPU time: the simulated work, and nothing else (the simulated wait costs none).
+TEST(HapticLoop, AtTenKilohertzTheDeadlineIsTheTenthOfAMillisecond) {
+  HalfspaceContactModel inner(MakeBoxSamplePoints(Eigen::Vector3d(0.02, 0.02, 0.01), 3), 1000.0);
+  testing::SimulatedLoopClock clock;
+  TimedModel model(inner, clock);
+  model.events = {{500, 150'000, 0}, {900, 90'000, 0}};
+  SimDevice device(SimDeviceParams{}, [](double) { return Pose::FromTranslation(Eigen::Vector3d(0, 0, 0.005)); });
+  HapticCycle cycle(device, &model, HapticCycleConfig{.cycle_seconds = 1e-4});
+  HapticLoopOptions opt;
+  opt.rate_hz = 10000;
+  opt.spin_seconds = LoopSpinSeconds(opt.rate_hz);
+  opt.try_realtime = false;
+  opt.duration_seconds = 0.2;
+  opt.watchdog_seconds = 0;
+  HapticLoop loop(cycle, opt, clock);
+  const HapticLoopReport report = loop.Run();
+  const std::string text = FormatLoopReport(report);
+  std::printf("%s", text.c_str());
+
+  EXPECT_EQ(report.period_ns, 100'000);
+  EXPECT_DOUBLE_EQ(report.rate_hz, 10000.0);
+  EXPECT_EQ(report.spin_ns, 50'000);
+  // Releases at 100 us, 200 us, ... up to (not at) 0.2 s, one skipped after the overrun.
+  EXPECT_EQ(report.cycles + report.skipped_cycles, 1999);
+  EXPECT_EQ(report.deadline_misses, 1);
+  EXPECT_EQ(report.misses_overrun, 1);
+  ASSERT_EQ(report.largest_misses.size(), 1);
+  EXPECT_EQ(report.largest_misses[0].cycle, 500);
+  EXPECT_EQ(report.loop_cpu_ns, 240'000);
+  EXPECT_EQ(report.work_cpu_ns, 240'000);
+  EXPECT_EQ(report.run_ns, 200'000'000);
+  EXPECT_NEAR(report.period.QuantileSeconds(0.5).value_or(0) * 1e6, 100.0, 1.0);
+  EXPECT_NE(text.find("rate 10000 Hz (period 100 us, spin 50 us before each release)"), std::string::npos) << text;
+  EXPECT_NE(text.find("work 0.1 %"), std::string::npos) << text;
 }
 
 }  // namespace
