@@ -16,7 +16,6 @@
 namespace contactlab {
 namespace {
 
-constexpr std::int64_t kMs = 1000000;
 constexpr double kStartBack = 0.010;     // m: the hand starts this far back from first touch
 constexpr double kTouchDepth = 0.0005;   // m: "touching" = 0.5 mm deep (paper's model)
 constexpr double kTiltRadians = 30.0 * M_PI / 180.0;
@@ -130,7 +129,11 @@ ClosedLoopMetrics RunClosedLoop(ContactModel& model, const ClosedLoopScene& w, c
     return X;
   };
 
-  SimDevice device(SimDeviceParams{}, target);
+  // The hand is integrated at 10 kHz or four times the loop's rate, whichever is finer, so that
+  // the device's zero-order hold of each cycle's wrench is resolved at every rate swept.
+  SimDeviceParams hand;
+  hand.step_seconds = std::min(hand.step_seconds, 0.25 * w.cycle_seconds);
+  SimDevice device(hand, target);
   HapticCycleConfig config;
   config.coupling.k_vc = c.k_vc;
   config.coupling.k_vc_rot = c.k_vc_rot;
@@ -149,10 +152,14 @@ ClosedLoopMetrics RunClosedLoop(ContactModel& model, const ClosedLoopScene& w, c
 
   ClosedLoopMetrics m;
   std::vector<Eigen::Vector3d> early_p, early_f, late_p, late_f;
-  const int n = int(std::lround(run_end * 1000));
+  // One cycle every model.cycle_seconds (the scene's rate), in simulated time.
+  const std::int64_t period_ns = std::llround(w.cycle_seconds * 1e9);
+  const double cycle_ms = double(period_ns) / 1e6;  // exactly 1 at 1 kHz: the times below are i ms
+  const int n = int(std::lround(run_end * 1000 / cycle_ms));
+  Eigen::Vector3d last_f = Eigen::Vector3d::Zero();
   for (int i = 1; i <= n; ++i) {
-    const CycleRecord rec = cycle.Step(i * kMs);
-    const double t = 1e-3 * i;
+    const CycleRecord rec = cycle.Step(i * period_ns);
+    const double t = 1e-3 * (double(i) * cycle_ms);
     const Eigen::Vector3d p(rec.p_WH[0], rec.p_WH[1], rec.p_WH[2]);
     const Eigen::Vector3d f(rec.device_force[0], rec.device_force[1], rec.device_force[2]);
     const Eigen::Vector3d tq(rec.device_torque[0], rec.device_torque[1], rec.device_torque[2]);
@@ -165,7 +172,11 @@ ClosedLoopMetrics RunClosedLoop(ContactModel& model, const ClosedLoopScene& w, c
     m.max_q_norm = std::max({m.max_q_norm, rec.q_norm, rec.q_norm_B});
     m.contact_faults = rec.contact_faults;
     if (fc.allFinite()) m.max_contact_force = std::max(m.max_contact_force, fc.norm());
-    if (f.allFinite()) m.max_device_force = std::max(m.max_device_force, f.norm());
+    if (f.allFinite()) {
+      m.max_device_force = std::max(m.max_device_force, f.norm());
+      m.max_force_jump = std::max(m.max_force_jump, (f - last_f).norm());
+      last_f = f;
+    }
     if (f.allFinite() && tq.allFinite()) {
       m.peak_stored_energy =
           std::max(m.peak_stored_energy, 0.5 * f.squaredNorm() / c.k_vc + 0.5 * tq.squaredNorm() / c.k_vc_rot);
@@ -174,6 +185,7 @@ ClosedLoopMetrics RunClosedLoop(ContactModel& model, const ClosedLoopScene& w, c
     if (t > hold_end - kWindow && t <= hold_end) late_p.push_back(p), late_f.push_back(f);
   }
   m.cycles = n;
+  m.rate_hz = 1e9 / double(period_ns);
   m.coherence_resets = cycle.coherence_resets();
   m.energy_into_hand = device.energy_into_hand();
   if (!std::isfinite(m.energy_into_hand)) m.finite = false;

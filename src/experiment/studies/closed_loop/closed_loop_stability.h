@@ -1,8 +1,8 @@
 // Closed-loop stability of the haptic display with a real contact model on a real scene
 // (Barbič & James 2008, sec. 5): the simulated hand (haptics/sim_device.h, a handle mass pulled
 // by a spring-damper hand toward a scripted target) drives the scene's field body H through
-// static virtual coupling with quasi-static damping and the safety filter, 1 kHz in simulated
-// time, against the scene's pointshell body A held static. Three motions: push into contact,
+// static virtual coupling with quasi-static damping and the safety filter, at the scene's rate
+// (model.cycle_seconds) in simulated time, against the scene's pointshell body A held static. Three motions: push into contact,
 // push and slide along the surface, and a hard tilted push (an edge or corner of H leading,
 // 30 mm past first touch, so the hand asks for more than the device's 8 N). Each run measures
 // the passivity observer (the work the device wrench does on the handle, as in
@@ -68,6 +68,8 @@ struct ClosedLoopMetrics {
   double hold_force_mean = 0;      // N, |mean device force| over the last 200 ms (pressed = nonzero)
   double max_contact_force = 0;    // N
   double max_device_force = 0;     // N, after the safety filter
+  double max_force_jump = 0;       // N, largest change of the device force from one cycle to the next
+  double rate_hz = 0;              // the loop's rate, 1 / the cycle simulated
   std::int64_t clamped_cycles = 0;     // safety force or torque clamp
   std::int64_t non_finite_cycles = 0;  // non-finite wrench zeroed by the safety filter
   std::int64_t solve_failures = 0;

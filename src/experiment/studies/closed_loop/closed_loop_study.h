@@ -1,9 +1,10 @@
 // The closed-loop study (`study: closed-loop` in an experiment config; Barbič & James 2008,
 // sec. 5): per job, each model of the job renders the scene in the simulated haptic loop
 // (experiment/studies/closed_loop/closed_loop_stability.h: a simulated hand drives the field
-// body through static virtual coupling with quasi-static damping and the safety filter, 1 kHz
-// in simulated time) for each motion of the `loop` section, and the passivity and settling of
-// the loop are measured. Sweeping k_vc finds the largest coupling stiffness each model renders stably.
+// body through static virtual coupling with quasi-static damping and the safety filter, at the
+// scene's rate, 1 / model.cycle_seconds, in simulated time) for each motion of the `loop` section, and the passivity and settling of
+// the loop are measured. Sweeping k_vc finds the largest coupling stiffness each model renders stably;
+// sweeping cycle_seconds too, how that stiffness changes with the haptic rate.
 //
 //   study: closed-loop
 //   scene: scenes/knight-screwdriver.yaml
