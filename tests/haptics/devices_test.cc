@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <memory>
 #include <utility>
@@ -62,6 +63,71 @@ TEST(ReplayDevice, InterpolatesPositionLinearlyAndOrientationBySlerp) {
   dev.Read(5 * kMs + 2000 * kMs, &s);  // past the end: hold the last pose
   EXPECT_NEAR(s.X_WD.translation.x(), 0.03, 1e-15);
   EXPECT_TRUE(dev.finished());
+}
+
+// A recording at 1 kHz (a session log) replays at any loop rate: read at 10 kHz, every pose is
+// the linear interpolation of the two recorded samples around it (computed here from the
+// samples themselves), and the reads that fall on a sample give that sample.
+TEST(ReplayDevice, ARecordingAtOneKilohertzReplaysAtTenKilohertzBetweenItsSamples) {
+  testing::TempDir dir;
+  const auto file = dir / "traj.csv";
+  std::ofstream out(file);
+  out << "t,x,y,z,qw,qx,qy,qz\n";
+  auto recorded = [](int k) { return Eigen::Vector3d(0.01 * std::sin(2 * M_PI * 1e-3 * k), 1e-5 * k * k, 0); };
+  for (int k = 0; k <= 100; ++k) {
+    const Eigen::Vector3d p = recorded(k);
+    char row[160];
+    std::snprintf(row, sizeof row, "%.3f,%.17g,%.17g,%.17g,1,0,0,0\n", 1e-3 * k, p.x(), p.y(), p.z());
+    out << row;
+  }
+  out.close();
+  ReplayDevice dev(ReadTrajectoryCsv(file), SimDeviceParams::DefaultCapabilities());
+  DeviceState s;
+  constexpr std::int64_t kPeriod10k = 100'000;  // ns
+  for (int i = 0; i <= 1000; ++i) {
+    ASSERT_TRUE(dev.Read(7 * kMs + i * kPeriod10k, &s));  // a new pose every cycle
+    const int k = i / 10;
+    const double u = (i % 10) / 10.0;
+    const Eigen::Vector3d expected = i == 1000 ? recorded(100) : (1 - u) * recorded(k) + u * recorded(k + 1);
+    EXPECT_LT((s.X_WD.translation - expected).norm(), 1e-12) << "read " << i;
+  }
+}
+
+// A device that reports slower than the loop (udp, spacenav, a plugin: 1 kHz or less) is held:
+// the cycles between two of its samples see the newest sample (zero-order hold; interpolating
+// toward the next sample would wait for it, a sample's delay), and the safety filter does not
+// call it silent (its timeout is 50 ms). Here a 1 kHz device in a 10 kHz loop.
+class EveryTenthRead final : public HapticDevice {
+ public:
+  std::string_view name() const override { return "slow"; }
+  DeviceCapabilities capabilities() const override { return SimDeviceParams::DefaultCapabilities(); }
+  bool Read(std::int64_t now_ns, DeviceState* out) override {
+    if (reads_++ % 10 != 0) return false;
+    out->X_WD = Pose::FromTranslation(Eigen::Vector3d(0, 0, 0.03 - 1e-6 * double(++samples_)));
+    out->timestamp_ns = now_ns;
+    out->sequence = samples_;
+    return true;
+  }
+  void Write(const Wrench& w, std::int64_t, std::uint32_t) override { last_ = w; }
+  void EmergencyZero() noexcept override {}
+  Wrench last_;
+  int reads_ = 0, samples_ = 0;
+};
+
+TEST(HapticCycle, ASlowerDeviceIsHeldBetweenItsSamples) {
+  EveryTenthRead device;
+  HalfspaceContactModel model(MakeBoxSamplePoints(Eigen::Vector3d(0.02, 0.02, 0.01), 3), 1000.0);
+  HapticCycle cycle(device, &model, HapticCycleConfig{.cycle_seconds = 1e-4});
+  cycle.Start(0);  // read 0: sample 1
+  for (int i = 1; i <= 2000; ++i) {
+    const CycleRecord rec = cycle.Step(i * 100'000);
+    EXPECT_EQ(rec.new_sample, i % 10 == 0) << "cycle " << i;
+    const int newest = 1 + i / 10;  // samples delivered so far
+    EXPECT_NEAR(rec.p_WD[2], 0.03 - 1e-6 * newest, 1e-15) << "cycle " << i;
+    EXPECT_EQ(rec.device_sequence, std::uint64_t(newest)) << "cycle " << i;
+    EXPECT_FALSE(rec.safety_flags & kSafetyDeviceSilent) << "cycle " << i;
+  }
+  EXPECT_EQ(cycle.safety().stats().device_silent, 0);
 }
 
 TEST(ReplayDevice, BadCsvRowsAreReportedWithFileAndLine) {
