@@ -18,6 +18,8 @@
 namespace contactlab {
 
 struct HapticCycleConfig {
+  // The coupling; its alpha is the paper's quasi-static damping of a 1 ms cycle, which the cycle
+  // turns into its own with CouplingAtRate(coupling, cycle_seconds).
   VirtualCouplingParams coupling;
   // Safety limits; max_force / max_torque <= 0 mean "use the device's capabilities".
   SafetyParams safety{.max_force = 0, .max_torque = 0};

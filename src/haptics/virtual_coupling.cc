@@ -75,6 +75,12 @@ Matrix6d CalcCouplingSolveGradient(const Pose& X_WD, const Pose& X_WH, const Vir
   return K;
 }
 
+VirtualCouplingParams CouplingAtRate(VirtualCouplingParams params, double cycle_seconds) {
+  if (std::isfinite(cycle_seconds) && cycle_seconds > 0 && cycle_seconds != 1e-3)
+    params.alpha = std::pow(params.alpha, cycle_seconds / 1e-3);
+  return params;
+}
+
 StaticVirtualCoupling::StaticVirtualCoupling(const VirtualCouplingParams& params) : params_(params) {
   params_.Validate("virtual coupling parameters");
 }

@@ -85,10 +85,9 @@ TEST(ClosedLoopScene, PaperModelIsPassiveAndSettlesOnKnightScrewdriverAtModerate
 
 // The loop runs at the scene's rate: at 10 kHz the same push takes ten times the cycles, ends
 // pressed as hard (the hold's force is the quasi-static balance of the hand and the coupling,
-// whatever the rate), and the force changes by less from one cycle to the next: the contact
-// comes on over ten times as many cycles. (Whether it stays passive at 10 kHz is the
-// closed-loop-rate experiment's question, not a property asked here: with this cut pointshell
-// it puts 18 % of the peak stored energy back into the hand.)
+// whatever the rate), stays passive and settles (the coupling's damping has the paper's time
+// constant at any rate), and the force changes by less from one cycle to the next: the contact
+// comes on over ten times as many cycles.
 TEST(ClosedLoopScene, TheLoopRunsAtTheScenesRate) {
   testing::TempDir cache;
   KnightScrewdriver s(cache);
@@ -109,17 +108,11 @@ TEST(ClosedLoopScene, TheLoopRunsAtTheScenesRate) {
   EXPECT_DOUBLE_EQ(slow.rate_hz, 1000.0);
   EXPECT_DOUBLE_EQ(fast.rate_hz, 10000.0);
   EXPECT_EQ(fast.cycles, 10 * slow.cycles);
-  for (const ClosedLoopMetrics* m : {&slow, &fast}) {
-    EXPECT_TRUE(m->finite);
-    EXPECT_EQ(m->solve_failures, 0);
-    EXPECT_TRUE(m->settled());
-  }
-  // The quasi-static damping moves H by (1 - alpha) of the static solve per cycle, so the
-  // faster loop follows the hand more closely and dissipates less of the push's energy.
-  EXPECT_LT(slow.energy_into_hand, fast.energy_into_hand);
+  EXPECT_TRUE(slow.stable());
+  EXPECT_TRUE(fast.stable());
   EXPECT_NEAR(fast.hold_force_mean, slow.hold_force_mean, 0.05 * slow.hold_force_mean);
   EXPECT_GT(slow.max_force_jump, 0.0);
-  EXPECT_LT(fast.max_force_jump, 0.5 * slow.max_force_jump);
+  EXPECT_LT(fast.max_force_jump, 0.25 * slow.max_force_jump);
 }
 
 // A contact model that pumps energy: the paper's force plus a negative damping force on H along

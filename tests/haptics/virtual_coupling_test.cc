@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "haptics/halfspace_contact_model.h"
@@ -180,6 +181,30 @@ TEST(VirtualCoupling, FreeSpaceConvergesToDeviceAtRateAlpha) {
     EXPECT_LT((st.to_device.force + st.coupling_on_H.force).norm(), 1e-15);
   }
   EXPECT_LT(CalcRotationVector(X_WD.rotation * vc.X_WH().rotation.conjugate()).norm(), 1e-8);
+}
+
+// The paper's alpha is the damping of a 1 ms cycle: at any rate H closes a free-space gap as
+// gap0 * alpha^(t / 1 ms), so after each millisecond the gap is the same at 500 Hz, 1, 2, 5 and
+// 10 kHz (at 1 kHz the cycle's alpha is the paper's own, exactly).
+TEST(VirtualCoupling, AtAnyRateTheGapClosesWithThePapersTimeConstant) {
+  VirtualCouplingParams paper;
+  EXPECT_EQ(CouplingAtRate(paper, 1e-3).alpha, paper.alpha);
+  const Pose X_WD = Pose::FromTranslation(Eigen::Vector3d(0.002, -0.001, 0.003));
+  const double gap0 = X_WD.translation.norm();
+  for (const double hz : {500.0, 1000.0, 2000.0, 5000.0, 10000.0}) {
+    const VirtualCouplingParams p = CouplingAtRate(paper, 1.0 / hz);
+    EXPECT_GT(p.alpha, 0.0);
+    EXPECT_LT(p.alpha, 1.0);
+    StaticVirtualCoupling vc(p);
+    vc.Reset(Pose::Identity());
+    const int cycles_per_4ms = int(std::lround(4e-3 * hz));
+    for (int i = 1; i <= cycles_per_4ms; ++i) {
+      const CouplingStep st = vc.Update(X_WD, Wrench{}, Matrix6d::Zero());
+      const double t = i / hz;
+      const double gap = (X_WD.translation - st.X_WH.translation).norm();
+      EXPECT_NEAR(gap, gap0 * std::pow(paper.alpha, t / 1e-3), 1e-12 * gap0) << hz << " Hz, cycle " << i;
+    }
+  }
 }
 
 // Paper sec. 5: with l points of stiffness k_C in contact the felt stiffness is

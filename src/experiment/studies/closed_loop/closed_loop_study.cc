@@ -29,7 +29,7 @@ const ParamTable<LoopSpec>& LoopParams() {
               .Unit("N/m").Sweepable().Example("5000"),
           P::Number("k_vc_rot", PARAM_MEMBER(loop.k_vc_rot), Above(0), NoUpperBound(), "rotational coupling stiffness")
               .Unit("N m/rad").Example("0.5"),
-          P::Number("alpha", PARAM_MEMBER(loop.alpha), AtLeast(0), AtMost(1), "quasi-static damping (paper sec. 5)")
+          P::Number("alpha", PARAM_MEMBER(loop.alpha), AtLeast(0), AtMost(1), "quasi-static damping of a 1 ms cycle (paper sec. 5); a cycle of T uses alpha^(T / 1 ms)")
               .Example("0.3"),
           P::Number("push_depth", PARAM_MEMBER(loop.push_depth), Above(0), AtMost(1),
                     "how far past first touch the hand's target goes (push, slide)")
