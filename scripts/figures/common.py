@@ -276,12 +276,14 @@ MODEL_STYLES = {
     "fcl":               dict(color="#d62728", ls="-", lw=1.3, marker="D", zorder=2.2, phase=0.3),
     "bullet":            dict(color="#8c564b", ls="-", lw=1.1, marker="v", zorder=2.4, phase=0.8),
     "pointshell-ccd":    dict(color="#17becf", ls="-", lw=2.2, marker="h", zorder=2.8, phase=0.55),
+    "pressure-field":    dict(color="#bcbd22", ls="-", lw=1.8, marker="p", zorder=2.3, phase=0.2),
+    "inner-spheres":     dict(color="#e377c2", ls="-.", lw=1.6, marker="<", zorder=2.35, phase=0.7),
     "reference":         dict(color="#000000", ls=":", lw=1.6, marker="*", zorder=2.7, phase=0.4),
     "volume":            dict(color="#555555", ls="--", lw=1.4, marker="P", zorder=2.7, phase=0.9),
     "eq2-halfspace":     dict(color="#7f7f7f", ls="-.", lw=1.4, marker="X", zorder=2.7, phase=0.9),
 }
 # For a model not in the table: colours no named model uses, chosen by a hash of the name.
-_FALLBACK_COLORS = ["#e377c2", "#bcbd22", "#17becf", "#aec7e8", "#ffbb78", "#98df8a", "#c5b0d5"]
+_FALLBACK_COLORS = ["#aec7e8", "#ffbb78", "#98df8a", "#c5b0d5", "#f7b6d2", "#dbdb8d", "#9edae5"]
 _FALLBACK_LS = ["-", "--", "-.", (0, (1, 1.5))]
 _FALLBACK_MARKERS = ["h", "p", "<", ">", "d", "8"]
 

@@ -13,7 +13,7 @@ HapticCycle::HapticCycle(HapticDevice& device, ContactModel* model, const Haptic
     : device_(device),
       model_(model),
       config_(config),
-      coupling_(CouplingAtRate(config.coupling, config.cycle_seconds)),
+      coupling_(config.alpha_per_cycle ? config.coupling : CouplingAtRate(config.coupling, config.cycle_seconds)),
       safety_(ResolveSafetyLimits(config.safety, device.capabilities())),
       coherence_(config.max_point_speed, config.cycle_seconds, config.body_radius_H, "haptic cycle (body_radius_H)"),
       contact_cycle_(model, config.dynamics_A, config.dynamics_B, &coherence_) {}

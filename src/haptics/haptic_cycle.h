@@ -21,6 +21,10 @@ struct HapticCycleConfig {
   // The coupling; its alpha is the paper's quasi-static damping of a 1 ms cycle, which the cycle
   // turns into its own with CouplingAtRate(coupling, cycle_seconds).
   VirtualCouplingParams coupling;
+  // true: the coupling's alpha is applied per cycle as given, whatever the rate (the paper's rule
+  // read literally; at 10 kHz it makes H follow the device ten times faster in time). For studies
+  // of that choice; sessions keep false.
+  bool alpha_per_cycle = false;
   // Safety limits; max_force / max_torque <= 0 mean "use the device's capabilities".
   SafetyParams safety{.max_force = 0, .max_torque = 0};
   Pose X_WA;                       // pose of the static contact body A (world)

@@ -138,6 +138,7 @@ ClosedLoopMetrics RunClosedLoop(ContactModel& model, const ClosedLoopScene& w, c
   config.coupling.k_vc = c.k_vc;
   config.coupling.k_vc_rot = c.k_vc_rot;
   config.coupling.alpha = c.alpha;
+  config.alpha_per_cycle = c.alpha_per_cycle;
   config.safety.ramp_seconds = 0.05;  // the hand starts in free space; contact begins at 0.1 s
   config.X_WA = w.X_WA;
   config.max_point_speed = w.max_point_speed;

@@ -52,7 +52,8 @@ struct ClosedLoopCase {
   double push_depth = 0.008;   // m past first touch the hand's target goes (kCorner: corner_depth)
   double corner_depth = 0.030;
   double slide_distance = 0.015;  // m (kSlide)
-  double alpha = 0.5;             // quasi-static damping
+  double alpha = 0.5;             // quasi-static damping of a 1 ms cycle
+  bool alpha_per_cycle = false;   // true: alpha per cycle at any rate (HapticCycleConfig::alpha_per_cycle)
 };
 
 struct ClosedLoopMetrics {

@@ -31,6 +31,10 @@ const ParamTable<LoopSpec>& LoopParams() {
               .Unit("N m/rad").Example("0.5"),
           P::Number("alpha", PARAM_MEMBER(loop.alpha), AtLeast(0), AtMost(1), "quasi-static damping of a 1 ms cycle (paper sec. 5); a cycle of T uses alpha^(T / 1 ms)")
               .Example("0.3"),
+          P::Boolean("alpha_per_cycle", PARAM_MEMBER(loop.alpha_per_cycle),
+                     "apply alpha per cycle at any rate (the paper's rule read literally: at 10 kHz H follows "
+                     "the device ten times faster in time) instead of per 1 ms")
+              .Sweepable().Example("true"),
           P::Number("push_depth", PARAM_MEMBER(loop.push_depth), Above(0), AtMost(1),
                     "how far past first touch the hand's target goes (push, slide)")
               .Unit("m").Example("0.004"),
