@@ -7,7 +7,7 @@ figure is adding a module; nothing lists them.
 import importlib
 import pkgutil
 
-HELPERS = {"common"}  # modules that hold shared code and draw nothing
+HELPERS = {"common", "generic"}  # modules that hold shared code, or draw for no declared experiment
 
 
 def figure_modules():

@@ -115,17 +115,24 @@ def figure(experiments, outputs):
 
 
 class Results:
-    """The results folder a run of make_figures reads, and its figures/ folder it writes."""
+    """The results folder a run of make_figures reads, and its figures/ folder it writes.
+    FOLDERS maps an experiment to the folder holding its tables when that is not
+    RESULTS/EXPERIMENT (a single run's folder: `contactlab run --out DIR`)."""
 
-    def __init__(self, results):
+    def __init__(self, results, folders=None):
         self.results = results
+        self.folders = dict(folders or {})
         self.out = os.path.join(results, "figures")
         os.makedirs(self.out, exist_ok=True)
         self.made = []
 
+    # The folder of EXPERIMENT's tables.
+    def folder(self, experiment):
+        return self.folders.get(experiment, os.path.join(self.results, experiment))
+
     # results/EXPERIMENT/TABLE (a Table above) as a list of dicts, or None when it does not exist.
     def load(self, experiment, table):
-        path = os.path.join(self.results, experiment, table.file)
+        path = os.path.join(self.folder(experiment), table.file)
         if not os.path.exists(path):
             return None
         return read_csv(path)
@@ -147,13 +154,19 @@ class Results:
     def save_table(self, header, lines, title, name):
         lines = [[str(c) for c in line] for line in lines]
         self.save(table_figure(header, lines, title), name + ".png", tight=False)
+        self.save_markdown(header, lines, name)
+
+    # A table as Markdown only (NAME.md; written again, it replaces the one save_table wrote).
+    def save_markdown(self, header, lines, name):
+        lines = [[str(c) for c in line] for line in lines]
         md = os.path.join(self.out, name + ".md")
         with open(md + ".tmp", "w") as f:
             f.write("| " + " | ".join(header) + " |\n|" + "---|" * len(header) + "\n")
             for line in lines:
                 f.write("| " + " | ".join(line) + " |\n")
         os.replace(md + ".tmp", md)
-        self.made.append(md)
+        if md not in self.made:
+            self.made.append(md)
 
 
 # ---------------------------------------------------------------------------------------------

@@ -252,6 +252,76 @@ class Run(unittest.TestCase):
             self.assertEqual(os.listdir(os.path.join(root, "results", "figures")), ["my_figure.png"])
 
 
+# A stranger's experiment: a config the repository does not ship, swept over k_C, two models,
+# written as `contactlab run --out` writes it (meta.json beside the tables).
+def write_stranger_run(folder, experiment="my-slide"):
+    C, S = common.CYCLES, common.SUMMARY
+    cycles, summary = [], []
+    for k in (1000, 3000):
+        for model in ("pointshell", "my-own-model"):
+            for i in range(20):
+                cycles.append({"k_C": k, C.model: model, C.cycle: i, C.t: 1e-3 * i, C.fz: k * 1e-3 * i})
+            summary.append({"k_C": k, S.model: model, S.max_force_N: k * 19e-3, S.median_us: 4.5,
+                            S.rms_rel_error: -1})
+    root, name = os.path.split(folder)
+    write_table(root, name, C, ["k_C"], [dict(r, job=j) for j in (0,) for r in cycles])
+    write_table(root, name, S, ["k_C"], summary)
+    with open(os.path.join(folder, "meta.json"), "w") as f:
+        json.dump({"experiment": experiment, "study": "contact"}, f)
+
+
+class AnyResults(unittest.TestCase):
+    def run_script(self, *args):
+        return subprocess.run([sys.executable, SCRIPT, *args], capture_output=True, text=True, timeout=120)
+
+    # An experiment no figure module declares gets the generic figure: the forces per job and
+    # model, and its summary table with the swept values (the -1 "no reference" column left out).
+    def test_an_experiment_no_module_declares_gets_the_generic_figure(self):
+        with tempfile.TemporaryDirectory() as root:
+            write_stranger_run(os.path.join(root, "my-slide"))
+            run = self.run_script("--results", root)
+            self.assertEqual(run.returncode, 0, run.stderr)
+            made = set(os.listdir(os.path.join(root, "figures")))
+            self.assertEqual(made, {"my-slide.png", "my-slide_summary.png", "my-slide_summary.md"})
+            png_size(os.path.join(root, "figures", "my-slide.png"))
+            with open(os.path.join(root, "figures", "my-slide_summary.md")) as f:
+                md = f.read()
+            self.assertIn("| job 0 (k_C=1000) | my-own-model |", md)
+            self.assertIn("max_force_N", md)
+            self.assertNotIn("| rms_rel_error |", md)  # -1 in every row: no reference
+
+    # One run's folder (`contactlab run --out DIR`, Python's out=DIR) is drawn into DIR/figures,
+    # with no note about the shipped experiments it does not hold.
+    def test_one_runs_folder_is_drawn_into_its_own_figures_folder(self):
+        with tempfile.TemporaryDirectory() as root:
+            run_dir = os.path.join(root, "contactlab-run")
+            write_stranger_run(run_dir)
+            run = self.run_script("--results", run_dir)
+            self.assertEqual(run.returncode, 0, run.stderr)
+            self.assertEqual(run.stderr, "")
+            self.assertEqual(set(os.listdir(os.path.join(run_dir, "figures"))),
+                             {"my-slide.png", "my-slide_summary.png", "my-slide_summary.md"})
+
+    # --only draws one figure (by its name or an output's), or one experiment; a name that is
+    # neither is refused, listing the figures.
+    def test_only_draws_one_figure_and_refuses_an_unknown_name(self):
+        with tempfile.TemporaryDirectory() as root:
+            write_synthetic_results(root)
+            write_stranger_run(os.path.join(root, "my-slide"))
+            run = self.run_script("--results", root, "--only", "table1_statistics")
+            self.assertEqual(run.returncode, 0, run.stderr)
+            self.assertEqual(set(os.listdir(os.path.join(root, "figures"))),
+                             {"table1_statistics.png", "table1_statistics.md"})
+            run = self.run_script("--results", root, "--only", "my-slide")
+            self.assertEqual(run.returncode, 0, run.stderr)
+            self.assertIn("my-slide_summary.md", os.listdir(os.path.join(root, "figures")))
+            self.assertNotIn("fig05b_convergence.png", os.listdir(os.path.join(root, "figures")))
+            run = self.run_script("--results", root, "--only", "no-such-figure")
+            self.assertNotEqual(run.returncode, 0)
+            self.assertIn("--only no-such-figure", run.stderr)
+            self.assertIn("table1_statistics", run.stderr)
+
+
 class Reading(unittest.TestCase):
     """figures.common.read_csv reads the tables as the program writes them (RFC 4180 quoting)."""
 
