@@ -109,8 +109,8 @@ ContactResult VpsContactModel::Evaluate(const ContactQuery& query) {
       continue;
     }
     // Classify: a contact voxel (surface or interior) or no force; with coherence, a free
-    // voxel's layer sets the point's next check. The layered model reads only its depth map,
-    // whose free and proximity voxels hold kNoDepth.
+    // voxel's layer sets the point's next check. The compact voxmap (2 bits a voxel) answers
+    // for most points; the layered depth map (4 bytes a voxel) is read only in contact voxels.
     const std::int64_t idx = voxmap_.Index(vi, vj, vk);
     bool surface = false;
     if (coherence) {
@@ -120,7 +120,7 @@ ContactResult VpsContactModel::Evaluate(const ContactQuery& query) {
         continue;
       }
       surface = w == kWideSurface;
-    } else if (!layered) {
+    } else {
       const VoxelClass c = voxmap_.Get(idx);
       if (c != VoxelClass::kSurface && c != VoxelClass::kInterior) continue;
       surface = c == VoxelClass::kSurface;
