@@ -1,5 +1,6 @@
 // McNeely, Puterbaugh & Troy 1999 (sec. 4) and 2006 (sec. 3): the Voxmap-PointShell contact
-// model, tangent-plane forces with temporal coherence from the 8-bit voxmap.
+// model, with DLR's distance-layered voxmap (default) or the 1999 tangent-plane surface layer,
+// and temporal coherence from the 8-bit voxmap.
 #include "baselines/vps/vps_contact_model.h"
 
 #include <cmath>
@@ -39,6 +40,7 @@ VpsContactModel::VpsContactModel(std::string name, std::shared_ptr<const Pointsh
   vo.voxel_size = params.voxel_size;
   voxmap_ = BuildVoxmap(*field, vo);
   if (params.coherence) wide_ = BuildWideVoxmap(voxmap_);
+  if (params.voxmap == VpsVoxmap::kLayered) depths_ = BuildVoxelDepthMap(*field, voxmap_);
   const double v = voxmap_.voxel_size();
   interior_depth_ = params.interior_depth >= 0 ? params.interior_depth : 0.5 * std::sqrt(3.0) * v;
   for (int a = 0; a < 3; ++a) box_hi_[a] = float(voxmap_.origin()[a] + v * voxmap_.dims()[a]);
@@ -60,6 +62,7 @@ VpsModelInfo VpsContactModel::info() const {
   info.interior = voxmap_.count(VoxelClass::kInterior);
   info.voxmap_bytes = voxmap_.memory_bytes();
   info.wide_voxmap_bytes = wide_.memory_bytes();
+  info.depth_map_bytes = depths_.memory_bytes();
   info.points = shell_->num_points();
   info.pointshell_bytes = std::size_t(shell_->num_points()) * 6 * sizeof(float);
   info.interior_depth = interior_depth_;
@@ -72,6 +75,7 @@ ContactResult VpsContactModel::Evaluate(const ContactQuery& query) {
   ContactAccumulator acc;
   const int n = s.num_points();
   const bool coherence = params_.coherence;
+  const bool layered = params_.voxmap == VpsVoxmap::kLayered;
   const double v = voxmap_.voxel_size();
   const double step = params_.max_point_speed * params_.cycle_seconds;  // metres per cycle
   const std::int64_t cycle = query.cycle;
@@ -104,38 +108,49 @@ ContactResult VpsContactModel::Evaluate(const ContactQuery& query) {
       }
       continue;
     }
-    // Classify: surface, interior, or no force (with coherence, the layer sets the next check).
+    // Classify: a contact voxel (surface or interior) or no force; with coherence, a free
+    // voxel's layer sets the point's next check. The compact voxmap (2 bits a voxel) answers
+    // for most points; the layered depth map (4 bytes a voxel) is read only in contact voxels.
     const std::int64_t idx = voxmap_.Index(vi, vj, vk);
-    bool surface;
+    bool surface = false;
     if (coherence) {
       const std::uint8_t w = wide_.Get(idx);
-      if (w == kWideSurface) {
-        surface = true;
-      } else if (w == kWideInterior) {
-        surface = false;
-      } else {
+      if (w != kWideSurface && w != kWideInterior) {
         next_check_[i] = cycle + CyclesToCover(double(w - 1) * v, step);
         continue;
       }
+      surface = w == kWideSurface;
     } else {
       const VoxelClass c = voxmap_.Get(idx);
-      if (c == VoxelClass::kSurface) {
-        surface = true;
-      } else if (c == VoxelClass::kInterior) {
-        surface = false;
-      } else {
-        continue;
-      }
+      if (c != VoxelClass::kSurface && c != VoxelClass::kInterior) continue;
+      surface = c == VoxelClass::kSurface;
     }
-    // Tangent-plane depth (surface) or the fixed interior depth, along the point's normal.
+    const Eigen::Vector3d p_B(p_BQ[0], p_BQ[1], p_BQ[2]);
+    const Eigen::Vector3d c_B = o + v * Eigen::Vector3d(vi + 0.5, vj + 0.5, vk + 0.5);
     float n_B[3];
     X_BA.Rotate(s.nx[i], s.ny[i], s.nz[i], n_B);
-    const Eigen::Vector3d p_B(p_BQ[0], p_BQ[1], p_BQ[2]);
     const Eigen::Vector3d N_B(n_B[0], n_B[1], n_B[2]);
-    double depth = interior_depth_;
-    if (surface) {
-      const Eigen::Vector3d c_B = o + v * Eigen::Vector3d(vi + 0.5, vj + 0.5, vk + 0.5);
-      depth = (c_B - p_B).dot(N_B);
+    double depth;
+    if (layered) {
+      // The distance-layered voxmap: the centre's depth in layers, continued to P along B's
+      // normal at the centre. This is what removes the 1999 model's dead band. Measured on
+      // data/scenes/sphere-on-plate.yaml (2.5 mm voxels, the plate's top on a voxel face), the
+      // surface model gives 0 N from 1.25 to 2.5 mm: the face makes two surface layers, whose
+      // centres sit 1.25 mm above and below the real surface; a surface voxel counts only the
+      // points below its centre; the interior (fixed depth) begins 2.5 mm down; and the
+      // voxel-centre pointshell lies on a lattice of the same spacing and phase, so every
+      // point near the ball's bottom has the same offset from its voxel's centre and all of
+      // them sit above their centres together while depth mod 2.5 mm is in [1.25, 2.5).
+      // Here depth = -d(c) + (c - p) . n(c) is the plane's exact depth whatever the phase.
+      const VoxelDepth& e = depths_.Get(idx);
+      if (e.depth == kNoDepth) continue;
+      float n[3];
+      VoxelDepthMap::Normal(e, n);
+      depth = v * double(VoxelDepthMap::DepthLayers(e)) + (c_B - p_B).dot(Eigen::Vector3d(n[0], n[1], n[2]));
+    } else {
+      // McNeely 1999: the tangent plane through a surface voxel's centre perpendicular to the
+      // point's normal, or the fixed interior depth.
+      depth = surface ? (c_B - p_B).dot(N_B) : interior_depth_;
     }
     if (depth > 0) acc.Add(p_B, N_B, -depth, N_B);
   }

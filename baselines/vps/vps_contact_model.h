@@ -7,19 +7,34 @@
 // Body A carries the pointshell (points with inward unit normals N, body frame), body B the
 // voxmap built from B's distance field; the structure mirrors PointshellContactModel.
 //
-// Force model (per point P, in B's frame, voxel of P with centre c, voxel side v):
-//   surface voxel   depth = max(0, (c - p) . N): the depth of P below the tangent plane
-//                   through c perpendicular to N (N points into A, so depth grows as P goes
-//                   deeper into B); at most v sqrt(3) / 2 inside the voxel;
-//   interior voxel  depth = interior_depth, by default half the voxel diagonal v sqrt(3) / 2,
-//                   the largest depth a surface voxel can produce (McNeely 1999 bound the
-//                   force of points that reach the interior by the surface-voxel maximum);
+// Force model (per point P, in B's frame, voxel of P with centre c, voxel side v), chosen by
+// VpsContactParams::voxmap (scene key `voxmap`):
+//   layered (default; the distance-layered voxmap of DLR's VPS, Sagardia, Hulin et al.):
+//                   every surface and interior voxel carries its centre's depth D(c) = -d(c)
+//                   in voxel layers and B's outward normal n(c) = grad d / |grad d|, both from
+//                   B's field (voxel_depths.h). depth = D(c) + (c - p) . n(c): the depth below the
+//                   plane through the surface point nearest c, exact for a plane, continuous
+//                   across voxel faces there, growing with depth through the whole interior
+//                   (DLR's interpolated voxmap distance); the force is along P's normal N, as
+//                   in DLR's VPS and the paper's model, so it never turns against the point
+//                   where n(c) flips across a thin wall or B's medial axis;
+//   surface (McNeely et al. 1999, kept for the record):
+//     surface voxel   depth = max(0, (c - p) . N): the depth of P below the tangent plane
+//                     through c perpendicular to P's normal N (N points into A, so depth grows
+//                     as P goes deeper into B); at most v sqrt(3) / 2 inside the voxel;
+//     interior voxel  depth = interior_depth, by default half the voxel diagonal v sqrt(3) / 2,
+//                     the largest depth a surface voxel can produce (McNeely 1999 bound the
+//                     force of points that reach the interior by the surface-voxel maximum);
 //   proximity/free  no force (McNeely 1999 used proximity voxels for a velocity-dependent
 //                   pre-contact braking force, which a static wrench query has no use for).
 // A point with depth > 0 adds F_B = -k depth N to B (ContactAccumulator::Add(p_B, N_B, -depth,
 // N_B)), k = k_C scaled by L / l when l >= L points touch (as the paper's model); torque about
-// B's origin; K_B by the paper's halfspace rule (sec. 5) with the point's normal.
-// The force jumps when a point crosses a voxel face (c jumps by v): the known VPS artefact.
+// B's origin; K_B by the paper's halfspace rule (sec. 5) with N (layered: the exact derivative
+// within a voxel where N = n(c), as the paper's model's where N is the field's normal).
+// The surface model's force jumps when a point crosses a voxel face (c jumps by v): the known
+// VPS artefact. It also has a dead band (measured on data/scenes/sphere-on-plate.yaml, see
+// VpsContactModel::Evaluate): a surface voxel counts only points below its centre, and the
+// interior starts a whole surface layer below the surface.
 //
 // Temporal coherence (optional, McNeely 2006): a point found in a free voxel n >= 2 layers
 // from the nearest contact voxel cannot touch before it has moved (n - 1) v, so it is not
@@ -34,7 +49,9 @@
 #include <string>
 #include <vector>
 
+#include "baselines/vps/voxel_depths.h"
 #include "baselines/vps/voxmap.h"
+#include "baselines/vps/vps_params.h"
 #include "baselines/vps/wide_voxmap.h"
 #include "contact/contact_model.h"
 #include "contact/penalty_params.h"
@@ -46,7 +63,8 @@ namespace contactlab {
 struct VpsContactParams {
   PenaltyParams penalty;         // k_C per point and the L / l scaling, as the paper's model
   double voxel_size = 0;         // voxmap voxel side, metres; <= 0: B's field spacing
-  double interior_depth = -1;    // depth of a point in an interior voxel, metres; < 0: v sqrt(3)/2
+  VpsVoxmap voxmap = VpsVoxmap::kLayered;  // force model: distance layers, or the 1999 surface layer
+  double interior_depth = -1;    // surface model: depth of a point in an interior voxel, metres; < 0: v sqrt(3)/2
   bool coherence = false;        // temporal coherence through the 8-bit voxmap
   double max_point_speed = 1.0;  // m/s, largest speed of any pointshell point relative to B
   double cycle_seconds = 1e-3;   // duration of one haptic cycle, seconds
@@ -60,9 +78,10 @@ struct VpsModelInfo {
   std::int64_t free = 0, proximity = 0, surface = 0, interior = 0;  // voxel counts
   std::size_t voxmap_bytes = 0;       // 2-bit voxmap: ceil(voxels / 4)
   std::size_t wide_voxmap_bytes = 0;  // 8-bit voxmap: voxels (0 when coherence is off)
+  std::size_t depth_map_bytes = 0;    // layered voxmap: 4 bytes a voxel (0 for the surface model)
   std::int32_t points = 0;            // pointshell points rendered
   std::size_t pointshell_bytes = 0;   // 6 floats per point
-  double interior_depth = 0;          // metres
+  double interior_depth = 0;          // surface model: metres
 };
 
 class VpsContactModel final : public ContactModel {
@@ -84,6 +103,7 @@ class VpsContactModel final : public ContactModel {
   const Pointshell& shell() const { return *shell_; }
   const Voxmap& voxmap() const { return voxmap_; }
   const WideVoxmap& wide_voxmap() const { return wide_; }  // empty when coherence is off
+  const VoxelDepthMap& depth_map() const { return depths_; }  // empty for the surface model
   VpsModelInfo info() const;
 
  private:
@@ -92,6 +112,7 @@ class VpsContactModel final : public ContactModel {
   VpsContactParams params_;
   Voxmap voxmap_;
   WideVoxmap wide_;
+  VoxelDepthMap depths_;   // layered model only
   double interior_depth_;  // metres
   float box_hi_[3];        // upper corner of the voxmap box (B frame)
 

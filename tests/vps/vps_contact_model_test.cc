@@ -1,7 +1,9 @@
-// Tests of the VPS contact model (McNeely et al. 1999 sec. 4.3 tangent-plane forces; 2006
-// sec. 3 temporal coherence): analytic plate forces, the voxel-boundary force jump against the
-// continuous pointshell model, halfspace gradients by finite differences, coherence on = off,
-// and registration through the model factory.
+// Tests of the VPS contact model's 1999 surface layer (McNeely et al. 1999 sec. 4.3 tangent-
+// plane forces, `voxmap: surface`) and of what both voxmap models share (2006 sec. 3 temporal
+// coherence): analytic plate forces, the voxel-boundary force jump against the continuous
+// pointshell model, halfspace gradients by finite differences, coherence on = off, no
+// allocation, and registration through the model factory. The distance-layered voxmap (the
+// default) has its own tests in vps_layered_test.cc.
 #include "allocation_counter.h"
 #include "baselines/vps/vps_contact_model.h"
 
@@ -57,9 +59,10 @@ Pose RandomPose(std::mt19937& rng, double spread) {
           spread * Eigen::Vector3d(u(rng), u(rng), u(rng))};
 }
 
-TEST(VpsContactModel, FlatPlateForceIsKLTimesTheTangentPlaneDepthAlongTheNormal) {
+TEST(VpsContactModel, SurfaceModelFlatPlateForceIsKLTimesTheTangentPlaneDepthAlongTheNormal) {
   auto shell = PointGrid(Eigen::Vector3d::UnitZ());
   VpsContactParams params;
+  params.voxmap = VpsVoxmap::kSurface;
   params.penalty.k_C = 2000;
   params.penalty.L = 10;
   VpsContactModel model("vps", shell, PlateField(), params);
@@ -97,13 +100,14 @@ TEST(VpsContactModel, FlatPlateForceIsKLTimesTheTangentPlaneDepthAlongTheNormal)
   }
 }
 
-TEST(VpsContactModel, ForceJumpsAtVoxelFacesButThePointshellModelsForceIsContinuous) {
+TEST(VpsContactModel, SurfaceModelForceJumpsAtVoxelFacesButThePointshellModelsForceIsContinuous) {
   // One point with a tilted normal, in the surface layer, slid along x across a voxel face:
   // the tangent plane moves with the voxel centre (by kH in x), so the depth jumps by kH N.x.
   const Eigen::Vector3d N = Eigen::Vector3d(0.3, 0.1, 1).normalized();
   auto shell = OnePoint(N);
   auto field = PlateField();
   VpsContactParams vps_params;
+  vps_params.voxmap = VpsVoxmap::kSurface;
   vps_params.penalty.k_C = 2000;
   VpsContactModel vps("vps", shell, field, vps_params);
   PointshellContactParams ps_params;
@@ -132,13 +136,14 @@ TEST(VpsContactModel, ForceJumpsAtVoxelFacesButThePointshellModelsForceIsContinu
   EXPECT_GT(vps_jump, 100 * ps_jump);
 }
 
-TEST(VpsContactModel, SlidingSphereForceStepsAreLargerThanThePointshellModels) {
+TEST(VpsContactModel, SurfaceModelSlidingSphereForceStepsAreLargerThanThePointshellModels) {
   // A ball pointshell pressed into the plate and slid in tiny steps over two voxels: VPS's
   // largest step-to-step change is a voxel-face jump; the pointshell model's stays small.
   auto shell = SphereShell(0.03, 128, 2, 5);
   auto field = PlateField();
   // No L / l scaling: its jumps when a point enters contact would hide the voxel artefact.
   VpsContactParams vps_params;
+  vps_params.voxmap = VpsVoxmap::kSurface;
   vps_params.penalty.L = 0;
   VpsContactModel vps("vps", shell, field, vps_params);
   PointshellContactParams ps_params;
@@ -162,96 +167,116 @@ TEST(VpsContactModel, SlidingSphereForceStepsAreLargerThanThePointshellModels) {
   EXPECT_GT(max_vps, 20 * max_ps) << "vps " << max_vps << " N, pointshell " << max_ps << " N";
 }
 
+// Both voxmap models, named for the failure messages.
+constexpr std::pair<VpsVoxmap, const char*> kVoxmaps[] = {{VpsVoxmap::kLayered, "layered"},
+                                                          {VpsVoxmap::kSurface, "surface"}};
+
 TEST(VpsContactModel, TranslationGradientMatchesFiniteDifferencesWithinAVoxel) {
-  auto shell = PointGrid(Eigen::Vector3d(0.2, -0.1, 1));
-  VpsContactParams params;
-  params.penalty.k_C = 1500;
-  VpsContactModel model("vps", shell, PlateField(), params);
-  std::mt19937 rng(11);
-  ContactQuery q;
-  q.X_WB = RandomPose(rng, 0.05);
-  q.X_WA = q.X_WB * Pose::FromTranslation(Eigen::Vector3d(0.0021, 0.0013, 0.15 * kH));
-  const ContactResult r = model.Evaluate(q);
-  ASSERT_EQ(r.stats.points_in_contact, shell->num_points());
-  const double delta = 1e-5;  // metres; every point is >= 0.17 mm from a voxel face
-  for (int a = 0; a < 3; ++a) {
-    ContactQuery plus = q, minus = q;
-    plus.X_WB.translation[a] += delta;
-    minus.X_WB.translation[a] -= delta;
-    const Vector6d fd = (model.Evaluate(plus).on_B.AsVector() - model.Evaluate(minus).on_B.AsVector()) / (2 * delta);
-    EXPECT_LT((fd - r.K_B.col(a)).norm(), 1e-3 * r.K_B.col(a).norm() + 1e-6) << "column " << a << "\n"
-                                                                            << fd.transpose() << "\n"
-                                                                            << r.K_B.col(a).transpose();
+  for (const auto& [voxmap, voxmap_name] : kVoxmaps) {
+    SCOPED_TRACE(voxmap_name);
+    // The halfspace K_B is the derivative where the depth's gradient is the point's normal: the
+    // surface model's tangent planes, and the layered model where the normal is B's (the plate's).
+    auto shell = PointGrid(voxmap == VpsVoxmap::kSurface ? Eigen::Vector3d(0.2, -0.1, 1) : Eigen::Vector3d::UnitZ());
+    VpsContactParams params;
+    params.voxmap = voxmap;
+    params.penalty.k_C = 1500;
+    VpsContactModel model("vps", shell, PlateField(), params);
+    std::mt19937 rng(11);
+    ContactQuery q;
+    q.X_WB = RandomPose(rng, 0.05);
+    q.X_WA = q.X_WB * Pose::FromTranslation(Eigen::Vector3d(0.0021, 0.0013, 0.15 * kH));
+    const ContactResult r = model.Evaluate(q);
+    ASSERT_EQ(r.stats.points_in_contact, shell->num_points());
+    const double delta = 1e-5;  // metres; every point is >= 0.17 mm from a voxel face
+    for (int a = 0; a < 3; ++a) {
+      ContactQuery plus = q, minus = q;
+      plus.X_WB.translation[a] += delta;
+      minus.X_WB.translation[a] -= delta;
+      const Vector6d fd = (model.Evaluate(plus).on_B.AsVector() - model.Evaluate(minus).on_B.AsVector()) / (2 * delta);
+      EXPECT_LT((fd - r.K_B.col(a)).norm(), 1e-3 * r.K_B.col(a).norm() + 1e-6) << "column " << a << "\n"
+                                                                              << fd.transpose() << "\n"
+                                                                              << r.K_B.col(a).transpose();
+    }
   }
 }
 
 TEST(VpsContactModel, TemporalCoherenceGivesIdenticalWrenchesWithinTheSpeedBound) {
-  // A ball of radius 3 cm wandering in and out of contact with a ball field of radius 5 cm.
-  auto shell = SphereShell(0.03, 200, 2, 9);
-  auto field = SampleField([](const Eigen::Vector3d& p) { return p.norm() - 0.05; }, Eigen::Vector3d::Constant(-0.065),
-                           Eigen::Vector3d::Constant(0.065), kH);
-  VpsContactParams params;
-  params.max_point_speed = 0.5;  // m/s: 0.5 mm per 1 ms cycle
-  VpsContactModel plain("vps", shell, field, params);
-  params.coherence = true;
-  VpsContactModel coherent("vps", shell, field, params);
-  ASSERT_GT(coherent.info().wide_voxmap_bytes, 0u);
-  // Centre distance r(t) = 9 +- 2 cm (<= 0.13 mm per cycle) on a slowly turning direction
-  // (<= 0.11 mm per cycle at 11 cm) and a tumbling orientation (0.003 rad per cycle, <= 0.09 mm
-  // at 3 cm): every point moves less than 0.5 mm per cycle.
-  std::mt19937 rng(21);
-  std::uniform_real_distribution<double> u(-1, 1);
-  Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
-  std::int64_t skipped = 0, visits = 0;
-  int contact_cycles = 0;
-  for (int cycle = 0; cycle < 1500; ++cycle) {
-    const double r = 0.09 + 0.02 * std::sin(cycle * 2 * M_PI / 1000);
-    const double phi = 0.001 * cycle;
-    const Eigen::Vector3d centre = r * Eigen::Vector3d(std::cos(phi), std::sin(phi) * 0.6, std::sin(phi) * 0.8);
-    const Eigen::Vector3d w = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
-    rotation = (RotationFromVector(0.003 * w) * rotation).normalized();
+  for (const auto& [voxmap, voxmap_name] : kVoxmaps) {
+    SCOPED_TRACE(voxmap_name);
+    // A ball of radius 3 cm wandering in and out of contact with a ball field of radius 5 cm.
+    auto shell = SphereShell(0.03, 200, 2, 9);
+    auto field = SampleField([](const Eigen::Vector3d& p) { return p.norm() - 0.05; }, Eigen::Vector3d::Constant(-0.065),
+                             Eigen::Vector3d::Constant(0.065), kH);
+    VpsContactParams params;
+    params.voxmap = voxmap;
+    params.max_point_speed = 0.5;  // m/s: 0.5 mm per 1 ms cycle
+    VpsContactModel plain("vps", shell, field, params);
+    params.coherence = true;
+    VpsContactModel coherent("vps", shell, field, params);
+    ASSERT_GT(coherent.info().wide_voxmap_bytes, 0u);
+    // Centre distance r(t) = 9 +- 2 cm (<= 0.13 mm per cycle) on a slowly turning direction
+    // (<= 0.11 mm per cycle at 11 cm) and a tumbling orientation (0.003 rad per cycle, <= 0.09 mm
+    // at 3 cm): every point moves less than 0.5 mm per cycle.
+    std::mt19937 rng(21);
+    std::uniform_real_distribution<double> u(-1, 1);
+    Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
+    std::int64_t skipped = 0, visits = 0;
+    int contact_cycles = 0;
+    for (int cycle = 0; cycle < 1500; ++cycle) {
+      const double r = 0.09 + 0.02 * std::sin(cycle * 2 * M_PI / 1000);
+      const double phi = 0.001 * cycle;
+      const Eigen::Vector3d centre = r * Eigen::Vector3d(std::cos(phi), std::sin(phi) * 0.6, std::sin(phi) * 0.8);
+      const Eigen::Vector3d w = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+      rotation = (RotationFromVector(0.003 * w) * rotation).normalized();
+      ContactQuery q;
+      q.cycle = cycle;
+      q.X_WA = {rotation, centre};
+      const ContactResult a = plain.Evaluate(q), b = coherent.Evaluate(q);
+      ASSERT_EQ(a.on_B.force, b.on_B.force) << "cycle " << cycle;
+      ASSERT_EQ(a.on_B.torque, b.on_B.torque) << "cycle " << cycle;
+      ASSERT_EQ(a.stats.points_in_contact, b.stats.points_in_contact) << "cycle " << cycle;
+      EXPECT_EQ(b.stats.nodes_visited + b.stats.nodes_skipped_coherence, shell->num_points());
+      skipped += b.stats.nodes_skipped_coherence;
+      visits += shell->num_points();
+      contact_cycles += a.stats.points_in_contact > 0;
+    }
+    EXPECT_GT(contact_cycles, 300);
+    EXPECT_GT(skipped, visits / 4) << "coherence skipped too little to be tested";
+    // After Reset nothing is skipped, even after a jump no speed bound allows.
+    coherent.Reset();
     ContactQuery q;
-    q.cycle = cycle;
-    q.X_WA = {rotation, centre};
+    q.cycle = 1500;
+    q.X_WA = Pose::FromTranslation(Eigen::Vector3d(0.075, 0, 0));
     const ContactResult a = plain.Evaluate(q), b = coherent.Evaluate(q);
-    ASSERT_EQ(a.on_B.force, b.on_B.force) << "cycle " << cycle;
-    ASSERT_EQ(a.on_B.torque, b.on_B.torque) << "cycle " << cycle;
-    ASSERT_EQ(a.stats.points_in_contact, b.stats.points_in_contact) << "cycle " << cycle;
-    EXPECT_EQ(b.stats.nodes_visited + b.stats.nodes_skipped_coherence, shell->num_points());
-    skipped += b.stats.nodes_skipped_coherence;
-    visits += shell->num_points();
-    contact_cycles += a.stats.points_in_contact > 0;
+    EXPECT_EQ(b.stats.nodes_skipped_coherence, 0);
+    EXPECT_GT(a.stats.points_in_contact, 0);
+    EXPECT_EQ(a.on_B.force, b.on_B.force);
   }
-  EXPECT_GT(contact_cycles, 300);
-  EXPECT_GT(skipped, visits / 4) << "coherence skipped too little to be tested";
-  // After Reset nothing is skipped, even after a jump no speed bound allows.
-  coherent.Reset();
-  ContactQuery q;
-  q.cycle = 1500;
-  q.X_WA = Pose::FromTranslation(Eigen::Vector3d(0.075, 0, 0));
-  const ContactResult a = plain.Evaluate(q), b = coherent.Evaluate(q);
-  EXPECT_EQ(b.stats.nodes_skipped_coherence, 0);
-  EXPECT_GT(a.stats.points_in_contact, 0);
-  EXPECT_EQ(a.on_B.force, b.on_B.force);
 }
 
 TEST(VpsContactModel, EvaluateAllocatesNothing) {
-  auto shell = SphereShell(0.03, 200, 2, 9);
-  auto field = SampleField([](const Eigen::Vector3d& p) { return p.norm() - 0.05; }, Eigen::Vector3d::Constant(-0.065),
-                           Eigen::Vector3d::Constant(0.065), kH);
-  VpsContactParams params;
-  params.coherence = true;
-  VpsContactModel model("vps", shell, field, params);
-  std::int64_t contacts = 0;
-  const long before = testing::AllocationCount();
-  for (int cycle = 0; cycle < 1000; ++cycle) {
-    ContactQuery q;
-    q.cycle = cycle;
-    q.X_WA = Pose::FromTranslation(Eigen::Vector3d(0.078 + 0.004 * std::sin(cycle * 0.01), 0, 0));
-    contacts += model.Evaluate(q).stats.points_in_contact;
+  for (const auto& [voxmap, voxmap_name] : kVoxmaps) {
+    for (const bool coherence : {false, true}) {
+      SCOPED_TRACE(std::string(voxmap_name) + (coherence ? " with coherence" : ""));
+      auto shell = SphereShell(0.03, 200, 2, 9);
+      auto field = SampleField([](const Eigen::Vector3d& p) { return p.norm() - 0.05; }, Eigen::Vector3d::Constant(-0.065),
+                               Eigen::Vector3d::Constant(0.065), kH);
+      VpsContactParams params;
+      params.voxmap = voxmap;
+      params.coherence = coherence;
+      VpsContactModel model("vps", shell, field, params);
+      std::int64_t contacts = 0;
+      const long before = testing::AllocationCount();
+      for (int cycle = 0; cycle < 1000; ++cycle) {
+        ContactQuery q;
+        q.cycle = cycle;
+        q.X_WA = Pose::FromTranslation(Eigen::Vector3d(0.078 + 0.004 * std::sin(cycle * 0.01), 0, 0));
+        contacts += model.Evaluate(q).stats.points_in_contact;
+      }
+      EXPECT_EQ(testing::AllocationCount() - before, 0);
+      EXPECT_GT(contacts, 0);
+    }
   }
-  EXPECT_EQ(testing::AllocationCount() - before, 0);
-  EXPECT_GT(contacts, 0);
 }
 
 TEST(VpsContactModel, InfoReportsVoxmapMemoryAndCounts) {
@@ -259,7 +284,13 @@ TEST(VpsContactModel, InfoReportsVoxmapMemoryAndCounts) {
   VpsContactParams params;
   params.coherence = true;
   VpsContactModel model("vps", shell, PlateField(), params);
+  params.voxmap = VpsVoxmap::kSurface;
+  const VpsModelInfo surface_info = VpsContactModel("vps", shell, PlateField(), params).info();
   const VpsModelInfo info = model.info();
+  // The layered voxmap holds 4 bytes a voxel; the surface model none.
+  EXPECT_EQ(info.depth_map_bytes, std::size_t(4 * info.voxels));
+  EXPECT_EQ(surface_info.depth_map_bytes, 0u);
+  EXPECT_EQ(surface_info.voxmap_bytes, info.voxmap_bytes);
   EXPECT_EQ(info.voxels, std::int64_t(info.dims.x()) * info.dims.y() * info.dims.z());
   EXPECT_EQ(info.free + info.proximity + info.surface + info.interior, info.voxels);
   EXPECT_EQ(info.voxmap_bytes, std::size_t((info.voxels + 3) / 4));
