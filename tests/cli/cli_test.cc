@@ -252,6 +252,11 @@ TEST(CliSession, TheLoopRunsAtTheScenesCycleOrAtTheRateAsked) {
   EXPECT_NE(refused.exit_code, 0) << refused.output;
   EXPECT_NE(refused.output.find("tiny.yaml: model.cycle_seconds"), std::string::npos) << refused.output;
   EXPECT_EQ(refused.output.find("session: scene"), std::string::npos) << refused.output;
+  const Outcome budgeted = RunCli(session + " --rate 5000 --budget 64");
+  EXPECT_EQ(budgeted.exit_code, 0) << budgeted.output;
+  const Outcome negative = RunCli(session + " --budget -1");
+  EXPECT_EQ(negative.exit_code, 105) << negative.output;
+  EXPECT_NE(negative.output.find("--budget"), std::string::npos) << negative.output;
   for (const std::string bad : {"0", "200000", "nan", "-1000"}) {
     const Outcome o = RunCli(session + " --rate " + bad);
     EXPECT_EQ(o.exit_code, 105) << bad << ": " << o.output;
