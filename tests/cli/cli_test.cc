@@ -14,7 +14,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -22,6 +24,7 @@
 #include "scene_fixtures.h"
 #include "test_support.h"
 #include "util/atomic_file.h"
+#include "util/data_path.h"
 
 namespace contactlab {
 namespace {
@@ -99,6 +102,50 @@ TEST(Cli, ContactPrintsTheForceOnTheFieldBodyAsJson) {
   EXPECT_NEAR(K[0] + K[7] + K[14], -kC * L, 1e-6 * kC * L) << o.output;
   EXPECT_LT(K[14], -(H / R) * (H / R) * kC * L) << o.output;
   EXPECT_GT(K[14], -kC * L) << o.output;
+}
+
+// A shipped scene whose bodies start apart (the screwdriver 8 cm from the knight): `contact`
+// finds no contact at the scene's poses; `--touch 0.002` moves the knight toward the
+// screwdriver until the query sees 2 mm of penetration (to the placement's 1 % bisection), and
+// the force on the knight pushes it back along the line it came in on. Moved from --pose-b,
+// the knight comes in from that pose's side instead.
+TEST(Cli, ContactTouchPutsAShippedSceneThatStartsApartInContact) {
+  testing::TempDir dir;
+  const std::optional<std::filesystem::path> data = InstalledDataDir();
+  ASSERT_TRUE(data.has_value());
+  const std::string scene = (*data / "scenes" / "knight-screwdriver.yaml").string();
+  const std::string contact = "contact " + scene + " --json --cache " + (dir / "cache").string();
+  const Outcome apart = RunCli(contact);
+  ASSERT_EQ(apart.exit_code, 0) << apart.output;
+  EXPECT_EQ(JsonNumbers(apart.output, "points_in_contact", 1), std::vector<double>{0}) << apart.output;
+
+  const struct {
+    std::string option;
+    Eigen::Vector3d A_to_B;  // from the screwdriver's origin to the knight's start
+  } cases[] = {{"", Eigen::Vector3d(1, 0, 0)}, {" --pose-b 0,0.08,0,1,0,0,0", Eigen::Vector3d(0, 1, 0)}};
+  for (const auto& c : cases) {
+    const Outcome o = RunCli(contact + " --touch 0.002" + c.option);
+    ASSERT_EQ(o.exit_code, 0) << c.option << ": " << o.output;
+    const std::vector<double> l = JsonNumbers(o.output, "points_in_contact", 1);
+    const std::vector<double> d = JsonNumbers(o.output, "max_penetration", 1), F = JsonNumbers(o.output, "force", 3);
+    ASSERT_EQ(l.size(), 1u) << o.output;
+    ASSERT_EQ(d.size(), 1u) << o.output;
+    ASSERT_EQ(F.size(), 3u) << o.output;
+    EXPECT_GT(l[0], 0) << c.option;
+    EXPECT_GE(d[0], 0.002 * (1 - 1e-9)) << c.option;
+    EXPECT_LE(d[0], 0.002 * 1.02) << c.option;
+    const Eigen::Vector3d force(F[0], F[1], F[2]);
+    EXPECT_GT(force.dot(c.A_to_B), 0.5 * force.norm()) << c.option << ": " << o.output;
+  }
+
+  const Outcome same = RunCli(contact + " --touch 0.002 --pose-b 0,0,0,1,0,0,0");
+  EXPECT_EQ(same.exit_code, 1) << same.output;
+  EXPECT_NE(same.output.find("--touch: the two bodies' origins coincide"), std::string::npos) << same.output;
+  for (const std::string bad : {"--touch 0", "--touch -0.001", "--touch nan"}) {
+    const Outcome o = RunCli(contact + " " + bad);
+    EXPECT_NE(o.exit_code, 0) << bad;
+    EXPECT_NE(o.output.find("--touch"), std::string::npos) << bad << ": " << o.output;
+  }
 }
 
 TEST(Cli, BadSceneKeyFailsNamingFileAndKey) {
