@@ -738,9 +738,13 @@ TEST(CliDeformable, CoordinatesWhoseDeformationOverflowsAreRefusedNamingTheOptio
   EXPECT_NE(o.output.find("--q-a " + said), std::string::npos) << o.output;
   EXPECT_EQ(o.output.find("force on"), std::string::npos) << o.output;
   for (const char* f : {"o.obj", "o.csv", "d.csv"}) EXPECT_FALSE(std::filesystem::exists(dir / f)) << f;
-  // A quaternion too large for its norm still names a rotation (normalised without overflow).
+  // A quaternion too large for its norm is not of unit length: refused naming the option, the
+  // order and its length, computed without overflow.
   o = RunCli("contact " + scene + " --pose-a 0,0,0,1e308,1e308,0,0 --json");
-  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  EXPECT_NE(o.output.find("--pose-a: the quaternion (qw, qx, qy, qz) = (1e+308, 1e+308, 0, 0) has length "
+                          "1.41421356e+308, not 1"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("x, y, z, qw, qx, qy, qz"), std::string::npos) << o.output;
 }
 
 // Finite coordinates whose deformation is finite but beyond the coordinates any reader accepts
