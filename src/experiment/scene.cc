@@ -431,6 +431,12 @@ Pose ParsePoseNode(const ConfigNode& n) {
 
 Scene ParseScene(const ConfigNode& n) {
   RegisterContactModels();  // a scene names models and their keys: every model the build holds
+  // An experiment config where a scene belongs (`contactlab contact CONFIG.yaml`): it names a
+  // scene instead of holding bodies, and its keys would otherwise read as unknown scene keys.
+  if (n.path().empty() && n.IsMap() && n.Has("scene") && !n.Has("bodies")) {
+    Fail(n.file(), "this is an experiment config (it names a scene and has no bodies): use `contactlab run " +
+                       n.file() + "` (a scene is a file like data/scenes/*.yaml)");
+  }
   n.ExpectKeys({"name", "bodies", "model", "models"});
   Scene scene;
   scene.file = n.file();

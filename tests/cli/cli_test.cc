@@ -426,6 +426,65 @@ TEST(Cli, RunListsJobsOfASweep) {
   EXPECT_NE(bad.output.find("sweep.pionts"), std::string::npos) << bad.output;
 }
 
+// A config's mistakes are named where they were written: an unknown --profile lists the
+// config's profiles; a misspelled model (in the config's models, a swept models list, the
+// reference, or the scene's own models list) fails --list-jobs naming the file and line of the
+// list that holds it, the config's never blamed on the scene; and `contact` given a config says
+// to use `run` instead of calling its keys unknown scene keys.
+TEST(CliConfigs, MistakesAreNamedInTheFileThatHoldsThem) {
+  testing::TempDir dir;
+  std::ofstream(dir / "scene.yaml") << kScene;
+  const std::string base = "name: e\ndescription: two models pressed\nscene: scene.yaml\n" +
+                           testing::PressTrajectoryYaml(0.01) + "\n";
+  auto run = [&](const std::string& config, const std::string& options) {
+    std::ofstream(dir / "exp.yaml") << config;
+    return RunCli("run " + (dir / "exp.yaml").string() + " " + options);
+  };
+  const std::string config = (dir / "exp.yaml").string(), scene = (dir / "scene.yaml").string();
+
+  const Outcome profile = run(base + "profiles:\n  quick: {sweep.points: [64]}\n  paper: {sweep.points: [256]}\n",
+                              "--profile papr --list-jobs");
+  EXPECT_EQ(profile.exit_code, 1) << profile.output;
+  EXPECT_NE(profile.output.find(config + ": has no profile 'papr' (under 'profiles'); its profiles: quick, paper"),
+            std::string::npos) << profile.output;
+  const Outcome none = run(base, "--profile paper --list-jobs");
+  EXPECT_EQ(none.exit_code, 1) << none.output;
+  EXPECT_NE(none.output.find("it has no profiles"), std::string::npos) << none.output;
+
+  // The models list is line 4 of the config, after name, description and scene.
+  const std::string models = "name: e\ndescription: two models\nscene: scene.yaml\nmodels: [pointshell, pointshel-linear]\n" +
+                             testing::PressTrajectoryYaml(0.01) + "\n";
+  const Outcome model = run(models, "--list-jobs");
+  EXPECT_EQ(model.exit_code, 1) << model.output;
+  EXPECT_NE(model.output.find(config + ":4: models[1]: unknown contact model 'pointshel-linear' (known: "),
+            std::string::npos) << model.output;
+  EXPECT_EQ(model.output.find(scene), std::string::npos) << model.output;
+  const Outcome swept = run(base + "sweep:\n  model:\n    - pointshell\n    - fcll\n", "--list-jobs");
+  EXPECT_EQ(swept.exit_code, 1) << swept.output;
+  EXPECT_NE(swept.output.find(config + ":8: sweep.model[1]: unknown contact model 'fcll'"), std::string::npos)
+      << swept.output;
+  EXPECT_EQ(swept.output.find(scene), std::string::npos) << swept.output;
+  const Outcome reference = run(base + "reference: pointshell-lineer\n", "--list-jobs");
+  EXPECT_EQ(reference.exit_code, 1) << reference.output;
+  EXPECT_NE(reference.output.find(config + ":5: reference: unknown contact model 'pointshell-lineer'"),
+            std::string::npos) << reference.output;  // line 5: after name, description, scene, trajectory
+
+  // A misspelled model in the scene's own list is the scene's.
+  std::ofstream(dir / "scene.yaml") << kScene << "models: [pointshell, vsp]\n";
+  const Outcome scene_model = run(base, "--list-jobs");
+  EXPECT_EQ(scene_model.exit_code, 1) << scene_model.output;
+  EXPECT_NE(scene_model.output.find(scene + ": models: unknown contact model 'vsp'"), std::string::npos)
+      << scene_model.output;
+  std::ofstream(dir / "scene.yaml") << kScene;
+  EXPECT_EQ(run(base, "--list-jobs").exit_code, 0);
+
+  const Outcome contact = RunCli("contact " + config + " --no-cache");
+  EXPECT_EQ(contact.exit_code, 1) << contact.output;
+  EXPECT_NE(contact.output.find(config + ": this is an experiment config"), std::string::npos) << contact.output;
+  EXPECT_NE(contact.output.find("use `contactlab run " + config + "`"), std::string::npos) << contact.output;
+  EXPECT_EQ(contact.output.find("unknown key"), std::string::npos) << contact.output;
+}
+
 // The CSV TEXT without its timing columns (header names ending in "_us"), which differ run to run.
 std::string WithoutTimings(const std::string& text) {
   std::vector<bool> keep;
