@@ -15,8 +15,16 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
-import figures  # noqa: E402
-from figures.common import Results  # noqa: E402
+try:
+    import figures  # noqa: E402
+    from figures.common import Results  # noqa: E402
+except ImportError as e:
+    # The figures draw with matplotlib: say which interpreter lacks it and how to get it.
+    if not (e.name or "").split(".")[0] == "matplotlib":
+        raise
+    sys.exit(f"make_figures: {sys.executable} (Python {sys.version_info.major}.{sys.version_info.minor}) cannot "
+             f"import matplotlib ({e}); install it for this interpreter (Debian: apt install python3-matplotlib) "
+             f"or run the script with an interpreter that has it, e.g. /usr/bin/python3 {sys.argv[0]}")
 
 
 def main():
