@@ -25,6 +25,7 @@ if(TARGET contactlab_python)
   # The package folder depends on the prefix installed to, which cpack changes (/usr for the
   # .deb): asked of the interpreter at install time unless CONTACTLAB_INSTALL_PYTHONDIR names it.
   file(GLOB _contactlab_python_files CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/python/contactlab/*.py)
+  list(APPEND _contactlab_python_files ${PROJECT_BINARY_DIR}/python/contactlab/_build.py)  # python/CMakeLists.txt
   install(CODE "
     set(_pythondir [[${CONTACTLAB_INSTALL_PYTHONDIR}]])
     if(_pythondir STREQUAL \"\")

@@ -3,6 +3,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <optional>
 
 #include "geometry/triangle_mesh.h"
 
@@ -27,7 +28,7 @@ Pose PoseFrom7(const double* v, const std::string& where) {
     if (!std::isfinite(v[i])) FailArgument(where, "pose component " + std::to_string(i) + " is not finite");
   }
   const Eigen::Quaterniond q(v[3], v[4], v[5], v[6]);
-  if (q.norm() < 1e-12) FailArgument(where, "pose quaternion is zero");
+  if (const std::optional<std::string> e = NonUnitQuaternionError(q)) FailArgument(where, *e);
   return {UnitQuaternion(q), Eigen::Vector3d(v[0], v[1], v[2])};
 }
 

@@ -1,5 +1,5 @@
 // Poses and point arrays from NumPy: a pose is a 7-vector (x, y, z, qw, qx, qy, qz; metres, a
-// quaternion normalised as the command line's --pose-a does) or a 4x4 homogeneous matrix
+// unit quaternion within 1e-6 as the command line's --pose-a needs, NonUnitQuaternionError) or a 4x4 homogeneous matrix
 // (rotation block orthonormal with determinant +1, last row 0 0 0 1); a point is a 3-vector. The
 // one conversion of every pose and point a Python call takes: no value that is not finite passes.
 #pragma once
@@ -38,7 +38,7 @@ using PointRows = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eige
 PointRows PointsFromArray(const DoubleArray& a, const std::string& where);
 
 // One pose from a (7,) or (4, 4) array. Throws ArgumentError naming WHERE when the shape is neither,
-// a value is not finite, the quaternion is zero or the matrix is no rigid transform.
+// a value is not finite, the quaternion is not unit length or the matrix is no rigid transform.
 Pose PoseFromArray(const DoubleArray& a, const std::string& where);
 
 // N poses from an (N, 7) or (N, 4, 4) array, or one pose (7,) / (4, 4) as a batch of one

@@ -1,6 +1,8 @@
-// `contactlab contact SCENE.yaml [--model NAME] [--pose-a ...] [--pose-b ...] [--q-a Q] [--q-b Q] [--json]`:
-// evaluates one contact query of a scene (Barbič & James 2008, sec. 2.1 and 3) and prints
-// the wrench on the field body, points in contact, nodes visited and level rendered.
+// `contactlab contact SCENE.yaml [--model NAME] [--pose-a ...] [--pose-b ...] [--touch DEPTH] [--q-a Q] [--q-b Q]
+// [--json]`: evaluates one contact query of a scene (Barbič & James 2008, sec. 2.1 and 3) and
+// prints the wrench on the field body, points in contact, nodes visited and level rendered.
+// --touch first moves the field body toward the pointshell body until it is DEPTH deep, as
+// `session --touch` does (experiment/contact_placement.h).
 // `contactlab models`: the registered contact models, what each needs and what it is.
 #include <nlohmann/json.hpp>
 
@@ -14,6 +16,7 @@
 #include "cli/command_registry.h"
 #include "contact/contact_stats_fields.h"
 #include "contact/model_registry.h"
+#include "experiment/contact_placement.h"
 #include "experiment/reduced_coordinates.h"
 #include "experiment/scene_assets.h"
 #include "experiment/scene.h"
@@ -32,6 +35,7 @@ struct ContactArgs {
   bool no_cache = false;
   bool json = false;
   long long budget = -1;
+  double touch = -1;  // --touch: penetration depth to move the field body to, metres (<= 0: not given)
 };
 
 void RunContact(const ContactArgs& args) {
@@ -51,6 +55,14 @@ void RunContact(const ContactArgs& args) {
   ContactQuery q;
   q.X_WA = args.pose_a.empty() ? scene.pointshell_body.pose : ParsePose(args.pose_a, "--pose-a");
   q.X_WB = args.pose_b.empty() ? scene.field_body.pose : ParsePose(args.pose_b, "--pose-b");
+  // --touch: the field body moved along the line from its origin to the pointshell body's.
+  if (args.touch > 0) {
+    const Eigen::Vector3d toward = q.X_WA.translation - q.X_WB.translation;
+    if (!(toward.norm() > 0)) {
+      Fail(args.scene + ": --touch", "the two bodies' origins coincide, so there is no direction to move the field body in");
+    }
+    q.X_WB = TouchAlong(scene, assets, true, q.X_WA, q.X_WB, toward, args.touch, args.scene + ": --touch");
+  }
   q.node_budget = args.budget >= 0 ? args.budget : scene.node_budget;
   ReducedVector reduced_force_B;
   const BodyDeformation deformation_A{q_A.get(), &reduced_force}, deformation_B{q_B.get(), &reduced_force_B};
@@ -129,6 +141,10 @@ const CommandRegistration kContactCommands([](CLI::App& app) {
   cmd->add_option("--model", args->model, "contact model name (default: the scene's first model)");
   cmd->add_option("--pose-a", args->pose_a, "pose of the pointshell body: x,y,z,qw,qx,qy,qz (metres)");
   cmd->add_option("--pose-b", args->pose_b, "pose of the field body: x,y,z,qw,qx,qy,qz (metres)");
+  cmd->add_option("--touch", args->touch,
+                  "first move the field body toward the pointshell body until this deep, metres (from --pose-b or "
+                  "the scene's pose)")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--q-a", args->q_a, "deformation of body A held fixed: q1,...,qr or @FILE (default: rest)");
   cmd->add_option("--q-b", args->q_b, "deformation of body B: q1,...,qr or @FILE");
   cmd->add_option("--budget", args->budget, "node budget (warm threshold, >= 0); overrides the scene's")

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "contact/model_registry.h"
+#include "contact/unbuilt_models.h"
 #include "experiment/study.h"
 #include "util/atomic_file.h"
 #include "util/data_path.h"
@@ -356,7 +357,16 @@ ExperimentConfig LoadExperimentConfig(const std::filesystem::path& config_file, 
   std::vector<std::string> overrides;
   if (!profile.empty()) {
     const YAML::Node p = root["profiles"] ? root["profiles"][profile] : YAML::Node();
-    if (!p || !p.IsMap()) Fail(config_file.string(), "has no profile '" + profile + "' (under 'profiles')");
+    if (!p || !p.IsMap()) {
+      std::string known;
+      if (root["profiles"] && root["profiles"].IsMap()) {
+        for (const auto& kv : root["profiles"]) {
+          if (kv.first.IsScalar()) known += (known.empty() ? "" : ", ") + kv.first.Scalar();
+        }
+      }
+      Fail(config_file.string(), "has no profile '" + QuoteToken(profile) + "' (under 'profiles'); " +
+                                     (known.empty() ? std::string("it has no profiles") : "its profiles: " + known));
+    }
     for (const auto& kv : p) {
       YAML::Emitter e;
       e << YAML::Flow << kv.second;
@@ -391,6 +401,13 @@ void ParseReference(const ConfigNode& root, ExperimentConfig* config) {
     c.reference_model = root.String("reference", "");
   }
   c.reference_every = int(root.PositiveInt("reference_every", 1));
+  if (!c.reference_model.empty() && FindContactModel(c.reference_model) == nullptr &&
+      !UnbuiltContactModelReason(c.reference_model)) {
+    const ConfigNode r = root.Get("reference");
+    const ConfigNode named = r.IsMap() ? r.Get("model") : r;
+    CheckContactModel(c.reference_model, c.scene.model, c.scene.model_params, c.scene.pointshell_body.name, false,
+                      c.scene.field_body.name, false, named.Location());  // throws, naming the known models
+  }
 }
 
 // The number of jobs of SWEEP (the product of its axes' lengths), refused above kMaxSweepJobs
@@ -477,14 +494,42 @@ void CheckEachSweepValue(const ExperimentConfig& c) {
   }
 }
 
-// What a job's registered models refuse of its scene (a deformable body a model treats as
-// rigid, coherence against a deformed field, ...), said before any job builds its assets. Models
-// not registered in this program are left to the run.
-void CheckModelsAgainstScene(const ExperimentConfig& c, const Job& job) {
+// Where model NAME was written in the config ROOT: its entry of the models list, or of a sweep
+// over models (`model:` or `models:`), with file and line; the scene file's models list when the
+// config names it nowhere (the job's models are then the scene's).
+std::string ModelLocation(const ConfigNode& root, const Job& job, const std::string& name) {
+  std::vector<ConfigNode> lists;
+  if (auto m = root.Find("models")) lists.push_back(*m);
+  if (auto sweep = root.Find("sweep"); sweep && sweep->IsMap()) {
+    for (const char* key : {"model", "models"}) {
+      if (auto axis = sweep->Find(key)) lists.push_back(*axis);
+    }
+  }
+  for (const ConfigNode& list : lists) {
+    if (!list.IsSequence()) continue;
+    for (const ConfigNode& e : list.Elements()) {
+      if (e.IsScalar() && e.AsString() == name) return e.Location();
+    }
+  }
+  if (!lists.empty()) return lists.front().Location();
+  return job.scene.file + ": models";
+}
+
+// What a job's models refuse of its scene (a name no model is registered under, a deformable
+// body a model treats as rigid, coherence against a deformed field, ...), said before any job
+// builds its assets. An unknown name is blamed on the list that holds it (the config's, or its
+// scene's when the config names no models), not on the scene the run would build it for.
+void CheckModelsAgainstScene(const ExperimentConfig& c, const ConfigNode& root, const Job& job) {
   const Scene& s = job.scene;
   const std::string where = c.file + (c.sweep.empty() ? std::string() : " (job " + job.Label() + ")");
   for (const std::string& name : job.models) {
-    if (FindContactModel(name) == nullptr) continue;
+    // A model this program was built without (contact/unbuilt_models.h) is left to the run,
+    // so that listing and expanding jobs works in every build.
+    if (FindContactModel(name) == nullptr && UnbuiltContactModelReason(name)) continue;
+    if (FindContactModel(name) == nullptr) {
+      CheckContactModel(name, s.model, s.model_params, s.pointshell_body.name, false, s.field_body.name, false,
+                        ModelLocation(root, job, name));  // throws, naming the known models
+    }
     CheckContactModel(name, s.model, s.model_params, s.pointshell_body.name, s.pointshell_body.deformable.has_value(),
                       s.field_body.name, s.field_body.deformable.has_value(), where);
   }
@@ -560,7 +605,7 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
   CheckEachSweepValue(c);
   // Every job, built one at a time: what its models refuse of its scene, then its study's checks.
   ForEachJob(c, [&](const Job& job) {
-    CheckModelsAgainstScene(c, job);
+    CheckModelsAgainstScene(c, root, job);
     if (study.check) study.check(c, root, job);
   });
   return c;

@@ -164,7 +164,8 @@ Scene LoadScene(const std::filesystem::path& file);
 Scene WithModelSection(Scene scene, const ConfigNode& node);
 
 // Reads a pose given as [x,y,z,qw,qx,qy,qz] or {position: [..], rotation: [qw,qx,qy,qz]}
-// or {position: [..], rotation_vector: [..]} (radians).
+// or {position: [..], rotation_vector: [..]} (radians). The quaternion must be unit length
+// (NonUnitQuaternionError); throws Error naming NODE's file and line otherwise.
 Pose ParsePoseNode(const ConfigNode& node);
 
 }  // namespace contactlab

@@ -856,7 +856,8 @@ HardCase Creep() {
 }
 
 // Ball 1 mm into a plate with body 1's quaternion scaled by SCALE (not unit; the Pose contract
-// says unit, ParsePose normalises and refuses |q| < 1e-12, but a device or a caller may not).
+// says unit and every pose read from a file or argument is refused otherwise, but a device or a
+// caller of the library may not keep it).
 HardCase Quaternion(double scale, const std::string& name) {
   HardCase c;
   c.name = name;

@@ -116,9 +116,15 @@ TEST(Runner, SingleJobsMergeIntoTheFullRun) {
 
 TEST(Runner, AFailedRunLeavesNoResultFile) {
   TempDir dir;
-  // The second sweep point names a model that does not exist: the run fails after the first
-  // job has finished, and no output file may exist.
-  const ExperimentConfig config = Load(dir, kConfig, {"sweep.model=[pointshell, no-such-model]", "sweep.points=[64]"});
+  // The second sweep point names a model that does not exist (put in after loading, which
+  // refuses the name): the run fails after the first job has finished, and no output file may
+  // exist.
+  ExperimentConfig config = Load(dir, kConfig, {"sweep.model=[pointshell, pointshell-linear]", "sweep.points=[64]"});
+  bool replaced = false;
+  for (SweepAxis& axis : config.sweep) {
+    if (axis.name == "model") axis.values[1] = "no-such-model", replaced = true;
+  }
+  ASSERT_TRUE(replaced);
   EXPECT_THROW(RunExperiment(config, Options(dir, "out")), Error);
   EXPECT_FALSE(std::filesystem::exists(dir / "out" / "cycles.csv"));
   EXPECT_FALSE(std::filesystem::exists(dir / "out" / "summary.csv"));

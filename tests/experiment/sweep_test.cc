@@ -115,8 +115,11 @@ TEST(Sweep, ABadValueNamesTheConfigTheAxisTheValueAndTheSceneKey) {
   EXPECT_NE(e.find("at least 1"), std::string::npos) << e;
   e = ErrorOf(dir, "  roles: [upside-down]\n");
   EXPECT_NE(e.find("sweep.roles value 'upside-down'"), std::string::npos) << e;
-  e = ErrorOf(dir, "  model: [pointshel]\n");
-  EXPECT_EQ(e, "");  // model names are checked when the model is made, with the known names
+  // A model name is checked when the config loads, against the registered names, and blamed on
+  // the sweep value that holds it.
+  e = ErrorOf(dir, "  model: [pointshell, pointshel]\n");
+  EXPECT_NE(e.find("config.yaml:"), std::string::npos) << e;
+  EXPECT_NE(e.find(": sweep.model[1]: unknown contact model 'pointshel' (known: "), std::string::npos) << e;
 }
 
 TEST(Sweep, AnOversizedValueIsRefusedWhenTheConfigLoadsNamingTheLimit) {

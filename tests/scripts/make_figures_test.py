@@ -165,6 +165,23 @@ class Discovery(unittest.TestCase):
         self.assertEqual(len(names), len(set(names)), "two figures share a name")
 
 
+class MissingMatplotlib(unittest.TestCase):
+    def test_the_interpreter_and_the_package_to_install_are_named(self):
+        # A matplotlib that cannot be imported, first on the path, as in an interpreter without it.
+        with tempfile.TemporaryDirectory() as tmp:
+            os.makedirs(os.path.join(tmp, "matplotlib"))
+            with open(os.path.join(tmp, "matplotlib", "__init__.py"), "w") as f:
+                f.write("raise ModuleNotFoundError(\"No module named 'matplotlib'\", name='matplotlib')\n")
+            env = dict(os.environ, PYTHONPATH=tmp)
+            run = subprocess.run([sys.executable, SCRIPT, "--results", tmp], capture_output=True, text=True,
+                                 env=env, timeout=60)
+        self.assertEqual(run.returncode, 1, run.stderr)
+        self.assertIn(f"make_figures: {sys.executable} (Python {sys.version_info.major}.{sys.version_info.minor}) "
+                      "cannot import matplotlib", run.stderr)
+        self.assertIn("apt install python3-matplotlib", run.stderr)
+        self.assertNotIn("Traceback", run.stderr)
+
+
 class Columns(unittest.TestCase):
     def test_every_table_of_figures_common_is_declared_by_a_study(self):
         for table in common.TABLES.values():
