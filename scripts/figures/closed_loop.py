@@ -2,7 +2,7 @@
 stiffness and the largest stable one."""
 from collections import defaultdict
 
-from .common import STABILITY, axis, figure, scene_name
+from .common import STABILITY, axis, figure, largest_stable, scene_name
 
 
 @figure(experiments=["closed-loop-stability"], outputs=["closed_loop_stability.png", "closed_loop_stability.md"])
@@ -24,16 +24,8 @@ def closed_loop_stability(results):
     header = ["scene", "model"] + [f"{k:g} N/m" for k in stiffnesses] + ["largest stable k_VC"]
     lines = []
     for (scene, model), by_k in sorted(verdicts.items()):
-        line, largest, broken = [scene, model], None, False
-        for k in stiffnesses:
-            if k not in by_k:
-                line.append("")
-                continue
-            bad = by_k[k]
-            line.append(", ".join(bad) if bad else "ok")
-            broken = broken or bool(bad)
-            if not broken:
-                largest = k
+        line = [scene, model] + [(", ".join(by_k[k]) or "ok") if k in by_k else "" for k in stiffnesses]
+        largest = largest_stable({k: not bad for k, bad in by_k.items()})
         line.append(f"{largest:g}" if largest is not None else "none")
         lines.append(line)
     results.save_table(header, lines, "Closed-loop stability per scene and model (static virtual coupling, "
