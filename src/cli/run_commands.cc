@@ -243,7 +243,9 @@ const CommandRegistration kColumns([](CLI::App& app) {
                     << c["meaning"].get<std::string>() << " |\n";
           if (table->keys != TableKeys::kNone && c["name"] == "job") {
             std::cout << "| (sweep axes) | | one column per axis of the config's sweep"
-                      << (table->keys == TableKeys::kJobAndOtherAxes ? ", except those named like a column below" : "")
+                      << (table->keys == TableKeys::kJobAndOtherAxes
+                              ? ", except those named like a column below"
+                              : "; one named like a column below is written sweep.NAME")
                       << " |\n";
           }
         }

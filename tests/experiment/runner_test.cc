@@ -303,7 +303,7 @@ TEST(Runner, CommaOrQuoteInTheNameOrASweptScenePathStaysOneCellAndMerges) {
   };
   const auto summary = Lines(dir / "merged" / "summary.csv");
   ASSERT_EQ(summary.size(), 3u);
-  EXPECT_EQ(summary[0].rfind("experiment,job,points,scene,model,", 0), 0u) << summary[0];
+  EXPECT_EQ(summary[0].rfind("experiment,job,sweep.points,scene,model,", 0), 0u) << summary[0];
   EXPECT_EQ(summary[1].rfind(quoted("tiny, \"quoted\"") + ",0,64," + quoted(one) + ",pointshell,", 0), 0u) << summary[1];
   EXPECT_EQ(summary[2].rfind(quoted("tiny, \"quoted\"") + ",1,64," + quoted(two) + ",pointshell,", 0), 0u) << summary[2];
   std::vector<CyclesCsvRow> rows;

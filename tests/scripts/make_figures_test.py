@@ -279,7 +279,7 @@ def write_stranger_run(folder, experiment="my-slide"):
             for i in range(20):
                 cycles.append({"k_C": k, C.model: model, C.cycle: i, C.t: 1e-3 * i, C.fz: k * 1e-3 * i})
             summary.append({"k_C": k, S.model: model, S.max_force_N: k * 19e-3, S.median_us: 4.5,
-                            S.rms_rel_error: -1})
+                            S.rms_rel_error: ""})
     root, name = os.path.split(folder)
     write_table(root, name, C, ["k_C"], [dict(r, job=j) for j in (0,) for r in cycles])
     write_table(root, name, S, ["k_C"], summary)
@@ -292,7 +292,7 @@ class AnyResults(unittest.TestCase):
         return subprocess.run([sys.executable, SCRIPT, *args], capture_output=True, text=True, timeout=120)
 
     # An experiment no figure module declares gets the generic figure: the forces per job and
-    # model, and its summary table with the swept values (the -1 "no reference" column left out).
+    # model, and its summary table with the swept values (the empty "no reference" column left out).
     def test_an_experiment_no_module_declares_gets_the_generic_figure(self):
         with tempfile.TemporaryDirectory() as root:
             write_stranger_run(os.path.join(root, "my-slide"))
@@ -305,7 +305,7 @@ class AnyResults(unittest.TestCase):
                 md = f.read()
             self.assertIn("| job 0 (k_C=1000) | my-own-model |", md)
             self.assertIn("max_force_N", md)
-            self.assertNotIn("| rms_rel_error |", md)  # -1 in every row: no reference
+            self.assertNotIn("| rms_rel_error |", md)  # empty in every row: no reference
 
     # One run's folder (`contactlab run --out DIR`, Python's out=DIR) is drawn into DIR/figures,
     # with no note about the shipped experiments it does not hold.
