@@ -143,6 +143,7 @@ struct JobDocuments {
   YAML::Node config;
   YAML::Node scene;
   std::string scene_file;
+  std::string scene_text;  // the scene file's text (empty: an inline scene)
   bool roles_swapped = false;
 };
 
@@ -150,7 +151,8 @@ struct JobDocuments {
 // document.
 void LoadSceneDocument(const std::string& name, const std::string& config_file, JobDocuments* docs) {
   const std::filesystem::path file = RequireDataFile(name, FolderOf(config_file));
-  docs->scene = YAML::Clone(ConfigNode::LoadFile(file).yaml());
+  docs->scene_text = ConfigNode::ReadText(file);
+  docs->scene = ConfigNode::LoadString(docs->scene_text, file.string()).yaml();
   docs->scene_file = file.string();
 }
 
@@ -235,7 +237,18 @@ std::string FieldBodyName(const YAML::Node& scene) {
 
 // Builds job INDEX with the axis values PICK (one index per axis) from CONFIG's documents.
 Job BuildJob(const ExperimentConfig& config, int index, const std::vector<std::size_t>& pick) {
-  JobDocuments docs{YAML::Clone(config.document), YAML::Clone(config.scene_document), config.scene_file};
+  // Each job's own copy of the documents, parsed again from their text where it is known so
+  // every node keeps its line (YAML::Clone drops the marks: an error in a job's trajectory
+  // would otherwise be reported at line 1).
+  JobDocuments docs{config.document_text.empty() ? YAML::Clone(config.document) : YAML::Load(config.document_text),
+                    {}, config.scene_file, config.scene_text};
+  if (!config.scene_text.empty()) {
+    docs.scene = YAML::Load(config.scene_text);
+  } else if (config.scene_file == config.file && !config.document_text.empty()) {
+    docs.scene = YAML::Load(config.document_text)["scene"];  // an inline scene, from its own parse
+  } else {
+    docs.scene = YAML::Clone(config.scene_document);
+  }
   auto at = [&](std::size_t a) {
     return config.file + ": sweep." + config.sweep[a].name + " value '" + config.sweep[a].values[pick[a]] + "'";
   };
@@ -380,9 +393,10 @@ ExperimentConfig LoadExperimentConfig(const std::filesystem::path& config_file, 
   const std::string resolved = emitter.c_str();
   // Re-parse the emitted text so error line numbers refer to the resolved config when
   // overrides were given, and to the file itself otherwise.
-  const ConfigNode node = overrides.empty() ? ConfigNode::LoadString(text, config_file.string())
-                                            : ConfigNode::LoadString(resolved, config_file.string() + " (with --set)");
-  return ParseExperimentConfig(node, resolved);
+  const std::string& parsed = overrides.empty() ? text : resolved;
+  const ConfigNode node =
+      ConfigNode::LoadString(parsed, overrides.empty() ? config_file.string() : config_file.string() + " (with --set)");
+  return ParseExperimentConfig(node, resolved, parsed);
 }
 
 namespace {
@@ -537,22 +551,22 @@ void CheckModelsAgainstScene(const ExperimentConfig& c, const ConfigNode& root, 
 
 }  // namespace
 
-ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resolved_yaml) {
+ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resolved_yaml, std::string document_text) {
   // The keys every study reads, then those of the config's study; a key only other studies read
   // is a mistake, not ignored.
-  std::vector<std::string> keys = {"name", "description", "study", "scene", "metrics", "sweep", "profiles"};
+  std::vector<std::string> keys;
+  for (const ConfigKey& k : CommonConfigKeys()) keys.push_back(k.key);
   ExperimentConfig c;
   c.study = root.OneOf("study", c.study, StudyNames());
   const Study& study = *FindStudy(c.study);
-  keys.insert(keys.end(), study.sections.begin(), study.sections.end());
+  for (const ConfigKey& k : study.sections) keys.push_back(k.key);
   for (const Study& other : Studies()) {
-    for (const std::string& key : other.sections) {
+    for (const ConfigKey& section : other.sections) {
+      const std::string& key = section.key;
       if (std::find(keys.begin(), keys.end(), key) != keys.end() || !root.Has(key)) continue;
       std::string readers;
       for (const Study& s : Studies()) {
-        if (std::find(s.sections.begin(), s.sections.end(), key) != s.sections.end()) {
-          readers += (readers.empty() ? "" : ", ") + s.name;
-        }
+        if (s.Reads(key)) readers += (readers.empty() ? "" : ", ") + s.name;
       }
       root.Get(key).Fail("is not read by study: " + c.study + " (it belongs to study: " + readers + ")");
     }
@@ -564,6 +578,7 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
   c.file = root.file();
   c.resolved_yaml = std::move(resolved_yaml);
   c.document = YAML::Clone(root.yaml());
+  c.document_text = std::move(document_text);
   c.name = root.String("name", std::filesystem::path(root.file()).stem().string());
   // The name chooses the results folder results/NAME: a plain name, never a path.
   const bool plain = !c.name.empty() && c.name != "." && c.name != ".." &&
@@ -577,6 +592,7 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
     LoadSceneDocument(scene.AsString(), root.file(), &docs);
     c.scene_document = docs.scene;
     c.scene_file = docs.scene_file;
+    c.scene_text = docs.scene_text;
   } else {
     scene.ExpectMap();
     c.scene_document = YAML::Clone(scene.yaml());

@@ -214,7 +214,10 @@ void RegisterClosedLoopStudy() {
   Study s;
   s.name = "closed-loop";
   s.description = "passivity and settling of the simulated haptic loop per model and motion (sec. 5)";
-  s.sections = {"models", "loop"};
+  s.sections = {
+      {"models", "list of model names (default: the scene's)", "the contact models each job closes the loop with"},
+      {"loop", "mapping (below)", "the simulated hand, the coupling and the motions"},
+  };
   for (const std::string& key : LoopParams().SweepKeys()) s.aliases.push_back({key, "loop." + key});
   s.tables = {StabilityTable()};
   s.check = CheckClosedLoopStudy;

@@ -79,7 +79,15 @@ void RegisterContactStudy() {
   Study s;
   s.name = kContactStudy;
   s.description = "models compared along a trajectory";
-  s.sections = {"models", "moving_body", "trajectory", "reference", "reference_every"};
+  s.sections = {
+      {"models", "list of model names (default: the scene's)", "the contact models every job compares"},
+      {"moving_body", "a body's name (default: the field body)", "the body the trajectory moves; the other stays at its pose"},
+      {"trajectory", "mapping (below; required)", "the moving body's motion, cycle by cycle"},
+      {"reference", "a model name, or a mapping: model, points, levels, resolution",
+       "what the errors in summary.csv are measured against: a model on the same scene, or on a denser version of it "
+       "(points, levels: its pointshell; resolution: its field)"},
+      {"reference_every", "integer >= 1 (default 1)", "evaluate the reference every N cycles (a costly reference)"},
+  };
   s.required = {"trajectory"};
   s.tables = {CyclesTable(), SummaryTable()};
   s.derived = {{ConvergenceTable(), [](const std::vector<std::string>& tables) { return ConvergenceCsv(tables[1]); }}};
