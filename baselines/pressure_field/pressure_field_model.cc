@@ -27,7 +27,11 @@ PressureFieldModel::PressureFieldModel(PressureFieldSide A, PressureFieldSide B,
     const char* body = s == &A ? "body A" : "body B";
     if (!s->field || s->field->empty()) Fail(where, std::string(body) + " has no distance field");
     if (s->field->info().mode == "soup") {
-      Fail(where, std::string(body) + "'s field is a polygon soup's offset band, not a volume with a pressure field");
+      Fail(where, std::string(body) + " (mesh " + s->field->info().source +
+                      ")'s field is a polygon soup's offset band, not a closed volume a pressure field can fill: the mesh "
+                      "is not watertight (or its field.mode is soup); close its holes (`contactlab mesh-info` counts "
+                      "them) and use field.mode auto or closed, or compare with a model that takes soups (pointshell, "
+                      "fcl, bullet)");
     }
     if (!(s->field->min_value() < 0)) Fail(where, std::string(body) + "'s field has no inside (no negative sample)");
     if (!s->rigid && !(s->modulus > 0 && std::isfinite(s->modulus))) {

@@ -166,6 +166,17 @@ std::shared_ptr<const DistanceField> BodyAssets::field() {
         o.band_voxels = f.band;
         return BuildDistanceField(*mesh(), o);
       });
+  // A mesh with holes is not refused in mode auto: it silently takes the polygon-soup pipeline,
+  // whose surface is an offset band around the triangles, so contact starts early and the
+  // forces differ from a closed mesh's. Said every time the field is used, built or cached.
+  if (f.mode == "auto" && field_->info().mode == "soup") {
+    std::fprintf(stderr,
+                 "warning: body '%s' (mesh %s) is not watertight: its distance field is the polygon-soup one, "
+                 "whose surface lies %.3g m outside the triangles, so contact starts that far out and forces "
+                 "differ from a closed mesh's; close the mesh (`contactlab mesh-info` counts its holes), or set "
+                 "field.mode: soup to choose this\n",
+                 spec_.name.c_str(), spec_.mesh.c_str(), field_->info().offset);
+  }
   return field_;
 }
 

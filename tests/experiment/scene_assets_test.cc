@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include "experiment/scene.h"
 #include "pointshell/pointshell_io.h"
 #include "test_support.h"
@@ -51,6 +53,49 @@ TEST(SceneAssets, ASecondRunReadsFieldsAndPointshellsFromTheCache) {
   bigger.pointshell();
   EXPECT_EQ(CountFiles(dir / "cache", "pointshell-"), 2);
   EXPECT_EQ(CountFiles(dir / "cache", "field-"), 1);  // same mesh, same field
+}
+
+// A unit cube of side 2 cm, its top face (two triangles) left out when HOLED.
+std::filesystem::path WriteCube(const std::filesystem::path& file, bool holed) {
+  std::ofstream out(file);
+  out << "v 0 0 0\nv 0.02 0 0\nv 0.02 0.02 0\nv 0 0.02 0\nv 0 0 0.02\nv 0.02 0 0.02\nv 0.02 0.02 0.02\nv 0 0.02 0.02\n"
+         "f 1 3 2\nf 1 4 3\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
+  if (!holed) out << "f 5 6 7\nf 5 7 8\n";
+  return file;
+}
+
+// A mesh with holes in field.mode auto takes the polygon-soup pipeline: said on stderr, naming
+// the body and the mesh, every time the field is used (cached or built). A closed mesh, or a
+// soup asked for by field.mode: soup, says nothing.
+TEST(SceneAssets, AMeshWithHolesInModeAutoIsReportedAsASoup) {
+  testing::TempDir dir;
+  AssetOptions options{.cache_dir = dir / "cache", .use_cache = true, .verbose = false};
+  auto stderr_of = [&](const std::filesystem::path& mesh, const std::string& mode) {
+    BodySpec b;
+    b.name = "lid-less";
+    b.mesh = mesh.string();
+    b.role = "field";
+    b.field.resolution = 16;
+    b.field.mode = mode;
+    ::testing::internal::CaptureStderr();
+    BodyAssets assets(b, options);
+    const auto field = assets.field();
+    return std::pair(::testing::internal::GetCapturedStderr(), field->info().mode);
+  };
+  const auto holed = WriteCube(dir / "holed.obj", true);
+  for (int pass = 0; pass < 2; ++pass) {  // built, then read from the cache
+    const auto [text, mode] = stderr_of(holed, "auto");
+    EXPECT_EQ(mode, "soup");
+    EXPECT_NE(text.find("warning: body 'lid-less'"), std::string::npos) << text;
+    EXPECT_NE(text.find("holed.obj"), std::string::npos) << text;
+    EXPECT_NE(text.find("not watertight"), std::string::npos) << text;
+  }
+  const auto [chosen, chosen_mode] = stderr_of(holed, "soup");
+  EXPECT_EQ(chosen_mode, "soup");
+  EXPECT_EQ(chosen.find("warning"), std::string::npos) << chosen;
+  const auto [closed, closed_mode] = stderr_of(WriteCube(dir / "closed.obj", false), "auto");
+  EXPECT_EQ(closed_mode, "closed");
+  EXPECT_EQ(closed.find("warning"), std::string::npos) << closed;
 }
 
 TEST(SceneAssets, ASparseFieldIsBuiltCachedUnderItsOwnKeyAndReadBackSparse) {
