@@ -339,6 +339,38 @@ class AnyResults(unittest.TestCase):
             self.assertIn("table1_statistics", run.stderr)
 
 
+class Continuity(unittest.TestCase):
+    # Two models whose forces differ 150x (the pressure field's default modulus against a penalty
+    # model): the bars are relative jumps, so the soft model's larger relative jump is the taller
+    # bar, though its absolute jump is smaller; |F| is on a log axis and the legend sits outside
+    # every panel.
+    def test_bars_are_relative_jumps_and_the_legend_covers_no_trace(self):
+        from figures import continuity_models
+        C, S = common.CYCLES, common.SUMMARY
+        scene = "data/scenes/block-joint.yaml"
+        cycles, summary = [], []
+        for model, force, jump in (("pointshell", 15.0, 0.3), ("pressure-field", 0.1, 0.05)):
+            cycles += [{"scene": scene, C.model: model, C.t: 1e-3 * i, C.fz: force} for i in range(10)]
+            summary.append({"scene": scene, S.model: model, S.max_jump_N: jump, S.max_jump_rel: jump / force})
+        with tempfile.TemporaryDirectory() as root:
+            write_table(root, "continuity-models", C, ["scene"], cycles)
+            write_table(root, "continuity-models", S, ["scene"], summary)
+            results = common.Results(root)
+            drawn = {}
+            results.save = lambda fig, name, **kw: drawn.setdefault(name, fig)
+            self.assertTrue(continuity_models.continuity_models(results))
+            fig = drawn["continuity_models.png"]
+            fig.canvas.draw()
+            traces, bars = fig.axes[0], fig.axes[1]
+            heights = {t.get_text(): p.get_height() for t, p in zip(bars.get_xticklabels(), bars.patches)}
+            self.assertAlmostEqual(heights["pointshell"], 2.0)       # 0.3 N of 15 N
+            self.assertAlmostEqual(heights["pressure-field"], 50.0)  # 0.05 N of 0.1 N
+            self.assertEqual(traces.get_yscale(), "log")
+            self.assertIsNone(traces.get_legend())
+            self.assertEqual(len(fig.legends), 1)
+            self.assertEqual({t.get_text() for t in fig.legends[0].get_texts()}, {"pointshell", "pressure-field"})
+
+
 class Reading(unittest.TestCase):
     """figures.common.read_csv reads the tables as the program writes them (RFC 4180 quoting)."""
 
