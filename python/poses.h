@@ -21,6 +21,10 @@ namespace contactlab::python {
 using DoubleArray = pybind11::array_t<double, pybind11::array::c_style | pybind11::array::forcecast |
                                                   pybind11::detail::npy_api::NPY_ARRAY_ALIGNED_>;
 
+// OBJ as NumPy reads it (np.asarray, no copy of an array). Throws ArgumentError naming WHERE when
+// NumPy refuses it with a ValueError (a ragged list), TypeError for its other refusals.
+pybind11::array ArrayFromObject(pybind11::handle obj, const std::string& where);
+
 // OBJ (an array, a nested list or tuple, a scalar, anything NumPy's asarray takes) as a float64
 // C-contiguous array, converted as np.asarray(OBJ).astype(np.float64) would, of real numbers only:
 // bool, integer and floating dtypes pass; complex, strings, datetimes, objects (None) and

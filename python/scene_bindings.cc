@@ -11,7 +11,9 @@
 #include "bindings.h"
 #include "experiment/scene.h"
 #include "experiment/scene_assets.h"
+#include "mesh_arrays.h"
 #include "poses.h"
+#include "scene_dict.h"
 #include "scene_handle.h"
 #include "util/config_node.h"
 #include "util/data_path.h"
@@ -33,11 +35,6 @@ struct Body {
   bool is_A = true;
   BodyAssets& assets() const { return is_A ? scene->assets.A : scene->assets.B; }
   const BodySpec& spec() const { return is_A ? scene->scene.pointshell_body : scene->scene.field_body; }
-};
-
-// A body's triangle mesh; its arrays view the mesh (read-only, no copy).
-struct Mesh {
-  std::shared_ptr<const TriangleMesh> mesh;
 };
 
 // A body's pointshell up to one tree level: (#P, 3) points and inward unit normals, body frame.
@@ -106,7 +103,17 @@ py::object DistanceOf(Body& body, py::handle points_object) {
 }  // namespace
 
 void BindScene(py::module_& m) {
-  py::class_<Mesh>(m, "Mesh", "A body's triangle mesh in its body frame, metres (read-only views).")
+  py::class_<Mesh>(m, "Mesh",
+                   "A triangle mesh in its body frame, metres: a body's (Body.mesh), or one made from arrays, "
+                   "which Scene.from_dict takes as a body's mesh. Its arrays are read-only views.")
+      .def(py::init(&MakeMesh), py::arg("vertices"), py::arg("triangles"), py::arg("name") = "mesh",
+           "A mesh from arrays (copied): VERTICES (V, 3) real numbers, body frame, metres; TRIANGLES (T, 3) "
+           "zero-based vertex indices, counter-clockwise seen from outside (an integer dtype, or a floating one "
+           "holding whole numbers only); NAME names it in messages and is a body's default name. Polygon soups "
+           "pass, as from a mesh file. Raises contactlab.ArgumentError (a ValueError) naming the mesh and the row "
+           "for what the mesh file readers refuse: a coordinate that is not finite or beyond +-1e9 m, a negative "
+           "or out-of-range index, no triangles; and for a wrong shape or an empty name. Raises TypeError for "
+           "arrays that are not real numbers (complex, strings, None) or indices that are not whole numbers.")
       .def_property_readonly(
           "vertices", [](py::object self) { const Mesh& s = self.cast<const Mesh&>();
             return View3(s.mesh->vertices.empty() ? nullptr : s.mesh->vertices.front().data(), s.mesh->vertices.size(), self); },
@@ -168,6 +175,18 @@ void BindScene(py::module_& m) {
           },
           py::arg("text"), py::kw_only(), py::arg("cache_dir") = py::none(), py::arg("use_cache") = true,
           py::arg("verbose") = false, "Reads a scene from YAML TEXT (meshes through the data search path).")
+      .def_static(
+          "from_dict",
+          [](py::handle d, std::optional<std::string> cache_dir, bool use_cache, bool verbose) {
+            return std::make_shared<SceneHandle>(SceneFromDict(d), Options(cache_dir, use_cache, verbose));
+          },
+          py::arg("d"), py::kw_only(), py::arg("cache_dir") = py::none(), py::arg("use_cache") = true,
+          py::arg("verbose") = false,
+          "A scene from D, dicts, lists and scalars in the structure of a scene YAML file (docs/scene-reference.md), "
+          "checked as a file is. A body's mesh may be a file name, a procedural shape or a contactlab.Mesh; fields "
+          "and pointshells of a Mesh are cached keyed by its content, as a file's are. Raises "
+          "contactlab.ArgumentError (a ValueError) naming the key path (\"<dict>: bodies[0].field.resolution: ...\"), "
+          "TypeError naming it for a value no YAML file could hold or a Mesh anywhere but a body's mesh.")
       .def_property_readonly("name", [](const SceneHandle& s) { return s.scene.name; })
       .def_property_readonly("file", [](const SceneHandle& s) { return s.scene.file; })
       .def_property_readonly("models", [](const SceneHandle& s) { return s.scene.models; },

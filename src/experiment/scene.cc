@@ -349,7 +349,7 @@ const ParamTable<BodySpec>& BodyParams() {
   std::vector<ParamRow<BodySpec>> rows = {
           P::Text("name", PARAM_MEMBER(name), "the body's name (default: its mesh)"),
           P::Custom("mesh", "text", "a file on the data search path, or a procedural shape \"sphere:0.05\"",
-                    "the body's surface (required)",
+                    "the body's surface (required); Python's Scene.from_dict also takes a contactlab.Mesh",
                     [](const ConfigNode& v, BodySpec* b) {
                       b->mesh = v.AsString();
                       b->mesh_where = v.Location();

@@ -48,8 +48,9 @@ std::filesystem::path DefaultCacheDir();
 // Reads a body's mesh: a file through the data search path, or a procedural shape written
 // "sphere:R[,subdivisions]", "box:HX,HY,HZ", "torus:MAJOR,MINOR", "capsule:R,HALF_LENGTH",
 // "bumpy-plate:SIZE,THICKNESS,BUMPS,HEIGHT[,RESOLUTION]" (metres; scale still applies).
-// Applies the body's scale and centring. MESH_DIR (the scene file's folder) is searched before
-// the rest of the data search path. Throws Error naming the body and the mesh.
+// A body with mesh_data takes that in-memory mesh instead (BodySpec). Applies the body's scale
+// and centring. MESH_DIR (the scene file's folder) is searched before the rest of the data
+// search path. Throws Error naming the body and the mesh.
 TriangleMesh LoadBodyMesh(const BodySpec& body, const std::filesystem::path& mesh_dir = {});
 
 // One scene body's data for the contact models (contact/model_registry.h ContactBody),

@@ -5,6 +5,8 @@
 #include <fstream>
 
 #include "experiment/scene.h"
+#include "geometry/mesh_io.h"
+#include "geometry/procedural_shapes.h"
 #include "pointshell/pointshell_io.h"
 #include "test_support.h"
 #include "util/error.h"
@@ -157,6 +159,72 @@ TEST(SceneAssets, ACorruptCacheEntryIsRebuilt) {
   }
   BodyAssets second(Ball(128), options);
   EXPECT_EQ(second.field()->values(), expected->values());
+}
+
+// A body whose mesh is held in memory (BodySpec::mesh_data): the plate of sphere-on-plate.
+BodySpec InMemoryPlate(std::shared_ptr<const TriangleMesh> mesh) {
+  BodySpec b;
+  b.name = "plate";
+  b.mesh = mesh->name;
+  b.mesh_data = std::move(mesh);
+  b.role = "field";
+  b.field.resolution = 16;
+  return b;
+}
+
+TEST(SceneAssets, AnInMemoryMeshIsCachedByContentAsTheSameMeshFromAFileIs) {
+  testing::TempDir dir;
+  AssetOptions options;
+  options.cache_dir = dir / "cache";
+  options.verbose = false;
+  const TriangleMesh box = MakeBox(Eigen::Vector3d(0.1, 0.1, 1.0 / 30), 2);
+  SaveMesh(box, dir / "plate.obj");
+  BodySpec from_file = InMemoryPlate(std::make_shared<const TriangleMesh>(box));
+  from_file.mesh_data = nullptr;
+  from_file.mesh = (dir / "plate.obj").string();
+  BodyAssets file_body(from_file, options);
+  (void)file_body.field();
+  ASSERT_EQ(CountFiles(dir / "cache", "field-"), 1);
+
+  // Equal content under another name: the same key, the file's cache entry read, nothing built.
+  TriangleMesh copy = box;
+  copy.name = "another name";
+  BodyAssets memory_body(InMemoryPlate(std::make_shared<const TriangleMesh>(copy)), options);
+  EXPECT_EQ(memory_body.mesh_key(), file_body.mesh_key());
+  EXPECT_EQ(memory_body.field()->values(), file_body.field()->values());
+  EXPECT_EQ(CountFiles(dir / "cache", "field-"), 1);
+
+  // One vertex moved: another key, another entry.
+  copy.vertices[0].x() += 1e-9;
+  BodyAssets moved(InMemoryPlate(std::make_shared<const TriangleMesh>(copy)), options);
+  EXPECT_NE(moved.mesh_key(), file_body.mesh_key());
+  (void)moved.field();
+  EXPECT_EQ(CountFiles(dir / "cache", "field-"), 2);
+}
+
+TEST(SceneAssets, AnInMemoryMeshIsScaledAndCentredAsAFileIs) {
+  testing::TempDir dir;
+  TriangleMesh box = MakeBox(Eigen::Vector3d(1, 2, 3), 2);
+  box.Transform(1.0, Eigen::Matrix3d::Identity(), Eigen::Vector3d(1.0 / 3, 0, 0));
+  SaveMesh(box, dir / "box.obj");
+  BodySpec b = InMemoryPlate(std::make_shared<const TriangleMesh>(box));
+  b.scale = 0.01;
+  b.center = true;
+  const TriangleMesh memory = LoadBodyMesh(b);
+  b.mesh_data = nullptr;
+  b.mesh = (dir / "box.obj").string();
+  const TriangleMesh file = LoadBodyMesh(b);
+  EXPECT_EQ(memory.vertices, file.vertices);
+  EXPECT_NEAR(memory.Bounds().size().z(), 0.06, 1e-12);
+  EXPECT_NEAR(memory.Bounds().center().norm(), 0, 1e-12);
+  // A mesh no reader would return is refused where it is used, naming the body's mesh.
+  TriangleMesh bad = box;
+  bad.triangles[3][1] = -2;
+  b.mesh_data = std::make_shared<const TriangleMesh>(bad);
+  b.mesh_where = "<dict>: bodies[1].mesh";
+  EXPECT_EQ(testing::ErrorOf([&] { LoadBodyMesh(b); }),
+            "<dict>: bodies[1].mesh: mesh 'box': triangle 3: face vertex index -2 out of range [0, " +
+                std::to_string(box.num_vertices()) + ")");
 }
 
 TEST(SceneAssets, ProceduralShapeSpecsAreCheckedAndScaled) {
