@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "contact/contact_accumulator.h"
+#include "contact/contact_recorder.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -58,6 +59,7 @@ struct Collector final : btCollisionWorld::ContactResultCallback {
   double margin_sum = 0;
   ContactAccumulator acc;
   std::int64_t reported = 0;
+  ContactRecorder contacts;  // the manifold points used (world frame), when kept
 
   btScalar addSingleResult(btManifoldPoint& cp, const btCollisionObjectWrapper* wrap0, int, int,
                            const btCollisionObjectWrapper* wrap1, int, int) override {
@@ -70,6 +72,7 @@ struct Collector final : btCollisionWorld::ContactResultCallback {
     const Eigen::Vector3d p_W = 0.5 * (FromBullet(cp.m_positionWorldOnA) + FromBullet(cp.m_positionWorldOnB));
     const Eigen::Vector3d N_B = R_BW * n_W;
     acc.Add(R_BW * (p_W - p_WB), N_B, -depth, N_B);
+    if (contacts.keeping()) contacts.Add(p_W, -n_W.normalized(), depth);
     return 0;
   }
 };
@@ -109,6 +112,13 @@ BulletContactModel::BulletContactModel(std::shared_ptr<const TriangleMesh> mesh_
 
 BulletContactModel::~BulletContactModel() = default;
 
+bool BulletContactModel::KeepContacts(int max_contacts) {
+  impl_->collector.contacts.Keep(max_contacts);
+  return true;
+}
+
+void BulletContactModel::LatestContacts(ContactList* out) const { impl_->collector.contacts.Fill(Pose(), 1.0, out); }
+
 ContactResult BulletContactModel::Evaluate(const ContactQuery& query) {
   Impl& m = *impl_;
   // Place both objects and reset the collector.
@@ -119,6 +129,7 @@ ContactResult BulletContactModel::Evaluate(const ContactQuery& query) {
   c.p_WB = query.X_WB.translation;
   c.acc = ContactAccumulator();
   c.reported = 0;
+  c.contacts.Clear();
   // Manifold points of A (object 0) against B (object 1).
   m.world.contactPairTest(&m.A.object, &m.B.object, c);
   ContactResult out;

@@ -18,6 +18,10 @@
 //     gradient    = the paper's halfspace rule with N = n: dF/dx_B = -k n nᵀ, ...
 // summed by ContactAccumulator with k = k_C, scaled to k_C L / l when l >= L contacts touch.
 //
+// Contacts (KeepContacts / LatestContacts): Bullet's manifold points with δ > 0 (as many as
+// stats.points_in_contact): the midpoint p above (world), the direction of the force on B, -n,
+// and the depth δ (margins subtracted when subtract_margins).
+//
 // Caveats (baselines/README.md): GImpact's triangle-pair clipping reports up to 16 points per
 // overlapping triangle pair with a depth local to that pair; the contact count follows the
 // tessellation, and deep or thin overlaps give arbitrary normals.
@@ -55,6 +59,9 @@ class BulletContactModel final : public ContactModel {
   // btGImpactCollisionAlgorithm::gimpact_vs_gimpact) on every query.
   ContactResult Evaluate(const ContactQuery& query) override;
   void Reset() override {}
+  // The manifold points with δ > 0 (see the top of this file), recorded during Evaluate.
+  bool KeepContacts(int max_contacts) override;
+  void LatestContacts(ContactList* out) const override;
 
   const BulletContactParams& params() const { return params_; }
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "contact/contact_accumulator.h"
+#include "contact/contact_recorder.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -39,6 +40,7 @@ struct FclContactModel::Impl {
   std::unique_ptr<fcl::CollisionObjectd> object_A, object_B;
   fcl::CollisionRequestd request;
   fcl::CollisionResultd result;  // reused: clear() keeps the contact vector's capacity
+  ContactRecorder contacts;      // the latest query's contacts (world frame), when kept
 };
 
 FclContactModel::FclContactModel(std::shared_ptr<const TriangleMesh> mesh_A, std::shared_ptr<const TriangleMesh> mesh_B,
@@ -59,6 +61,13 @@ FclContactModel::FclContactModel(std::shared_ptr<const TriangleMesh> mesh_A, std
 
 FclContactModel::~FclContactModel() = default;
 
+bool FclContactModel::KeepContacts(int max_contacts) {
+  impl_->contacts.Keep(max_contacts);
+  return true;
+}
+
+void FclContactModel::LatestContacts(ContactList* out) const { impl_->contacts.Fill(Pose(), 1.0, out); }
+
 ContactResult FclContactModel::Evaluate(const ContactQuery& query) {
   Impl& m = *impl_;
   // Place both objects; OBBRSS traversal uses the transforms without copying the models.
@@ -73,6 +82,8 @@ ContactResult FclContactModel::Evaluate(const ContactQuery& query) {
   const Eigen::Matrix3d R_BW = query.X_WB.R().transpose();
   const Eigen::Vector3d& p_WB = query.X_WB.translation;
   ContactAccumulator acc;
+  m.contacts.Clear();
+  const bool keep = m.contacts.keeping();
   const std::size_t num = m.result.numContacts();
   for (std::size_t i = 0; i < num; ++i) {
     const fcl::Contactd& c = m.result.getContact(i);
@@ -81,6 +92,7 @@ ContactResult FclContactModel::Evaluate(const ContactQuery& query) {
     const Eigen::Vector3d p_B = R_BW * (c.pos - p_WB);
     const Eigen::Vector3d N_B = -(R_BW * c.normal);
     acc.Add(p_B, N_B, -depth, N_B);
+    if (keep) m.contacts.Add(c.pos, c.normal.normalized(), depth);
   }
   ContactResult out;
   acc.Finish(params_.penalty, query.X_WB, &out);

@@ -12,6 +12,10 @@
 // summed by ContactAccumulator (contact/contact_accumulator.h) with the paper's stiffness
 // k = k_C, scaled to k_C L / l when l >= L contacts touch, so magnitudes are comparable.
 //
+// Contacts (KeepContacts / LatestContacts): FCL's own, one per contact with δ > 0 (as many as
+// stats.points_in_contact): its position p (world), its normal n (the direction of the force
+// on B) and its penetration depth δ.
+//
 // Caveats (see baselines/README.md): FCL's mesh-mesh penetration depth is local to one
 // triangle pair, not the depth of the bodies' overlap, and its normal is a triangle's normal
 // whose sign depends on the winding (FCL issues #574 and #8); the number of contacts depends
@@ -47,6 +51,9 @@ class FclContactModel final : public ContactModel {
   // contacts; its traversal allocates nothing for OBBRSS.
   ContactResult Evaluate(const ContactQuery& query) override;
   void Reset() override {}
+  // FCL's contacts with δ > 0 (see the top of this file), recorded during Evaluate.
+  bool KeepContacts(int max_contacts) override;
+  void LatestContacts(ContactList* out) const override;
 
   const FclContactParams& params() const { return params_; }
 

@@ -1,6 +1,7 @@
 // `contactlab contact SCENE.yaml [--model NAME] [--pose-a ...] [--pose-b ...] [--touch DEPTH] [--q-a Q] [--q-b Q]
-// [--json]`: evaluates one contact query of a scene (Barbič & James 2008, sec. 2.1 and 3) and
-// prints the wrench on the field body, points in contact, nodes visited and level rendered.
+// [--contacts] [--json]`: evaluates one contact query of a scene (Barbič & James 2008, sec. 2.1
+// and 3) and prints the wrench on the field body, points in contact, nodes visited and level
+// rendered; --contacts also the model's contacts (ContactModel::LatestContacts).
 // --touch first moves the field body toward the pointshell body until it is DEPTH deep, as
 // `session --touch` does (experiment/contact_placement.h).
 // `contactlab models`: the registered contact models, what each needs and what it is.
@@ -34,9 +35,33 @@ struct ContactArgs {
   std::string cache;
   bool no_cache = false;
   bool json = false;
+  bool contacts = false;  // --contacts: list the model's contacts
   long long budget = -1;
   double touch = -1;  // --touch: penetration depth to move the field body to, metres (<= 0: not given)
 };
+
+// --contacts as text: one row per contact, world frame.
+void PrintContacts(const std::string& model_name, bool has_contacts, const ContactList& contacts) {
+  if (!has_contacts) {
+    std::printf("contacts: model %s has no contact list (its force is not a sum over discrete contacts)\n",
+                model_name.c_str());
+    return;
+  }
+  const bool surface = !contacts.areas.empty();
+  std::printf("contacts: %d (world frame; normal: direction of the force on the field body)\n", contacts.size());
+  if (contacts.not_kept > 0) std::printf("  (%lld more not listed)\n", static_cast<long long>(contacts.not_kept));
+  if (contacts.size() == 0) return;
+  std::printf("%14s %14s %14s %10s %10s %10s %14s%s\n", "x [m]", "y [m]", "z [m]", "nx", "ny", "nz", "depth [m]",
+              surface ? "      area [m^2]  pressure [Pa]" : "");
+  for (int i = 0; i < contacts.size(); ++i) {
+    const Eigen::Vector3d& p = contacts.points[std::size_t(i)];
+    const Eigen::Vector3d& n = contacts.normals[std::size_t(i)];
+    std::printf("%+14.7e %+14.7e %+14.7e %+10.6f %+10.6f %+10.6f %14.7e", p.x(), p.y(), p.z(), n.x(), n.y(), n.z(),
+                contacts.depths[std::size_t(i)]);
+    if (surface) std::printf(" %15.7e %14.7e", contacts.areas[std::size_t(i)], contacts.pressures[std::size_t(i)]);
+    std::printf("\n");
+  }
+}
 
 void RunContact(const ContactArgs& args) {
   const Scene scene = LoadScene(RequireDataFile(args.scene));
@@ -68,6 +93,9 @@ void RunContact(const ContactArgs& args) {
   const BodyDeformation deformation_A{q_A.get(), &reduced_force}, deformation_B{q_B.get(), &reduced_force_B};
   if (assets.A.deformable()) q.deformation_A = &deformation_A;
   if (assets.B.deformable()) q.deformation_B = &deformation_B;
+  // --contacts: room for every contact a query of these scenes makes (more are counted).
+  constexpr int kMaxContacts = 1 << 20;
+  const bool has_contacts = args.contacts && model->KeepContacts(kMaxContacts);
   const auto t0 = std::chrono::steady_clock::now();
   const ContactResult r = model->Evaluate(q);
   const double micros = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
@@ -76,6 +104,9 @@ void RunContact(const ContactArgs& args) {
   if (!r.on_B.force.allFinite() || !r.on_B.torque.allFinite() || !r.K_B.allFinite()) {
     Fail(model_name, "gave a non-finite wrench or stiffness at these poses and coordinates; nothing printed");
   }
+  ContactList contacts;
+  if (has_contacts) model->LatestContacts(&contacts);
+  const bool surface = !contacts.areas.empty();
 
   if (args.json) {
     nlohmann::json j;
@@ -104,6 +135,27 @@ void RunContact(const ContactArgs& args) {
     if (q.deformation_B != nullptr) {
       j["reduced_force_B"] = std::vector<double>(reduced_force_B.data(), reduced_force_B.data() + reduced_force_B.size());
     }
+    if (args.contacts) {
+      if (!has_contacts) {
+        j["contacts"] = nullptr;
+      } else {
+        auto rows = [](const std::vector<Eigen::Vector3d>& v) {
+          nlohmann::json a = nlohmann::json::array();
+          for (const Eigen::Vector3d& x : v) a.push_back({x.x(), x.y(), x.z()});
+          return a;
+        };
+        nlohmann::json c;
+        c["points"] = rows(contacts.points);
+        c["normals"] = rows(contacts.normals);
+        c["depths"] = contacts.depths;
+        if (surface) {
+          c["areas"] = contacts.areas;
+          c["pressures"] = contacts.pressures;
+        }
+        c["not_kept"] = contacts.not_kept;
+        j["contacts"] = std::move(c);
+      }
+    }
     std::cout << j.dump(2) << "\n";
     return;
   }
@@ -131,6 +183,7 @@ void RunContact(const ContactArgs& args) {
     for (int j = 0; j < reduced_force_B.size(); ++j) std::printf(" %+.6g", reduced_force_B[j]);
     std::printf("\n");
   }
+  if (args.contacts) PrintContacts(model_name, has_contacts, contacts);
 }
 
 const CommandRegistration kContactCommands([](CLI::App& app) {
@@ -152,6 +205,9 @@ const CommandRegistration kContactCommands([](CLI::App& app) {
   cmd->add_option("--cache", args->cache, "cache folder for fields and pointshells");
   cmd->add_flag("--no-cache", args->no_cache, "neither read nor write cached fields and pointshells");
   cmd->add_flag("--json", args->json, "print JSON (with the 6x6 gradient K_B)");
+  cmd->add_flag("--contacts", args->contacts,
+                "also list the model's contacts (point, normal, depth; area and pressure for pressure-field), world "
+                "frame; with --json under the key \"contacts\" (null for a model without a contact list)");
   cmd->callback([args] { RunContact(*args); });
 });
 

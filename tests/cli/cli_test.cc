@@ -3,6 +3,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <sched.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -102,6 +103,75 @@ TEST(Cli, ContactPrintsTheForceOnTheFieldBodyAsJson) {
   EXPECT_NEAR(K[0] + K[7] + K[14], -kC * L, 1e-6 * kC * L) << o.output;
   EXPECT_LT(K[14], -(H / R) * (H / R) * kC * L) << o.output;
   EXPECT_GT(K[14], -kC * L) << o.output;
+}
+
+// `contact --contacts --json`: the pointshell model lists one contact per point in contact,
+// each on the ball and below the plate at its distance below the plate's top (z = 0), pushing
+// the plate down, and k depth normal summed over them is the force printed (eq. (1) with
+// k = k_C times the stiffness scale). pressure-field adds areas and pressures whose
+// area * pressure * normal sums to its force; a model without a contact list prints null, and
+// the text form a table or says so.
+TEST(Cli, ContactListsTheContactsAsJsonAndText) {
+  testing::TempDir dir;
+  std::string scene = kScene;
+  scene.replace(scene.find("[0, 0, 0.0205, 1, 0, 0, 0]"), 26, "[0, 0, 0.018, 1, 0, 0, 0]");
+  std::ofstream(dir / "scene.yaml") << scene;
+  const std::string contact = "contact " + (dir / "scene.yaml").string() + " --cache " + (dir / "cache").string();
+  auto vec = [](const nlohmann::json& v) {
+    return Eigen::Vector3d(v[0].get<double>(), v[1].get<double>(), v[2].get<double>());
+  };
+
+  const Outcome o = RunCli(contact + " --contacts --json");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const nlohmann::json j = nlohmann::json::parse(o.output);
+  const nlohmann::json& c = j.at("contacts");
+  ASSERT_TRUE(c.is_object()) << o.output;
+  const std::size_t n = c.at("points").size();
+  EXPECT_EQ(std::int64_t(n), j.at("points_in_contact").get<std::int64_t>());
+  ASSERT_GT(n, 0u);
+  ASSERT_EQ(c.at("normals").size(), n);
+  ASSERT_EQ(c.at("depths").size(), n);
+  EXPECT_FALSE(c.contains("areas"));
+  const double k = 1000 * j.at("stiffness_scale").get<double>();
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d p = vec(c["points"][i]), normal = vec(c["normals"][i]);
+    const double depth = c["depths"][i].get<double>();
+    // On the ball's pointshell: its offset surface, half a cell (about 1 mm) outside the 2 cm ball.
+    EXPECT_LE((p - Eigen::Vector3d(0, 0, 0.018)).norm(), 0.0225) << i;
+    EXPECT_NEAR(depth, -p.z(), 2e-4) << i;
+    EXPECT_NEAR(normal.norm(), 1, 1e-6) << i;
+    EXPECT_LT(normal.z(), 0) << i;
+    sum += k * depth * normal;
+  }
+  const Eigen::Vector3d F = vec(j.at("force"));
+  EXPECT_LT((sum - F).norm(), 1e-5 * F.norm()) << o.output;
+
+  const Outcome pf = RunCli(contact + " --model pressure-field --contacts --json");
+  ASSERT_EQ(pf.exit_code, 0) << pf.output;
+  const nlohmann::json jp = nlohmann::json::parse(pf.output);
+  const nlohmann::json& cp = jp.at("contacts");
+  ASSERT_TRUE(cp.contains("areas") && cp.contains("pressures")) << pf.output;
+  ASSERT_GT(cp.at("points").size(), 0u);
+  Eigen::Vector3d pressed = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < cp.at("points").size(); ++i) {
+    pressed += cp["areas"][i].get<double>() * cp["pressures"][i].get<double>() * vec(cp["normals"][i]);
+  }
+  const Eigen::Vector3d F_p = vec(jp.at("force"));
+  EXPECT_LT((pressed - F_p).norm(), 1e-6 * F_p.norm()) << pf.output;
+
+  const Outcome none = RunCli(contact + " --model eq2-halfspace --contacts --json");
+  ASSERT_EQ(none.exit_code, 0) << none.output;
+  EXPECT_TRUE(nlohmann::json::parse(none.output).at("contacts").is_null()) << none.output;
+  // Without --contacts the key is absent.
+  EXPECT_FALSE(nlohmann::json::parse(RunCli(contact + " --json").output).contains("contacts"));
+
+  const Outcome text = RunCli(contact + " --contacts");
+  ASSERT_EQ(text.exit_code, 0) << text.output;
+  EXPECT_NE(text.output.find("contacts: " + std::to_string(n) + " (world frame"), std::string::npos) << text.output;
+  EXPECT_NE(text.output.find("depth [m]"), std::string::npos) << text.output;
+  const Outcome text_none = RunCli(contact + " --model eq2-halfspace --contacts");
+  EXPECT_NE(text_none.output.find("has no contact list"), std::string::npos) << text_none.output;
 }
 
 // A shipped scene whose bodies start apart (the screwdriver 8 cm from the knight): `contact`

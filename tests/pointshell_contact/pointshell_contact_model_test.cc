@@ -407,6 +407,38 @@ TEST(PointshellContactModel, EvaluateAllocatesNothing) {
   EXPECT_GT(contacts, 0);
 }
 
+// Keeping the contacts (KeepContacts, called outside the cycle) leaves Evaluate allocation-free:
+// the record goes into the room reserved, for either variant, with coherence and a changing
+// node budget, also when more points touch than the room holds.
+TEST(PointshellContactModel, EvaluateAllocatesNothingWithContactsKept) {
+  auto shell = testing::SphereShell(0.05, 48, 4);
+  auto field = SphereField(0.06, 0.004);
+  PointshellContactParams params;
+  params.coherence = true;
+  PointshellContactModel tree(PointshellContactModel::Variant::kTree, shell, field, params);
+  PointshellContactModel linear(PointshellContactModel::Variant::kLinear, shell, field, {});
+  ASSERT_TRUE(tree.KeepContacts(1 << 12));
+  ASSERT_TRUE(linear.KeepContacts(3));  // fewer than touch: the rest counted
+  ContactQuery q;
+  std::int64_t contacts = 0;
+  const long before = testing::AllocationCount();
+  for (int cycle = 0; cycle < 2000; ++cycle) {
+    q.cycle = cycle;
+    q.node_budget = (cycle / 100) % 2 == 0 ? 0 : 400;
+    q.X_WA = Pose::FromTranslation(Eigen::Vector3d(0.1 + 0.004 * std::sin(cycle * 0.01), 0.001, 0));
+    contacts += tree.Evaluate(q).stats.points_in_contact + linear.Evaluate(q).stats.points_in_contact;
+  }
+  EXPECT_EQ(testing::AllocationCount() - before, 0);
+  EXPECT_GT(contacts, 0);
+  // The last query's lists: as many as touched (the tree's), or the room and the rest counted.
+  const ContactResult r_tree = tree.Evaluate(q), r_linear = linear.Evaluate(q);
+  ContactList list;
+  tree.LatestContacts(&list);
+  EXPECT_EQ(list.size(), r_tree.stats.points_in_contact);
+  linear.LatestContacts(&list);
+  EXPECT_EQ(list.size() + list.not_kept, r_linear.stats.points_in_contact);
+}
+
 // States of every point of SHELL in MODEL's latest query Q, asked for in the chunks the model
 // accepts.
 std::vector<PointState> AllPointStates(ContactModel& model, const ContactQuery& q, const Pointshell& shell) {
