@@ -63,6 +63,25 @@ void PrintContacts(const std::string& model_name, bool has_contacts, const Conta
   }
 }
 
+// --contacts --json: the contacts as {points, normals, depths[, areas, pressures], not_kept}.
+nlohmann::json ContactsJson(const ContactList& contacts) {
+  auto rows = [](const std::vector<Eigen::Vector3d>& v) {
+    nlohmann::json a = nlohmann::json::array();
+    for (const Eigen::Vector3d& x : v) a.push_back({x.x(), x.y(), x.z()});
+    return a;
+  };
+  nlohmann::json c;
+  c["points"] = rows(contacts.points);
+  c["normals"] = rows(contacts.normals);
+  c["depths"] = contacts.depths;
+  if (!contacts.areas.empty()) {
+    c["areas"] = contacts.areas;
+    c["pressures"] = contacts.pressures;
+  }
+  c["not_kept"] = contacts.not_kept;
+  return c;
+}
+
 void RunContact(const ContactArgs& args) {
   const Scene scene = LoadScene(RequireDataFile(args.scene));
   AssetOptions options;
@@ -106,7 +125,6 @@ void RunContact(const ContactArgs& args) {
   }
   ContactList contacts;
   if (has_contacts) model->LatestContacts(&contacts);
-  const bool surface = !contacts.areas.empty();
 
   if (args.json) {
     nlohmann::json j;
@@ -135,27 +153,7 @@ void RunContact(const ContactArgs& args) {
     if (q.deformation_B != nullptr) {
       j["reduced_force_B"] = std::vector<double>(reduced_force_B.data(), reduced_force_B.data() + reduced_force_B.size());
     }
-    if (args.contacts) {
-      if (!has_contacts) {
-        j["contacts"] = nullptr;
-      } else {
-        auto rows = [](const std::vector<Eigen::Vector3d>& v) {
-          nlohmann::json a = nlohmann::json::array();
-          for (const Eigen::Vector3d& x : v) a.push_back({x.x(), x.y(), x.z()});
-          return a;
-        };
-        nlohmann::json c;
-        c["points"] = rows(contacts.points);
-        c["normals"] = rows(contacts.normals);
-        c["depths"] = contacts.depths;
-        if (surface) {
-          c["areas"] = contacts.areas;
-          c["pressures"] = contacts.pressures;
-        }
-        c["not_kept"] = contacts.not_kept;
-        j["contacts"] = std::move(c);
-      }
-    }
+    if (args.contacts) j["contacts"] = has_contacts ? ContactsJson(contacts) : nlohmann::json(nullptr);
     std::cout << j.dump(2) << "\n";
     return;
   }
