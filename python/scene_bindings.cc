@@ -11,6 +11,7 @@
 #include "bindings.h"
 #include "experiment/scene.h"
 #include "experiment/scene_assets.h"
+#include "geometry/mesh_io.h"
 #include "mesh_arrays.h"
 #include "poses.h"
 #include "scene_dict.h"
@@ -18,6 +19,7 @@
 #include "util/config_node.h"
 #include "util/data_path.h"
 #include "util/error.h"
+#include "util/output_target.h"
 
 namespace py = pybind11;
 
@@ -123,6 +125,18 @@ void BindScene(py::module_& m) {
             return View3(s.mesh->triangles.empty() ? nullptr : s.mesh->triangles.front().data(), s.mesh->triangles.size(), self); },
           "(T, 3) int32 vertex indices, counter-clockwise seen from outside")
       .def_property_readonly("name", [](const Mesh& s) { return s.mesh->name; })
+      .def(
+          "save",
+          [](const Mesh& s, const std::string& path) {
+            CheckOutputWritable(path, "Mesh.save");
+            py::gil_scoped_release release;
+            SaveMesh(*s.mesh, path);
+          },
+          py::arg("path"),
+          "Writes the mesh to PATH as OBJ, OFF, STL or PLY by its extension (OBJ, OFF and PLY keep the "
+          "coordinates exactly), atomically: a temporary file renamed onto PATH, nothing written on an error. "
+          "A scene or experiment file can then name it as a body's mesh. Raises contactlab.Error naming PATH "
+          "for an unknown extension, a special file or folder, or a failed write.")
       .def("__repr__", [](const Mesh& s) {
         return "<contactlab.Mesh " + s.mesh->name + ": " + std::to_string(s.mesh->num_vertices()) + " vertices, " +
                std::to_string(s.mesh->num_triangles()) + " triangles>";
