@@ -387,6 +387,21 @@ namespace {
 
 // The haptic-cycle rule: Evaluate allocates nothing, for either variant, with coherence and
 // a node budget that makes the level change.
+// 2000 cycles of body A sliding in and out of the field's ball, with coherence and a node
+// budget switching on and off, queried of both variants: the allocations they made (expected 0)
+// and the points in contact summed; Q is left at the last cycle.
+long AllocationsOverASlide(PointshellContactModel& tree, PointshellContactModel& linear, ContactQuery* q,
+                           std::int64_t* contacts) {
+  const long before = testing::AllocationCount();
+  for (int cycle = 0; cycle < 2000; ++cycle) {
+    q->cycle = cycle;
+    q->node_budget = (cycle / 100) % 2 == 0 ? 0 : 400;
+    q->X_WA = Pose::FromTranslation(Eigen::Vector3d(0.1 + 0.004 * std::sin(cycle * 0.01), 0.001, 0));
+    *contacts += tree.Evaluate(*q).stats.points_in_contact + linear.Evaluate(*q).stats.points_in_contact;
+  }
+  return testing::AllocationCount() - before;
+}
+
 TEST(PointshellContactModel, EvaluateAllocatesNothing) {
   auto shell = testing::SphereShell(0.05, 48, 4);
   auto field = SphereField(0.06, 0.004);
@@ -396,14 +411,7 @@ TEST(PointshellContactModel, EvaluateAllocatesNothing) {
   PointshellContactModel linear(PointshellContactModel::Variant::kLinear, shell, field, {});
   ContactQuery q;
   std::int64_t contacts = 0;
-  const long before = testing::AllocationCount();
-  for (int cycle = 0; cycle < 2000; ++cycle) {
-    q.cycle = cycle;
-    q.node_budget = (cycle / 100) % 2 == 0 ? 0 : 400;
-    q.X_WA = Pose::FromTranslation(Eigen::Vector3d(0.1 + 0.004 * std::sin(cycle * 0.01), 0.001, 0));
-    contacts += tree.Evaluate(q).stats.points_in_contact + linear.Evaluate(q).stats.points_in_contact;
-  }
-  EXPECT_EQ(testing::AllocationCount() - before, 0);
+  EXPECT_EQ(AllocationsOverASlide(tree, linear, &q, &contacts), 0);
   EXPECT_GT(contacts, 0);
 }
 
@@ -421,14 +429,7 @@ TEST(PointshellContactModel, EvaluateAllocatesNothingWithContactsKept) {
   ASSERT_TRUE(linear.KeepContacts(3));  // fewer than touch: the rest counted
   ContactQuery q;
   std::int64_t contacts = 0;
-  const long before = testing::AllocationCount();
-  for (int cycle = 0; cycle < 2000; ++cycle) {
-    q.cycle = cycle;
-    q.node_budget = (cycle / 100) % 2 == 0 ? 0 : 400;
-    q.X_WA = Pose::FromTranslation(Eigen::Vector3d(0.1 + 0.004 * std::sin(cycle * 0.01), 0.001, 0));
-    contacts += tree.Evaluate(q).stats.points_in_contact + linear.Evaluate(q).stats.points_in_contact;
-  }
-  EXPECT_EQ(testing::AllocationCount() - before, 0);
+  EXPECT_EQ(AllocationsOverASlide(tree, linear, &q, &contacts), 0);
   EXPECT_GT(contacts, 0);
   // The last query's lists: as many as touched (the tree's), or the room and the rest counted.
   const ContactResult r_tree = tree.Evaluate(q), r_linear = linear.Evaluate(q);
