@@ -371,6 +371,41 @@ class Continuity(unittest.TestCase):
             self.assertEqual({t.get_text() for t in fig.legends[0].get_texts()}, {"pointshell", "pressure-field"})
 
 
+class SpeedVsError(unittest.TestCase):
+    # The headline figure scores every model by the model-neutral overlap-volume law after its
+    # fitted scale (compare-volume's rms_rel_error_calibrated) in its first panel and by the
+    # paper's eq. (2) law in its second, each panel reading its own experiment's column; a model
+    # with no value (empty cell) has no point.
+    def test_first_panel_is_the_neutral_calibrated_error_and_the_second_the_papers_law(self):
+        from figures import speed_vs_error
+        S = common.SUMMARY
+        scene = "data/scenes/block-joint.yaml"
+        neutral = [{"scene": scene, S.model: "pointshell", S.median_us: 5, S.p99_us: 9, S.rms_rel_error: 0.9,
+                    S.rms_rel_error_calibrated: 0.2},
+                   {"scene": scene, S.model: "pressure-field", S.median_us: 500, S.p99_us: 700, S.rms_rel_error: 0.99,
+                    S.rms_rel_error_calibrated: 0.1},
+                   {"scene": scene, S.model: "fcl", S.median_us: 50, S.p99_us: 70, S.rms_rel_error: "",
+                    S.rms_rel_error_calibrated: ""}]
+        paper = [{"scene": scene, "offset": "0", S.model: "pointshell", S.median_us: 5, S.p99_us: 9,
+                  S.rms_rel_error: 0.03},
+                 {"scene": scene, "offset": "0", S.model: "pressure-field", S.median_us: 500, S.p99_us: 700,
+                  S.rms_rel_error: 0.95}]
+        with tempfile.TemporaryDirectory() as root:
+            write_table(root, "compare-volume", S, ["scene"], neutral)
+            write_table(root, "speed-vs-error", S, ["scene", "offset"], paper)
+            results = common.Results(root)
+            drawn = {}
+            results.save = lambda fig, name, **kw: drawn.setdefault(name, fig)
+            self.assertTrue(speed_vs_error.speed_vs_error(results))
+            fig = drawn["speed_vs_error.png"]
+            first, second = fig.axes[0], fig.axes[1]
+            self.assertIn("overlap-volume", first.get_ylabel())
+            self.assertIn("eq. (2)", second.get_ylabel())
+            points = lambda ax: sorted(tuple(o.get_offsets()[0]) for o in ax.collections)
+            self.assertEqual(points(first), [(5.0, 0.2), (500.0, 0.1)])  # fcl: no value, no point
+            self.assertEqual(points(second), [(5.0, 0.03), (500.0, 0.95)])
+
+
 class Reading(unittest.TestCase):
     """figures.common.read_csv reads the tables as the program writes them (RFC 4180 quoting)."""
 
