@@ -387,6 +387,19 @@ namespace {
 
 // The haptic-cycle rule: Evaluate allocates nothing, for either variant, with coherence and
 // a node budget that makes the level change.
+// The two variants of the allocation tests over one shell and field: the tree with coherence,
+// the linear traversal with the defaults.
+struct SlidingPair {
+  std::shared_ptr<const Pointshell> shell = testing::SphereShell(0.05, 48, 4);
+  std::shared_ptr<const DistanceField> field = SphereField(0.06, 0.004);
+  PointshellContactModel tree{PointshellContactModel::Variant::kTree, shell, field, [] {
+                                PointshellContactParams p;
+                                p.coherence = true;
+                                return p;
+                              }()};
+  PointshellContactModel linear{PointshellContactModel::Variant::kLinear, shell, field, {}};
+};
+
 // 2000 cycles of body A sliding in and out of the field's ball, with coherence and a node
 // budget switching on and off, queried of both variants: the allocations they made (expected 0)
 // and the points in contact summed; Q is left at the last cycle.
@@ -403,12 +416,9 @@ long AllocationsOverASlide(PointshellContactModel& tree, PointshellContactModel&
 }
 
 TEST(PointshellContactModel, EvaluateAllocatesNothing) {
-  auto shell = testing::SphereShell(0.05, 48, 4);
-  auto field = SphereField(0.06, 0.004);
-  PointshellContactParams params;
-  params.coherence = true;
-  PointshellContactModel tree(PointshellContactModel::Variant::kTree, shell, field, params);
-  PointshellContactModel linear(PointshellContactModel::Variant::kLinear, shell, field, {});
+  SlidingPair pair;
+  PointshellContactModel& tree = pair.tree;
+  PointshellContactModel& linear = pair.linear;
   ContactQuery q;
   std::int64_t contacts = 0;
   EXPECT_EQ(AllocationsOverASlide(tree, linear, &q, &contacts), 0);
@@ -419,12 +429,9 @@ TEST(PointshellContactModel, EvaluateAllocatesNothing) {
 // the record goes into the room reserved, for either variant, with coherence and a changing
 // node budget, also when more points touch than the room holds.
 TEST(PointshellContactModel, EvaluateAllocatesNothingWithContactsKept) {
-  auto shell = testing::SphereShell(0.05, 48, 4);
-  auto field = SphereField(0.06, 0.004);
-  PointshellContactParams params;
-  params.coherence = true;
-  PointshellContactModel tree(PointshellContactModel::Variant::kTree, shell, field, params);
-  PointshellContactModel linear(PointshellContactModel::Variant::kLinear, shell, field, {});
+  SlidingPair pair;
+  PointshellContactModel& tree = pair.tree;
+  PointshellContactModel& linear = pair.linear;
   ASSERT_TRUE(tree.KeepContacts(1 << 12));
   ASSERT_TRUE(linear.KeepContacts(3));  // fewer than touch: the rest counted
   ContactQuery q;
