@@ -65,7 +65,7 @@ void RunContactStudy(const ExperimentConfig& config, const RunOptions& options, 
       std::printf("job %d: %s\n", r.job, JobLabel(config, std::size_t(r.job)).c_str());
     }
     shown_job = r.job;
-    const std::string points = r.pointshell_A_bytes >= 0 ? std::to_string(r.points) : "-";
+    const std::string points = r.reads_pointshell() ? std::to_string(r.points) : "-";
     char error[32] = "-";
     if (r.rms_rel_error >= 0) std::snprintf(error, sizeof error, "%.4g", r.rms_rel_error);
     std::printf("%-6d %-24s %-9s %10.4g %10.4g %10.1f %12s\n", r.job, r.model.c_str(), points.c_str(), r.max_force,

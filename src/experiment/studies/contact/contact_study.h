@@ -86,6 +86,8 @@ struct SummaryRow {
   // Memory of the body data the model reads (DistanceField and Pointshell memory_bytes); -1 when the
   // model does not read it: B's distance field and A's pointshell (points, normals, tree).
   std::int64_t field_B_bytes = -1, pointshell_A_bytes = -1;
+  // The model reads A's pointshell, so POINTS means something for it (summary.csv, run table).
+  bool reads_pointshell() const { return pointshell_A_bytes >= 0; }
 };
 
 // What the cycle rows of a job view, allocated once before its first cycle.

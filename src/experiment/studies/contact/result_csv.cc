@@ -201,7 +201,7 @@ const TableColumn<SummaryRow> kSummaryColumns[] = {
     {"model", "", "the contact model, by its registered name",
      [](const SummaryRow& r, CsvLine& l) { l.Text(r.model); }},
     {"points", "", "pointshell points of body A the model reads (the scene's pointshell.points; empty: it reads none)",
-     [](const SummaryRow& r, CsvLine& l) { r.pointshell_A_bytes >= 0 ? l.Int(r.points) : l.Empty(); }},
+     [](const SummaryRow& r, CsvLine& l) { r.reads_pointshell() ? l.Int(r.points) : l.Empty(); }},
     {"cycles", "", "cycles of the trajectory",
      [](const SummaryRow& r, CsvLine& l) { l.Int(r.cycles); }},
     {"max_jump_N", "N", "largest |F(k+1) - F(k)| over consecutive cycles",
@@ -259,7 +259,7 @@ const TableColumn<SummaryRow> kSummaryColumns[] = {
     {"field_B_bytes", "bytes", "memory of body B's distance field (empty: the model does not read it)",
      [](const SummaryRow& r, CsvLine& l) { r.field_B_bytes >= 0 ? l.Int(r.field_B_bytes) : l.Empty(); }},
     {"pointshell_A_bytes", "bytes", "memory of body A's pointshell: points, normals, tree (empty: the model does not read it)",
-     [](const SummaryRow& r, CsvLine& l) { r.pointshell_A_bytes >= 0 ? l.Int(r.pointshell_A_bytes) : l.Empty(); }},
+     [](const SummaryRow& r, CsvLine& l) { r.reads_pointshell() ? l.Int(r.pointshell_A_bytes) : l.Empty(); }},
 };
 
 }  // namespace
