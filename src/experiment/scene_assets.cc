@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "contact/register_contact_models.h"
+#include "experiment/stiffness_match.h"
 #include "geometry/mesh_from_arrays.h"
 #include "geometry/mesh_io.h"
 #include "geometry/procedural_shapes.h"
@@ -316,8 +317,9 @@ SceneDynamics MakeSceneDynamics(SceneAssets& assets, double dt) {
 
 std::unique_ptr<ContactModel> MakeSceneContactModel(std::string_view name, const Scene& scene, SceneAssets& assets) {
   RegisterContactModels();
-  return MakeContactModel(name, ContactModelInputs{assets.A, assets.B, scene.model, scene.model_params},
-                          scene.file.empty() ? std::string_view("scene") : std::string_view(scene.file));
+  return ApplyStiffnessRule(MakeContactModel(name, ContactModelInputs{assets.A, assets.B, scene.model, scene.model_params},
+                                             scene.file.empty() ? std::string_view("scene") : std::string_view(scene.file)),
+                            name, scene, assets);
 }
 
 }  // namespace contactlab

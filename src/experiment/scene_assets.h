@@ -135,8 +135,9 @@ struct SceneDynamics {
 SceneDynamics MakeSceneDynamics(SceneAssets& assets, double dt);
 
 // Makes the registered contact model NAME between SCENE's bodies, with the scene's model
-// parameters; only what the model needs is built. Throws Error naming the scene file when NAME
-// is unknown.
+// parameters; only what the model needs is built. Under `model.stiffness: matched` a model
+// other than the paper's comes scaled to the paper's model's stiffness (stiffness_match.h;
+// WrenchScaleOf says by how much). Throws Error naming the scene file when NAME is unknown.
 std::unique_ptr<ContactModel> MakeSceneContactModel(std::string_view name, const Scene& scene, SceneAssets& assets);
 
 }  // namespace contactlab

@@ -73,6 +73,7 @@ struct SummaryRow {
   // contact (0 when the run had no force).
   double max_jump_rel = 0, lipschitz_rel = 0;
   double max_force = 0, mean_force = 0;
+  double wrench_scale = 1;  // model.stiffness: matched's factor on the model's wrench (1: own)
   double max_depth_voxels = 0;
   // Cycles where the moving body outran the scene's max_point_speed, each resetting the model
   // (as the haptic cycle's coherence guard does); cycles whose query the model refused (no

@@ -232,6 +232,8 @@ const TableColumn<SummaryRow> kSummaryColumns[] = {
      [](const SummaryRow& r, CsvLine& l) { l.NumOrEmpty("%.4g", r.median_dir_error_deg); }},
     {"p95_dir_error_deg", "deg", "95th percentile of that angle (empty: no reference)",
      [](const SummaryRow& r, CsvLine& l) { l.NumOrEmpty("%.4g", r.p95_dir_error_deg); }},
+    {"wrench_scale", "", "the factor model.stiffness: matched applied to the model's wrench to match the paper's model's stiffness (1: its own stiffness)",
+     [](const SummaryRow& r, CsvLine& l) { l.Num("%.6g", r.wrench_scale); }},
     {"ref_scale", "", "the stiffness scale fitted to the reference force (empty: no reference or no force)",
      [](const SummaryRow& r, CsvLine& l) { l.NumOrEmpty("%.6g", r.ref_scale); }},
     {"rms_rel_error_calibrated", "", "rms_rel_error after ref_scale (empty: no reference or no force)",
