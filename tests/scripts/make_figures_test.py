@@ -406,6 +406,40 @@ class SpeedVsError(unittest.TestCase):
             self.assertEqual(points(second), [(5.0, 0.03), (500.0, 0.95)])
 
 
+class ClosedLoop(unittest.TestCase):
+    # Swept over the stiffness rule (closed-loop-matched), a model is one line per rule, with the
+    # factor on its wrench, and its largest stable k_VC is the largest before its first unstable
+    # one, per rule.
+    def test_each_stiffness_rule_is_its_own_line_with_its_wrench_scale(self):
+        from figures import closed_loop
+        L = common.STABILITY
+        scene = "data/scenes/block-joint.yaml"
+        rows = []
+        for rule, scale, unstable_from in (("own", 1.0, None), ("matched", 120.0, 2000.0)):
+            for k in (1000.0, 2000.0, 5000.0):
+                for motion in ("push", "slide"):
+                    bad = unstable_from is not None and k >= unstable_from and motion == "slide"
+                    rows.append({"scene": scene, "stiffness": rule, L.model: "pressure-field", L.motion: motion,
+                                 L.k_vc: k, L.wrench_scale: scale, L.stable: 0 if bad else 1,
+                                 L.verdict: "active" if bad else "ok"})
+        with tempfile.TemporaryDirectory() as root:
+            write_table(root, "closed-loop-matched", L, ["scene", "stiffness"], rows)
+            results = common.Results(root)
+            results.save = lambda fig, name, **kw: None
+            self.assertTrue(closed_loop.closed_loop_matched(results))
+            with open(os.path.join(results.out, "closed_loop_matched.md")) as f:
+                table = [line.strip("|\n ").split(" | ") for line in f if line.startswith("| ")]
+            header, body = table[0], table[1:]
+            self.assertEqual(header[:4], ["scene", "model", "stiffness", "wrench scale"])
+            by_rule = {line[2]: line for line in body}
+            self.assertEqual(set(by_rule), {"own", "matched"})
+            self.assertEqual(by_rule["own"][3], "1")
+            self.assertEqual(by_rule["matched"][3], "120")
+            self.assertEqual(by_rule["own"][-1], "5000")
+            self.assertEqual(by_rule["matched"][-1], "1000")
+            self.assertIn("active (slide)", by_rule["matched"][header.index("2000 N/m")])
+
+
 class Reading(unittest.TestCase):
     """figures.common.read_csv reads the tables as the program writes them (RFC 4180 quoting)."""
 
