@@ -371,6 +371,39 @@ class Continuity(unittest.TestCase):
             self.assertEqual({t.get_text() for t in fig.legends[0].get_texts()}, {"pointshell", "pressure-field"})
 
 
+class BaselineSettings(unittest.TestCase):
+    # Each job of baseline-settings sets one FCL and one Bullet key; its label reads "FCL setting /
+    # Bullet setting": each model's rows are listed under its own part of the label, with the
+    # four properties of its summary row, per scene.
+    def test_each_model_is_listed_under_its_own_part_of_the_label(self):
+        from figures import baseline_settings
+        S = common.SUMMARY
+        rows = []
+        for scene in ("data/scenes/block-joint.yaml", "data/scenes/bumpy-cube-plate.yaml"):
+            for label, fcl, bullet in (("default / default", (3.0, 0.13, 0.39, 600), (1.1, 0.09, 0.34, 390)),
+                                       ("bv obb / margin 0.1 mm", (3.0, 0.13, 0.39, 520), (2.2, 0.08, 0.27, 210))):
+                for model, (angle, error, jump, us) in (("fcl", fcl), ("bullet", bullet)):
+                    rows.append({"scene": scene, "scene.model": label, S.model: model, S.median_dir_error_deg: angle,
+                                 S.rms_rel_error_calibrated: error, S.max_jump_rel: jump, S.median_us: us})
+        with tempfile.TemporaryDirectory() as root:
+            write_table(root, "baseline-settings", S, ["scene", "scene.model"], rows)
+            results = common.Results(root)
+            tables = {}
+            results.save = lambda fig, name, **kw: None
+            results.save_table = lambda header, lines, title, name: tables.setdefault(name, (header, lines))
+            self.assertTrue(baseline_settings.baseline_settings(results))
+            header, lines = tables["baseline_settings_table"]
+            self.assertEqual(header[:3], ["model", "setting", "scene"])
+            got = {(l[0], l[1], l[2]): l[3:] for l in lines}
+            self.assertEqual(len(got), 8)
+            self.assertEqual(got[("fcl", "bv obb", "block-joint")], ["3.00", "0.130", "0.390", "520"])
+            self.assertEqual(got[("bullet", "margin 0.1 mm", "bumpy-cube-plate")], ["2.20", "0.080", "0.270", "210"])
+            self.assertEqual(got[("bullet", "default", "block-joint")], ["1.10", "0.090", "0.340", "390"])
+            self.assertEqual([l[0] for l in lines], ["fcl"] * 4 + ["bullet"] * 4)
+        self.assertEqual(baseline_settings.setting_of("bullet", "convex hull / convex hull"), "convex hull")
+        self.assertEqual(baseline_settings.setting_of("fcl", "default"), "default")
+
+
 class SpeedVsError(unittest.TestCase):
     # The headline figure scores every model by the model-neutral overlap-volume law after its
     # fitted scale (compare-volume's rms_rel_error_calibrated) in its first panel and by the
