@@ -120,29 +120,13 @@ TEST(FclContactModel, ConvexDepthOfABallInABoxIsTheClosedForm) {
 
 // Each bad value of the settings is refused when the scene is read, naming the key.
 TEST(FclContactModel, BadSettingsAreRefusedNamingTheKey) {
-  auto scene = [](const std::string& keys) {
-    return "name: s\nbodies:\n"
-           "  - {name: ball, mesh: \"sphere:0.01\", role: pointshell}\n"
-           "  - {name: plate, mesh: \"box:0.05,0.05,0.01\", role: field}\n"
-           "model: {" + keys + "}\n";
-  };
-  const std::pair<std::string, std::string> bad[] = {
+  testing::ExpectModelKeysRefused({
       {"fcl_max_contacts: 0", "s.yaml:5: model.fcl_max_contacts: must be between 1 and 100000000, got 0"},
       {"fcl_max_contacts: -5", "model.fcl_max_contacts: must be between 1 and"},
       {"fcl_bv: sphere", "model.fcl_bv: 'sphere' is not one of: obbrss, obb, rss, kios, aabb, kdop16, kdop18, kdop24"},
       {"fcl_shape: hull", "model.fcl_shape: 'hull' is not one of: mesh, convex"},
       {"fcl_gjk: indep", "fcl_gjk"},
-  };
-  for (const auto& [keys, message] : bad) {
-    try {
-      ParseScene(ConfigNode::LoadString(scene(keys), "s.yaml"));
-      ADD_FAILURE() << keys << " was accepted";
-    } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
-    }
-  }
-  EXPECT_NO_THROW(ParseScene(ConfigNode::LoadString(
-      scene("fcl_bv: kdop24, fcl_max_contacts: 64, fcl_shape: convex"), "s.yaml")));
+  }, "fcl_bv: kdop24, fcl_max_contacts: 64, fcl_shape: convex");
   testing::BoxOnBox s;
   EXPECT_THROW(MakeFclWith(s.A, s.B, 2000, 10, Settings(FclBv::kObbrss, FclShape::kMesh, 0)), Error);
 }

@@ -1,15 +1,21 @@
 // Checks shared by the FCL and Bullet baseline tests: a tessellated box A pressed into a
 // larger box B, the wrench's sign, its torque about B's origin, the zero wrench when apart,
-// and K_B against central differences.
+// and K_B against central differences; and bad values of a model's own scene keys refused.
 #pragma once
 
 #include <gtest/gtest.h>
 
 #include <functional>
 #include <memory>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "contact/contact_model.h"
+#include "experiment/scene.h"
 #include "geometry/procedural_shapes.h"
+#include "util/config_node.h"
+#include "util/error.h"
 
 namespace contactlab::testing {
 
@@ -106,6 +112,29 @@ inline void ExpectTranslationGradientMatchesFiniteDifferences(const PenaltyModel
         << "column " << i << ": finite differences " << fd.head<3>().transpose() << ", K_B "
         << r.K_B.block<3, 1>(0, i).transpose();
   }
+}
+
+// A ball over a plate read as the scene file s.yaml, its model block holding KEYS (the inside
+// of a YAML flow mapping, on line 5).
+inline std::string BallOverPlateWithModelKeys(const std::string& keys) {
+  return "name: s\nbodies:\n"
+         "  - {name: ball, mesh: \"sphere:0.01\", role: pointshell}\n"
+         "  - {name: plate, mesh: \"box:0.05,0.05,0.01\", role: field}\n"
+         "model: {" + keys + "}\n";
+}
+
+// Each BAD (keys, message): reading the scene with those model keys throws an Error whose text
+// holds MESSAGE; GOOD keys are read without one.
+inline void ExpectModelKeysRefused(const std::vector<std::pair<std::string, std::string>>& bad, const std::string& good) {
+  for (const auto& [keys, message] : bad) {
+    try {
+      ParseScene(ConfigNode::LoadString(BallOverPlateWithModelKeys(keys), "s.yaml"));
+      ADD_FAILURE() << keys << " was accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_NO_THROW(ParseScene(ConfigNode::LoadString(BallOverPlateWithModelKeys(good), "s.yaml")));
 }
 
 }  // namespace contactlab::testing
