@@ -73,9 +73,9 @@ const std::vector<Recorded> kRecorded = {
     // Penetration volume of 2000-sphere packings (about 70 % of each volume): spheres stop short
     // of flat faces, so a box 3.3 mm into a box meets in one sphere pair (37 degrees off), and
     // the magnitude follows the packings' overlap, not the eq. (2) limit.
-    {"inner-spheres", "box-tilted/box", 17.3, 0.936, {0.151, 0.0648}},
-    {"inner-spheres", "capsule/torus", 1.27, 0.51, {0.867, 0.491}},
-    {"inner-spheres", "sphere/box-halfspace", 0.44, 0.676, {1.68, 0.78}},
+    {"inner-spheres", "box-tilted/box", 7.15, 0.852, {0.347, 0.149}},
+    {"inner-spheres", "capsule/torus", 0.62, 0.506, {0.874, 0.495}},
+    {"inner-spheres", "sphere/box-halfspace", 0.33, 1.04, {2.04, 0.949}},
     {"inner-spheres", "sphere/sphere", 0.01, 0.94, {1.94, 1.55}},
     {"pointshell", "box-tilted/box", 2.23, 0.133, {1.07, 0.868}},
     {"pointshell", "capsule/torus", 0.64, 0.042, {0.971, 0.958}},
