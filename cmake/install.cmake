@@ -25,6 +25,7 @@ if(TARGET contactlab_python)
   # The package folder depends on the prefix installed to, which cpack changes (/usr for the
   # .deb): asked of the interpreter at install time unless CONTACTLAB_INSTALL_PYTHONDIR names it.
   file(GLOB _contactlab_python_files CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/python/contactlab/*.py)
+  list(APPEND _contactlab_python_files ${PROJECT_BINARY_DIR}/python/contactlab/_build.py)  # python/CMakeLists.txt
   install(CODE "
     set(_pythondir [[${CONTACTLAB_INSTALL_PYTHONDIR}]])
     if(_pythondir STREQUAL \"\")
@@ -109,7 +110,7 @@ set(_contactlab_cgal_dev "")
 if(CONTACTLAB_WITH_CGAL)
   set(_contactlab_cgal_dev ", libcgal-dev, libgmp-dev, libmpfr-dev, libboost-dev")
 endif()
-set(CPACK_DEBIAN_PACKAGE_SUGGESTS "libeigen3-dev, libtbb-dev, libyaml-cpp-dev, nlohmann-json3-dev, zlib1g-dev, libnanoflann-dev, libhwy-dev, libspectra-dev, liboctomap-dev, libfcl-dev, libccd-dev, libbullet-dev, libspnav-dev, pkg-config${_contactlab_cgal_dev}")
+set(CPACK_DEBIAN_PACKAGE_SUGGESTS "libeigen3-dev, libtbb-dev, libyaml-cpp-dev, nlohmann-json3-dev, zlib1g-dev, libnanoflann-dev, libhwy-dev, libspectra-dev, liboctomap-dev, libfcl-dev, libccd-dev, libbullet-dev, libbullet-extras-dev, libspnav-dev, pkg-config${_contactlab_cgal_dev}")
 if(TARGET contactlab_python)
   # The module is built for Debian's python3 and returns NumPy arrays; load_results reads pandas.
   math(EXPR _python_next_minor "${Python_VERSION_MINOR} + 1")

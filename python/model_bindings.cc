@@ -45,7 +45,13 @@ struct ModelHandle {
   std::mutex mutex;
   std::atomic<std::thread::id> owner{};  // the thread holding MUTEX; none when free
   std::int64_t cycle = 0;                // the next query's cycle when queries are not reset
+  // Whether KeepContacts was asked of the model (query(contacts=True)) and what it answered.
+  bool contacts_asked = false;
+  bool has_contacts = false;
 };
+
+// Room for the contacts of one query(contacts=True) (more are counted in not_kept).
+constexpr int kMaxContacts = 1 << 20;
 
 // Holds H's mutex for one call (CALL: its Python name) with the GIL released, the GIL taken
 // back after the mutex is let go. Throws Error naming the model when this thread already holds
@@ -150,7 +156,32 @@ ReducedState ReducedFrom(py::handle values, BodyAssets& body, const std::string&
   }
 }
 
-py::dict Query(ModelHandle& h, py::handle X_WA, py::handle X_WB, bool reset, py::handle q_A, py::handle q_B) {
+// The contacts LIST as a dict of NumPy arrays: points, normals (N, 3), depths (N,), areas and
+// pressures (N,) when the model has them, not_kept (int).
+py::dict ContactsDict(const ContactList& list) {
+  const py::ssize_t n = list.size();
+  auto rows = [n](const std::vector<Eigen::Vector3d>& v) {
+    py::array_t<double> a({n, py::ssize_t(3)});
+    for (py::ssize_t i = 0; i < n; ++i) {
+      const double* row = v[std::size_t(i)].data();
+      std::copy(row, row + 3, a.mutable_data() + 3 * i);
+    }
+    return a;
+  };
+  py::dict d;
+  d["points"] = rows(list.points);
+  d["normals"] = rows(list.normals);
+  d["depths"] = Vector(list.depths.data(), n);
+  if (!list.areas.empty()) {
+    d["areas"] = Vector(list.areas.data(), n);
+    d["pressures"] = Vector(list.pressures.data(), n);
+  }
+  d["not_kept"] = list.not_kept;
+  return d;
+}
+
+py::dict Query(ModelHandle& h, py::handle X_WA, py::handle X_WB, bool reset, py::handle q_A, py::handle q_B,
+               bool contacts) {
   const Pose pose_A = PoseFromArray(DoublesFromObject(X_WA, "X_WA"), "X_WA");
   const Pose pose_B = PoseFromArray(DoublesFromObject(X_WB, "X_WB"), "X_WB");
   SceneAssets& assets = h.scene_handle->assets;
@@ -161,10 +192,21 @@ py::dict Query(ModelHandle& h, py::handle X_WA, py::handle X_WB, bool reset, py:
   const BodyDeformation deformation_A{state_A.get(), &force_A}, deformation_B{state_B.get(), &force_B};
   const bool deform_A = assets.A.deformable(), deform_B = assets.B.deformable();
   ContactResult r;
+  ContactList list;
+  bool listed = false;
   {
     const ModelLock lock(h, "query");
+    // Contacts asked for the first time: the model reserves room and records from now on.
+    if (contacts && !h.contacts_asked) {
+      h.has_contacts = h.model->KeepContacts(kMaxContacts);
+      h.contacts_asked = true;
+    }
     r = EvaluateLocked(h, pose_A, pose_B, reset, deform_A ? &deformation_A : nullptr,
                        deform_B ? &deformation_B : nullptr);
+    if (contacts && h.has_contacts) {
+      h.model->LatestContacts(&list);
+      listed = true;
+    }
   }
   // As the command: a refused query is an error, never a result (a non-finite one raised above).
   if (r.stats.faults > 0) Fail(h.name, "refused the query (a deformation that does not fit its body); no wrench");
@@ -178,6 +220,7 @@ py::dict Query(ModelHandle& h, py::handle X_WA, py::handle X_WB, bool reset, py:
   d["stats"] = StatsDict(r.stats);
   if (deform_A) d["reduced_force_A"] = Vector(force_A.data(), force_A.size());
   if (deform_B) d["reduced_force_B"] = Vector(force_B.data(), force_B.size());
+  d["contacts"] = listed ? py::object(ContactsDict(list)) : py::object(py::none());
   return d;
 }
 
@@ -265,13 +308,17 @@ void BindModel(py::module_& m) {
       .def_property_readonly("name", [](const ModelHandle& h) { return h.name; })
       .def_property_readonly("node_budget", [](const ModelHandle& h) { return h.scene.node_budget; })
       .def("query", &Query, py::arg("X_WA"), py::arg("X_WB"), py::kw_only(), py::arg("reset") = true,
-           py::arg("q_A") = py::none(), py::arg("q_B") = py::none(),
+           py::arg("q_A") = py::none(), py::arg("q_B") = py::none(), py::arg("contacts") = false,
            "One contact query at the world poses X_WA, X_WB of bodies A and B, each a (7,) array (x, y, z, "
            "qw, qx, qy, qz; metres) or a (4, 4) matrix. RESET (default): from a fresh state, as `contactlab "
            "contact` evaluates; False: as the next haptic cycle (temporal coherence). Q_A / Q_B: reduced "
            "coordinates (r,) of a deformable body (default: at rest). Returns a dict: force (3,), torque "
-           "(3,), wrench (6,), K_B (6, 6), stats (dict of the ContactStats fields), and reduced_force_A / "
-           "_B for deformable bodies. Raises contactlab.ArgumentError (a ValueError) naming the argument when a "
+           "(3,), wrench (6,), K_B (6, 6), stats (dict of the ContactStats fields), reduced_force_A / "
+           "_B for deformable bodies, and contacts: None unless CONTACTS is True and the model has a contact "
+           "list, else a dict of the query's contacts, world frame: points (N, 3) float64 metres, normals "
+           "(N, 3) unit (direction of the force on B), depths (N,) metres, areas (N,) m^2 and pressures (N,) "
+           "Pa for a surface model (pressure-field), not_kept (int: contacts past the room kept, 2^20). "
+           "Raises contactlab.ArgumentError (a ValueError) naming the argument when a "
            "pose or Q has the wrong shape or a value that is not finite, TypeError when it is not real "
            "numbers (complex, strings, None); contactlab.Error when the model refuses the query or gives a "
            "non-finite wrench or K_B, or when called from inside this model's own evaluation (a Python "

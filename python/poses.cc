@@ -3,6 +3,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <optional>
 
 #include "geometry/triangle_mesh.h"
 
@@ -27,7 +28,7 @@ Pose PoseFrom7(const double* v, const std::string& where) {
     if (!std::isfinite(v[i])) FailArgument(where, "pose component " + std::to_string(i) + " is not finite");
   }
   const Eigen::Quaterniond q(v[3], v[4], v[5], v[6]);
-  if (q.norm() < 1e-12) FailArgument(where, "pose quaternion is zero");
+  if (const std::optional<std::string> e = NonUnitQuaternionError(q)) FailArgument(where, *e);
   return {UnitQuaternion(q), Eigen::Vector3d(v[0], v[1], v[2])};
 }
 
@@ -58,21 +59,21 @@ bool IsRealKind(char kind) { return kind == 'b' || kind == 'i' || kind == 'u' ||
 
 }  // namespace
 
-DoubleArray DoublesFromObject(py::handle obj, const std::string& where) {
-  py::array a;
-  if (py::isinstance<py::array>(obj)) {
-    a = py::reinterpret_borrow<py::array>(obj);
-  } else {
-    // Lists, tuples, scalars, buffers and objects with __array__, as NumPy reads them.
-    try {
-      a = py::module_::import("numpy").attr("asarray")(obj);
-    } catch (py::error_already_set& e) {
-      // KeyboardInterrupt, SystemExit and MemoryError pass as they are.
-      if (!e.matches(PyExc_Exception) || e.matches(PyExc_MemoryError)) throw;
-      if (e.matches(PyExc_ValueError)) FailArgument(where, std::string("not an array of numbers: ") + e.what());
-      throw py::type_error(where + ": not an array of numbers: " + e.what());
-    }
+py::array ArrayFromObject(py::handle obj, const std::string& where) {
+  if (py::isinstance<py::array>(obj)) return py::reinterpret_borrow<py::array>(obj);
+  // Lists, tuples, scalars, buffers and objects with __array__, as NumPy reads them.
+  try {
+    return py::module_::import("numpy").attr("asarray")(obj);
+  } catch (py::error_already_set& e) {
+    // KeyboardInterrupt, SystemExit and MemoryError pass as they are.
+    if (!e.matches(PyExc_Exception) || e.matches(PyExc_MemoryError)) throw;
+    if (e.matches(PyExc_ValueError)) FailArgument(where, std::string("not an array of numbers: ") + e.what());
+    throw py::type_error(where + ": not an array of numbers: " + e.what());
   }
+}
+
+DoubleArray DoublesFromObject(py::handle obj, const std::string& where) {
+  const py::array a = ArrayFromObject(obj, where);
   const py::dtype dtype = a.dtype();
   if (!IsRealKind(dtype.kind())) {
     throw py::type_error(where + ": expected real numbers (an array of float, int or bool); got dtype " +

@@ -1,5 +1,5 @@
 // Poses and point arrays from NumPy: a pose is a 7-vector (x, y, z, qw, qx, qy, qz; metres, a
-// quaternion normalised as the command line's --pose-a does) or a 4x4 homogeneous matrix
+// unit quaternion within 1e-6 as the command line's --pose-a needs, NonUnitQuaternionError) or a 4x4 homogeneous matrix
 // (rotation block orthonormal with determinant +1, last row 0 0 0 1); a point is a 3-vector. The
 // one conversion of every pose and point a Python call takes: no value that is not finite passes.
 #pragma once
@@ -21,6 +21,10 @@ namespace contactlab::python {
 using DoubleArray = pybind11::array_t<double, pybind11::array::c_style | pybind11::array::forcecast |
                                                   pybind11::detail::npy_api::NPY_ARRAY_ALIGNED_>;
 
+// OBJ as NumPy reads it (np.asarray, no copy of an array). Throws ArgumentError naming WHERE when
+// NumPy refuses it with a ValueError (a ragged list), TypeError for its other refusals.
+pybind11::array ArrayFromObject(pybind11::handle obj, const std::string& where);
+
 // OBJ (an array, a nested list or tuple, a scalar, anything NumPy's asarray takes) as a float64
 // C-contiguous array, converted as np.asarray(OBJ).astype(np.float64) would, of real numbers only:
 // bool, integer and floating dtypes pass; complex, strings, datetimes, objects (None) and
@@ -38,7 +42,7 @@ using PointRows = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eige
 PointRows PointsFromArray(const DoubleArray& a, const std::string& where);
 
 // One pose from a (7,) or (4, 4) array. Throws ArgumentError naming WHERE when the shape is neither,
-// a value is not finite, the quaternion is zero or the matrix is no rigid transform.
+// a value is not finite, the quaternion is not unit length or the matrix is no rigid transform.
 Pose PoseFromArray(const DoubleArray& a, const std::string& where);
 
 // N poses from an (N, 7) or (N, 4, 4) array, or one pose (7,) / (4, 4) as a batch of one

@@ -11,11 +11,15 @@
 #include "bindings.h"
 #include "experiment/scene.h"
 #include "experiment/scene_assets.h"
+#include "geometry/mesh_io.h"
+#include "mesh_arrays.h"
 #include "poses.h"
+#include "scene_dict.h"
 #include "scene_handle.h"
 #include "util/config_node.h"
 #include "util/data_path.h"
 #include "util/error.h"
+#include "util/output_target.h"
 
 namespace py = pybind11;
 
@@ -33,11 +37,6 @@ struct Body {
   bool is_A = true;
   BodyAssets& assets() const { return is_A ? scene->assets.A : scene->assets.B; }
   const BodySpec& spec() const { return is_A ? scene->scene.pointshell_body : scene->scene.field_body; }
-};
-
-// A body's triangle mesh; its arrays view the mesh (read-only, no copy).
-struct Mesh {
-  std::shared_ptr<const TriangleMesh> mesh;
 };
 
 // A body's pointshell up to one tree level: (#P, 3) points and inward unit normals, body frame.
@@ -106,7 +105,17 @@ py::object DistanceOf(Body& body, py::handle points_object) {
 }  // namespace
 
 void BindScene(py::module_& m) {
-  py::class_<Mesh>(m, "Mesh", "A body's triangle mesh in its body frame, metres (read-only views).")
+  py::class_<Mesh>(m, "Mesh",
+                   "A triangle mesh in its body frame, metres: a body's (Body.mesh), or one made from arrays, "
+                   "which Scene.from_dict takes as a body's mesh. Its arrays are read-only views.")
+      .def(py::init(&MakeMesh), py::arg("vertices"), py::arg("triangles"), py::arg("name") = "mesh",
+           "A mesh from arrays (copied): VERTICES (V, 3) real numbers, body frame, metres; TRIANGLES (T, 3) "
+           "zero-based vertex indices, counter-clockwise seen from outside (an integer dtype, or a floating one "
+           "holding whole numbers only); NAME names it in messages and is a body's default name. Polygon soups "
+           "pass, as from a mesh file. Raises contactlab.ArgumentError (a ValueError) naming the mesh and the row "
+           "for what the mesh file readers refuse: a coordinate that is not finite or beyond +-1e9 m, a negative "
+           "or out-of-range index, no triangles; and for a wrong shape or an empty name. Raises TypeError for "
+           "arrays that are not real numbers (complex, strings, None) or indices that are not whole numbers.")
       .def_property_readonly(
           "vertices", [](py::object self) { const Mesh& s = self.cast<const Mesh&>();
             return View3(s.mesh->vertices.empty() ? nullptr : s.mesh->vertices.front().data(), s.mesh->vertices.size(), self); },
@@ -116,6 +125,18 @@ void BindScene(py::module_& m) {
             return View3(s.mesh->triangles.empty() ? nullptr : s.mesh->triangles.front().data(), s.mesh->triangles.size(), self); },
           "(T, 3) int32 vertex indices, counter-clockwise seen from outside")
       .def_property_readonly("name", [](const Mesh& s) { return s.mesh->name; })
+      .def(
+          "save",
+          [](const Mesh& s, const std::string& path) {
+            CheckOutputWritable(path, "Mesh.save");
+            py::gil_scoped_release release;
+            SaveMesh(*s.mesh, path);
+          },
+          py::arg("path"),
+          "Writes the mesh to PATH as OBJ, OFF, STL or PLY by its extension (OBJ, OFF and PLY keep the "
+          "coordinates exactly), atomically: a temporary file renamed onto PATH, nothing written on an error. "
+          "A scene or experiment file can then name it as a body's mesh. Raises contactlab.Error naming PATH "
+          "for an unknown extension, a special file or folder, or a failed write.")
       .def("__repr__", [](const Mesh& s) {
         return "<contactlab.Mesh " + s.mesh->name + ": " + std::to_string(s.mesh->num_vertices()) + " vertices, " +
                std::to_string(s.mesh->num_triangles()) + " triangles>";
@@ -168,6 +189,18 @@ void BindScene(py::module_& m) {
           },
           py::arg("text"), py::kw_only(), py::arg("cache_dir") = py::none(), py::arg("use_cache") = true,
           py::arg("verbose") = false, "Reads a scene from YAML TEXT (meshes through the data search path).")
+      .def_static(
+          "from_dict",
+          [](py::handle d, std::optional<std::string> cache_dir, bool use_cache, bool verbose) {
+            return std::make_shared<SceneHandle>(SceneFromDict(d), Options(cache_dir, use_cache, verbose));
+          },
+          py::arg("d"), py::kw_only(), py::arg("cache_dir") = py::none(), py::arg("use_cache") = true,
+          py::arg("verbose") = false,
+          "A scene from D, dicts, lists and scalars in the structure of a scene YAML file (docs/scene-reference.md), "
+          "checked as a file is. A body's mesh may be a file name, a procedural shape or a contactlab.Mesh; fields "
+          "and pointshells of a Mesh are cached keyed by its content, as a file's are. Raises "
+          "contactlab.ArgumentError (a ValueError) naming the key path (\"<dict>: bodies[0].field.resolution: ...\"), "
+          "TypeError naming it for a value no YAML file could hold or a Mesh anywhere but a body's mesh.")
       .def_property_readonly("name", [](const SceneHandle& s) { return s.scene.name; })
       .def_property_readonly("file", [](const SceneHandle& s) { return s.scene.file; })
       .def_property_readonly("models", [](const SceneHandle& s) { return s.scene.models; },

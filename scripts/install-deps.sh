@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs ContactLab's build, test and figure dependencies from Debian 12 packages (Highway
-# for the vectorised field lookups, src/sdf/batch_distance; with
+# for the vectorised field lookups, src/sdf/batch_distance; Bullet's extras for its convex
+# decomposition, baselines/bullet/; with
 # slurm-wlm and munge for the single-node Slurm cluster test, tests/slurm/; clang with its
 # runtime libraries, which hold libFuzzer, for the fuzz targets, tests/fuzz/; cpp-httplib, three.js
 # and Chromium for the 3D viewer and its browser tests, src/view/; OpenVDB for the reference
@@ -15,7 +16,7 @@ packages=(
   libeigen3-dev libtbb-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev zlib1g-dev
   libfcl-dev liboctomap-dev libccd-dev
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev
-  libbullet-dev
+  libbullet-dev libbullet-extras-dev
   libspectra-dev libnanoflann-dev libspnav-dev
   libhwy-dev libopenvdb-dev
   libgtest-dev libgmock-dev libbenchmark-dev

@@ -27,12 +27,13 @@ try:
     import figures  # noqa: E402
     from figures.common import Results  # noqa: E402
     from figures.generic import draw_generic, read_meta  # noqa: E402
-except ModuleNotFoundError as e:
-    if e.name != "matplotlib" and not (e.name or "").startswith("matplotlib."):
+except ImportError as e:
+    # The figures draw with matplotlib: say which interpreter lacks it and how to get it.
+    if not (e.name or "").split(".")[0] == "matplotlib":
         raise
-    sys.exit(f"make_figures: this Python ({sys.executable}, {sys.version.split()[0]}) has no matplotlib: "
-             "install Debian's (apt install python3-matplotlib, or scripts/install-deps.sh) and run "
-             "/usr/bin/python3 scripts/make_figures.py")
+    sys.exit(f"make_figures: {sys.executable} (Python {sys.version_info.major}.{sys.version_info.minor}) cannot "
+             f"import matplotlib ({e}); install it for this interpreter (Debian: apt install python3-matplotlib) "
+             f"or run the script with an interpreter that has it, e.g. /usr/bin/python3 {sys.argv[0]}")
 
 
 def experiment_folders(root):

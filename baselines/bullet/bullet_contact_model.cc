@@ -4,12 +4,14 @@
 #include <btBulletCollisionCommon.h>
 #include <BulletCollision/Gimpact/btGImpactCollisionAlgorithm.h>
 #include <BulletCollision/Gimpact/btGImpactShape.h>
+#include <GIMPACTUtils/btGImpactConvexDecompositionShape.h>
 
 #include <cmath>
 #include <string>
 #include <vector>
 
 #include "contact/contact_accumulator.h"
+#include "contact/contact_recorder.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -28,10 +30,10 @@ struct BulletBody {
   std::vector<btScalar> vertices;  // (3 #V)
   std::vector<int> indices;        // (3 #T)
   std::unique_ptr<btTriangleIndexVertexArray> arrays;
-  std::unique_ptr<btGImpactMeshShape> shape;
+  std::unique_ptr<btCollisionShape> shape;
   btCollisionObject object;
 
-  void Build(const TriangleMesh& mesh, double margin, const std::string& where) {
+  void Build(const TriangleMesh& mesh, double margin, BulletShape kind, const std::string& where) {
     if (mesh.empty()) Fail(where, "the mesh '" + mesh.name + "' has no triangles");
     const int n = mesh.num_vertices();
     vertices.reserve(3 * std::size_t(n));
@@ -43,9 +45,34 @@ struct BulletBody {
     }
     arrays = std::make_unique<btTriangleIndexVertexArray>(mesh.num_triangles(), indices.data(), int(3 * sizeof(int)), n,
                                                           vertices.data(), int(3 * sizeof(btScalar)));
-    shape = std::make_unique<btGImpactMeshShape>(arrays.get());
-    shape->setMargin(margin);
-    shape->updateBound();
+    switch (kind) {
+      case BulletShape::kGImpact: {
+        auto gimpact = std::make_unique<btGImpactMeshShape>(arrays.get());
+        gimpact->setMargin(margin);
+        gimpact->updateBound();
+        shape = std::move(gimpact);
+        break;
+      }
+      case BulletShape::kConvexHull: {
+        // All vertices, then the hull's own (btConvexHullComputer drops the interior ones).
+        auto hull = std::make_unique<btConvexHullShape>(vertices.data(), n, int(3 * sizeof(btScalar)));
+        hull->optimizeConvexHull();
+        hull->setMargin(margin);
+        hull->recalcLocalAabb();
+        shape = std::move(hull);
+        break;
+      }
+      case BulletShape::kConvexDecomposition: {
+        // The pieces are btConvexHullShapes in the compound's frame; the margin is each piece's.
+        auto pieces = std::make_unique<btGImpactConvexDecompositionShape>(arrays.get(), btVector3(1, 1, 1), margin);
+        if (pieces->getNumChildShapes() == 0) Fail(where, "the convex decomposition of '" + mesh.name + "' is empty");
+        for (int i = 0; i < pieces->getNumChildShapes(); ++i) pieces->getChildShape(i)->setMargin(margin);
+        pieces->setMargin(margin);
+        pieces->updateBound();
+        shape = std::move(pieces);
+        break;
+      }
+    }
     object.setCollisionShape(shape.get());
   }
 };
@@ -58,6 +85,7 @@ struct Collector final : btCollisionWorld::ContactResultCallback {
   double margin_sum = 0;
   ContactAccumulator acc;
   std::int64_t reported = 0;
+  ContactRecorder contacts;  // the manifold points used (world frame), when kept
 
   btScalar addSingleResult(btManifoldPoint& cp, const btCollisionObjectWrapper* wrap0, int, int,
                            const btCollisionObjectWrapper* wrap1, int, int) override {
@@ -70,6 +98,7 @@ struct Collector final : btCollisionWorld::ContactResultCallback {
     const Eigen::Vector3d p_W = 0.5 * (FromBullet(cp.m_positionWorldOnA) + FromBullet(cp.m_positionWorldOnB));
     const Eigen::Vector3d N_B = R_BW * n_W;
     acc.Add(R_BW * (p_W - p_WB), N_B, -depth, N_B);
+    if (contacts.keeping()) contacts.Add(p_W, -n_W.normalized(), depth);
     return 0;
   }
 };
@@ -93,7 +122,9 @@ BulletContactModel::BulletContactModel(std::shared_ptr<const TriangleMesh> mesh_
   const std::string where = "contact model bullet";
   if (!mesh_A || !mesh_B) Fail(where, "needs both meshes");
   CheckPenaltyParams(params.penalty, where);
-  if (!(params.margin >= 0) || !std::isfinite(params.margin)) Fail(where, "margin must be finite and non-negative");
+  if (!(params.margin >= 0) || !std::isfinite(params.margin)) {
+    Fail(where, "bullet_margin must be finite and non-negative");
+  }
   Impl& m = *impl_;
   m.mesh_A = std::move(mesh_A);
   m.mesh_B = std::move(mesh_B);
@@ -101,13 +132,20 @@ BulletContactModel::BulletContactModel(std::shared_ptr<const TriangleMesh> mesh_
   btGImpactCollisionAlgorithm::registerAlgorithm(&m.dispatcher);
   m.dispatcher.registerClosestPointsCreateFunc(GIMPACT_SHAPE_PROXYTYPE, GIMPACT_SHAPE_PROXYTYPE,
                                                &m.closest_points_func);
-  m.A.Build(*m.mesh_A, params.margin, where + " (body A)");
-  m.B.Build(*m.mesh_B, params.margin, where + " (body B)");
+  m.A.Build(*m.mesh_A, params.margin, params.shape, where + " (body A)");
+  m.B.Build(*m.mesh_B, params.margin, params.shape, where + " (body B)");
   m.collector.object_B = &m.B.object;
   m.collector.margin_sum = params.subtract_margins ? 2 * params.margin : 0.0;
 }
 
 BulletContactModel::~BulletContactModel() = default;
+
+bool BulletContactModel::KeepContacts(int max_contacts) {
+  impl_->collector.contacts.Keep(max_contacts);
+  return true;
+}
+
+void BulletContactModel::LatestContacts(ContactList* out) const { impl_->collector.contacts.Fill(Pose(), 1.0, out); }
 
 ContactResult BulletContactModel::Evaluate(const ContactQuery& query) {
   Impl& m = *impl_;
@@ -119,6 +157,7 @@ ContactResult BulletContactModel::Evaluate(const ContactQuery& query) {
   c.p_WB = query.X_WB.translation;
   c.acc = ContactAccumulator();
   c.reported = 0;
+  c.contacts.Clear();
   // Manifold points of A (object 0) against B (object 1).
   m.world.contactPairTest(&m.A.object, &m.B.object, c);
   ContactResult out;

@@ -18,6 +18,18 @@
 //     gradient    = the paper's halfspace rule with N = n: dF/dx_B = -k n nᵀ, ...
 // summed by ContactAccumulator with k = k_C, scaled to k_C L / l when l >= L contacts touch.
 //
+// Contacts (KeepContacts / LatestContacts): Bullet's manifold points with δ > 0 (as many as
+// stats.points_in_contact): the midpoint p above (world), the direction of the force on B, -n,
+// and the depth δ (margins subtracted when subtract_margins).
+//
+// Settings (bullet_params.h, the scene's model keys bullet_margin, bullet_subtract_margins,
+// bullet_shape): the margin and whether it is subtracted, and the shape each mesh becomes:
+// btGImpactMeshShape (default, as above), btConvexHullShape of its vertices (Bullet's
+// convex-convex algorithm, GJK with EPA: one point with the hulls' penetration depth, for
+// convex bodies), or btGImpactConvexDecompositionShape (libbullet-extras' GIMPACTUtils: the
+// mesh cut into convex hulls by Ratcliff's ConvexDecomposition at construction, GImpact's
+// compound traversal, one GJK/EPA point per overlapping pair of pieces).
+//
 // Caveats (baselines/README.md): GImpact's triangle-pair clipping reports up to 16 points per
 // overlapping triangle pair with a depth local to that pair; the contact count follows the
 // tessellation, and deep or thin overlaps give arbitrary normals.
@@ -27,6 +39,7 @@
 #include <memory>
 
 #include "contact/contact_model.h"
+#include "baselines/bullet/bullet_params.h"
 #include "contact/penalty_params.h"
 #include "geometry/triangle_mesh.h"
 
@@ -34,8 +47,9 @@ namespace contactlab {
 
 struct BulletContactParams {
   PenaltyParams penalty;             // k_C per contact and the L / l scaling, as the paper's model
-  double margin = 0.0005;        // collision margin of each GImpact shape, metres (0.5 mm)
+  double margin = 0.0005;        // collision margin of each shape, metres (0.5 mm)
   bool subtract_margins = true;  // δ = -s - 2 margin (true) or δ = -s (false)
+  BulletShape shape = BulletShape::kGImpact;  // what each mesh becomes (bullet_params.h)
 };
 
 class BulletContactModel final : public ContactModel {
@@ -52,9 +66,13 @@ class BulletContactModel final : public ContactModel {
   // nothing (points are summed as the callback sees them, no buffer); Bullet itself takes the
   // algorithm and the manifold from its pool allocators and heap-allocates the overlapping
   // triangle-pair list (btPairSet, a btAlignedObjectArray local to
-  // btGImpactCollisionAlgorithm::gimpact_vs_gimpact) on every query.
+  // btGImpactCollisionAlgorithm::gimpact_vs_gimpact) on every query. The convex-hull shape's
+  // query allocates nothing beyond the pools; the convex decomposition's allocates like GImpact's.
   ContactResult Evaluate(const ContactQuery& query) override;
   void Reset() override {}
+  // The manifold points with δ > 0 (see the top of this file), recorded during Evaluate.
+  bool KeepContacts(int max_contacts) override;
+  void LatestContacts(ContactList* out) const override;
 
   const BulletContactParams& params() const { return params_; }
 

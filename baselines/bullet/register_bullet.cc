@@ -1,8 +1,10 @@
-// Registers "bullet" (BulletContactModel on A's and B's meshes, the scene's k_C and L) with
-// the contact-model registry.
+// Registers "bullet" (BulletContactModel on A's and B's meshes, the scene's k_C and L, and its
+// own keys bullet_margin, bullet_subtract_margins, bullet_shape: bullet_params.h) with the
+// contact-model registry.
 #include <memory>
 
 #include "baselines/bullet/bullet_contact_model.h"
+#include "baselines/bullet/bullet_params.h"
 #include "contact/model_registry.h"
 
 namespace contactlab {
@@ -13,9 +15,14 @@ void RegisterBulletContactModels() {
       .description = "Bullet GImpact contact manifolds as penalty contacts",
       .needs = {.mesh_A = true, .mesh_B = true},
       .make = [](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
+        const BulletOwnParams& own = in.Params(BulletOwnParamTable());
         return std::make_unique<BulletContactModel>(in.A.mesh(), in.B.mesh(),
-                                                    BulletContactParams{.penalty = in.params.penalty});
+                                                    BulletContactParams{.penalty = in.params.penalty,
+                                                                        .margin = own.margin,
+                                                                        .subtract_margins = own.subtract_margins,
+                                                                        .shape = own.shape});
       },
+      .pair_params = ParamBlock(BulletOwnParamTable()),
   });
 }
 

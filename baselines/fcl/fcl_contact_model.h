@@ -12,6 +12,16 @@
 // summed by ContactAccumulator (contact/contact_accumulator.h) with the paper's stiffness
 // k = k_C, scaled to k_C L / l when l >= L contacts touch, so magnitudes are comparable.
 //
+// Contacts (KeepContacts / LatestContacts): FCL's own, one per contact with δ > 0 (as many as
+// stats.points_in_contact): its position p (world), its normal n (the direction of the force
+// on B) and its penetration depth δ.
+//
+// Settings (fcl_params.h, the scene's model keys fcl_bv, fcl_max_contacts, fcl_shape): the
+// hierarchies' bounding volume (OBBRSS by default; every type gives the same contacts), FCL's
+// contact cap, and fcl_shape: convex, which collides fcl::Convex of each mesh's vertices (their
+// convex hull) instead: one contact whose depth is the hulls' penetration depth by libccd's MPR
+// (FCL's default solver; why not FCL's own GJK/EPA: fcl_params.h).
+//
 // Caveats (see baselines/README.md): FCL's mesh-mesh penetration depth is local to one
 // triangle pair, not the depth of the bodies' overlap, and its normal is a triangle's normal
 // whose sign depends on the winding (FCL issues #574 and #8); the number of contacts depends
@@ -22,6 +32,7 @@
 #include <memory>
 
 #include "contact/contact_model.h"
+#include "baselines/fcl/fcl_params.h"
 #include "contact/penalty_params.h"
 #include "geometry/triangle_mesh.h"
 
@@ -30,12 +41,14 @@ namespace contactlab {
 struct FclContactParams {
   PenaltyParams penalty;             // k_C per contact and the L / l scaling, as the paper's model
   std::size_t max_contacts = 100000; // FCL's num_max_contacts
+  FclBv bv = FclBv::kObbrss;         // bounding volume of the mesh hierarchies (fcl_shape: mesh)
+  FclShape shape = FclShape::kMesh;  // triangle meshes, or the convex hulls of their vertices
 };
 
 class FclContactModel final : public ContactModel {
  public:
   // MESH_A, MESH_B: closed or not, in their body frames (metres). Throws Error for an empty
-  // mesh, invalid triangle indices or a negative / non-finite k_C.
+  // mesh, invalid triangle indices, max_contacts 0 or a negative / non-finite k_C.
   FclContactModel(std::shared_ptr<const TriangleMesh> mesh_A, std::shared_ptr<const TriangleMesh> mesh_B,
                   const FclContactParams& params);
   ~FclContactModel() override;
@@ -44,9 +57,15 @@ class FclContactModel final : public ContactModel {
   // stats: points_in_contact = contacts with δ > 0, nodes_visited = all FCL contacts,
   // max_penetration = largest δ. Throws nothing. FCL keeps its contact vector between calls
   // (cleared, capacity kept), so after the first deep query it does not allocate for
-  // contacts; its traversal allocates nothing for OBBRSS.
+  // contacts; its traversal allocates nothing for OBBRSS, OBB and kIOS. FCL itself allocates
+  // on every query with the other settings: for rss, aabb and the k-DOPs it copies both
+  // BVHModels (BVHCollideImpl, collision_func_matrix-inl.h), and for fcl_shape: convex libccd's
+  // support function allocates a visited-vertex list per call (Convex::findExtremeVertex).
   ContactResult Evaluate(const ContactQuery& query) override;
   void Reset() override {}
+  // FCL's contacts with δ > 0 (see the top of this file), recorded during Evaluate.
+  bool KeepContacts(int max_contacts) override;
+  void LatestContacts(ContactList* out) const override;
 
   const FclContactParams& params() const { return params_; }
 

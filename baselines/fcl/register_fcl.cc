@@ -1,8 +1,10 @@
-// Registers "fcl" (FclContactModel on A's and B's meshes, the scene's k_C and L) with the
-// contact-model registry.
+// Registers "fcl" (FclContactModel on A's and B's meshes, the scene's k_C and L, and its own
+// keys fcl_bv, fcl_max_contacts, fcl_shape: fcl_params.h) with the contact-model
+// registry.
 #include <memory>
 
 #include "baselines/fcl/fcl_contact_model.h"
+#include "baselines/fcl/fcl_params.h"
 #include "contact/model_registry.h"
 
 namespace contactlab {
@@ -13,8 +15,14 @@ void RegisterFclContactModels() {
       .description = "FCL 0.7 mesh-mesh contacts (OBBRSS) as penalty contacts",
       .needs = {.mesh_A = true, .mesh_B = true},
       .make = [](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
-        return std::make_unique<FclContactModel>(in.A.mesh(), in.B.mesh(), FclContactParams{.penalty = in.params.penalty});
+        const FclOwnParams& own = in.Params(FclOwnParamTable());
+        return std::make_unique<FclContactModel>(in.A.mesh(), in.B.mesh(),
+                                                 FclContactParams{.penalty = in.params.penalty,
+                                                                  .max_contacts = std::size_t(own.max_contacts),
+                                                                  .bv = own.bv,
+                                                                  .shape = own.shape});
       },
+      .pair_params = ParamBlock(FclOwnParamTable()),
   });
 }
 

@@ -22,6 +22,7 @@ struct PairSums {
   double volume = 0;
   double max_depth = 0;
   std::int32_t pairs = 0;
+  ContactRecorder* contacts = nullptr;  // where each overlapping pair is kept, or null
 
   // A's sphere (centre a in B's frame, radius ra) and B's (b, rb); K_V the volume stiffness;
   // EXACT: K the exact derivative, else the halfspace rule (inner_sphere_model.h).
@@ -31,6 +32,11 @@ struct PairSums {
     if (d >= ra + rb) return;
     ++pairs;
     max_depth = std::max(max_depth, ra + rb - d);
+    if (contacts != nullptr) {
+      // The overlap along the line of centres runs from b - rb u to a + ra u.
+      const Eigen::Vector3d u = d > 0 ? Eigen::Vector3d(ab / d) : Eigen::Vector3d::UnitZ();
+      contacts->Add(0.5 * ((a + ra * u) + (b - rb * u)), u, ra + rb - d);
+    }
     const double small = std::min(ra, rb);
     if (d <= std::abs(ra - rb)) {  // one inside the other: the smaller ball, and no gradient
       volume += 4.0 / 3.0 * kPi * small * small * small;
@@ -84,6 +90,9 @@ ContactResult InnerSphereModel::Evaluate(const ContactQuery& query) {
   const Eigen::Matrix3d R_BA = X_BA.R();
   const Eigen::Vector3d& p_BA = X_BA.translation;
   PairSums sums;
+  contacts_.Clear();
+  X_WB_contacts_ = query.X_WB;
+  if (contacts_.keeping()) sums.contacts = &contacts_;
   const bool exact = stiffness_ != SphereStiffness::kHalfspace;
   std::int64_t visited = 0;
   const std::int64_t budget = query.node_budget;

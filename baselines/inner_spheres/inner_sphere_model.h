@@ -31,6 +31,11 @@
 // proxy spheres (each a subtree's volume at its centroid). Stats: points_in_contact = sphere
 // pairs overlapping, nodes_visited = pairs tested, level_rendered = levels completed before the
 // budget ran out, max_penetration = the largest overlap depth r_a + r_b - d of a pair.
+// Contacts (KeepContacts / LatestContacts): the overlapping sphere pairs, one per pair counted
+// (as many as stats.points_in_contact, a pair of proxy spheres included when the budget cut the
+// traversal): the centre of the overlap (the midpoint, on the line of centres, of the segment
+// both balls cover), the line of centres from A's sphere to B's (the direction of the pair's
+// force on B; B's frame +z when the centres coincide) and the overlap depth r_a + r_b - d.
 // Allocation-free and exception-free in Evaluate; rigid bodies only.
 #pragma once
 
@@ -42,6 +47,7 @@
 #include "baselines/inner_spheres/sphere_packing.h"
 #include "baselines/inner_spheres/sphere_tree.h"
 #include "contact/contact_model.h"
+#include "contact/contact_recorder.h"
 
 namespace contactlab {
 
@@ -59,6 +65,12 @@ class InnerSphereModel final : public ContactModel {
   std::string_view name() const override { return "inner-spheres"; }
   ContactResult Evaluate(const ContactQuery& query) override;
   void Reset() override {}
+  // The overlapping sphere pairs (see the top of this file), recorded during Evaluate.
+  bool KeepContacts(int max_contacts) override {
+    contacts_.Keep(max_contacts);
+    return true;
+  }
+  void LatestContacts(ContactList* out) const override { contacts_.Fill(X_WB_contacts_, 1.0, out); }
 
   double k_V() const { return k_V_; }
   SphereStiffness stiffness() const { return stiffness_; }
@@ -77,6 +89,8 @@ class InnerSphereModel final : public ContactModel {
   SphereStiffness stiffness_ = SphereStiffness::kProjected;
   double volume_ = 0;
   std::vector<Pair> level_, next_;
+  ContactRecorder contacts_;  // the latest Evaluate's pairs, B's frame, when kept
+  Pose X_WB_contacts_;        // and B's pose then
 };
 
 }  // namespace contactlab

@@ -176,6 +176,7 @@ int PointshellCcdModel::TightConstraints(int n, const Eigen::Vector3d& v, const 
 
 ContactResult PointshellCcdModel::Evaluate(const ContactQuery& query) {
   ContactResult out;
+  contacts_.Clear();
   Pose X_WA, X_WB;
   if (!UnitPose(query.X_WA, &X_WA) || !UnitPose(query.X_WB, &X_WB)) {
     out.stats.faults = 1;  // nothing to place the proxy against; it keeps its pose
@@ -194,6 +195,7 @@ ContactResult PointshellCcdModel::Evaluate(const ContactQuery& query) {
   std::int64_t visited = 0;
   bool degraded = false;
   int pushing = 0;
+  int last_n = 0;  // the active points of the last step
   double deepest = 0;
   Matrix6d G = Matrix6d::Zero();  // sum of u u^T over pushing constraints, u = M^-1/2 J^T
   auto remaining = [&] { return budget > 0 ? std::max<std::int64_t>(1, budget - visited) : std::int64_t(0); };
@@ -201,6 +203,7 @@ ContactResult PointshellCcdModel::Evaluate(const ContactQuery& query) {
   for (int it = 0; it < params_.iterations; ++it) {
     // The active set at the proxy, and the straight step to B.
     const int n = search_.Near(X_AP_, 2 * l, lambda, remaining(), near_.data(), int(near_.size()), &visited, &degraded);
+    last_n = n;
     const BlendMotion goal = BlendMotion::Between(X_AP_, X_AB);
     Eigen::Vector3d v = goal.v, w = goal.w;
     const double deepest_violation = LoadConstraints(n, X_AP_.translation, &v, &w, &deepest);
@@ -228,6 +231,17 @@ ContactResult PointshellCcdModel::Evaluate(const ContactQuery& query) {
   out.on_B.force = k * (X_WP.translation - X_WB.translation);
   out.on_B.torque = kr * phi;
   if (pushing > 0) SlidingStiffness(G, k, kr, X_WA, &out.K_B);
+  // The pushing constraints as contacts, when kept: their depth in B at the query's pose.
+  if (contacts_.keeping()) {
+    const Eigen::Matrix3d R_WA = X_WA.R();
+    const Pose X_BW = X_WB.Inverse();
+    for (int i = 0; i < last_n; ++i) {
+      if (!(multiplier_[i] > 0)) continue;
+      const Eigen::Vector3d p_W = X_WA * near_[i].p_A;
+      const double d = search_.field().Distance(X_BW * p_W);
+      contacts_.Add(p_W, -(R_WA * near_[i].gradient_A).normalized(), std::max(0.0, -d));
+    }
+  }
   out.stats.points_in_contact = pushing;
   out.stats.nodes_visited = visited;
   out.stats.level_rendered = degraded ? -1 : search_.shell().num_levels() - 1;

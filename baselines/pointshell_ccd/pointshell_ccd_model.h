@@ -19,6 +19,12 @@
 // K_B = -M^½ P M^½ with P the projector onto the span of M^-½ J_a^T (J_a: the constraints
 // the step ends on, pushing or tight). Free space: proxy = B, zero wrench, K_B = 0.
 //
+// Contacts (KeepContacts / LatestContacts): the pushing constraints of the cycle's last step,
+// as many as stats.points_in_contact: A's point (world), the direction in which it pushes the
+// proxy and so B, -∇d normalised (B's field gradient at the point, world), and the point's depth
+// in B at the query's pose of B, max(0, -d) (the proxy holds it at the offset l outside, so
+// this is how far the device has pressed past the proxy there; 0 where it has not).
+//
 // Graceful degradation: the scene's node budget is shared by the cycle's searches; past it a
 // node is not expanded and stands for its subtree conservatively (the proxy stops early).
 // Allocation-free and exception-free in Evaluate. Rigid bodies only.
@@ -30,6 +36,7 @@
 
 #include "baselines/pointshell_ccd/time_of_impact.h"
 #include "contact/contact_model.h"
+#include "contact/contact_recorder.h"
 
 namespace contactlab {
 
@@ -65,6 +72,12 @@ class PointshellCcdModel final : public ContactModel {
   // The proxy is not a coherence shortcut: a motion faster than max_point_speed keeps it.
   void ResetCoherence() override {}
   bool Proxy(Pose* X_WB_proxy) const override;
+  // The pushing constraints (see the top of this file), recorded at the end of Evaluate.
+  bool KeepContacts(int max_contacts) override {
+    contacts_.Keep(max_contacts);
+    return true;
+  }
+  void LatestContacts(ContactList* out) const override { contacts_.Fill(Pose(), 1.0, out); }
 
   const PointshellCcdParams& params() const { return params_; }
 
@@ -96,6 +109,7 @@ class PointshellCcdModel final : public ContactModel {
   std::vector<double> point_multiplier_;
   std::vector<std::int32_t> warm_points_;
   int warm_count_ = 0;
+  ContactRecorder contacts_;  // the latest Evaluate's pushing constraints, world frame, when kept
 };
 
 }  // namespace contactlab

@@ -27,7 +27,11 @@ PressureFieldModel::PressureFieldModel(PressureFieldSide A, PressureFieldSide B,
     const char* body = s == &A ? "body A" : "body B";
     if (!s->field || s->field->empty()) Fail(where, std::string(body) + " has no distance field");
     if (s->field->info().mode == "soup") {
-      Fail(where, std::string(body) + "'s field is a polygon soup's offset band, not a volume with a pressure field");
+      Fail(where, std::string(body) + " (mesh " + s->field->info().source +
+                      ")'s field is a polygon soup's offset band, not a closed volume a pressure field can fill: the mesh "
+                      "is not watertight (or its field.mode is soup); close its holes (`contactlab mesh-info` counts "
+                      "them) and use field.mode auto or closed, or compare with a model that takes soups (pointshell, "
+                      "fcl, bullet)");
     }
     if (!(s->field->min_value() < 0)) Fail(where, std::string(body) + "'s field has no inside (no negative sample)");
     if (!s->rigid && !(s->modulus > 0 && std::isfinite(s->modulus))) {
@@ -80,6 +84,16 @@ void PressureFieldModel::LatestContactSurface(ContactSurface* out) const {
   out->pressure = surface_pressure_;
 }
 
+bool PressureFieldModel::KeepContacts(int max_contacts) {
+  contacts_.Keep(max_contacts, /*with_surface=*/true);
+  return true;
+}
+
+void PressureFieldModel::LatestContacts(ContactList* out) const {
+  // The polygons' normals are the force on the lattice body: on B when that is B, else on A.
+  contacts_.Fill(X_WL_, lattice_is_A_ ? -1.0 : 1.0, out);
+}
+
 bool PressureFieldModel::FindBlocks(const Pose& X_LM, std::int64_t* nodes) {
   num_blocks_ = 0;
   const DistanceField& fM = *M_.field;
@@ -117,7 +131,8 @@ void PressureFieldModel::Integrate(const Pose& X_LM, bool record, Sums* sums) {
   const PressureLaw& law = law_;
   const bool clip_M = !M_.rigid, clip_L = !L_.rigid;
   const bool keep_candidates = record && options_.stiffness;
-  SurfaceRecord recorder{&surface_, &surface_pressure_, record_capacity_};
+  SurfaceRecord recorder{&surface_, &surface_pressure_, record_capacity_,
+                         contacts_.keeping() ? &contacts_ : nullptr};
   if (record) {
     num_surface_cells_ = 0;
     surface_.clear();
@@ -208,6 +223,7 @@ Wrench PressureFieldModel::OnB(const Sums& sums, const Pose& X_WA, const Pose& X
 ContactResult PressureFieldModel::Evaluate(const ContactQuery& query) {
   ContactResult r;
   X_WL_ = lattice_is_A_ ? query.X_WA : query.X_WB;
+  contacts_.Clear();
   const Pose X_LM = LatticeToOther(query.X_WA, query.X_WB);
   std::int64_t nodes = 0;
   const bool overlap = FindBlocks(X_LM, &nodes);

@@ -31,6 +31,12 @@
 // Stats: contact_area, patches (connected pieces, by cells sharing a face, edge or corner),
 // max_penetration (largest -(phi_A + phi_B) on the surface: the local overlap), points_in_contact
 // (cells carrying surface), nodes_visited (octree nodes and cells examined).
+// Contacts (KeepContacts / LatestContacts): the contact surface's polygons (one per tetrahedron
+// of a cell the surface crosses, clipped to the overlap; several per cell, so more than
+// stats.points_in_contact, which counts cells), each with its centroid (world), its unit normal
+// (the direction of its force on B), the depth at its centroid -(phi_A + phi_B) (the local
+// overlap of the two bodies, metres, as stats.max_penetration), its area (m^2) and its mean
+// pressure (Pa): the force on B is the sum of area * pressure * normal over them.
 // Allocation-free and exception-free in Evaluate; rigid bodies only.
 #pragma once
 
@@ -43,6 +49,7 @@
 #include "baselines/pressure_field/lattice_blocks.h"
 #include "baselines/pressure_field/pressure_law.h"
 #include "contact/contact_model.h"
+#include "contact/contact_recorder.h"
 #include "sdf/distance_field.h"
 
 namespace contactlab {
@@ -81,6 +88,9 @@ class PressureFieldModel final : public ContactModel {
   // clipped to both insides, with the pressure at each corner.
   bool KeepContactSurface(int max_triangles) override;
   void LatestContactSurface(ContactSurface* out) const override;
+  // The contact surface's polygons as contacts (see the top of this file).
+  bool KeepContacts(int max_contacts) override;
+  void LatestContacts(ContactList* out) const override;
 
  private:
   struct Sums;
@@ -131,6 +141,7 @@ class PressureFieldModel final : public ContactModel {
   std::vector<Eigen::Vector3f> surface_;
   std::vector<float> surface_pressure_;
   Pose X_WL_;  // the lattice body's pose in the latest query
+  ContactRecorder contacts_;  // the latest Evaluate's polygons as contacts, L's frame, when kept
 };
 
 }  // namespace contactlab

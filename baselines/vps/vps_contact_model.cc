@@ -82,6 +82,9 @@ ContactResult VpsContactModel::Evaluate(const ContactQuery& query) {
   const Eigen::Vector3d& o = voxmap_.origin();
   std::int64_t visited = 0;
   std::int32_t skipped = 0;
+  contacts_.Clear();
+  X_WB_contacts_ = query.X_WB;
+  const bool keep = contacts_.keeping();
 
   for (int i = 0; i < n; ++i) {
     // Temporal coherence: the point cannot touch before its next check.
@@ -152,7 +155,10 @@ ContactResult VpsContactModel::Evaluate(const ContactQuery& query) {
       // point's normal, or the fixed interior depth.
       depth = surface ? (c_B - p_B).dot(N_B) : interior_depth_;
     }
-    if (depth > 0) acc.Add(p_B, N_B, -depth, N_B);
+    if (depth > 0) {
+      acc.Add(p_B, N_B, -depth, N_B);
+      if (keep) contacts_.Add(p_B, -N_B.normalized(), depth);
+    }
   }
 
   ContactResult result;

@@ -36,6 +36,10 @@
 // VpsContactModel::Evaluate): a surface voxel counts only points below its centre, and the
 // interior starts a whole surface layer below the surface.
 //
+// Contacts (KeepContacts / LatestContacts): one per point with depth > 0, as many as
+// stats.points_in_contact: the point's world position, the direction of its force on B, -N in
+// the world, and its depth as the force model above takes it (metres).
+//
 // Temporal coherence (optional, McNeely 2006): a point found in a free voxel n >= 2 layers
 // from the nearest contact voxel cannot touch before it has moved (n - 1) v, so it is not
 // looked at again for ceil((n - 1) v / (max_point_speed * cycle_seconds)) cycles (a point
@@ -54,6 +58,7 @@
 #include "baselines/vps/vps_params.h"
 #include "baselines/vps/wide_voxmap.h"
 #include "contact/contact_model.h"
+#include "contact/contact_recorder.h"
 #include "contact/penalty_params.h"
 #include "pointshell/pointshell.h"
 #include "sdf/distance_field.h"
@@ -98,6 +103,12 @@ class VpsContactModel final : public ContactModel {
   // One haptic cycle: allocation-free, throws nothing. query.node_budget is ignored.
   ContactResult Evaluate(const ContactQuery& query) override;
   void Reset() override;
+  // The points with depth > 0 (see the top of this file), recorded during Evaluate.
+  bool KeepContacts(int max_contacts) override {
+    contacts_.Keep(max_contacts);
+    return true;
+  }
+  void LatestContacts(ContactList* out) const override { contacts_.Fill(X_WB_contacts_, 1.0, out); }
 
   const VpsContactParams& params() const { return params_; }
   const Pointshell& shell() const { return *shell_; }
@@ -118,6 +129,8 @@ class VpsContactModel final : public ContactModel {
 
   // Scratch sized once at construction.
   std::vector<std::int64_t> next_check_;  // (#P) temporal coherence: first cycle to look again
+  ContactRecorder contacts_;  // the latest Evaluate's contacts, B's frame, when kept
+  Pose X_WB_contacts_;        // and B's pose then
 };
 
 }  // namespace contactlab

@@ -14,19 +14,48 @@ bad argument (shape, a value that is not finite) raises contactlab.ArgumentError
 contactlab.Error and a ValueError.
 """
 
-from ._core import (  # noqa: F401
-    ArgumentError,
-    Body,
-    Error,
-    Mesh,
-    Model,
-    Pointshell,
-    Scene,
-    __version__,
-    model_description,
-    models,
-    register_model,
-)
+
+def _import_error(error):
+    """The ImportError to raise when this interpreter cannot use the package: NumPy missing, or
+    an extension module built for another Python (named by _build.py, written by the build)."""
+    import sys
+
+    try:
+        from ._build import PYTHON, PYTHON_VERSION
+    except ImportError:
+        PYTHON, PYTHON_VERSION = "an unknown interpreter", "?"
+    version = f"{sys.version_info.major}.{sys.version_info.minor}"
+    built = f"contactlab was built for Python {PYTHON_VERSION} ({PYTHON})"
+    running = f"Python {version} ({sys.executable})"
+    try:
+        import numpy  # noqa: F401
+    except ImportError as e:
+        return ImportError(f"{built} and needs numpy, which {running} cannot import ({e}): install numpy for it "
+                           f"(Debian: apt install python3-numpy) or run {PYTHON}")
+    if version != PYTHON_VERSION:
+        return ImportError(f"{built}; this is {running}, which cannot load its extension module ({error}): "
+                           f"run {PYTHON}, or build contactlab for this interpreter "
+                           f"(cmake -DPython_EXECUTABLE={sys.executable})")
+    return ImportError(f"{built}; {running} cannot load its extension module: {error}")
+
+
+try:
+    import numpy as _numpy  # noqa: F401  (every array in and out is NumPy's)
+    from ._core import (  # noqa: F401
+        ArgumentError,
+        Body,
+        Error,
+        Mesh,
+        Model,
+        Pointshell,
+        Scene,
+        __version__,
+        model_description,
+        models,
+        register_model,
+    )
+except ImportError as _error:
+    raise _import_error(_error) from _error
 from .results import Results, load_results  # noqa: F401
 from . import _core as _core_module
 

@@ -18,3 +18,17 @@ def test_docs_python_example_runs(tmp_path):
     assert p.returncode == 0, p.stderr
     assert (tmp_path / "run" / "summary.csv").exists()
     assert "pointshell" in p.stdout and "vps" in p.stdout
+
+
+def test_docs_scenes_from_arrays_example_runs(tmp_path):
+    """The example of "Scenes from arrays": a NumPy plate 1 cm below the point, pushed down."""
+    text = (SOURCE_DIR / "docs" / "python.md").read_text().split("## Scenes from arrays", 1)[1]
+    example = re.search(r"```python\n(# PYTHONPATH=build/python python3\n.*?)```", text, re.S).group(1)
+    assert "contactlab.Mesh(" in example and "Scene.from_dict(" in example
+    p = subprocess.run([sys.executable, "-c", example], capture_output=True, text=True, cwd=tmp_path,
+                       env=dict(os.environ), timeout=120)
+    assert p.returncode == 0, p.stderr
+    distance, force = p.stdout.strip().split("\n")
+    assert abs(float(distance) - 0.01) < 1e-6
+    force = [float(v) for v in force.strip("[]").split()]
+    assert force[2] < 0 and abs(force[0]) < 0.05 * abs(force[2])

@@ -55,15 +55,24 @@ def test_bad_poses_name_the_argument_and_shape(small_scene_file):
     good = np.array([0, 0, 0.01, 1, 0, 0, 0.0])
     with pytest.raises(contactlab.Error, match=r"X_WA: a pose is a 7-vector .* got shape \(6,\)"):
         model.query(np.zeros(6), good)
-    with pytest.raises(contactlab.Error, match="X_WB: pose quaternion is zero"):
+    with pytest.raises(contactlab.Error, match="X_WB: the quaternion is zero"):
         model.query(good, np.zeros(7))
     with pytest.raises(contactlab.Error, match="X_WB: pose component 2 is not finite"):
         model.query(good, np.array([0, 0, np.nan, 1, 0, 0, 0]))
+    # A quaternion not of unit length (within 1e-6) is refused naming the order, as the command
+    # line and scene files refuse it; one unit to nine digits passes.
+    with pytest.raises(contactlab.ArgumentError,
+                       match=r"X_WB: the quaternion \(qw, qx, qy, qz\) = \(0\.99, 0\.1, 0, 0\) has length .* "
+                             r"x, y, z, qw, qx, qy, qz"):
+        model.query(good, np.array([0, 0, 0, 0.99, 0.1, 0, 0]))
+    with pytest.raises(contactlab.ArgumentError, match=r"poses_B\[1\]: the quaternion .* has length 2,"):
+        model.query_many(good, np.array([good, [0, 0, 0, 2, 0, 0, 0]]))
+    model.query(good, np.array([0, 0, 0, 0.965925826, 0, 0.258819045, 0]))
     not_rigid = np.eye(4)
     not_rigid[0, 0] = 2
     with pytest.raises(contactlab.Error, match="X_WA: pose matrix: .* not a rotation"):
         model.query(not_rigid, good)
-    with pytest.raises(contactlab.Error, match=r"poses_A\[1\]: pose quaternion is zero"):
+    with pytest.raises(contactlab.Error, match=r"poses_A\[1\]: the quaternion is zero"):
         model.query_many(np.array([good, np.zeros(7)]), good)
     with pytest.raises(contactlab.Error, match=r"poses_A has 3 poses and poses_B 2"):
         model.query_many(np.tile(good, (3, 1)), np.tile(good, (2, 1)))

@@ -1,7 +1,7 @@
 """Generated arguments (Hypothesis) for every call that converts arrays: Model.query (X_WA, X_WB,
-q_A), Model.query_many (poses_A, poses_B), Body.distance (points) and what a Python model's
-function returns. Poses, batches and points of every dtype, shape, order and stride, contiguous
-or not, with NaN, inf and huge values, empty batches, wrong shapes, Python lists and tuples,
+q_A), Model.query_many (poses_A, poses_B), Body.distance (points), Mesh (vertices, triangles) and
+what a Python model's function returns. Poses, batches and points of every dtype, shape, order
+and stride, contiguous or not, with NaN, inf and huge values, empty batches, wrong shapes, Python lists and tuples,
 scalars, None and strings. The property, for each: the call either answers exactly what it
 answers for the same numbers given in the canonical form, a float64 C-contiguous array made by
 NumPy itself (the independent reference), or raises a ValueError (contactlab.ArgumentError) or
@@ -315,6 +315,47 @@ def test_a_python_models_return_is_converted_as_an_argument_is(scene, returned):
     else:
         assert r is not None
         assert np.array_equal(r["wrench"], ref.reshape(6))
+
+
+# A tetrahedron, outward counter-clockwise: the arrays contactlab.Mesh's are varied around.
+TET_VERTICES = np.array([[0, 0, 0], [0.05, 0, 0], [0, 0.05, 0], [0, 0, 0.05]])
+TET_TRIANGLES = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+VERTICES = st.one_of(
+    forms(hnp.arrays(np.float64, st.sampled_from([(4, 3), (6, 3), (0, 3), (3,), (4, 2)]),
+                     elements=st.one_of(st.floats(-0.05, 0.05), st.sampled_from(SPECIAL)))),
+    JUNK)
+TRIANGLES = st.one_of(
+    forms(hnp.arrays(np.float64, st.sampled_from([(4, 3), (1, 3), (0, 3), (3,), (4, 4)]),
+                     elements=st.one_of(st.integers(0, 3).map(float), st.sampled_from([-1.0, 4.0, 0.5, 2.0**63])))),
+    JUNK)
+
+
+def mesh_arrays(vertices, triangles):
+    m = contactlab.Mesh(vertices, triangles, name="tet")
+    return {"vertices": m.vertices, "triangles": m.triangles}
+
+
+@GENERATED
+@given(vertices=VERTICES)
+def test_mesh_takes_vertices_in_any_form_or_names_them(vertices):
+    got = check_conversion(lambda v: mesh_arrays(v, TET_TRIANGLES), vertices, "contactlab.Mesh 'tet'")
+    if got[0] == "ok":
+        assert np.isfinite(got[1]["vertices"]).all()
+
+
+@GENERATED
+@given(triangles=TRIANGLES)
+def test_mesh_takes_indices_of_any_integer_form_or_names_them(triangles):
+    """Indices of an integer dtype, or floating with whole values, give the mesh of their int64
+    values; anything else raises ValueError or TypeError naming the mesh."""
+    got = outcome(lambda t: mesh_arrays(TET_VERTICES, t), triangles)
+    if got[0] == "raised":
+        assert "contactlab.Mesh 'tet'" in got[2], got
+        return
+    a = np.asarray(triangles)
+    assert a.dtype.kind in "iuf" and np.all(a == np.trunc(a)), (triangles, got)
+    assert np.array_equal(got[1]["triangles"], a.astype(np.int64))
+    assert ((got[1]["triangles"] >= 0) & (got[1]["triangles"] < 4)).all()
 
 
 # --- regressions the generated inputs found ------------------------------------------------------

@@ -55,6 +55,29 @@ def test_sweep_of_k_C(config_file, tmp_path):
     assert stiff > 1.5 * soft  # the penalty force grows with k_C
 
 
+def test_a_points_sweep_loads_in_pandas_with_unique_columns_and_empty_missing_values(config_file, tmp_path):
+    # The points axis is named like summary.csv's own points column: the axis is sweep.points,
+    # nothing is renamed by pandas, and a model that reads no pointshell (fcl) or a run with no
+    # reference leaves its cells empty (NaN), not -1.
+    out = contactlab.run(config_file, out=tmp_path / "points",
+                         set={"models": ["pointshell", "fcl"], "sweep": {"points": [256, 1024]}})
+    results = contactlab.load_results(out)
+    for name, frame in results.tables.items():
+        assert not [c for c in frame.columns if c.endswith(".1")], name
+    summary = results.summary
+    assert "sweep.points" in summary.columns and "points" in summary.columns
+    assert sorted(summary["sweep.points"]) == [256, 256, 1024, 1024]
+    mine = summary[summary["model"] == "pointshell"]
+    assert list(mine["points"]) == list(mine["sweep.points"])
+    assert summary[summary["model"] == "fcl"]["points"].isna().all()
+    assert summary["rms_rel_error"].isna().all()  # the config names no reference
+    cycles = results.cycles
+    assert "points" in cycles.columns  # cycles.csv declares no points column: the axis keeps its name
+    assert cycles[cycles["model"] == "fcl"]["level"].isna().all()
+    assert (cycles[cycles["model"] == "pointshell"]["level"] >= 0).all()
+    assert not (summary.select_dtypes("number") == -1).any().any()
+
+
 def halfspace_ball(k):
     """A Python model for sphere-on-plate: the ball (radius 5 cm, origin at X_WA) against the
     plate's top face (2 cm above B's origin, B kept level), force k * depth along -z on B."""

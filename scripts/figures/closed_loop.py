@@ -1,41 +1,55 @@
-"""Closed-loop stability (study: closed-loop): per scene and model, the verdict at each coupling
-stiffness and the largest stable one."""
+"""Closed-loop stability (study: closed-loop): per scene, model and stiffness rule, the verdict at
+each coupling stiffness and the largest stable one. With the config's `stiffness` axis (own or
+matched: model.stiffness in the scene reference) each model appears at its own stiffness and at
+the paper's model's, with the factor applied to its wrench."""
 from collections import defaultdict
 
-from .common import STABILITY, axis, figure, scene_name
+from .common import STABILITY, axis, figure, largest_stable, scene_name
 
 
 @figure(experiments=["closed-loop-stability"], outputs=["closed_loop_stability.png", "closed_loop_stability.md"])
 def closed_loop_stability(results):
-    rows = results.load("closed-loop-stability", STABILITY)
+    return stability_table(results, "closed-loop-stability", "closed_loop_stability")
+
+
+@figure(experiments=["closed-loop-matched"], outputs=["closed_loop_matched.png", "closed_loop_matched.md"])
+def closed_loop_matched(results):
+    return stability_table(results, "closed-loop-matched", "closed_loop_matched")
+
+
+# EXPERIMENT's stability.csv as a table of verdicts, saved as NAME.png and NAME.md.
+def stability_table(results, experiment, name):
+    rows = results.load(experiment, STABILITY)
     if not rows:
         return False
-    # (scene, model) -> k_vc -> the reasons of its unstable motions ("" when all were stable).
+    # (scene, model, stiffness rule) -> k_vc -> the reasons of its unstable motions ("" when all
+    # were stable); the same key -> the wrench scale.
     verdicts = defaultdict(lambda: defaultdict(list))
+    scales = {}
     stiffnesses = set()
+    rules = any(r.get(axis("stiffness")) for r in rows)
     for r in rows:
-        key = (scene_name(r.get(axis("scene"), "")), r[STABILITY.model])
+        key = (scene_name(r.get(axis("scene"), "")), r[STABILITY.model], r.get(axis("stiffness"), "") or "own")
         k = float(r[STABILITY.k_vc])
         stiffnesses.add(k)
+        scales[key] = float(r[STABILITY.wrench_scale])
         verdicts[key][k]
         if r[STABILITY.stable] != "1":
             verdicts[key][k].append(f"{r[STABILITY.verdict]} ({r[STABILITY.motion]})")
     stiffnesses = sorted(stiffnesses)
-    header = ["scene", "model"] + [f"{k:g} N/m" for k in stiffnesses] + ["largest stable k_VC"]
+    header = (["scene", "model"] + (["stiffness", "wrench scale"] if rules else [])
+              + [f"{k:g} N/m" for k in stiffnesses] + ["largest stable k_VC"])
     lines = []
-    for (scene, model), by_k in sorted(verdicts.items()):
-        line, largest, broken = [scene, model], None, False
-        for k in stiffnesses:
-            if k not in by_k:
-                line.append("")
-                continue
-            bad = by_k[k]
-            line.append(", ".join(bad) if bad else "ok")
-            broken = broken or bool(bad)
-            if not broken:
-                largest = k
+    for key, by_k in sorted(verdicts.items()):
+        scene, model, rule = key
+        line = [scene, model] + ([rule, f"{scales[key]:.3g}"] if rules else [])
+        line += [(", ".join(by_k[k]) or "ok") if k in by_k else "" for k in stiffnesses]
+        largest = largest_stable({k: not bad for k, bad in by_k.items()})
         line.append(f"{largest:g}" if largest is not None else "none")
         lines.append(line)
-    results.save_table(header, lines, "Closed-loop stability per scene and model (static virtual coupling, "
-                       "alpha 0.5, 1 kHz simulated; push, slide, corner)", "closed_loop_stability")
+    title = ("Closed-loop stability per scene and model (static virtual coupling, alpha 0.5, 1 kHz simulated; "
+             "push, slide, corner)")
+    if rules:
+        title += "; stiffness matched: every model scaled to push back like the paper's model on a reference press"
+    results.save_table(header, lines, title, name)
     return True

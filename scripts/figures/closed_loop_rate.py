@@ -5,18 +5,7 @@ rate; one row of panels per scene and damping rule (alpha per 1 ms, or per cycle
 sweeps loop.alpha_per_cycle)."""
 from collections import defaultdict
 
-from .common import STABILITY, axis, figure, model_line, models_in, plt, scene_name
-
-
-def largest_stable(by_k):
-    """The largest stiffness of BY_K (k_vc -> every motion stable) at which it and every smaller
-    one are stable, or None."""
-    largest = None
-    for k in sorted(by_k):
-        if not by_k[k]:
-            break
-        largest = k
-    return largest
+from .common import STABILITY, axis, figure, largest_stable, model_line, models_in, plt, scene_name
 
 
 @figure(experiments=["closed-loop-rate"], outputs=["closed_loop_rate.png", "closed_loop_rate_table.png", "closed_loop_rate_table.md"])

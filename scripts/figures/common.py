@@ -85,6 +85,17 @@ def scene_name(path):
     return os.path.splitext(os.path.basename(path))[0]
 
 
+# The largest stiffness of BY_K ({k_vc: every motion stable}) at which it and every smaller one
+# are stable, or None (closed-loop studies).
+def largest_stable(by_k):
+    largest = None
+    for k in sorted(by_k):
+        if not by_k[k]:
+            break
+        largest = k
+    return largest
+
+
 # The distinct values of KEY over ROWS, in the order they first appear.
 def in_order(rows, key):
     seen = []

@@ -5,8 +5,8 @@ for every study.
 - cycles.csv (study contact): |F| on the moving body along the trajectory, one panel per job
   (titled with the job's sweep values), one line per model: EXPERIMENT.png.
 - summary.csv, stability.csv, field_error.csv: a table per row of the file with the job's sweep
-  values and the columns that mean something for the rows present (a column that is empty or
-  -1, the "no value" of summary.csv, in every row is left out): EXPERIMENT_summary.png/.md
+  values and the columns that mean something for the rows present (a column empty in every row,
+  no value for any of them, is left out): EXPERIMENT_summary.png/.md
   (stability.csv: EXPERIMENT_stability, field_error.csv: EXPERIMENT_field_error).
 """
 import json
@@ -97,7 +97,7 @@ def draw_forces(results, experiment, rows):
 
 
 def _meaningful(rows, column):
-    return any(r.get(column, "") not in ("", "-1") for r in rows)
+    return any(r.get(column, "") != "" for r in rows)
 
 
 def draw_table(results, experiment, table, rows):

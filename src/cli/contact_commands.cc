@@ -1,6 +1,9 @@
-// `contactlab contact SCENE.yaml [--model NAME] [--pose-a ...] [--pose-b ...] [--q-a Q] [--q-b Q] [--json]`:
-// evaluates one contact query of a scene (Barbič & James 2008, sec. 2.1 and 3) and prints
-// the wrench on the field body, points in contact, nodes visited and level rendered.
+// `contactlab contact SCENE.yaml [--model NAME] [--pose-a ...] [--pose-b ...] [--touch DEPTH] [--q-a Q] [--q-b Q]
+// [--contacts] [--json]`: evaluates one contact query of a scene (Barbič & James 2008, sec. 2.1
+// and 3) and prints the wrench on the field body, points in contact, nodes visited and level
+// rendered; --contacts also the model's contacts (ContactModel::LatestContacts).
+// --touch first moves the field body toward the pointshell body until it is DEPTH deep, as
+// `session --touch` does (experiment/contact_placement.h).
 // `contactlab models`: the registered contact models, what each needs and what it is.
 #include <nlohmann/json.hpp>
 
@@ -14,6 +17,7 @@
 #include "cli/command_registry.h"
 #include "contact/contact_stats_fields.h"
 #include "contact/model_registry.h"
+#include "experiment/contact_placement.h"
 #include "experiment/reduced_coordinates.h"
 #include "experiment/scene_assets.h"
 #include "experiment/scene.h"
@@ -31,8 +35,52 @@ struct ContactArgs {
   std::string cache;
   bool no_cache = false;
   bool json = false;
+  bool contacts = false;  // --contacts: list the model's contacts
   long long budget = -1;
+  double touch = -1;  // --touch: penetration depth to move the field body to, metres (<= 0: not given)
 };
+
+// --contacts as text: one row per contact, world frame.
+void PrintContacts(const std::string& model_name, bool has_contacts, const ContactList& contacts) {
+  if (!has_contacts) {
+    std::printf("contacts: model %s has no contact list (its force is not a sum over discrete contacts)\n",
+                model_name.c_str());
+    return;
+  }
+  const bool surface = !contacts.areas.empty();
+  std::printf("contacts: %d (world frame; normal: direction of the force on the field body)\n", contacts.size());
+  if (contacts.not_kept > 0) std::printf("  (%lld more not listed)\n", static_cast<long long>(contacts.not_kept));
+  if (contacts.size() == 0) return;
+  std::printf("%14s %14s %14s %10s %10s %10s %14s%s\n", "x [m]", "y [m]", "z [m]", "nx", "ny", "nz", "depth [m]",
+              surface ? "      area [m^2]  pressure [Pa]" : "");
+  for (int i = 0; i < contacts.size(); ++i) {
+    const Eigen::Vector3d& p = contacts.points[std::size_t(i)];
+    const Eigen::Vector3d& n = contacts.normals[std::size_t(i)];
+    std::printf("%+14.7e %+14.7e %+14.7e %+10.6f %+10.6f %+10.6f %14.7e", p.x(), p.y(), p.z(), n.x(), n.y(), n.z(),
+                contacts.depths[std::size_t(i)]);
+    if (surface) std::printf(" %15.7e %14.7e", contacts.areas[std::size_t(i)], contacts.pressures[std::size_t(i)]);
+    std::printf("\n");
+  }
+}
+
+// --contacts --json: the contacts as {points, normals, depths[, areas, pressures], not_kept}.
+nlohmann::json ContactsJson(const ContactList& contacts) {
+  auto rows = [](const std::vector<Eigen::Vector3d>& v) {
+    nlohmann::json a = nlohmann::json::array();
+    for (const Eigen::Vector3d& x : v) a.push_back({x.x(), x.y(), x.z()});
+    return a;
+  };
+  nlohmann::json c;
+  c["points"] = rows(contacts.points);
+  c["normals"] = rows(contacts.normals);
+  c["depths"] = contacts.depths;
+  if (!contacts.areas.empty()) {
+    c["areas"] = contacts.areas;
+    c["pressures"] = contacts.pressures;
+  }
+  c["not_kept"] = contacts.not_kept;
+  return c;
+}
 
 void RunContact(const ContactArgs& args) {
   const Scene scene = LoadScene(RequireDataFile(args.scene));
@@ -51,11 +99,22 @@ void RunContact(const ContactArgs& args) {
   ContactQuery q;
   q.X_WA = args.pose_a.empty() ? scene.pointshell_body.pose : ParsePose(args.pose_a, "--pose-a");
   q.X_WB = args.pose_b.empty() ? scene.field_body.pose : ParsePose(args.pose_b, "--pose-b");
+  // --touch: the field body moved along the line from its origin to the pointshell body's.
+  if (args.touch > 0) {
+    const Eigen::Vector3d toward = q.X_WA.translation - q.X_WB.translation;
+    if (!(toward.norm() > 0)) {
+      Fail(args.scene + ": --touch", "the two bodies' origins coincide, so there is no direction to move the field body in");
+    }
+    q.X_WB = TouchAlong(scene, assets, true, q.X_WA, q.X_WB, toward, args.touch, args.scene + ": --touch");
+  }
   q.node_budget = args.budget >= 0 ? args.budget : scene.node_budget;
   ReducedVector reduced_force_B;
   const BodyDeformation deformation_A{q_A.get(), &reduced_force}, deformation_B{q_B.get(), &reduced_force_B};
   if (assets.A.deformable()) q.deformation_A = &deformation_A;
   if (assets.B.deformable()) q.deformation_B = &deformation_B;
+  // --contacts: room for every contact a query of these scenes makes (more are counted).
+  constexpr int kMaxContacts = 1 << 20;
+  const bool has_contacts = args.contacts && model->KeepContacts(kMaxContacts);
   const auto t0 = std::chrono::steady_clock::now();
   const ContactResult r = model->Evaluate(q);
   const double micros = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
@@ -64,6 +123,8 @@ void RunContact(const ContactArgs& args) {
   if (!r.on_B.force.allFinite() || !r.on_B.torque.allFinite() || !r.K_B.allFinite()) {
     Fail(model_name, "gave a non-finite wrench or stiffness at these poses and coordinates; nothing printed");
   }
+  ContactList contacts;
+  if (has_contacts) model->LatestContacts(&contacts);
 
   if (args.json) {
     nlohmann::json j;
@@ -92,6 +153,7 @@ void RunContact(const ContactArgs& args) {
     if (q.deformation_B != nullptr) {
       j["reduced_force_B"] = std::vector<double>(reduced_force_B.data(), reduced_force_B.data() + reduced_force_B.size());
     }
+    if (args.contacts) j["contacts"] = has_contacts ? ContactsJson(contacts) : nlohmann::json(nullptr);
     std::cout << j.dump(2) << "\n";
     return;
   }
@@ -119,6 +181,7 @@ void RunContact(const ContactArgs& args) {
     for (int j = 0; j < reduced_force_B.size(); ++j) std::printf(" %+.6g", reduced_force_B[j]);
     std::printf("\n");
   }
+  if (args.contacts) PrintContacts(model_name, has_contacts, contacts);
 }
 
 const CommandRegistration kContactCommands([](CLI::App& app) {
@@ -129,6 +192,10 @@ const CommandRegistration kContactCommands([](CLI::App& app) {
   cmd->add_option("--model", args->model, "contact model name (default: the scene's first model)");
   cmd->add_option("--pose-a", args->pose_a, "pose of the pointshell body: x,y,z,qw,qx,qy,qz (metres)");
   cmd->add_option("--pose-b", args->pose_b, "pose of the field body: x,y,z,qw,qx,qy,qz (metres)");
+  cmd->add_option("--touch", args->touch,
+                  "first move the field body toward the pointshell body until this deep, metres (from --pose-b or "
+                  "the scene's pose)")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--q-a", args->q_a, "deformation of body A held fixed: q1,...,qr or @FILE (default: rest)");
   cmd->add_option("--q-b", args->q_b, "deformation of body B: q1,...,qr or @FILE");
   cmd->add_option("--budget", args->budget, "node budget (warm threshold, >= 0); overrides the scene's")
@@ -136,6 +203,9 @@ const CommandRegistration kContactCommands([](CLI::App& app) {
   cmd->add_option("--cache", args->cache, "cache folder for fields and pointshells");
   cmd->add_flag("--no-cache", args->no_cache, "neither read nor write cached fields and pointshells");
   cmd->add_flag("--json", args->json, "print JSON (with the 6x6 gradient K_B)");
+  cmd->add_flag("--contacts", args->contacts,
+                "also list the model's contacts (point, normal, depth; area and pressure for pressure-field), world "
+                "frame; with --json under the key \"contacts\" (null for a model without a contact list)");
   cmd->callback([args] { RunContact(*args); });
 });
 

@@ -188,10 +188,16 @@ const CommandRegistration kRunCommands([](CLI::App& app) {
 // `contactlab params [--out FILE]`: every scene parameter, block by block, from the tables that
 // parse them (experiment/scene.h), as Markdown; docs/scene-reference.md is its output.
 // The sections of the studies that declare their keys in tables, one heading per study.
+// The experiment config's keys: those every study reads, then each study's sections and the
+// reference of their keys.
 std::string StudyReference() {
-  std::string s;
+  std::string s = "## Experiment configs\n\nThe top-level keys of an experiment config (`experiments/*.yaml`; "
+                  "an annotated example is in docs/experiments.md). Every study reads these:\n\n" +
+                  ConfigKeyTable(CommonConfigKeys());
   for (const Study& study : Studies()) {
-    if (study.reference) s += "## Study `" + study.name + "`\n\n" + study.description + ".\n\n" + study.reference();
+    s += "## Study `" + study.name + "`\n\n" + study.description + ". Its own top-level keys:\n\n" +
+         ConfigKeyTable(study.sections);
+    if (study.reference) s += study.reference();
   }
   return s;
 }
@@ -243,7 +249,9 @@ const CommandRegistration kColumns([](CLI::App& app) {
                     << c["meaning"].get<std::string>() << " |\n";
           if (table->keys != TableKeys::kNone && c["name"] == "job") {
             std::cout << "| (sweep axes) | | one column per axis of the config's sweep"
-                      << (table->keys == TableKeys::kJobAndOtherAxes ? ", except those named like a column below" : "")
+                      << (table->keys == TableKeys::kJobAndOtherAxes
+                              ? ", except those named like a column below"
+                              : "; one named like a column below is written sweep.NAME")
                       << " |\n";
           }
         }

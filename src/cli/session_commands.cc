@@ -62,6 +62,7 @@ struct SessionArgs {
   std::string cache;
   double duration = 10;
   double rate = -1;  // --rate: the loop's rate, Hz (sets model.cycle_seconds); <= 0: the scene's
+  long long budget = -1;  // --budget: the node budget (sets the scene's node_budget); < 0: the scene's
   double k_vc = -1;
   double touch = -1;
   bool no_realtime = false;
@@ -134,11 +135,13 @@ AssetOptions SessionAssetOptions(const SessionArgs& args) {
   return options;
 }
 
-// The session's scene: the file, with --rate's cycle (1 / HZ) as its model.cycle_seconds. Throws
-// Error naming the scene file when its cycle gives no loop rate.
+// The session's scene: the file, with --rate's cycle (1 / HZ) as its model.cycle_seconds and
+// --budget as its node_budget. Throws Error naming the scene file when its cycle gives no loop
+// rate.
 Scene LoadSessionScene(const SessionArgs& args) {
   Scene scene = LoadScene(RequireDataFile(args.scene));
   if (args.rate > 0) scene.model.cycle_seconds = 1.0 / args.rate;
+  if (args.budget >= 0) scene.node_budget = args.budget;
   (void)LoopRateOfCycle(scene.model.cycle_seconds, args.scene + ": model.cycle_seconds");
   return scene;
 }
@@ -437,6 +440,10 @@ const CommandRegistration kSessionCommands([](CLI::App& app) {
                   "the haptic loop's rate, Hz, up to 100000: sets the scene's model.cycle_seconds to 1 / HZ "
                   "(default: the scene's, 1 kHz unless it sets another)")
       ->check(CLI::Range(1.0, 100000.0));
+  cmd->add_option("--budget", args->budget,
+                  "node budget per cycle (the paper's graceful degradation, sec. 3.3; 0: none); overrides the "
+                  "scene's node_budget")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--log", args->log, "CSV log of poses, wrenches and timings (replayable trajectory)");
   cmd->add_option("--model", args->model, "contact model (default: the scene's first)");
   cmd->add_option("--k-vc", args->k_vc, "virtual coupling stiffness, N/m")->check(CLI::PositiveNumber);

@@ -73,6 +73,27 @@ struct ContactSurface {
   std::vector<float> pressure;
 };
 
+// The contacts a model used in one query, one entry per contact, world frame, SI units
+// (ContactModel::KeepContacts / LatestContacts). Entry i: POINTS[i] (metres), NORMALS[i] the
+// unit direction of the force on B at that contact, DEPTHS[i] its penetration depth (metres,
+// >= 0). A model whose contacts are pieces of a surface (pressure-field) also fills AREAS[i]
+// (m^2) and PRESSURES[i] (mean pressure over the piece, Pa); the others leave both empty. What
+// a model's contacts are is documented beside the model and in docs/models.md.
+struct ContactList {
+  std::vector<Eigen::Vector3d> points;   // (N) world frame, metres
+  std::vector<Eigen::Vector3d> normals;  // (N) world frame, unit: direction of the force on B
+  std::vector<double> depths;            // (N) metres, >= 0
+  std::vector<double> areas;             // (N) m^2, or empty
+  std::vector<double> pressures;         // (N) Pa, or empty
+  // Contacts the model used that did not fit the room KeepContacts reserved (not listed).
+  std::int64_t not_kept = 0;
+  int size() const { return int(points.size()); }
+  void Clear() {
+    points.clear(), normals.clear(), depths.clear(), areas.clear(), pressures.clear();
+    not_kept = 0;
+  }
+};
+
 // What one pointshell point did in a model's latest query (for display, as the paper's Fig. 2).
 enum class PointState : std::uint8_t {
   kNotEvaluated = 0,  // culled with its subtree, asleep under coherence, or below the level rendered
@@ -123,6 +144,19 @@ class ContactModel {
     out->corners.clear();
     out->pressure.clear();
   }
+  // A model with discrete contacts (ContactList) keeps up to MAX_CONTACTS of them in every
+  // later Evaluate (0: none) and returns true; a model without any (a volume integral, a
+  // proxy spring with no contact set) returns false. Call it outside the haptic cycle: it
+  // reserves the memory, so that Evaluate still allocates nothing; contacts past MAX_CONTACTS
+  // are counted (ContactList::not_kept), not kept.
+  virtual bool KeepContacts(int max_contacts) {
+    (void)max_contacts;
+    return false;
+  }
+  // The contacts kept of the latest Evaluate, world frame, replacing OUT's contents; empty
+  // when the model keeps none (or KeepContacts was not called before that Evaluate). Not for
+  // the haptic cycle: it may allocate.
+  virtual void LatestContacts(ContactList* out) const { out->Clear(); }
 };
 
 }  // namespace contactlab

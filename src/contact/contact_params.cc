@@ -26,6 +26,18 @@ const ParamTable<ContactParams>& ContactParamTable() {
           P::Number("lipschitz", PARAM_MEMBER(lipschitz), AtLeast(1), NoUpperBound(),
                     "bound on |grad d| assumed by culling and coherence (paper: 1)")
               .Sweepable().Example("1.5"),
+          P::Mapped("stiffness", PARAM_MEMBER(stiffness),
+                    std::vector<std::pair<std::string, StiffnessRule>>{{"own", StiffnessRule::kOwn},
+                                                                       {"matched", StiffnessRule::kMatched}},
+                    "own: each model's stiffness keys as given; matched: every model other than the paper's "
+                    "pointshell has its wrench (force, torque, gradient) scaled by the one factor that makes it "
+                    "push back like the paper's model on a reference press (A moved toward B's origin from first "
+                    "touch to match_depth; the least-squares fit over four depths), the same as scaling the "
+                    "model's own stiffness keys, since every model's wrench is linear in them")
+              .Sweepable().Example("matched"),
+          P::Number("match_depth", PARAM_MEMBER(match_depth), Above(0), AtMost(1),
+                    "stiffness: matched: how far past first touch the reference press goes")
+              .Unit("m").Sweepable().Example("0.002"),
       });
   return table;
 }

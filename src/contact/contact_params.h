@@ -9,12 +9,20 @@
 
 namespace contactlab {
 
+// How a model's stiffness is set in a scene (experiment/stiffness_match.h).
+enum class StiffnessRule {
+  kOwn,      // each model's own stiffness keys as given
+  kMatched,  // every model's wrench scaled so a reference press gives the paper's model's force
+};
+
 struct ContactParams {
   PenaltyParams penalty;         // k_C and L (sec. 2.1)
   bool coherence = false;        // temporal coherence (sec. 3), in the models that keep it
   double max_point_speed = 1.0;  // m/s, largest speed of any point of A relative to B
   double cycle_seconds = 1e-3;   // duration of one haptic cycle, seconds
   double lipschitz = 1.0;        // bound on |grad d| assumed by culling and coherence (paper: 1)
+  StiffnessRule stiffness = StiffnessRule::kOwn;
+  double match_depth = 1e-3;     // metres past first touch of the reference press (kMatched)
 };
 
 // The parameters above as a table (util/param_table.h): the scene's model section reads them

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <map>
 
+#include "contact/unbuilt_models.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -54,6 +55,9 @@ void CheckContactModel(std::string_view name, const ContactParams& params, const
                        std::string_view where) {
   const ContactModelEntry* entry = FindContactModel(name);
   if (entry == nullptr) {
+    if (const std::optional<std::string> reason = UnbuiltContactModelReason(name)) {
+      Fail(where, "contact model '" + std::string(name) + "' is not built into this program: " + *reason);
+    }
     std::string known;
     for (const std::string& n : ContactModelNames()) known += (known.empty() ? "" : ", ") + n;
     for (const std::string& n : ReferenceModelNames()) known += (known.empty() ? "" : ", ") + n + " (reference)";

@@ -22,6 +22,9 @@ class CsvLine {
   void Num(const char* format, double v) { Format(format, v); }
   void Int(long long v) { Format("%lld", v); }
   void Empty() { Text({}); }
+  // V, or an empty cell when V is negative: a quantity that is never negative and was not
+  // measured (no reference, no force), written as every table writes a missing value.
+  void NumOrEmpty(const char* format, double v) { v >= 0 ? Format(format, v) : Empty(); }
   // One cell of VALUES each printed with FORMAT, separated by spaces (empty cell for none).
   void Numbers(const char* format, std::span<const double> values) {
     if (!first_) *out_ += ',';

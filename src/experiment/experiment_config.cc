@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "contact/model_registry.h"
+#include "contact/unbuilt_models.h"
 #include "experiment/study.h"
 #include "util/atomic_file.h"
 #include "util/data_path.h"
@@ -142,6 +143,7 @@ struct JobDocuments {
   YAML::Node config;
   YAML::Node scene;
   std::string scene_file;
+  std::string scene_text;  // the scene file's text (empty: an inline scene)
   bool roles_swapped = false;
 };
 
@@ -149,7 +151,8 @@ struct JobDocuments {
 // document.
 void LoadSceneDocument(const std::string& name, const std::string& config_file, JobDocuments* docs) {
   const std::filesystem::path file = RequireDataFile(name, FolderOf(config_file));
-  docs->scene = YAML::Clone(ConfigNode::LoadFile(file).yaml());
+  docs->scene_text = ConfigNode::ReadText(file);
+  docs->scene = ConfigNode::LoadString(docs->scene_text, file.string()).yaml();
   docs->scene_file = file.string();
 }
 
@@ -234,7 +237,18 @@ std::string FieldBodyName(const YAML::Node& scene) {
 
 // Builds job INDEX with the axis values PICK (one index per axis) from CONFIG's documents.
 Job BuildJob(const ExperimentConfig& config, int index, const std::vector<std::size_t>& pick) {
-  JobDocuments docs{YAML::Clone(config.document), YAML::Clone(config.scene_document), config.scene_file};
+  // Each job's own copy of the documents, parsed again from their text where it is known so
+  // every node keeps its line (YAML::Clone drops the marks: an error in a job's trajectory
+  // would otherwise be reported at line 1).
+  JobDocuments docs{config.document_text.empty() ? YAML::Clone(config.document) : YAML::Load(config.document_text),
+                    {}, config.scene_file, config.scene_text};
+  if (!config.scene_text.empty()) {
+    docs.scene = YAML::Load(config.scene_text);
+  } else if (config.scene_file == config.file && !config.document_text.empty()) {
+    docs.scene = YAML::Load(config.document_text)["scene"];  // an inline scene, from its own parse
+  } else {
+    docs.scene = YAML::Clone(config.scene_document);
+  }
   auto at = [&](std::size_t a) {
     return config.file + ": sweep." + config.sweep[a].name + " value '" + config.sweep[a].values[pick[a]] + "'";
   };
@@ -356,7 +370,16 @@ ExperimentConfig LoadExperimentConfig(const std::filesystem::path& config_file, 
   std::vector<std::string> overrides;
   if (!profile.empty()) {
     const YAML::Node p = root["profiles"] ? root["profiles"][profile] : YAML::Node();
-    if (!p || !p.IsMap()) Fail(config_file.string(), "has no profile '" + profile + "' (under 'profiles')");
+    if (!p || !p.IsMap()) {
+      std::string known;
+      if (root["profiles"] && root["profiles"].IsMap()) {
+        for (const auto& kv : root["profiles"]) {
+          if (kv.first.IsScalar()) known += (known.empty() ? "" : ", ") + kv.first.Scalar();
+        }
+      }
+      Fail(config_file.string(), "has no profile '" + QuoteToken(profile) + "' (under 'profiles'); " +
+                                     (known.empty() ? std::string("it has no profiles") : "its profiles: " + known));
+    }
     for (const auto& kv : p) {
       YAML::Emitter e;
       e << YAML::Flow << kv.second;
@@ -370,9 +393,10 @@ ExperimentConfig LoadExperimentConfig(const std::filesystem::path& config_file, 
   const std::string resolved = emitter.c_str();
   // Re-parse the emitted text so error line numbers refer to the resolved config when
   // overrides were given, and to the file itself otherwise.
-  const ConfigNode node = overrides.empty() ? ConfigNode::LoadString(text, config_file.string())
-                                            : ConfigNode::LoadString(resolved, config_file.string() + " (with --set)");
-  return ParseExperimentConfig(node, resolved);
+  const std::string& parsed = overrides.empty() ? text : resolved;
+  const ConfigNode node =
+      ConfigNode::LoadString(parsed, overrides.empty() ? config_file.string() : config_file.string() + " (with --set)");
+  return ParseExperimentConfig(node, resolved, parsed);
 }
 
 namespace {
@@ -391,6 +415,13 @@ void ParseReference(const ConfigNode& root, ExperimentConfig* config) {
     c.reference_model = root.String("reference", "");
   }
   c.reference_every = int(root.PositiveInt("reference_every", 1));
+  if (!c.reference_model.empty() && FindContactModel(c.reference_model) == nullptr &&
+      !UnbuiltContactModelReason(c.reference_model)) {
+    const ConfigNode r = root.Get("reference");
+    const ConfigNode named = r.IsMap() ? r.Get("model") : r;
+    CheckContactModel(c.reference_model, c.scene.model, c.scene.model_params, c.scene.pointshell_body.name, false,
+                      c.scene.field_body.name, false, named.Location());  // throws, naming the known models
+  }
 }
 
 // The number of jobs of SWEEP (the product of its axes' lengths), refused above kMaxSweepJobs
@@ -477,14 +508,42 @@ void CheckEachSweepValue(const ExperimentConfig& c) {
   }
 }
 
-// What a job's registered models refuse of its scene (a deformable body a model treats as
-// rigid, coherence against a deformed field, ...), said before any job builds its assets. Models
-// not registered in this program are left to the run.
-void CheckModelsAgainstScene(const ExperimentConfig& c, const Job& job) {
+// Where model NAME was written in the config ROOT: its entry of the models list, or of a sweep
+// over models (`model:` or `models:`), with file and line; the scene file's models list when the
+// config names it nowhere (the job's models are then the scene's).
+std::string ModelLocation(const ConfigNode& root, const Job& job, const std::string& name) {
+  std::vector<ConfigNode> lists;
+  if (auto m = root.Find("models")) lists.push_back(*m);
+  if (auto sweep = root.Find("sweep"); sweep && sweep->IsMap()) {
+    for (const char* key : {"model", "models"}) {
+      if (auto axis = sweep->Find(key)) lists.push_back(*axis);
+    }
+  }
+  for (const ConfigNode& list : lists) {
+    if (!list.IsSequence()) continue;
+    for (const ConfigNode& e : list.Elements()) {
+      if (e.IsScalar() && e.AsString() == name) return e.Location();
+    }
+  }
+  if (!lists.empty()) return lists.front().Location();
+  return job.scene.file + ": models";
+}
+
+// What a job's models refuse of its scene (a name no model is registered under, a deformable
+// body a model treats as rigid, coherence against a deformed field, ...), said before any job
+// builds its assets. An unknown name is blamed on the list that holds it (the config's, or its
+// scene's when the config names no models), not on the scene the run would build it for.
+void CheckModelsAgainstScene(const ExperimentConfig& c, const ConfigNode& root, const Job& job) {
   const Scene& s = job.scene;
   const std::string where = c.file + (c.sweep.empty() ? std::string() : " (job " + job.Label() + ")");
   for (const std::string& name : job.models) {
-    if (FindContactModel(name) == nullptr) continue;
+    // A model this program was built without (contact/unbuilt_models.h) is left to the run,
+    // so that listing and expanding jobs works in every build.
+    if (FindContactModel(name) == nullptr && UnbuiltContactModelReason(name)) continue;
+    if (FindContactModel(name) == nullptr) {
+      CheckContactModel(name, s.model, s.model_params, s.pointshell_body.name, false, s.field_body.name, false,
+                        ModelLocation(root, job, name));  // throws, naming the known models
+    }
     CheckContactModel(name, s.model, s.model_params, s.pointshell_body.name, s.pointshell_body.deformable.has_value(),
                       s.field_body.name, s.field_body.deformable.has_value(), where);
   }
@@ -492,22 +551,22 @@ void CheckModelsAgainstScene(const ExperimentConfig& c, const Job& job) {
 
 }  // namespace
 
-ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resolved_yaml) {
+ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resolved_yaml, std::string document_text) {
   // The keys every study reads, then those of the config's study; a key only other studies read
   // is a mistake, not ignored.
-  std::vector<std::string> keys = {"name", "description", "study", "scene", "metrics", "sweep", "profiles"};
+  std::vector<std::string> keys;
+  for (const ConfigKey& k : CommonConfigKeys()) keys.push_back(k.key);
   ExperimentConfig c;
   c.study = root.OneOf("study", c.study, StudyNames());
   const Study& study = *FindStudy(c.study);
-  keys.insert(keys.end(), study.sections.begin(), study.sections.end());
+  for (const ConfigKey& k : study.sections) keys.push_back(k.key);
   for (const Study& other : Studies()) {
-    for (const std::string& key : other.sections) {
+    for (const ConfigKey& section : other.sections) {
+      const std::string& key = section.key;
       if (std::find(keys.begin(), keys.end(), key) != keys.end() || !root.Has(key)) continue;
       std::string readers;
       for (const Study& s : Studies()) {
-        if (std::find(s.sections.begin(), s.sections.end(), key) != s.sections.end()) {
-          readers += (readers.empty() ? "" : ", ") + s.name;
-        }
+        if (s.Reads(key)) readers += (readers.empty() ? "" : ", ") + s.name;
       }
       root.Get(key).Fail("is not read by study: " + c.study + " (it belongs to study: " + readers + ")");
     }
@@ -519,6 +578,7 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
   c.file = root.file();
   c.resolved_yaml = std::move(resolved_yaml);
   c.document = YAML::Clone(root.yaml());
+  c.document_text = std::move(document_text);
   c.name = root.String("name", std::filesystem::path(root.file()).stem().string());
   // The name chooses the results folder results/NAME: a plain name, never a path.
   const bool plain = !c.name.empty() && c.name != "." && c.name != ".." &&
@@ -532,6 +592,7 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
     LoadSceneDocument(scene.AsString(), root.file(), &docs);
     c.scene_document = docs.scene;
     c.scene_file = docs.scene_file;
+    c.scene_text = docs.scene_text;
   } else {
     scene.ExpectMap();
     c.scene_document = YAML::Clone(scene.yaml());
@@ -560,7 +621,7 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
   CheckEachSweepValue(c);
   // Every job, built one at a time: what its models refuse of its scene, then its study's checks.
   ForEachJob(c, [&](const Job& job) {
-    CheckModelsAgainstScene(c, job);
+    CheckModelsAgainstScene(c, root, job);
     if (study.check) study.check(c, root, job);
   });
   return c;

@@ -79,6 +79,10 @@ struct ExperimentConfig {
   YAML::Node document;         // the config after --set overrides
   YAML::Node scene_document;   // the scene's document (the file's, or the inline mapping)
   std::string scene_file;      // where the scene was read from (error messages)
+  // The texts DOCUMENT and a scene file's SCENE_DOCUMENT were parsed from (empty: unknown, or an
+  // inline scene): each job parses its own copy from them, keeping every key's line for errors.
+  std::string document_text;
+  std::string scene_text;
   Scene scene;                 // the scene without sweep values
   std::vector<std::string> models;
   std::string moving_body;     // body name
@@ -113,7 +117,10 @@ struct Job {
 ExperimentConfig LoadExperimentConfig(const std::filesystem::path& config_file,
                                       const std::vector<std::string>& overrides = {},
                                       const std::string& profile = "");
-ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resolved_yaml);
+// DOCUMENT_TEXT: the text ROOT was parsed from, when known (each job is parsed from it again,
+// keeping its keys' lines for errors).
+ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resolved_yaml,
+                                       std::string document_text = "");
 
 // The most jobs a sweep may have (the product of its axes' lengths). A config over it is
 // refused when it loads, before any job is built: every job is parsed and checked at load.

@@ -26,7 +26,11 @@ std::string ResultTable::Header(const ExperimentConfig& config) const {
   if (keys != TableKeys::kNone) {
     for (const ResultColumn& c : JobKeyColumns()) line.Text(c.name);
     for (const SweepAxis& a : config.sweep) {
-      if (keys == TableKeys::kJobAndAllAxes || Find(a.name) == nullptr) line.Text(a.name);
+      if (Find(a.name) == nullptr) {
+        line.Text(a.name);
+      } else if (keys == TableKeys::kJobAndAllAxes) {
+        line.Text(kSweepColumnPrefix + a.name);
+      }
     }
   }
   for (const ResultColumn& c : columns) line.Text(c.name);
@@ -40,6 +44,10 @@ void ResultTable::AppendKeys(const ExperimentConfig& config, const Job& job, Csv
   for (const auto& [axis, value] : job.axis_values) {
     if (keys == TableKeys::kJobAndAllAxes || Find(axis) == nullptr) line->Text(value);
   }
+}
+
+std::string ResultTable::AxisColumn(const std::string& axis) const {
+  return Find(axis) == nullptr ? axis : kSweepColumnPrefix + axis;
 }
 
 const std::vector<ResultColumn>& JobKeyColumns() {

@@ -23,12 +23,18 @@ struct ResultColumn {
   std::string meaning;  // one line: what the value is
 };
 
-// Which leading columns a table's rows carry before its declared columns.
+// Which leading columns a table's rows carry before its declared columns. A sweep axis is a
+// column named as the config's sweep names it ("scene", "trajectory.speed"), except one named
+// like a column the table declares ("points", the model's own count): that axis is written
+// "sweep.points", as the config spells it, so every header is unique.
 enum class TableKeys {
   kNone,              // none: the declared columns alone (a table derived from another)
   kJobAndAllAxes,     // experiment, job, then every sweep axis of the config
   kJobAndOtherAxes,   // experiment, job, then the sweep axes not named like a declared column
 };
+
+// The prefix of a sweep axis column named like a declared column.
+inline const std::string kSweepColumnPrefix = "sweep.";
 
 struct ResultTable {
   std::string file;     // e.g. "summary.csv"
@@ -41,6 +47,9 @@ struct ResultTable {
   // NAME, for a reader naming a column it reads; a name the table does not declare is a
   // programming error (std::logic_error).
   const std::string& Column(const std::string& name) const;
+  // The column holding sweep axis AXIS in this table (AXIS, or "sweep." AXIS when the table
+  // declares a column of that name).
+  std::string AxisColumn(const std::string& axis) const;
   // The header line (with its line break) of the table written for CONFIG.
   std::string Header(const ExperimentConfig& config) const;
   // Appends the key cells of a row of JOB of CONFIG to LINE (nothing for TableKeys::kNone).

@@ -7,6 +7,7 @@
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <type_traits>
 
@@ -348,7 +349,7 @@ const ParamTable<BodySpec>& BodyParams() {
   std::vector<ParamRow<BodySpec>> rows = {
           P::Text("name", PARAM_MEMBER(name), "the body's name (default: its mesh)"),
           P::Custom("mesh", "text", "a file on the data search path, or a procedural shape \"sphere:0.05\"",
-                    "the body's surface (required)",
+                    "the body's surface (required); Python's Scene.from_dict also takes a contactlab.Mesh",
                     [](const ConfigNode& v, BodySpec* b) {
                       b->mesh = v.AsString();
                       b->mesh_where = v.Location();
@@ -361,7 +362,7 @@ const ParamTable<BodySpec>& BodyParams() {
               .Shapes(kAll)
               .Example("true"),
           P::Custom("pose", "pose", "[x, y, z, qw, qx, qy, qz] or {position, rotation | rotation_vector}",
-                    "the body's pose in the world at the scene's start",
+                    "the body's pose in the world at the scene's start (its quaternion of unit length, within 1e-6)",
                     [](const ConfigNode& v, BodySpec* b) { b->pose = ParsePoseNode(v); }, nullptr,
                     [](const BodySpec&) { return std::string("identity"); })
               .Example("[0, 0, 0.1, 1, 0, 0, 0]"),
@@ -401,8 +402,8 @@ Pose ParsePoseNode(const ConfigNode& n) {
   if (n.IsSequence()) {
     const std::vector<double> v = n.AsDoubles();
     if (v.size() != 7) n.Fail("a pose list needs 7 numbers x, y, z, qw, qx, qy, qz");
-    Eigen::Quaterniond q(v[3], v[4], v[5], v[6]);
-    if (q.norm() < 1e-12) n.Fail("the quaternion is zero");
+    const Eigen::Quaterniond q(v[3], v[4], v[5], v[6]);
+    if (const std::optional<std::string> e = NonUnitQuaternionError(q)) n.Fail(*e);
     return {q.normalized(), Eigen::Vector3d(v[0], v[1], v[2])};
   }
   n.ExpectKeys({"position", "rotation", "rotation_vector"});
@@ -416,8 +417,8 @@ Pose ParsePoseNode(const ConfigNode& n) {
   if (auto r = n.Find("rotation")) {
     const std::vector<double> v = r->AsDoubles();
     if (v.size() != 4) r->Fail("needs a quaternion qw, qx, qy, qz");
-    Eigen::Quaterniond q(v[0], v[1], v[2], v[3]);
-    if (q.norm() < 1e-12) r->Fail("the quaternion is zero");
+    const Eigen::Quaterniond q(v[0], v[1], v[2], v[3]);
+    if (const std::optional<std::string> e = NonUnitQuaternionError(q)) r->Fail(*e);
     pose.rotation = q.normalized();
   }
   if (auto r = n.Find("rotation_vector")) {
@@ -430,6 +431,12 @@ Pose ParsePoseNode(const ConfigNode& n) {
 
 Scene ParseScene(const ConfigNode& n) {
   RegisterContactModels();  // a scene names models and their keys: every model the build holds
+  // An experiment config where a scene belongs (`contactlab contact CONFIG.yaml`): it names a
+  // scene instead of holding bodies, and its keys would otherwise read as unknown scene keys.
+  if (n.path().empty() && n.IsMap() && n.Has("scene") && !n.Has("bodies")) {
+    Fail(n.file(), "this is an experiment config (it names a scene and has no bodies): use `contactlab run " +
+                       n.file() + "` (a scene is a file like data/scenes/*.yaml)");
+  }
   n.ExpectKeys({"name", "bodies", "model", "models"});
   Scene scene;
   scene.file = n.file();

@@ -41,6 +41,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -52,6 +53,7 @@
 #include "reduced/reduced_state.h"
 #include "deform/stvk_fem.h"
 #include "geometry/pose.h"
+#include "geometry/triangle_mesh.h"
 #include "util/config_node.h"
 #include "util/param_table.h"
 #include "util/param_values.h"
@@ -105,6 +107,10 @@ struct BodySpec {
   std::string name;
   std::string mesh;                  // file name (data search path) or "shape:params"
   std::string mesh_where;            // "FILE:LINE: bodies[i].mesh", for errors about the mesh
+  // A mesh held in memory (Python's contactlab.Mesh, another tool's arrays): when set, the body
+  // takes it instead of reading MESH, which then only names it; scale and center still apply.
+  // Cached fields and pointshells are keyed by its content, as for a file.
+  std::shared_ptr<const TriangleMesh> mesh_data;
   double scale = 1.0;
   bool center = false;
   Pose pose;                         // X_WBody at the scene's start
@@ -164,7 +170,8 @@ Scene LoadScene(const std::filesystem::path& file);
 Scene WithModelSection(Scene scene, const ConfigNode& node);
 
 // Reads a pose given as [x,y,z,qw,qx,qy,qz] or {position: [..], rotation: [qw,qx,qy,qz]}
-// or {position: [..], rotation_vector: [..]} (radians).
+// or {position: [..], rotation_vector: [..]} (radians). The quaternion must be unit length
+// (NonUnitQuaternionError); throws Error naming NODE's file and line otherwise.
 Pose ParsePoseNode(const ConfigNode& node);
 
 }  // namespace contactlab

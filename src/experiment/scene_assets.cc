@@ -7,6 +7,8 @@
 #include <sstream>
 
 #include "contact/register_contact_models.h"
+#include "experiment/stiffness_match.h"
+#include "geometry/mesh_from_arrays.h"
 #include "geometry/mesh_io.h"
 #include "geometry/procedural_shapes.h"
 #include "pointshell/build_pointshell.h"
@@ -70,14 +72,46 @@ fs::path DefaultCacheDir() {
   return fs::temp_directory_path() / "contactlab-cache";
 }
 
+namespace {
+
+// Fails naming WHERE when a coordinate of MESH (placed: scaled and centred) exceeds kMaxCoordinate.
+void CheckPlacedMesh(const TriangleMesh& mesh, const std::string& where) {
+  double largest = 0;
+  for (const Eigen::Vector3d& p : mesh.vertices) largest = std::max(largest, p.cwiseAbs().maxCoeff());
+  if (!(largest <= kMaxCoordinate)) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "coordinates out of range: |coordinate| reaches %.3g m after scaling (the limit is %.0e m)",
+                  largest, kMaxCoordinate);
+    Fail(where, buf);
+  }
+}
+
+}  // namespace
+
 TriangleMesh LoadBodyMesh(const BodySpec& body, const fs::path& mesh_dir) {
   const std::string where = "body '" + body.name + "'";
+  // Errors name the scene file (or "<dict>"), line and key when the body came from a scene.
+  const std::string mesh_where = body.mesh_where.empty() ? where + " mesh" : body.mesh_where;
   TriangleMesh mesh;
+  if (body.mesh_data) {
+    // An in-memory mesh, checked as the readers check a file (geometry/mesh_from_arrays.h), placed
+    // as LoadMesh places a file's: p <- s p - c (c the scaled box centre), nothing done at scale 1
+    // without centring, so the same mesh from arrays and from a file has the same vertices, bit
+    // for bit, and the same cache key.
+    const std::string data_where = mesh_where + ": mesh '" + QuoteToken(body.mesh_data->name) + "'";
+    CheckMeshContent(*body.mesh_data, data_where);
+    mesh = *body.mesh_data;
+    const double s = body.scale;
+    const Eigen::Vector3d c = body.center ? Eigen::Vector3d(s * mesh.Bounds().center()) : Eigen::Vector3d::Zero();
+    if (s != 1.0 || body.center) {
+      for (Eigen::Vector3d& p : mesh.vertices) p = s * p - c;
+    }
+    CheckPlacedMesh(mesh, data_where);
+    return mesh;
+  }
   const bool procedural = body.mesh.find(':') != std::string::npos && !FindDataFile(body.mesh, mesh_dir);
   if (procedural) {
-    // Errors name the scene file, line and key when the body came from a scene.
-    const std::string shape_where =
-        (body.mesh_where.empty() ? where + " mesh" : body.mesh_where) + ": '" + QuoteToken(body.mesh) + "'";
+    const std::string shape_where = mesh_where + ": '" + QuoteToken(body.mesh) + "'";
     try {
       mesh = MakeShape(body.mesh, shape_where);
     } catch (const Error& e) {
@@ -90,14 +124,7 @@ TriangleMesh LoadBodyMesh(const BodySpec& body, const fs::path& mesh_dir) {
       mesh.Transform(1.0, Eigen::Matrix3d::Identity(), -c);
     }
     mesh.Transform(body.scale, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero());
-    double largest = 0;
-    for (const Eigen::Vector3d& p : mesh.vertices) largest = std::max(largest, p.cwiseAbs().maxCoeff());
-    if (!(largest <= kMaxCoordinate)) {
-      char buf[160];
-      std::snprintf(buf, sizeof buf, "coordinates out of range: |coordinate| reaches %.3g m after scaling (the limit is %.0e m)",
-                    largest, kMaxCoordinate);
-      Fail(shape_where, buf);
-    }
+    CheckPlacedMesh(mesh, shape_where);
   } else {
     MeshLoadOptions options;
     options.scale = body.scale;
@@ -166,6 +193,17 @@ std::shared_ptr<const DistanceField> BodyAssets::field() {
         o.band_voxels = f.band;
         return BuildDistanceField(*mesh(), o);
       });
+  // A mesh with holes is not refused in mode auto: it silently takes the polygon-soup pipeline,
+  // whose surface is an offset band around the triangles, so contact starts early and the
+  // forces differ from a closed mesh's. Said every time the field is used, built or cached.
+  if (f.mode == "auto" && field_->info().mode == "soup") {
+    std::fprintf(stderr,
+                 "warning: body '%s' (mesh %s) is not watertight: its distance field is the polygon-soup one, "
+                 "whose surface lies %.3g m outside the triangles, so contact starts that far out and forces "
+                 "differ from a closed mesh's; close the mesh (`contactlab mesh-info` counts its holes), or set "
+                 "field.mode: soup to choose this\n",
+                 spec_.name.c_str(), spec_.mesh.c_str(), field_->info().offset);
+  }
   return field_;
 }
 
@@ -279,8 +317,9 @@ SceneDynamics MakeSceneDynamics(SceneAssets& assets, double dt) {
 
 std::unique_ptr<ContactModel> MakeSceneContactModel(std::string_view name, const Scene& scene, SceneAssets& assets) {
   RegisterContactModels();
-  return MakeContactModel(name, ContactModelInputs{assets.A, assets.B, scene.model, scene.model_params},
-                          scene.file.empty() ? std::string_view("scene") : std::string_view(scene.file));
+  return ApplyStiffnessRule(MakeContactModel(name, ContactModelInputs{assets.A, assets.B, scene.model, scene.model_params},
+                                             scene.file.empty() ? std::string_view("scene") : std::string_view(scene.file)),
+                            name, scene, assets);
 }
 
 }  // namespace contactlab

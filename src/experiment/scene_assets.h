@@ -48,8 +48,9 @@ std::filesystem::path DefaultCacheDir();
 // Reads a body's mesh: a file through the data search path, or a procedural shape written
 // "sphere:R[,subdivisions]", "box:HX,HY,HZ", "torus:MAJOR,MINOR", "capsule:R,HALF_LENGTH",
 // "bumpy-plate:SIZE,THICKNESS,BUMPS,HEIGHT[,RESOLUTION]" (metres; scale still applies).
-// Applies the body's scale and centring. MESH_DIR (the scene file's folder) is searched before
-// the rest of the data search path. Throws Error naming the body and the mesh.
+// A body with mesh_data takes that in-memory mesh instead (BodySpec). Applies the body's scale
+// and centring. MESH_DIR (the scene file's folder) is searched before the rest of the data
+// search path. Throws Error naming the body and the mesh.
 TriangleMesh LoadBodyMesh(const BodySpec& body, const std::filesystem::path& mesh_dir = {});
 
 // One scene body's data for the contact models (contact/model_registry.h ContactBody),
@@ -134,8 +135,9 @@ struct SceneDynamics {
 SceneDynamics MakeSceneDynamics(SceneAssets& assets, double dt);
 
 // Makes the registered contact model NAME between SCENE's bodies, with the scene's model
-// parameters; only what the model needs is built. Throws Error naming the scene file when NAME
-// is unknown.
+// parameters; only what the model needs is built. Under `model.stiffness: matched` a model
+// other than the paper's comes scaled to the paper's model's stiffness (stiffness_match.h;
+// WrenchScaleOf says by how much). Throws Error naming the scene file when NAME is unknown.
 std::unique_ptr<ContactModel> MakeSceneContactModel(std::string_view name, const Scene& scene, SceneAssets& assets);
 
 }  // namespace contactlab

@@ -18,6 +18,36 @@ namespace contactlab {
 
 void RegisterStudies();  // generated
 
+const std::vector<ConfigKey>& CommonConfigKeys() {
+  static const std::vector<ConfigKey> keys = {
+      {"name", "text (default: the file's stem)", "the experiment's name; results go to results/NAME"},
+      {"description", "text", "one line saying what the experiment measures"},
+      {"study", "contact, closed-loop, deformed-field (default: contact)", "what each job runs (its sections below)"},
+      {"scene", "a scene file, or a scene mapping inline", "the two bodies and the models' parameters (the scene reference above)"},
+      {"metrics", "mapping: cutoff_hz (> 0, default 100 Hz), timing (default: the study's)",
+       "cutoff_hz: where hf_share's high frequencies begin; timing: per-cycle times matter, so jobs run one at a time"},
+      {"sweep", "mapping: axis -> list of values or of {label, value}",
+       "the jobs: every combination of the axes' values; an axis is a key path (scene.model.k_C, trajectory.depth) or a "
+       "short alias (the scene reference's sweep column, the study's aliases); the value default removes the key"},
+      {"profiles", "mapping: profile -> mapping of key path -> value",
+       "named sets of overrides, applied before --set by --profile NAME (quick, paper, ...)"},
+  };
+  return keys;
+}
+
+std::string ConfigKeyTable(const std::vector<ConfigKey>& keys) {
+  std::string s = "| key | value | meaning |\n|---|---|---|\n";
+  for (const ConfigKey& k : keys) s += "| `" + k.key + "` | " + k.value + " | " + k.meaning + " |\n";
+  return s + "\n";
+}
+
+bool Study::Reads(const std::string& key) const {
+  for (const ConfigKey& k : sections) {
+    if (k.key == key) return true;
+  }
+  return false;
+}
+
 namespace {
 
 std::vector<Study>& Registry() {

@@ -28,13 +28,28 @@ namespace contactlab {
 
 struct RunOptions;
 
+// A top-level key of an experiment config: its name, the form of its value and what it does,
+// as `contactlab params` prints it.
+struct ConfigKey {
+  std::string key;
+  std::string value;    // "text", "list of model names", "mapping (below)", ...
+  std::string meaning;  // one line
+};
+
+// The top-level keys every study reads (name, description, study, scene, metrics, sweep,
+// profiles), declared once: the config's key check and the reference both read them.
+const std::vector<ConfigKey>& CommonConfigKeys();
+
+// KEYS as a Markdown table (key, value, meaning).
+std::string ConfigKeyTable(const std::vector<ConfigKey>& keys);
+
 struct Study {
   std::string name;         // what `study:` says
   std::string description;  // one line for listings and errors
-  // Top-level config keys it reads beyond those every study reads (name, description, study,
-  // scene, metrics, sweep, profiles). A key no study reads is unknown; a key only other
-  // studies read is refused, naming them.
-  std::vector<std::string> sections;
+  // Top-level config keys it reads beyond CommonConfigKeys(). A key no study reads is unknown;
+  // a key only other studies read is refused, naming them.
+  std::vector<ConfigKey> sections;
+  bool Reads(const std::string& key) const;
   std::vector<std::string> required;  // of `sections`, those a config must give
   // The sweep aliases it adds (alias, key path), e.g. (k_vc, loop.k_vc).
   std::vector<std::pair<std::string, std::string>> aliases;

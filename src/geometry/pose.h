@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <optional>
 #include <string>
 
 namespace contactlab {
@@ -39,10 +40,22 @@ Pose Interpolate(const Pose& a, const Pose& b, double s);
 // does not overflow its norm; a zero quaternion gives the identity. Q must be finite.
 Eigen::Quaterniond UnitQuaternion(const Eigen::Quaterniond& q);
 
+// How far from 1 the length of a pose's quaternion may be: a quaternion written with nine
+// significant digits (%.9g, as session logs and result tables write it) is within 1e-8.
+constexpr double kUnitQuaternionTolerance = 1e-6;
+
+// What is wrong with Q (qw, qx, qy, qz) as a pose's rotation, or nothing when it is a unit
+// quaternion (| |Q| - 1 | <= kUnitQuaternionTolerance). The message gives Q and its length and
+// names the order x, y, z, qw, qx, qy, qz, so that a pose whose quaternion is not unit length
+// (a typo, a swapped order, too few digits) is refused wherever a pose enters instead of
+// being normalised silently. Q must be finite.
+std::optional<std::string> NonUnitQuaternionError(const Eigen::Quaterniond& q);
+
 // Rotation by the rotation vector W (axis times angle, radians).
 Eigen::Quaterniond RotationFromVector(const Eigen::Vector3d& w);
 
-// Parses "x,y,z,qw,qx,qy,qz" (quaternion normalised); throws Error naming WHERE.
+// Parses "x,y,z,qw,qx,qy,qz" (a unit quaternion, NonUnitQuaternionError; normalised to
+// double precision); throws Error naming WHERE.
 Pose ParsePose(const std::string& text, const std::string& where);
 
 }  // namespace contactlab

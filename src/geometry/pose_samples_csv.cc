@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -57,7 +58,7 @@ PoseSamples ReadPoseSamplesCsv(const std::filesystem::path& file) {
       FailAtLine(name, line_no, "expected at least 8 columns t,x,y,z,qw,qx,qy,qz, got " + std::to_string(count));
     }
     const Eigen::Quaterniond q(v[4], v[5], v[6], v[7]);
-    if (q.norm() < 1e-12) FailAtLine(name, line_no, "quaternion is zero");
+    if (const std::optional<std::string> e = NonUnitQuaternionError(q)) FailAtLine(name, line_no, *e);
     if (!out.t.empty() && !(v[0] > out.t.back())) {
       FailAtLine(name, line_no, "time " + std::to_string(v[0]) + " is not greater than the previous row's");
     }

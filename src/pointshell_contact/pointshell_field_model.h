@@ -25,6 +25,12 @@
 // its distance from the proxy, and the eq. (3) weights shift between proxies, so its distances
 // drop by many times the proxies' travel; DeformedFieldContact test).
 //
+// Contacts (KeepContacts / LatestContacts): one per point in contact (d < 0), so as many as
+// stats.points_in_contact: the point's world position (deformed when A deforms), the direction
+// of its force on B, -N (N: the point's inward normal, corrected when A deforms, in the world),
+// and its depth -d (metres) in B's field as the query looked it up. The force on B is the sum
+// over them of k depth normal, k = k_C * stats.stiffness_scale (sec. 2.1, eq. (1)).
+//
 // Forces: every point in contact is added through the vectorised halfspace sums
 // (contact/halfspace_contacts.h), a buffer at a time; for a deformable side the same runs of
 // points also enter its reduced force (and its halfspace stiffness). ContactGradient::kField
@@ -41,6 +47,7 @@
 
 #include "contact/contact_accumulator.h"
 #include "contact/contact_model.h"
+#include "contact/contact_recorder.h"
 #include "contact/float_transform.h"
 #include "contact/halfspace_contacts.h"
 #include "pointshell_contact/pointshell_contact_params.h"
@@ -101,6 +108,12 @@ class PointshellFieldModel final : public ContactModel {
   // pose and A's deformation, in B's field as the latest query left it (kLinearPointStatesPerCall
   // points per call).
   int PointStates(const ContactQuery& query, std::span<const std::int32_t> points, PointState* out) override;
+  // The points in contact (see the top of this file), recorded during Evaluate.
+  bool KeepContacts(int max_contacts) override {
+    contacts_.Keep(max_contacts);
+    return true;
+  }
+  void LatestContacts(ContactList* out) const override { contacts_.Fill(X_WB_contacts_, 1.0, out); }
 
   const PointshellContactParams& params() const { return params_; }
   const Pointshell& shell() const { return shell_.shell(); }
@@ -124,6 +137,9 @@ class PointshellFieldModel final : public ContactModel {
   // (A's frame), written at the point's index (#P each).
   std::vector<float> x_, y_, z_, nx_, ny_, nz_;
   std::vector<std::int32_t> nearest_;  // (#P) a deformed field's proxy slot of each point in contact
+  // The contacts of the latest Evaluate, in B's frame, when kept, and B's pose then.
+  ContactRecorder contacts_;
+  Pose X_WB_contacts_;
 };
 
 // One query's traversal policy (pointshell_traversal.h): evaluates points a batch at a time and
@@ -152,6 +168,11 @@ struct PointshellFieldModel<Shell, Field>::Pass {
     if constexpr (!kDeforms) {  // the rigid loop: one batch of lookups, then the contacts
       const int offset = index ? 0 : begin;
       m.field_.Distances(X_BA, s.x.data() + offset, s.y.data() + offset, s.z.data() + offset, index, n, d, nullptr);
+      if (m.contacts_.keeping()) [[unlikely]] {
+        for (int k = 0; k < n; ++k) {
+          if (d[k] < 0.f) Record(index ? index[k] : begin + k, d[k]);
+        }
+      }
       if (contacts != nullptr) {
         contacts->Collect(begin, index, d, n);
       } else {
@@ -193,6 +214,9 @@ struct PointshellFieldModel<Shell, Field>::Pass {
           m.shell_.Normals(hit, hits, hx, hy, hz);
           for (int h = 0; h < hits; ++h) m.nx_[hit[h]] = hx[h], m.ny_[hit[h]] = hy[h], m.nz_[hit[h]] = hz[h];
         }
+        if (m.contacts_.keeping()) [[unlikely]] {
+          for (int h = 0; h < hits; ++h) Record(hit[h], hit_d[h]);
+        }
         if (contacts == nullptr) {
           for (int h = 0; h < hits; ++h) AddOnItsOwn(hit[h], hit_d[h]);
         }
@@ -202,6 +226,16 @@ struct PointshellFieldModel<Shell, Field>::Pass {
     }
   }
 
+  // Point I in contact at D < 0, kept for LatestContacts: in B's frame, the force's direction
+  // on B (-N_B) and the depth -D.
+  void Record(int i, float d) {
+    const ContactPointArrays P = Points();
+    float p_B[3], n_B[3];
+    X_BA.Apply(P.x[i], P.y[i], P.z[i], p_B);
+    X_BA.Rotate(P.nx[i], P.ny[i], P.nz[i], n_B);
+    const Eigen::Vector3d N_B(n_B[0], n_B[1], n_B[2]);
+    m.contacts_.Add(Eigen::Vector3d(p_B[0], p_B[1], p_B[2]), -N_B.normalized(), -double(d));
+  }
   // Point I in contact at depth D under kField: its force, gradient and reduced forces.
   void AddOnItsOwn(int i, float d) {
     const ContactPointArrays P = Points();
@@ -258,6 +292,8 @@ struct PointshellFieldModel<Shell, Field>::Pass {
 template <class Shell, class Field>
 ContactResult PointshellFieldModel<Shell, Field>::Evaluate(const ContactQuery& query) {
   ContactResult result;
+  contacts_.Clear();
+  X_WB_contacts_ = query.X_WB;
   const BodyDeformation* def_A = query.deformation_A;
   const BodyDeformation* def_B = query.deformation_B;
   // This query's deformations (rigid sides take none).

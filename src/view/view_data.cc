@@ -370,7 +370,7 @@ ReplayTrack MakeTrack(const std::string& name, const std::vector<const ReplayRow
 // config has no such job.
 void SetJobScene(const ResolvedConfig& resolved, const fs::path& meta_file, Replay* replay) {
   const ConfigNode root = ConfigNode::LoadString(resolved.yaml, resolved.file);
-  const ExperimentConfig config = ParseExperimentConfig(root, resolved.yaml);
+  const ExperimentConfig config = ParseExperimentConfig(root, resolved.yaml, resolved.yaml);
   if (!StudyOf(config).replayable) {
     Fail(meta_file.string(), "is a " + config.study + " study, which has no trajectory to replay");
   }

@@ -458,11 +458,16 @@ TEST(PressureField, ModulusOf1e307IsRefusedWhenTheSceneLoadsNamingTheKeyAndRange
 TEST(PressureField, RefusesSoupsAndTwoRigidBodies) {
   auto soup = Ball(0.01, 0.001);
   std::const_pointer_cast<DistanceField>(soup)->mutable_info().mode = "soup";
+  std::const_pointer_cast<DistanceField>(soup)->mutable_info().source = "holed-cup.obj";
   try {
     PressureFieldModel({soup, 1e5, false}, {Ball(0.01, 0.001), 1e5, false});
     FAIL() << "a soup's field was accepted";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("soup"), std::string::npos) << e.what();
+    // It names the body, its mesh and the fix.
+    const std::string what = e.what();
+    EXPECT_NE(what.find("body A (mesh holed-cup.obj)"), std::string::npos) << what;
+    EXPECT_NE(what.find("soup"), std::string::npos) << what;
+    EXPECT_NE(what.find("close its holes"), std::string::npos) << what;
   }
   try {
     PressureFieldModel({Ball(0.01, 0.001), 1e5, true}, {Ball(0.01, 0.001), 1e5, true});

@@ -3,6 +3,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <sched.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -14,7 +15,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -22,6 +25,7 @@
 #include "scene_fixtures.h"
 #include "test_support.h"
 #include "util/atomic_file.h"
+#include "util/data_path.h"
 
 namespace contactlab {
 namespace {
@@ -99,6 +103,122 @@ TEST(Cli, ContactPrintsTheForceOnTheFieldBodyAsJson) {
   EXPECT_NEAR(K[0] + K[7] + K[14], -kC * L, 1e-6 * kC * L) << o.output;
   EXPECT_LT(K[14], -(H / R) * (H / R) * kC * L) << o.output;
   EXPECT_GT(K[14], -kC * L) << o.output;
+}
+
+// `contact --contacts --json`: the pointshell model lists one contact per point in contact,
+// each on the ball and below the plate at its distance below the plate's top (z = 0), pushing
+// the plate down, and k depth normal summed over them is the force printed (eq. (1) with
+// k = k_C times the stiffness scale). pressure-field adds areas and pressures whose
+// area * pressure * normal sums to its force; a model without a contact list prints null, and
+// the text form a table or says so.
+TEST(Cli, ContactListsTheContactsAsJsonAndText) {
+  testing::TempDir dir;
+  std::string scene = kScene;
+  scene.replace(scene.find("[0, 0, 0.0205, 1, 0, 0, 0]"), 26, "[0, 0, 0.018, 1, 0, 0, 0]");
+  std::ofstream(dir / "scene.yaml") << scene;
+  const std::string contact = "contact " + (dir / "scene.yaml").string() + " --cache " + (dir / "cache").string();
+  auto vec = [](const nlohmann::json& v) {
+    return Eigen::Vector3d(v[0].get<double>(), v[1].get<double>(), v[2].get<double>());
+  };
+
+  const Outcome o = RunCli(contact + " --contacts --json");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const nlohmann::json j = nlohmann::json::parse(o.output);
+  const nlohmann::json& c = j.at("contacts");
+  ASSERT_TRUE(c.is_object()) << o.output;
+  const std::size_t n = c.at("points").size();
+  EXPECT_EQ(std::int64_t(n), j.at("points_in_contact").get<std::int64_t>());
+  ASSERT_GT(n, 0u);
+  ASSERT_EQ(c.at("normals").size(), n);
+  ASSERT_EQ(c.at("depths").size(), n);
+  EXPECT_FALSE(c.contains("areas"));
+  const double k = 1000 * j.at("stiffness_scale").get<double>();
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d p = vec(c["points"][i]), normal = vec(c["normals"][i]);
+    const double depth = c["depths"][i].get<double>();
+    // On the ball's pointshell: its offset surface, half a cell (about 1 mm) outside the 2 cm ball.
+    EXPECT_LE((p - Eigen::Vector3d(0, 0, 0.018)).norm(), 0.0225) << i;
+    EXPECT_NEAR(depth, -p.z(), 2e-4) << i;
+    EXPECT_NEAR(normal.norm(), 1, 1e-6) << i;
+    EXPECT_LT(normal.z(), 0) << i;
+    sum += k * depth * normal;
+  }
+  const Eigen::Vector3d F = vec(j.at("force"));
+  EXPECT_LT((sum - F).norm(), 1e-5 * F.norm()) << o.output;
+
+  const Outcome pf = RunCli(contact + " --model pressure-field --contacts --json");
+  ASSERT_EQ(pf.exit_code, 0) << pf.output;
+  const nlohmann::json jp = nlohmann::json::parse(pf.output);
+  const nlohmann::json& cp = jp.at("contacts");
+  ASSERT_TRUE(cp.contains("areas") && cp.contains("pressures")) << pf.output;
+  ASSERT_GT(cp.at("points").size(), 0u);
+  Eigen::Vector3d pressed = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < cp.at("points").size(); ++i) {
+    pressed += cp["areas"][i].get<double>() * cp["pressures"][i].get<double>() * vec(cp["normals"][i]);
+  }
+  const Eigen::Vector3d F_p = vec(jp.at("force"));
+  EXPECT_LT((pressed - F_p).norm(), 1e-6 * F_p.norm()) << pf.output;
+
+  // A model without a contact list (a reference, built with CGAL): null, and a message as text.
+  if (CONTACTLAB_TEST_WITH_CGAL) {
+    const Outcome none = RunCli(contact + " --model eq2-halfspace --contacts --json");
+    ASSERT_EQ(none.exit_code, 0) << none.output;
+    EXPECT_TRUE(nlohmann::json::parse(none.output).at("contacts").is_null()) << none.output;
+    const Outcome text_none = RunCli(contact + " --model eq2-halfspace --contacts");
+    EXPECT_NE(text_none.output.find("has no contact list"), std::string::npos) << text_none.output;
+  }
+  // Without --contacts the key is absent.
+  EXPECT_FALSE(nlohmann::json::parse(RunCli(contact + " --json").output).contains("contacts"));
+
+  const Outcome text = RunCli(contact + " --contacts");
+  ASSERT_EQ(text.exit_code, 0) << text.output;
+  EXPECT_NE(text.output.find("contacts: " + std::to_string(n) + " (world frame"), std::string::npos) << text.output;
+  EXPECT_NE(text.output.find("depth [m]"), std::string::npos) << text.output;
+}
+
+// A shipped scene whose bodies start apart (the screwdriver 8 cm from the knight): `contact`
+// finds no contact at the scene's poses; `--touch 0.002` moves the knight toward the
+// screwdriver until the query sees 2 mm of penetration (to the placement's 1 % bisection), and
+// the force on the knight pushes it back along the line it came in on. Moved from --pose-b,
+// the knight comes in from that pose's side instead.
+TEST(Cli, ContactTouchPutsAShippedSceneThatStartsApartInContact) {
+  testing::TempDir dir;
+  const std::optional<std::filesystem::path> data = InstalledDataDir();
+  ASSERT_TRUE(data.has_value());
+  const std::string scene = (*data / "scenes" / "knight-screwdriver.yaml").string();
+  const std::string contact = "contact " + scene + " --json --cache " + (dir / "cache").string();
+  const Outcome apart = RunCli(contact);
+  ASSERT_EQ(apart.exit_code, 0) << apart.output;
+  EXPECT_EQ(JsonNumbers(apart.output, "points_in_contact", 1), std::vector<double>{0}) << apart.output;
+
+  const struct {
+    std::string option;
+    Eigen::Vector3d A_to_B;  // from the screwdriver's origin to the knight's start
+  } cases[] = {{"", Eigen::Vector3d(1, 0, 0)}, {" --pose-b 0,0.08,0,1,0,0,0", Eigen::Vector3d(0, 1, 0)}};
+  for (const auto& c : cases) {
+    const Outcome o = RunCli(contact + " --touch 0.002" + c.option);
+    ASSERT_EQ(o.exit_code, 0) << c.option << ": " << o.output;
+    const std::vector<double> l = JsonNumbers(o.output, "points_in_contact", 1);
+    const std::vector<double> d = JsonNumbers(o.output, "max_penetration", 1), F = JsonNumbers(o.output, "force", 3);
+    ASSERT_EQ(l.size(), 1u) << o.output;
+    ASSERT_EQ(d.size(), 1u) << o.output;
+    ASSERT_EQ(F.size(), 3u) << o.output;
+    EXPECT_GT(l[0], 0) << c.option;
+    EXPECT_GE(d[0], 0.002 * (1 - 1e-9)) << c.option;
+    EXPECT_LE(d[0], 0.002 * 1.02) << c.option;
+    const Eigen::Vector3d force(F[0], F[1], F[2]);
+    EXPECT_GT(force.dot(c.A_to_B), 0.5 * force.norm()) << c.option << ": " << o.output;
+  }
+
+  const Outcome same = RunCli(contact + " --touch 0.002 --pose-b 0,0,0,1,0,0,0");
+  EXPECT_EQ(same.exit_code, 1) << same.output;
+  EXPECT_NE(same.output.find("--touch: the two bodies' origins coincide"), std::string::npos) << same.output;
+  for (const std::string bad : {"--touch 0", "--touch -0.001", "--touch nan"}) {
+    const Outcome o = RunCli(contact + " " + bad);
+    EXPECT_NE(o.exit_code, 0) << bad;
+    EXPECT_NE(o.output.find("--touch"), std::string::npos) << bad << ": " << o.output;
+  }
 }
 
 TEST(Cli, BadSceneKeyFailsNamingFileAndKey) {
@@ -252,6 +372,11 @@ TEST(CliSession, TheLoopRunsAtTheScenesCycleOrAtTheRateAsked) {
   EXPECT_NE(refused.exit_code, 0) << refused.output;
   EXPECT_NE(refused.output.find("tiny.yaml: model.cycle_seconds"), std::string::npos) << refused.output;
   EXPECT_EQ(refused.output.find("session: scene"), std::string::npos) << refused.output;
+  const Outcome budgeted = RunCli(session + " --rate 5000 --budget 64");
+  EXPECT_EQ(budgeted.exit_code, 0) << budgeted.output;
+  const Outcome negative = RunCli(session + " --budget -1");
+  EXPECT_EQ(negative.exit_code, 105) << negative.output;
+  EXPECT_NE(negative.output.find("--budget"), std::string::npos) << negative.output;
   for (const std::string bad : {"0", "200000", "nan", "-1000"}) {
     const Outcome o = RunCli(session + " --rate " + bad);
     EXPECT_EQ(o.exit_code, 105) << bad << ": " << o.output;
@@ -414,6 +539,65 @@ TEST(Cli, RunListsJobsOfASweep) {
   const Outcome bad = RunCli("run " + (dir / "exp.yaml").string() + " --set sweep.pionts=[1]");
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_NE(bad.output.find("sweep.pionts"), std::string::npos) << bad.output;
+}
+
+// A config's mistakes are named where they were written: an unknown --profile lists the
+// config's profiles; a misspelled model (in the config's models, a swept models list, the
+// reference, or the scene's own models list) fails --list-jobs naming the file and line of the
+// list that holds it, the config's never blamed on the scene; and `contact` given a config says
+// to use `run` instead of calling its keys unknown scene keys.
+TEST(CliConfigs, MistakesAreNamedInTheFileThatHoldsThem) {
+  testing::TempDir dir;
+  std::ofstream(dir / "scene.yaml") << kScene;
+  const std::string base = "name: e\ndescription: two models pressed\nscene: scene.yaml\n" +
+                           testing::PressTrajectoryYaml(0.01) + "\n";
+  auto run = [&](const std::string& config, const std::string& options) {
+    std::ofstream(dir / "exp.yaml") << config;
+    return RunCli("run " + (dir / "exp.yaml").string() + " " + options);
+  };
+  const std::string config = (dir / "exp.yaml").string(), scene = (dir / "scene.yaml").string();
+
+  const Outcome profile = run(base + "profiles:\n  quick: {sweep.points: [64]}\n  paper: {sweep.points: [256]}\n",
+                              "--profile papr --list-jobs");
+  EXPECT_EQ(profile.exit_code, 1) << profile.output;
+  EXPECT_NE(profile.output.find(config + ": has no profile 'papr' (under 'profiles'); its profiles: quick, paper"),
+            std::string::npos) << profile.output;
+  const Outcome none = run(base, "--profile paper --list-jobs");
+  EXPECT_EQ(none.exit_code, 1) << none.output;
+  EXPECT_NE(none.output.find("it has no profiles"), std::string::npos) << none.output;
+
+  // The models list is line 4 of the config, after name, description and scene.
+  const std::string models = "name: e\ndescription: two models\nscene: scene.yaml\nmodels: [pointshell, pointshel-linear]\n" +
+                             testing::PressTrajectoryYaml(0.01) + "\n";
+  const Outcome model = run(models, "--list-jobs");
+  EXPECT_EQ(model.exit_code, 1) << model.output;
+  EXPECT_NE(model.output.find(config + ":4: models[1]: unknown contact model 'pointshel-linear' (known: "),
+            std::string::npos) << model.output;
+  EXPECT_EQ(model.output.find(scene), std::string::npos) << model.output;
+  const Outcome swept = run(base + "sweep:\n  model:\n    - pointshell\n    - fcll\n", "--list-jobs");
+  EXPECT_EQ(swept.exit_code, 1) << swept.output;
+  EXPECT_NE(swept.output.find(config + ":8: sweep.model[1]: unknown contact model 'fcll'"), std::string::npos)
+      << swept.output;
+  EXPECT_EQ(swept.output.find(scene), std::string::npos) << swept.output;
+  const Outcome reference = run(base + "reference: pointshell-lineer\n", "--list-jobs");
+  EXPECT_EQ(reference.exit_code, 1) << reference.output;
+  EXPECT_NE(reference.output.find(config + ":5: reference: unknown contact model 'pointshell-lineer'"),
+            std::string::npos) << reference.output;  // line 5: after name, description, scene, trajectory
+
+  // A misspelled model in the scene's own list is the scene's.
+  std::ofstream(dir / "scene.yaml") << kScene << "models: [pointshell, vsp]\n";
+  const Outcome scene_model = run(base, "--list-jobs");
+  EXPECT_EQ(scene_model.exit_code, 1) << scene_model.output;
+  EXPECT_NE(scene_model.output.find(scene + ": models: unknown contact model 'vsp'"), std::string::npos)
+      << scene_model.output;
+  std::ofstream(dir / "scene.yaml") << kScene;
+  EXPECT_EQ(run(base, "--list-jobs").exit_code, 0);
+
+  const Outcome contact = RunCli("contact " + config + " --no-cache");
+  EXPECT_EQ(contact.exit_code, 1) << contact.output;
+  EXPECT_NE(contact.output.find(config + ": this is an experiment config"), std::string::npos) << contact.output;
+  EXPECT_NE(contact.output.find("use `contactlab run " + config + "`"), std::string::npos) << contact.output;
+  EXPECT_EQ(contact.output.find("unknown key"), std::string::npos) << contact.output;
 }
 
 // The CSV TEXT without its timing columns (header names ending in "_us"), which differ run to run.
@@ -728,9 +912,13 @@ TEST(CliDeformable, CoordinatesWhoseDeformationOverflowsAreRefusedNamingTheOptio
   EXPECT_NE(o.output.find("--q-a " + said), std::string::npos) << o.output;
   EXPECT_EQ(o.output.find("force on"), std::string::npos) << o.output;
   for (const char* f : {"o.obj", "o.csv", "d.csv"}) EXPECT_FALSE(std::filesystem::exists(dir / f)) << f;
-  // A quaternion too large for its norm still names a rotation (normalised without overflow).
+  // A quaternion too large for its norm is not of unit length: refused naming the option, the
+  // order and its length, computed without overflow.
   o = RunCli("contact " + scene + " --pose-a 0,0,0,1e308,1e308,0,0 --json");
-  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  EXPECT_NE(o.output.find("--pose-a: the quaternion (qw, qx, qy, qz) = (1e+308, 1e+308, 0, 0) has length "
+                          "1.41421356e+308, not 1"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("x, y, z, qw, qx, qy, qz"), std::string::npos) << o.output;
 }
 
 // Finite coordinates whose deformation is finite but beyond the coordinates any reader accepts

@@ -8,7 +8,9 @@
 
 #include "contact/register_contact_models.h"
 #include "contact/test_shells.h"
+#include "contact/unbuilt_models.h"
 #include "pointshell_contact/pointshell_contact_model.h"
+#include "test_support.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -119,6 +121,20 @@ TEST(ModelRegistry, AnUnknownNameListsTheKnownOnes) {
   }
   ContactModelEntry nameless;
   EXPECT_THROW(RegisterContactModel(nameless), Error);
+}
+
+// A model recorded as not built into the program (a build without what it needs) is refused
+// with the reason, not as an unknown name; a registered model of that name is made as before.
+TEST(ModelRegistry, AModelNotBuiltInIsRefusedWithTheReason) {
+  FakeBody A, B;
+  const ContactParams params;
+  const ParamValues own;
+  RegisterUnbuiltContactModel("test-unbuilt", "it needs a test library (configure with -DTEST=ON)");
+  EXPECT_EQ(UnbuiltContactModelReason("test-unbuilt"), "it needs a test library (configure with -DTEST=ON)");
+  EXPECT_FALSE(UnbuiltContactModelReason("pointshel").has_value());
+  const std::string m = testing::ErrorOf([&] { MakeContactModel("test-unbuilt", {A, B, params, own}, "exp.yaml:4"); });
+  EXPECT_EQ(m, "exp.yaml:4: contact model 'test-unbuilt' is not built into this program: it needs a test library "
+               "(configure with -DTEST=ON)");
 }
 
 }  // namespace

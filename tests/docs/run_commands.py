@@ -188,7 +188,8 @@ def main(argv):
         return 1 if errors else 0
 
     env = dict(os.environ)
-    env["PATH"] = f"{bin_dir}:/usr/bin:/bin:" + env.get("PATH", "")
+    # Not the build's bin/: a command must name build/bin/contactlab as a reader types it.
+    env["PATH"] = "/usr/bin:/bin:" + env.get("PATH", "")
     env.update(CONTACTLAB_CACHE=str(cache), CONTACTLAB_DATA=str(root / "data"), PYTHONDONTWRITEBYTECODE="1",
                MPLBACKEND="Agg", PYTHONPATH=str(python_dir))
     before = snapshot(root)

@@ -164,23 +164,25 @@ TEST(Metrics, FittedOrderIntervalFromTheResiduals) {
   EXPECT_TRUE(std::isnan(FittedOrderHalfWidth95({256, 1024}, {0.1, 0.05})));
 }
 
-// convergence.csv: two seeds of each size pool into one RMS per size; the seed axis is not a
-// group; the errors 0.4 / 0.3 at 256 and 0.1 / 0.0 (RMS 0.5 / sqrt(2) and 0.1 / sqrt(2))
+// convergence.csv: two seeds of each size pool into one RMS per size; the seed axis and the
+// points axis (sweep.points, named like summary.csv's own points column) are not groups; the errors 0.4 / 0.3 at 256 and 0.1 / 0.0 (RMS 0.5 / sqrt(2) and 0.1 / sqrt(2))
 // at 4096 fall as 4096^-0.5 / 256^-0.5 = 1/4 to 1/5 — fitted order log(5)/log(16).
 TEST(ConvergenceTable, PoolsSeedsAsRmsAndFitsTheOrder) {
   const std::string summary =
-      "experiment,job,method,scene.bodies[role=pointshell].pointshell.seed,points,model,rms_rel_error\n"
-      "e,0,random,1,256,m,0.4\n"
-      "e,1,random,2,256,m,0.3\n"
-      "e,2,random,1,4096,m,0.1\n"
-      "e,3,random,2,4096,m,0\n"
-      "e,4,voxel,1,256,m,-1\n";
+      "experiment,job,method,scene.bodies[role=pointshell].pointshell.seed,sweep.points,model,points,rms_rel_error\n"
+      "e,0,random,1,256,m,256,0.4\n"
+      "e,1,random,2,256,m,256,0.3\n"
+      "e,2,random,1,4096,m,4096,0.1\n"
+      "e,3,random,2,4096,m,4096,0\n"
+      "e,4,voxel,1,256,m,256,\n"
+      "e,4,voxel,1,256,fcl,,0.2\n";
   const std::string table = ConvergenceCsv(summary);
   std::istringstream in(table);
   std::string header, row, extra;
   std::getline(in, header);
   std::getline(in, row);
-  EXPECT_FALSE(std::getline(in, extra)) << table;  // voxel had no reference: no group
+  // voxel had no reference (an empty error) and fcl reads no pointshell (empty points): no group.
+  EXPECT_FALSE(std::getline(in, extra)) << table;
   EXPECT_EQ(header, "group,samples,fitted_order,order_ci95,points,errors");
   const std::vector<std::string> cells = SplitCsvLine(row);
   ASSERT_EQ(cells.size(), 6u) << table;

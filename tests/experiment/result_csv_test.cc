@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <set>
 #include <sstream>
 
 #include "test_support.h"
@@ -69,8 +70,24 @@ TEST(ResultCsv, HeaderAndRowsHaveTheSameColumnsAndEmptyCellsWithoutAReference) {
   const auto t = Rows(summary);
   ASSERT_EQ(t.size(), 2u);
   EXPECT_EQ(t[1].size(), t[0].size());
+  // The points axis is named like summary.csv's own points column: it is written sweep.points,
+  // so every name in the header is unique (pandas renames none).
+  EXPECT_EQ(t[0][2], "sweep.points");
+  EXPECT_EQ(t[0][3], "k_C");
   EXPECT_EQ(t[0][5], "points");
-  EXPECT_EQ(t[1][5], "128");
+  EXPECT_EQ(std::set<std::string>(t[0].begin(), t[0].end()).size(), t[0].size());
+  EXPECT_EQ(t[1][2], "128");
+  // FCL reads no pointshell (pointshell_A_bytes -1): its points cell is empty, as is every
+  // error against a reference when there was none.
+  EXPECT_EQ(t[1][5], "");
+  for (const char* name : {"rms_rel_error", "max_dir_error_deg", "median_dir_error_deg", "p95_dir_error_deg",
+                           "ref_scale", "rms_rel_error_calibrated"}) {
+    const auto it = std::find(t[0].begin(), t[0].end(), name);
+    ASSERT_NE(it, t[0].end()) << name;
+    EXPECT_EQ(t[1][std::size_t(it - t[0].begin())], "") << name;
+  }
+  // A model that walks no tree (level -1) leaves cycles.csv's level empty.
+  EXPECT_EQ(c[1][col("level")], "");
 }
 
 TEST(ResultCsv, MemoryColumnsAreIntegerBytesOrEmptyForDataAModelDoesNotRead) {

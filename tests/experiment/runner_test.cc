@@ -116,9 +116,15 @@ TEST(Runner, SingleJobsMergeIntoTheFullRun) {
 
 TEST(Runner, AFailedRunLeavesNoResultFile) {
   TempDir dir;
-  // The second sweep point names a model that does not exist: the run fails after the first
-  // job has finished, and no output file may exist.
-  const ExperimentConfig config = Load(dir, kConfig, {"sweep.model=[pointshell, no-such-model]", "sweep.points=[64]"});
+  // The second sweep point names a model that does not exist (put in after loading, which
+  // refuses the name): the run fails after the first job has finished, and no output file may
+  // exist.
+  ExperimentConfig config = Load(dir, kConfig, {"sweep.model=[pointshell, pointshell-linear]", "sweep.points=[64]"});
+  bool replaced = false;
+  for (SweepAxis& axis : config.sweep) {
+    if (axis.name == "model") axis.values[1] = "no-such-model", replaced = true;
+  }
+  ASSERT_TRUE(replaced);
   EXPECT_THROW(RunExperiment(config, Options(dir, "out")), Error);
   EXPECT_FALSE(std::filesystem::exists(dir / "out" / "cycles.csv"));
   EXPECT_FALSE(std::filesystem::exists(dir / "out" / "summary.csv"));
@@ -297,7 +303,7 @@ TEST(Runner, CommaOrQuoteInTheNameOrASweptScenePathStaysOneCellAndMerges) {
   };
   const auto summary = Lines(dir / "merged" / "summary.csv");
   ASSERT_EQ(summary.size(), 3u);
-  EXPECT_EQ(summary[0].rfind("experiment,job,points,scene,model,", 0), 0u) << summary[0];
+  EXPECT_EQ(summary[0].rfind("experiment,job,sweep.points,scene,model,", 0), 0u) << summary[0];
   EXPECT_EQ(summary[1].rfind(quoted("tiny, \"quoted\"") + ",0,64," + quoted(one) + ",pointshell,", 0), 0u) << summary[1];
   EXPECT_EQ(summary[2].rfind(quoted("tiny, \"quoted\"") + ",1,64," + quoted(two) + ",pointshell,", 0), 0u) << summary[2];
   std::vector<CyclesCsvRow> rows;

@@ -2,7 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include "experiment/scene.h"
+#include "geometry/mesh_io.h"
+#include "geometry/procedural_shapes.h"
 #include "pointshell/pointshell_io.h"
 #include "test_support.h"
 #include "util/error.h"
@@ -51,6 +55,49 @@ TEST(SceneAssets, ASecondRunReadsFieldsAndPointshellsFromTheCache) {
   bigger.pointshell();
   EXPECT_EQ(CountFiles(dir / "cache", "pointshell-"), 2);
   EXPECT_EQ(CountFiles(dir / "cache", "field-"), 1);  // same mesh, same field
+}
+
+// A unit cube of side 2 cm, its top face (two triangles) left out when HOLED.
+std::filesystem::path WriteCube(const std::filesystem::path& file, bool holed) {
+  std::ofstream out(file);
+  out << "v 0 0 0\nv 0.02 0 0\nv 0.02 0.02 0\nv 0 0.02 0\nv 0 0 0.02\nv 0.02 0 0.02\nv 0.02 0.02 0.02\nv 0 0.02 0.02\n"
+         "f 1 3 2\nf 1 4 3\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
+  if (!holed) out << "f 5 6 7\nf 5 7 8\n";
+  return file;
+}
+
+// A mesh with holes in field.mode auto takes the polygon-soup pipeline: said on stderr, naming
+// the body and the mesh, every time the field is used (cached or built). A closed mesh, or a
+// soup asked for by field.mode: soup, says nothing.
+TEST(SceneAssets, AMeshWithHolesInModeAutoIsReportedAsASoup) {
+  testing::TempDir dir;
+  AssetOptions options{.cache_dir = dir / "cache", .use_cache = true, .verbose = false};
+  auto stderr_of = [&](const std::filesystem::path& mesh, const std::string& mode) {
+    BodySpec b;
+    b.name = "lid-less";
+    b.mesh = mesh.string();
+    b.role = "field";
+    b.field.resolution = 16;
+    b.field.mode = mode;
+    ::testing::internal::CaptureStderr();
+    BodyAssets assets(b, options);
+    const auto field = assets.field();
+    return std::pair(::testing::internal::GetCapturedStderr(), field->info().mode);
+  };
+  const auto holed = WriteCube(dir / "holed.obj", true);
+  for (int pass = 0; pass < 2; ++pass) {  // built, then read from the cache
+    const auto [text, mode] = stderr_of(holed, "auto");
+    EXPECT_EQ(mode, "soup");
+    EXPECT_NE(text.find("warning: body 'lid-less'"), std::string::npos) << text;
+    EXPECT_NE(text.find("holed.obj"), std::string::npos) << text;
+    EXPECT_NE(text.find("not watertight"), std::string::npos) << text;
+  }
+  const auto [chosen, chosen_mode] = stderr_of(holed, "soup");
+  EXPECT_EQ(chosen_mode, "soup");
+  EXPECT_EQ(chosen.find("warning"), std::string::npos) << chosen;
+  const auto [closed, closed_mode] = stderr_of(WriteCube(dir / "closed.obj", false), "auto");
+  EXPECT_EQ(closed_mode, "closed");
+  EXPECT_EQ(closed.find("warning"), std::string::npos) << closed;
 }
 
 TEST(SceneAssets, ASparseFieldIsBuiltCachedUnderItsOwnKeyAndReadBackSparse) {
@@ -112,6 +159,72 @@ TEST(SceneAssets, ACorruptCacheEntryIsRebuilt) {
   }
   BodyAssets second(Ball(128), options);
   EXPECT_EQ(second.field()->values(), expected->values());
+}
+
+// A body whose mesh is held in memory (BodySpec::mesh_data): the plate of sphere-on-plate.
+BodySpec InMemoryPlate(std::shared_ptr<const TriangleMesh> mesh) {
+  BodySpec b;
+  b.name = "plate";
+  b.mesh = mesh->name;
+  b.mesh_data = std::move(mesh);
+  b.role = "field";
+  b.field.resolution = 16;
+  return b;
+}
+
+TEST(SceneAssets, AnInMemoryMeshIsCachedByContentAsTheSameMeshFromAFileIs) {
+  testing::TempDir dir;
+  AssetOptions options;
+  options.cache_dir = dir / "cache";
+  options.verbose = false;
+  const TriangleMesh box = MakeBox(Eigen::Vector3d(0.1, 0.1, 1.0 / 30), 2);
+  SaveMesh(box, dir / "plate.obj");
+  BodySpec from_file = InMemoryPlate(std::make_shared<const TriangleMesh>(box));
+  from_file.mesh_data = nullptr;
+  from_file.mesh = (dir / "plate.obj").string();
+  BodyAssets file_body(from_file, options);
+  (void)file_body.field();
+  ASSERT_EQ(CountFiles(dir / "cache", "field-"), 1);
+
+  // Equal content under another name: the same key, the file's cache entry read, nothing built.
+  TriangleMesh copy = box;
+  copy.name = "another name";
+  BodyAssets memory_body(InMemoryPlate(std::make_shared<const TriangleMesh>(copy)), options);
+  EXPECT_EQ(memory_body.mesh_key(), file_body.mesh_key());
+  EXPECT_EQ(memory_body.field()->values(), file_body.field()->values());
+  EXPECT_EQ(CountFiles(dir / "cache", "field-"), 1);
+
+  // One vertex moved: another key, another entry.
+  copy.vertices[0].x() += 1e-9;
+  BodyAssets moved(InMemoryPlate(std::make_shared<const TriangleMesh>(copy)), options);
+  EXPECT_NE(moved.mesh_key(), file_body.mesh_key());
+  (void)moved.field();
+  EXPECT_EQ(CountFiles(dir / "cache", "field-"), 2);
+}
+
+TEST(SceneAssets, AnInMemoryMeshIsScaledAndCentredAsAFileIs) {
+  testing::TempDir dir;
+  TriangleMesh box = MakeBox(Eigen::Vector3d(1, 2, 3), 2);
+  box.Transform(1.0, Eigen::Matrix3d::Identity(), Eigen::Vector3d(1.0 / 3, 0, 0));
+  SaveMesh(box, dir / "box.obj");
+  BodySpec b = InMemoryPlate(std::make_shared<const TriangleMesh>(box));
+  b.scale = 0.01;
+  b.center = true;
+  const TriangleMesh memory = LoadBodyMesh(b);
+  b.mesh_data = nullptr;
+  b.mesh = (dir / "box.obj").string();
+  const TriangleMesh file = LoadBodyMesh(b);
+  EXPECT_EQ(memory.vertices, file.vertices);
+  EXPECT_NEAR(memory.Bounds().size().z(), 0.06, 1e-12);
+  EXPECT_NEAR(memory.Bounds().center().norm(), 0, 1e-12);
+  // A mesh no reader would return is refused where it is used, naming the body's mesh.
+  TriangleMesh bad = box;
+  bad.triangles[3][1] = -2;
+  b.mesh_data = std::make_shared<const TriangleMesh>(bad);
+  b.mesh_where = "<dict>: bodies[1].mesh";
+  EXPECT_EQ(testing::ErrorOf([&] { LoadBodyMesh(b); }),
+            "<dict>: bodies[1].mesh: mesh 'box': triangle 3: face vertex index -2 out of range [0, " +
+                std::to_string(box.num_vertices()) + ")");
 }
 
 TEST(SceneAssets, ProceduralShapeSpecsAreCheckedAndScaled) {

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <string>
+
 #include "util/error.h"
 
 namespace contactlab {
@@ -165,6 +168,19 @@ TEST(Scene, MissingMeshKeyAndBadRolesAreRejected) {
 TEST(Scene, BadPosesAreRejected) {
   EXPECT_NE(ErrorOf(Replace(kScene, "[0.1, 0, 0, 1, 0, 0, 0]", "[0.1, 0, 0]")).find("7 numbers"), std::string::npos);
   EXPECT_NE(ErrorOf(Replace(kScene, "[0.1, 0, 0, 1, 0, 0, 0]", "[0.1, 0, 0, 0, 0, 0, 0]")).find("zero"), std::string::npos);
+  // A quaternion not of unit length (within 1e-6) is refused naming the file, its line and the
+  // order, not normalised: 0.99 for 0.999 and a swapped order are typos to report.
+  for (const std::string pose : {"[0.1, 0, 0, 0.99, 0.0447101778, 0, 0]", "[0.1, 0, 0, 0, 0, 0, 1.1]",
+                                 "{position: [0.1, 0, 0], rotation: [2, 0, 0, 0]}"}) {
+    const std::string e = ErrorOf(Replace(kScene, "[0.1, 0, 0, 1, 0, 0, 0]", pose));
+    EXPECT_NE(e.find("scene.yaml:5:"), std::string::npos) << pose << ": " << e;
+    EXPECT_NE(e.find("x, y, z, qw, qx, qy, qz"), std::string::npos) << pose << ": " << e;
+    EXPECT_NE(e.find("not 1"), std::string::npos) << pose << ": " << e;
+  }
+  // Unit to nine digits is accepted (cos 15 deg, sin 15 deg) and made unit to double precision.
+  const Scene rotated = Parse(Replace(kScene, "[0.1, 0, 0, 1, 0, 0, 0]", "[0.1, 0, 0, 0.965925826, 0, 0.258819045, 0]"));
+  EXPECT_NEAR(rotated.pointshell_body.pose.rotation.norm(), 1.0, 1e-15);
+  EXPECT_NEAR(Eigen::AngleAxisd(rotated.pointshell_body.pose.rotation).angle(), M_PI / 6, 1e-8);
   const Scene s = Parse(Replace(kScene, "[0.1, 0, 0, 1, 0, 0, 0]", "{position: [0, 0.2, 0], rotation_vector: [0, 0, 1.5]}"));
   EXPECT_NEAR(Eigen::AngleAxisd(s.pointshell_body.pose.rotation).angle(), 1.5, 1e-12);
 }

@@ -67,8 +67,12 @@ TEST(Study, EveryRegisteredStudyDeclaresItsFilesOnce) {
         EXPECT_FALSE(c.meaning.empty()) << c.name;
       }
     }
-    for (const std::string& r : s.required) {
-      EXPECT_NE(std::find(s.sections.begin(), s.sections.end(), r), s.sections.end()) << r;
+    for (const std::string& r : s.required) EXPECT_TRUE(s.Reads(r)) << r;
+    // Every section is documented for `contactlab params`, and none repeats a common key.
+    for (const ConfigKey& k : s.sections) {
+      EXPECT_FALSE(k.value.empty()) << k.key;
+      EXPECT_FALSE(k.meaning.empty()) << k.key;
+      for (const ConfigKey& common : CommonConfigKeys()) EXPECT_NE(k.key, common.key);
     }
   }
   // Only the contact study's cycles are trajectories a viewer replays.

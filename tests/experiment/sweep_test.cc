@@ -2,6 +2,7 @@
 // document and the scene is parsed again, so the scene parser's checks apply to every value.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 
 #include "experiment/experiment_config.h"
@@ -115,8 +116,11 @@ TEST(Sweep, ABadValueNamesTheConfigTheAxisTheValueAndTheSceneKey) {
   EXPECT_NE(e.find("at least 1"), std::string::npos) << e;
   e = ErrorOf(dir, "  roles: [upside-down]\n");
   EXPECT_NE(e.find("sweep.roles value 'upside-down'"), std::string::npos) << e;
-  e = ErrorOf(dir, "  model: [pointshel]\n");
-  EXPECT_EQ(e, "");  // model names are checked when the model is made, with the known names
+  // A model name is checked when the config loads, against the registered names, and blamed on
+  // the sweep value that holds it.
+  e = ErrorOf(dir, "  model: [pointshell, pointshel]\n");
+  EXPECT_NE(e.find("config.yaml:"), std::string::npos) << e;
+  EXPECT_NE(e.find(": sweep.model[1]: unknown contact model 'pointshel' (known: "), std::string::npos) << e;
 }
 
 TEST(Sweep, AnOversizedValueIsRefusedWhenTheConfigLoadsNamingTheLimit) {
@@ -197,6 +201,55 @@ TEST(Sweep, AnUnknownAxisOrABadPathIsNamed) {
   e = ErrorOf(dir, "  scene.bodies[0].colour: [red]\n");
   EXPECT_NE(e.find("colour"), std::string::npos) << e;
   EXPECT_NE(e.find("unknown key"), std::string::npos) << e;
+}
+
+// An error in a job's trajectory or its scene names the line of the key in its own file, as the
+// config's own keys do: each job's documents are parsed from their text, not copied without
+// their lines.
+TEST(Sweep, AJobsTrajectoryOrSceneErrorNamesTheKeysOwnLine) {
+  TempDir dir;
+  std::ofstream(dir / "scene.yaml") << kScene;
+  const std::string head = "name: s\nscene: " + (dir / "scene.yaml").string() + "\nmodels: [pointshell-linear]\n\n";
+  std::ofstream(dir / "config.yaml") << head
+                                     << "trajectory:\n"          // line 5
+                                        "  type: approach-press\n"
+                                        "  direction: [0, 0, -1]\n"
+                                        "  duraton: 0.01\n"      // line 8
+                                        "sweep:\n  k_C: [1000, 2000]\n";
+  std::string e;
+  try {
+    LoadExperimentConfig(dir / "config.yaml");
+  } catch (const Error& error) {
+    e = error.what();
+  }
+  EXPECT_NE(e.find("config.yaml:8: trajectory.duraton: unknown key"), std::string::npos) << e;
+  // The same under --set: the lines are those of the config as resolved.
+  std::ofstream(dir / "config.yaml") << head << "trajectory:\n  type: approach-press\n  deptth: 0.001\n";
+  e.clear();
+  try {
+    LoadExperimentConfig(dir / "config.yaml", {"trajectory.duration=0.01"});
+  } catch (const Error& error) {
+    e = error.what();
+  }
+  EXPECT_NE(e.find("trajectory.deptth: unknown key"), std::string::npos) << e;
+  EXPECT_EQ(e.find(":1: trajectory"), std::string::npos) << e;
+  // A scene key a job's sweep leaves alone keeps its line in the scene file.
+  std::string scene = kScene;
+  const std::size_t at = scene.find("resolution:");
+  ASSERT_NE(at, std::string::npos);
+  scene.replace(at, std::string("resolution:").size(), "resolutoin:");
+  std::ofstream(dir / "scene.yaml") << scene;
+  const long line = long(std::count(scene.begin(), scene.begin() + long(at), '\n')) + 1;
+  std::ofstream(dir / "config.yaml") << head << "trajectory: {type: approach-press, duration: 0.01}\n"
+                                     << "sweep:\n  k_C: [1000, 2000]\n";
+  e.clear();
+  try {
+    LoadExperimentConfig(dir / "config.yaml");
+  } catch (const Error& error) {
+    e = error.what();
+  }
+  EXPECT_NE(e.find("scene.yaml:" + std::to_string(line) + ":"), std::string::npos) << e;
+  EXPECT_NE(e.find("resolutoin"), std::string::npos) << e;
 }
 
 TEST(Sweep, OverridesAndProfilesTakeKeyPathsWithSelectors) {

@@ -3,10 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include "test_support.h"
+#include "util/data_path.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -101,6 +104,11 @@ TEST(Trajectory, BadCsvRowsNameTheFileAndLine) {
   EXPECT_NE(ErrorOfCsv(header + "0,0,0,0,1,0,0,0\n0.001,0,0,0,1,0\n").find("bad.csv:3"), std::string::npos);
   EXPECT_NE(ErrorOfCsv(header + "0,0,0,0,1,0,0,0\n0,0,0,0,1,0,0,0\n").find("not greater"), std::string::npos);
   EXPECT_NE(ErrorOfCsv(header + "0,0,0,0,0,0,0,0\n").find("quaternion is zero"), std::string::npos);
+  // A row whose quaternion is not unit length (within 1e-6) is refused naming its line and the
+  // order of the columns, not normalised.
+  const std::string e = ErrorOfCsv(header + "0,0,0,0,1,0,0,0\n0.001,0,0,0,0.999,0.0001,0,0\n");
+  EXPECT_NE(e.find("bad.csv:3: the quaternion (qw, qx, qy, qz) = (0.999, 0.0001, 0, 0) has length"), std::string::npos) << e;
+  EXPECT_NE(e.find("x, y, z, qw, qx, qy, qz"), std::string::npos) << e;
   EXPECT_NE(ErrorOfCsv(header + "0,0,nan,0,1,0,0,0\n").find("not finite"), std::string::npos);
   EXPECT_NE(ErrorOfCsv(header + "0,0,x,0,1,0,0,0\n").find("column 3"), std::string::npos);
   EXPECT_NE(ErrorOfCsv("t,a,b\n").find("header"), std::string::npos);
@@ -118,6 +126,35 @@ TEST(Trajectory, CsvErrorsNeverEchoLongTokensOrControlBytes) {
   EXPECT_EQ(e.find('\x1b'), std::string::npos) << e;
   EXPECT_EQ(e.find('\x07'), std::string::npos) << e;
   EXPECT_NE(e.find("'\\x1b[2Jab\\x07'"), std::string::npos) << e;
+}
+
+// Every trajectory the repository ships has unit quaternions, and so does a twisting motion
+// written with nine significant digits, as a session log writes the device's pose: both load,
+// the twist at the angles it was written with.
+TEST(Trajectory, ShippedAndNineDigitTrajectoriesHaveUnitQuaternions) {
+  const std::optional<std::filesystem::path> data = InstalledDataDir();
+  ASSERT_TRUE(data.has_value());
+  int shipped = 0;
+  for (const auto& e : std::filesystem::directory_iterator(*data / "trajectories")) {
+    if (e.path().extension() != ".csv") continue;
+    EXPECT_NO_THROW(LoadTrajectoryCsv(e.path())) << e.path();
+    ++shipped;
+  }
+  EXPECT_GT(shipped, 0);
+  testing::TempDir dir;
+  {
+    std::ofstream out(dir / "log.csv");
+    out << "t,x,y,z,qw,qx,qy,qz\n";
+    char line[256];
+    for (int i = 0; i <= 1000; ++i) {
+      const Eigen::Quaterniond q = RotationFromVector(Eigen::Vector3d(0.3, -0.2, 1.0 / 3.0) * (0.003 * i));
+      std::snprintf(line, sizeof line, "%.6f,0,0,0,%.9g,%.9g,%.9g,%.9g\n", 0.001 * i, q.w(), q.x(), q.y(), q.z());
+      out << line;
+    }
+  }
+  const Trajectory t = LoadTrajectoryCsv(dir / "log.csv");
+  const double angle = Eigen::Vector3d(0.3, -0.2, 1.0 / 3.0).norm() * 3.0;
+  EXPECT_NEAR(Eigen::AngleAxisd(t.At(1.0).rotation).angle(), angle, 1e-7);
 }
 
 TEST(Trajectory, SessionLogsWithExtraColumnsReplay) {

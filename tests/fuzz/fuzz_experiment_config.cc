@@ -14,7 +14,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string text(reinterpret_cast<const char*>(data), size);
   contactlab::fuzz::ExpectOnlyError([&] {
     const contactlab::ExperimentConfig config =
-        contactlab::ParseExperimentConfig(contactlab::ConfigNode::LoadString(text, "fuzz.yaml"), text);
+        contactlab::ParseExperimentConfig(contactlab::ConfigNode::LoadString(text, "fuzz.yaml"), text, text);
     // What --list-jobs prints, from the config alone.
     for (std::size_t j = 0, n = contactlab::JobCount(config); j < n; ++j) (void)contactlab::JobLabel(config, j);
   });

@@ -2,7 +2,8 @@
 # The CMake package end to end: installs the build into a fresh prefix (`cmake --install`),
 # configures and builds examples/cpp against it (find_package(ContactLab) through
 # CMAKE_PREFIX_PATH) and runs the program on a small procedural scene with the paper's model and
-# a baseline, checking the force it prints; an unknown model must fail naming it.
+# a baseline, checking the force it prints; an unknown model must fail naming it. The example
+# sets no C++ standard, so it builds only if the package's target carries C++20.
 # Usage: package_test.sh BUILD_DIR SOURCE_DIR WORKDIR CMAKE CXX_COMPILER
 set -uo pipefail
 build=$1; source=$2; work=$3; cmake=$4; cxx=$5
@@ -32,6 +33,12 @@ echo "example configured and built in $(( $(date +%s) - start )) s"
 [ -f "$work/example/compile_commands.json" ] || fail "no compile_commands.json for the example"
 grep -Eq -- "(-I|-isystem )$source(/src)?[ \"]" "$work/example/compile_commands.json" &&
   fail "the example was compiled with the source tree's include folders"
+# examples/cpp sets no C++ standard: the one the headers need comes with ContactLab::contactlab
+# (the compiler's default, gnu++17 for GCC 12, lacks std::span).
+grep -Eq -- "-std=(c|gnu)\+\+(20|2a|23|2b)" "$work/example/compile_commands.json" ||
+  fail "the example was not compiled as C++20: the package does not carry the standard its headers need"
+grep -Eq "^[^#]*CMAKE_CXX_STANDARD" "$source/examples/cpp/CMakeLists.txt" &&
+  fail "examples/cpp sets CMAKE_CXX_STANDARD, so this test cannot see whether the package carries it"
 
 # A ball 0.5 mm into a plate: the force on the plate (field body) points down, -z.
 cat > "$work/scene.yaml" <<'YAML'

@@ -387,24 +387,64 @@ namespace {
 
 // The haptic-cycle rule: Evaluate allocates nothing, for either variant, with coherence and
 // a node budget that makes the level change.
-TEST(PointshellContactModel, EvaluateAllocatesNothing) {
-  auto shell = testing::SphereShell(0.05, 48, 4);
-  auto field = SphereField(0.06, 0.004);
-  PointshellContactParams params;
-  params.coherence = true;
-  PointshellContactModel tree(PointshellContactModel::Variant::kTree, shell, field, params);
-  PointshellContactModel linear(PointshellContactModel::Variant::kLinear, shell, field, {});
-  ContactQuery q;
-  std::int64_t contacts = 0;
+// The two variants of the allocation tests over one shell and field: the tree with coherence,
+// the linear traversal with the defaults.
+struct SlidingPair {
+  std::shared_ptr<const Pointshell> shell = testing::SphereShell(0.05, 48, 4);
+  std::shared_ptr<const DistanceField> field = SphereField(0.06, 0.004);
+  PointshellContactModel tree{PointshellContactModel::Variant::kTree, shell, field, [] {
+                                PointshellContactParams p;
+                                p.coherence = true;
+                                return p;
+                              }()};
+  PointshellContactModel linear{PointshellContactModel::Variant::kLinear, shell, field, {}};
+};
+
+// 2000 cycles of body A sliding in and out of the field's ball, with coherence and a node
+// budget switching on and off, queried of both variants: the allocations they made (expected 0)
+// and the points in contact summed; Q is left at the last cycle.
+long AllocationsOverASlide(PointshellContactModel& tree, PointshellContactModel& linear, ContactQuery* q,
+                           std::int64_t* contacts) {
   const long before = testing::AllocationCount();
   for (int cycle = 0; cycle < 2000; ++cycle) {
-    q.cycle = cycle;
-    q.node_budget = (cycle / 100) % 2 == 0 ? 0 : 400;
-    q.X_WA = Pose::FromTranslation(Eigen::Vector3d(0.1 + 0.004 * std::sin(cycle * 0.01), 0.001, 0));
-    contacts += tree.Evaluate(q).stats.points_in_contact + linear.Evaluate(q).stats.points_in_contact;
+    q->cycle = cycle;
+    q->node_budget = (cycle / 100) % 2 == 0 ? 0 : 400;
+    q->X_WA = Pose::FromTranslation(Eigen::Vector3d(0.1 + 0.004 * std::sin(cycle * 0.01), 0.001, 0));
+    *contacts += tree.Evaluate(*q).stats.points_in_contact + linear.Evaluate(*q).stats.points_in_contact;
   }
-  EXPECT_EQ(testing::AllocationCount() - before, 0);
+  return testing::AllocationCount() - before;
+}
+
+TEST(PointshellContactModel, EvaluateAllocatesNothing) {
+  SlidingPair pair;
+  PointshellContactModel& tree = pair.tree;
+  PointshellContactModel& linear = pair.linear;
+  ContactQuery q;
+  std::int64_t contacts = 0;
+  EXPECT_EQ(AllocationsOverASlide(tree, linear, &q, &contacts), 0);
   EXPECT_GT(contacts, 0);
+}
+
+// Keeping the contacts (KeepContacts, called outside the cycle) leaves Evaluate allocation-free:
+// the record goes into the room reserved, for either variant, with coherence and a changing
+// node budget, also when more points touch than the room holds.
+TEST(PointshellContactModel, EvaluateAllocatesNothingWithContactsKept) {
+  SlidingPair pair;
+  PointshellContactModel& tree = pair.tree;
+  PointshellContactModel& linear = pair.linear;
+  ASSERT_TRUE(tree.KeepContacts(1 << 12));
+  ASSERT_TRUE(linear.KeepContacts(3));  // fewer than touch: the rest counted
+  ContactQuery q;
+  std::int64_t contacts = 0;
+  EXPECT_EQ(AllocationsOverASlide(tree, linear, &q, &contacts), 0);
+  EXPECT_GT(contacts, 0);
+  // The last query's lists: as many as touched (the tree's), or the room and the rest counted.
+  const ContactResult r_tree = tree.Evaluate(q), r_linear = linear.Evaluate(q);
+  ContactList list;
+  tree.LatestContacts(&list);
+  EXPECT_EQ(list.size(), r_tree.stats.points_in_contact);
+  linear.LatestContacts(&list);
+  EXPECT_EQ(list.size() + list.not_kept, r_linear.stats.points_in_contact);
 }
 
 // States of every point of SHELL in MODEL's latest query Q, asked for in the chunks the model

@@ -165,6 +165,23 @@ class Discovery(unittest.TestCase):
         self.assertEqual(len(names), len(set(names)), "two figures share a name")
 
 
+class MissingMatplotlib(unittest.TestCase):
+    def test_the_interpreter_and_the_package_to_install_are_named(self):
+        # A matplotlib that cannot be imported, first on the path, as in an interpreter without it.
+        with tempfile.TemporaryDirectory() as tmp:
+            os.makedirs(os.path.join(tmp, "matplotlib"))
+            with open(os.path.join(tmp, "matplotlib", "__init__.py"), "w") as f:
+                f.write("raise ModuleNotFoundError(\"No module named 'matplotlib'\", name='matplotlib')\n")
+            env = dict(os.environ, PYTHONPATH=tmp)
+            run = subprocess.run([sys.executable, SCRIPT, "--results", tmp], capture_output=True, text=True,
+                                 env=env, timeout=60)
+        self.assertEqual(run.returncode, 1, run.stderr)
+        self.assertIn(f"make_figures: {sys.executable} (Python {sys.version_info.major}.{sys.version_info.minor}) "
+                      "cannot import matplotlib", run.stderr)
+        self.assertIn("apt install python3-matplotlib", run.stderr)
+        self.assertNotIn("Traceback", run.stderr)
+
+
 class Columns(unittest.TestCase):
     def test_every_table_of_figures_common_is_declared_by_a_study(self):
         for table in common.TABLES.values():
@@ -262,7 +279,7 @@ def write_stranger_run(folder, experiment="my-slide"):
             for i in range(20):
                 cycles.append({"k_C": k, C.model: model, C.cycle: i, C.t: 1e-3 * i, C.fz: k * 1e-3 * i})
             summary.append({"k_C": k, S.model: model, S.max_force_N: k * 19e-3, S.median_us: 4.5,
-                            S.rms_rel_error: -1})
+                            S.rms_rel_error: ""})
     root, name = os.path.split(folder)
     write_table(root, name, C, ["k_C"], [dict(r, job=j) for j in (0,) for r in cycles])
     write_table(root, name, S, ["k_C"], summary)
@@ -275,7 +292,7 @@ class AnyResults(unittest.TestCase):
         return subprocess.run([sys.executable, SCRIPT, *args], capture_output=True, text=True, timeout=120)
 
     # An experiment no figure module declares gets the generic figure: the forces per job and
-    # model, and its summary table with the swept values (the -1 "no reference" column left out).
+    # model, and its summary table with the swept values (the empty "no reference" column left out).
     def test_an_experiment_no_module_declares_gets_the_generic_figure(self):
         with tempfile.TemporaryDirectory() as root:
             write_stranger_run(os.path.join(root, "my-slide"))
@@ -288,7 +305,7 @@ class AnyResults(unittest.TestCase):
                 md = f.read()
             self.assertIn("| job 0 (k_C=1000) | my-own-model |", md)
             self.assertIn("max_force_N", md)
-            self.assertNotIn("| rms_rel_error |", md)  # -1 in every row: no reference
+            self.assertNotIn("| rms_rel_error |", md)  # empty in every row: no reference
 
     # One run's folder (`contactlab run --out DIR`, Python's out=DIR) is drawn into DIR/figures,
     # with no note about the shipped experiments it does not hold.
@@ -320,6 +337,140 @@ class AnyResults(unittest.TestCase):
             self.assertNotEqual(run.returncode, 0)
             self.assertIn("--only no-such-figure", run.stderr)
             self.assertIn("table1_statistics", run.stderr)
+
+
+class Continuity(unittest.TestCase):
+    # Two models whose forces differ 150x (the pressure field's default modulus against a penalty
+    # model): the bars are relative jumps, so the soft model's larger relative jump is the taller
+    # bar, though its absolute jump is smaller; |F| is on a log axis and the legend sits outside
+    # every panel.
+    def test_bars_are_relative_jumps_and_the_legend_covers_no_trace(self):
+        from figures import continuity_models
+        C, S = common.CYCLES, common.SUMMARY
+        scene = "data/scenes/block-joint.yaml"
+        cycles, summary = [], []
+        for model, force, jump in (("pointshell", 15.0, 0.3), ("pressure-field", 0.1, 0.05)):
+            cycles += [{"scene": scene, C.model: model, C.t: 1e-3 * i, C.fz: force} for i in range(10)]
+            summary.append({"scene": scene, S.model: model, S.max_jump_N: jump, S.max_jump_rel: jump / force})
+        with tempfile.TemporaryDirectory() as root:
+            write_table(root, "continuity-models", C, ["scene"], cycles)
+            write_table(root, "continuity-models", S, ["scene"], summary)
+            results = common.Results(root)
+            drawn = {}
+            results.save = lambda fig, name, **kw: drawn.setdefault(name, fig)
+            self.assertTrue(continuity_models.continuity_models(results))
+            fig = drawn["continuity_models.png"]
+            fig.canvas.draw()
+            traces, bars = fig.axes[0], fig.axes[1]
+            heights = {t.get_text(): p.get_height() for t, p in zip(bars.get_xticklabels(), bars.patches)}
+            self.assertAlmostEqual(heights["pointshell"], 2.0)       # 0.3 N of 15 N
+            self.assertAlmostEqual(heights["pressure-field"], 50.0)  # 0.05 N of 0.1 N
+            self.assertEqual(traces.get_yscale(), "log")
+            self.assertIsNone(traces.get_legend())
+            self.assertEqual(len(fig.legends), 1)
+            self.assertEqual({t.get_text() for t in fig.legends[0].get_texts()}, {"pointshell", "pressure-field"})
+
+
+class BaselineSettings(unittest.TestCase):
+    # Each job of baseline-settings sets one FCL and one Bullet key; its label reads "FCL setting /
+    # Bullet setting": each model's rows are listed under its own part of the label, with the
+    # four properties of its summary row, per scene.
+    def test_each_model_is_listed_under_its_own_part_of_the_label(self):
+        from figures import baseline_settings
+        S = common.SUMMARY
+        rows = []
+        for scene in ("data/scenes/block-joint.yaml", "data/scenes/bumpy-cube-plate.yaml"):
+            for label, fcl, bullet in (("default / default", (3.0, 0.13, 0.39, 600), (1.1, 0.09, 0.34, 390)),
+                                       ("bv obb / margin 0.1 mm", (3.0, 0.13, 0.39, 520), (2.2, 0.08, 0.27, 210))):
+                for model, (angle, error, jump, us) in (("fcl", fcl), ("bullet", bullet)):
+                    rows.append({"scene": scene, "scene.model": label, S.model: model, S.median_dir_error_deg: angle,
+                                 S.rms_rel_error_calibrated: error, S.max_jump_rel: jump, S.median_us: us})
+        with tempfile.TemporaryDirectory() as root:
+            write_table(root, "baseline-settings", S, ["scene", "scene.model"], rows)
+            results = common.Results(root)
+            tables = {}
+            results.save = lambda fig, name, **kw: None
+            results.save_table = lambda header, lines, title, name: tables.setdefault(name, (header, lines))
+            self.assertTrue(baseline_settings.baseline_settings(results))
+            header, lines = tables["baseline_settings_table"]
+            self.assertEqual(header[:3], ["model", "setting", "scene"])
+            got = {(l[0], l[1], l[2]): l[3:] for l in lines}
+            self.assertEqual(len(got), 8)
+            self.assertEqual(got[("fcl", "bv obb", "block-joint")], ["3.00", "0.130", "0.390", "520"])
+            self.assertEqual(got[("bullet", "margin 0.1 mm", "bumpy-cube-plate")], ["2.20", "0.080", "0.270", "210"])
+            self.assertEqual(got[("bullet", "default", "block-joint")], ["1.10", "0.090", "0.340", "390"])
+            self.assertEqual([l[0] for l in lines], ["fcl"] * 4 + ["bullet"] * 4)
+        self.assertEqual(baseline_settings.setting_of("bullet", "convex hull / convex hull"), "convex hull")
+        self.assertEqual(baseline_settings.setting_of("fcl", "default"), "default")
+
+
+class SpeedVsError(unittest.TestCase):
+    # The headline figure scores every model by the model-neutral overlap-volume law after its
+    # fitted scale (compare-volume's rms_rel_error_calibrated) in its first panel and by the
+    # paper's eq. (2) law in its second, each panel reading its own experiment's column; a model
+    # with no value (empty cell) has no point.
+    def test_first_panel_is_the_neutral_calibrated_error_and_the_second_the_papers_law(self):
+        from figures import speed_vs_error
+        S = common.SUMMARY
+        scene = "data/scenes/block-joint.yaml"
+        neutral = [{"scene": scene, S.model: "pointshell", S.median_us: 5, S.p99_us: 9, S.rms_rel_error: 0.9,
+                    S.rms_rel_error_calibrated: 0.2},
+                   {"scene": scene, S.model: "pressure-field", S.median_us: 500, S.p99_us: 700, S.rms_rel_error: 0.99,
+                    S.rms_rel_error_calibrated: 0.1},
+                   {"scene": scene, S.model: "fcl", S.median_us: 50, S.p99_us: 70, S.rms_rel_error: "",
+                    S.rms_rel_error_calibrated: ""}]
+        paper = [{"scene": scene, "offset": "0", S.model: "pointshell", S.median_us: 5, S.p99_us: 9,
+                  S.rms_rel_error: 0.03},
+                 {"scene": scene, "offset": "0", S.model: "pressure-field", S.median_us: 500, S.p99_us: 700,
+                  S.rms_rel_error: 0.95}]
+        with tempfile.TemporaryDirectory() as root:
+            write_table(root, "compare-volume", S, ["scene"], neutral)
+            write_table(root, "speed-vs-error", S, ["scene", "offset"], paper)
+            results = common.Results(root)
+            drawn = {}
+            results.save = lambda fig, name, **kw: drawn.setdefault(name, fig)
+            self.assertTrue(speed_vs_error.speed_vs_error(results))
+            fig = drawn["speed_vs_error.png"]
+            first, second = fig.axes[0], fig.axes[1]
+            self.assertIn("overlap-volume", first.get_ylabel())
+            self.assertIn("eq. (2)", second.get_ylabel())
+            points = lambda ax: sorted(tuple(o.get_offsets()[0]) for o in ax.collections)
+            self.assertEqual(points(first), [(5.0, 0.2), (500.0, 0.1)])  # fcl: no value, no point
+            self.assertEqual(points(second), [(5.0, 0.03), (500.0, 0.95)])
+
+
+class ClosedLoop(unittest.TestCase):
+    # Swept over the stiffness rule (closed-loop-matched), a model is one line per rule, with the
+    # factor on its wrench, and its largest stable k_VC is the largest before its first unstable
+    # one, per rule.
+    def test_each_stiffness_rule_is_its_own_line_with_its_wrench_scale(self):
+        from figures import closed_loop
+        L = common.STABILITY
+        scene = "data/scenes/block-joint.yaml"
+        rows = []
+        for rule, scale, unstable_from in (("own", 1.0, None), ("matched", 120.0, 2000.0)):
+            for k in (1000.0, 2000.0, 5000.0):
+                for motion in ("push", "slide"):
+                    bad = unstable_from is not None and k >= unstable_from and motion == "slide"
+                    rows.append({"scene": scene, "stiffness": rule, L.model: "pressure-field", L.motion: motion,
+                                 L.k_vc: k, L.wrench_scale: scale, L.stable: 0 if bad else 1,
+                                 L.verdict: "active" if bad else "ok"})
+        with tempfile.TemporaryDirectory() as root:
+            write_table(root, "closed-loop-matched", L, ["scene", "stiffness"], rows)
+            results = common.Results(root)
+            results.save = lambda fig, name, **kw: None
+            self.assertTrue(closed_loop.closed_loop_matched(results))
+            with open(os.path.join(results.out, "closed_loop_matched.md")) as f:
+                table = [line.strip("|\n ").split(" | ") for line in f if line.startswith("| ")]
+            header, body = table[0], table[1:]
+            self.assertEqual(header[:4], ["scene", "model", "stiffness", "wrench scale"])
+            by_rule = {line[2]: line for line in body}
+            self.assertEqual(set(by_rule), {"own", "matched"})
+            self.assertEqual(by_rule["own"][3], "1")
+            self.assertEqual(by_rule["matched"][3], "120")
+            self.assertEqual(by_rule["own"][-1], "5000")
+            self.assertEqual(by_rule["matched"][-1], "1000")
+            self.assertIn("active (slide)", by_rule["matched"][header.index("2000 N/m")])
 
 
 class Reading(unittest.TestCase):

@@ -64,7 +64,7 @@ models: [pointshell]
 moving_body: ball
 trajectory: {type: twist, direction: [0, 0, -1], depth: 0.002, angle: 0.4, duration: 0.1}
 reference: ''
-sweep: {k_C: [500, 1500]}
+sweep: {k_C: [500, 1500], "scene.bodies[name=plate].field.resolution": [32]}
 YAML
 "$cli" run jobs.yaml --out results/view-test-jobs --cache cache > jobs-run.log 2>&1 || { cat jobs-run.log; echo "FAILED: contactlab run (sweep)"; exit 1; }
 "$cli" view results/view-test-jobs --out jobs.html --cache cache || { echo "FAILED: contactlab view results of two jobs"; exit 1; }
@@ -85,9 +85,16 @@ done
 browse --dump-dom "file://$work/jobs.html#job=1&t=0.05" jobs.dom.log > jobs.dom
 browse "--screenshot=$work/jobs.png" "file://$work/jobs.html#job=1&t=0.05" jobs.shot.log > /dev/null
 "$python" "$here/check_page.py" --page jobs --dom jobs.dom --png jobs.png --logs jobs.dom.log jobs.shot.log --replay \
-    --expect-text "<h1 id=\"title\">view-test-jobs — k_C=1500</h1>" --expect-attr data-job=1 --expect-attr data-jobs=2 || status=1
-grep -q '<option value="0">job 0: k_C=500</option><option value="1">job 1: k_C=1500</option>' jobs.dom ||
+    --expect-text "<h1 id=\"title\">view-test-jobs — k_C=1500 scene.bodies[name=plate].field.resolution=32</h1>" --expect-attr data-job=1 --expect-attr data-jobs=2 || status=1
+# An option names a key path by its last key.
+grep -q '<option value="0">job 0: k_C=500 resolution=32</option><option value="1">job 1: k_C=1500 resolution=32</option>' jobs.dom ||
   { echo "FAILED: the job selector does not list both jobs"; status=1; }
+# The chosen job's whole label is written out under the selector.
+grep -q '<span id="job-label" class="small">k_C=1500 scene.bodies\[name=plate\].field.resolution=32</span>' jobs.dom ||
+  { echo "FAILED: the chosen job's label is not shown under the selector"; status=1; }
+# Every force trace of the replay is named in the plot's legend, in the model selector's order.
+grep -q 'id="plot"[^>]*data-legend="pointshell,pointshell-linear"' replay.dom ||
+  { echo "FAILED: the force plot's legend does not name both models' traces"; status=1; }
 # Choosing job 1 in the selector of a page opened on job 0 (a script added to the page does what a
 # user would) shows job 1. The script is a module so that it runs after the viewer's module has
 # filled the selector (module scripts run in order, once the page is parsed).
@@ -95,7 +102,7 @@ sed 's|</body>|<script type="module">if (document.documentElement.getAttribute("
   jobs.html > switch.html
 browse --dump-dom "file://$work/switch.html" switch.dom.log > switch.dom
 "$python" "$here/check_page.py" --page switch --dom switch.dom --png jobs.png --logs switch.dom.log --replay \
-    --expect-text "<h1 id=\"title\">view-test-jobs — k_C=1500</h1>" --expect-attr data-job=1 || status=1
+    --expect-text "<h1 id=\"title\">view-test-jobs — k_C=1500 scene.bodies[name=plate].field.resolution=32</h1>" --expect-attr data-job=1 || status=1
 
 # The pressure field's contact surface: a rigid ball pressed 4 mm into the plate, drawn with and
 # without it. Every corner and pixel count of the surface's data is checked by view_data_test; here,

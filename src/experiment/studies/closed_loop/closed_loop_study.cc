@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "contact/model_registry.h"
+#include "contact/scaled_contact_model.h"
 #include "experiment/csv_line.h"
 #include "experiment/result_table.h"
 #include "experiment/run_metadata.h"
@@ -83,7 +84,7 @@ LoopJobResult RunClosedLoopJob(const Job& job, const RunOptions& options) {
     const std::unique_ptr<ContactModel> model = MakeSceneContactModel(name, job.scene, assets);
     SceneDynamics dynamics = MakeSceneDynamics(assets, where.cycle_seconds);
     for (LoopMotion motion : spec.motions) {
-      LoopRow row{name, motion, spec.loop, {}};
+      LoopRow row{name, motion, spec.loop, {}, WrenchScaleOf(*model)};
       row.loop.motion = motion;
       row.metrics = RunClosedLoop(*model, where, row.loop, &dynamics);
       result.rows.push_back(std::move(row));
@@ -102,6 +103,8 @@ const TableColumn<LoopRow> kLoopColumns[] = {
      [](const LoopRow& r, CsvLine& l) { l.Text(LoopMotionName(r.motion)); }},
     {"k_vc", "N/m", "linear coupling stiffness",
      [](const LoopRow& r, CsvLine& l) { l.Num("%.6g", r.loop.k_vc); }},
+    {"wrench_scale", "", "the factor model.stiffness: matched applied to the model's wrench to match the paper's model's stiffness (1: its own stiffness)",
+     [](const LoopRow& r, CsvLine& l) { l.Num("%.6g", r.wrench_scale); }},
     {"k_vc_rot", "N m/rad", "rotational coupling stiffness",
      [](const LoopRow& r, CsvLine& l) { l.Num("%.6g", r.loop.k_vc_rot); }},
     {"energy_into_hand_J", "J", "passivity observer: work of the device wrench on the handle over the run (positive: the loop put energy in)",
@@ -214,7 +217,10 @@ void RegisterClosedLoopStudy() {
   Study s;
   s.name = "closed-loop";
   s.description = "passivity and settling of the simulated haptic loop per model and motion (sec. 5)";
-  s.sections = {"models", "loop"};
+  s.sections = {
+      {"models", "list of model names (default: the scene's)", "the contact models each job closes the loop with"},
+      {"loop", "mapping (below)", "the simulated hand, the coupling and the motions"},
+  };
   for (const std::string& key : LoopParams().SweepKeys()) s.aliases.push_back({key, "loop." + key});
   s.tables = {StabilityTable()};
   s.check = CheckClosedLoopStudy;

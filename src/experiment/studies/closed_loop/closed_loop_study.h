@@ -43,6 +43,7 @@ struct LoopRow {
   LoopMotion motion = LoopMotion::kPush;
   ClosedLoopCase loop;
   ClosedLoopMetrics metrics;
+  double wrench_scale = 1;  // model.stiffness: matched's factor on the model's wrench (1: own)
 };
 
 struct LoopJobResult {

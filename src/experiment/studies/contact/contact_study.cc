@@ -55,11 +55,21 @@ void RunContactStudy(const ExperimentConfig& config, const RunOptions& options, 
   for (const auto& m : config.models) std::fprintf(stderr, " %s", m.c_str());
   std::fprintf(stderr, "\n");
   const std::vector<SummaryRow> rows = RunExperiment(config, options, only);
+  // One block per job: its swept values, then a line per model ("-": no value, as an empty cell
+  // of summary.csv).
   std::printf("%-6s %-24s %-9s %10s %10s %10s %12s\n", "job", "model", "points", "max|F| N", "jump N", "p99 us",
               "rel.err");
+  int shown_job = -1;
   for (const SummaryRow& r : rows) {
-    std::printf("%-6d %-24s %-9d %10.4g %10.4g %10.1f %12.4g\n", r.job, r.model.c_str(), r.points, r.max_force,
-                r.max_jump, r.p99_us, r.rms_rel_error);
+    if (r.job != shown_job && !config.sweep.empty()) {
+      std::printf("job %d: %s\n", r.job, JobLabel(config, std::size_t(r.job)).c_str());
+    }
+    shown_job = r.job;
+    const std::string points = r.reads_pointshell() ? std::to_string(r.points) : "-";
+    char error[32] = "-";
+    if (r.rms_rel_error >= 0) std::snprintf(error, sizeof error, "%.4g", r.rms_rel_error);
+    std::printf("%-6d %-24s %-9s %10.4g %10.4g %10.1f %12s\n", r.job, r.model.c_str(), points.c_str(), r.max_force,
+                r.max_jump, r.p99_us, error);
   }
 }
 
@@ -69,7 +79,15 @@ void RegisterContactStudy() {
   Study s;
   s.name = kContactStudy;
   s.description = "models compared along a trajectory";
-  s.sections = {"models", "moving_body", "trajectory", "reference", "reference_every"};
+  s.sections = {
+      {"models", "list of model names (default: the scene's)", "the contact models every job compares"},
+      {"moving_body", "a body's name (default: the field body)", "the body the trajectory moves; the other stays at its pose"},
+      {"trajectory", "mapping (below; required)", "the moving body's motion, cycle by cycle"},
+      {"reference", "a model name, or a mapping: model, points, levels, resolution",
+       "what the errors in summary.csv are measured against: a model on the same scene, or on a denser version of it "
+       "(points, levels: its pointshell; resolution: its field)"},
+      {"reference_every", "integer >= 1 (default 1)", "evaluate the reference every N cycles (a costly reference)"},
+  };
   s.required = {"trajectory"};
   s.tables = {CyclesTable(), SummaryTable()};
   s.derived = {{ConvergenceTable(), [](const std::vector<std::string>& tables) { return ConvergenceCsv(tables[1]); }}};

@@ -73,6 +73,7 @@ struct SummaryRow {
   // contact (0 when the run had no force).
   double max_jump_rel = 0, lipschitz_rel = 0;
   double max_force = 0, mean_force = 0;
+  double wrench_scale = 1;  // model.stiffness: matched's factor on the model's wrench (1: own)
   double max_depth_voxels = 0;
   // Cycles where the moving body outran the scene's max_point_speed, each resetting the model
   // (as the haptic cycle's coherence guard does); cycles whose query the model refused (no
@@ -86,6 +87,8 @@ struct SummaryRow {
   // Memory of the body data the model reads (DistanceField and Pointshell memory_bytes); -1 when the
   // model does not read it: B's distance field and A's pointshell (points, normals, tree).
   std::int64_t field_B_bytes = -1, pointshell_A_bytes = -1;
+  // The model reads A's pointshell, so POINTS means something for it (summary.csv, run table).
+  bool reads_pointshell() const { return pointshell_A_bytes >= 0; }
 };
 
 // What the cycle rows of a job view, allocated once before its first cycle.

@@ -68,10 +68,11 @@ std::string ConvergenceCsv(const std::string& summary_csv) {
     if (int(cells.size()) != int(header.size())) continue;
     std::string key = cells[c_model];
     for (int c = c_job + 1; c < c_model; ++c) {
-      if (header[c] != "points" && !pooled(header[c])) key += ";" + header[c] + "=" + cells[c];
+      if (header[c] != summary.AxisColumn("points") && !pooled(header[c])) key += ";" + header[c] + "=" + cells[c];
     }
-    const double err = std::stod(cells[c_err]);
-    if (err >= 0) draws[key][std::stod(cells[c_points])].push_back(err);
+    // An empty error (no reference) or points (a model that reads no pointshell): no draw.
+    if (cells[c_err].empty() || cells[c_points].empty()) continue;
+    draws[key][std::stod(cells[c_points])].push_back(std::stod(cells[c_err]));
   }
   std::map<std::string, std::vector<std::pair<double, double>>> groups;
   for (const auto& [key, by_points] : draws) {

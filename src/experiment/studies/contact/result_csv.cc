@@ -138,9 +138,9 @@ const CycleColumn kCycleColumns[] = {
     {"nodes", "", "tree nodes the traversal visited",
      [](const CycleRow& r, CsvLine& l) { l.Int(r.nodes); },
      [](const CsvCell& c, CyclesCsvRow& r) { r.values.nodes = c.Integer<std::int64_t>(); }},
-    {"level", "", "deepest tree level rendered (-1: none)",
-     [](const CycleRow& r, CsvLine& l) { l.Int(r.level); },
-     [](const CsvCell& c, CyclesCsvRow& r) { r.values.level = c.Integer<int>(); }},
+    {"level", "", "deepest tree level rendered (empty: the model walks no tree)",
+     [](const CycleRow& r, CsvLine& l) { r.level >= 0 ? l.Int(r.level) : l.Empty(); },
+     [](const CsvCell& c, CyclesCsvRow& r) { r.values.level = c.empty() ? -1 : c.Integer<int>(); }},
     {"max_penetration", "m", "largest penetration depth",
      [](const CycleRow& r, CsvLine& l) { l.Num("%.6g", r.max_penetration); },
      [](const CsvCell& c, CyclesCsvRow& r) { r.values.max_penetration = c.Number(); }},
@@ -195,13 +195,13 @@ const CycleColumn kCycleColumns[] = {
 };
 
 // summary.csv: per model and job, continuity, timing, error against the reference and force
-// magnitude metrics (an error of -1: no reference), and the memory of the body data the model
-// reads (empty cells for data it does not read).
+// magnitude metrics, and the memory of the body data the model reads. A cell with no value (no
+// reference, no pointshell read, a rigid body) is empty, as in every table.
 const TableColumn<SummaryRow> kSummaryColumns[] = {
     {"model", "", "the contact model, by its registered name",
      [](const SummaryRow& r, CsvLine& l) { l.Text(r.model); }},
-    {"points", "", "pointshell points of body A (the scene's pointshell.points)",
-     [](const SummaryRow& r, CsvLine& l) { l.Int(r.points); }},
+    {"points", "", "pointshell points of body A the model reads (the scene's pointshell.points; empty: it reads none)",
+     [](const SummaryRow& r, CsvLine& l) { r.reads_pointshell() ? l.Int(r.points) : l.Empty(); }},
     {"cycles", "", "cycles of the trajectory",
      [](const SummaryRow& r, CsvLine& l) { l.Int(r.cycles); }},
     {"max_jump_N", "N", "largest |F(k+1) - F(k)| over consecutive cycles",
@@ -224,18 +224,20 @@ const TableColumn<SummaryRow> kSummaryColumns[] = {
      [](const SummaryRow& r, CsvLine& l) { l.Num("%.1f", r.mean_nodes); }},
     {"level_switches_per_s", "1/s", "changes of the rendered tree level per second",
      [](const SummaryRow& r, CsvLine& l) { l.Num("%.3f", r.level_switches_per_s); }},
-    {"rms_rel_error", "", "RMS force error against the reference over RMS reference force (-1: no reference)",
-     [](const SummaryRow& r, CsvLine& l) { l.Num("%.6g", r.rms_rel_error); }},
-    {"max_dir_error_deg", "deg", "largest angle between the force and the reference force (-1: no reference)",
-     [](const SummaryRow& r, CsvLine& l) { l.Num("%.4g", r.max_dir_error_deg); }},
-    {"median_dir_error_deg", "deg", "median angle between the force and the reference force (-1: no reference)",
-     [](const SummaryRow& r, CsvLine& l) { l.Num("%.4g", r.median_dir_error_deg); }},
-    {"p95_dir_error_deg", "deg", "95th percentile of that angle (-1: no reference)",
-     [](const SummaryRow& r, CsvLine& l) { l.Num("%.4g", r.p95_dir_error_deg); }},
-    {"ref_scale", "", "the stiffness scale fitted to the reference force (-1: no reference or no force)",
-     [](const SummaryRow& r, CsvLine& l) { l.Num("%.6g", r.ref_scale); }},
-    {"rms_rel_error_calibrated", "", "rms_rel_error after ref_scale (-1: no reference or no force)",
-     [](const SummaryRow& r, CsvLine& l) { l.Num("%.6g", r.rms_rel_error_calibrated); }},
+    {"rms_rel_error", "", "RMS force error against the reference over RMS reference force (empty: no reference)",
+     [](const SummaryRow& r, CsvLine& l) { l.NumOrEmpty("%.6g", r.rms_rel_error); }},
+    {"max_dir_error_deg", "deg", "largest angle between the force and the reference force (empty: no reference)",
+     [](const SummaryRow& r, CsvLine& l) { l.NumOrEmpty("%.4g", r.max_dir_error_deg); }},
+    {"median_dir_error_deg", "deg", "median angle between the force and the reference force (empty: no reference)",
+     [](const SummaryRow& r, CsvLine& l) { l.NumOrEmpty("%.4g", r.median_dir_error_deg); }},
+    {"p95_dir_error_deg", "deg", "95th percentile of that angle (empty: no reference)",
+     [](const SummaryRow& r, CsvLine& l) { l.NumOrEmpty("%.4g", r.p95_dir_error_deg); }},
+    {"wrench_scale", "", "the factor model.stiffness: matched applied to the model's wrench to match the paper's model's stiffness (1: its own stiffness)",
+     [](const SummaryRow& r, CsvLine& l) { l.Num("%.6g", r.wrench_scale); }},
+    {"ref_scale", "", "the stiffness scale fitted to the reference force (empty: no reference or no force)",
+     [](const SummaryRow& r, CsvLine& l) { l.NumOrEmpty("%.6g", r.ref_scale); }},
+    {"rms_rel_error_calibrated", "", "rms_rel_error after ref_scale (empty: no reference or no force)",
+     [](const SummaryRow& r, CsvLine& l) { l.NumOrEmpty("%.6g", r.rms_rel_error_calibrated); }},
     {"max_force_N", "N", "largest |F| on the moving body",
      [](const SummaryRow& r, CsvLine& l) { l.Num("%.6g", r.max_force); }},
     {"mean_force_N", "N", "mean |F| on the moving body over all cycles",
@@ -259,7 +261,7 @@ const TableColumn<SummaryRow> kSummaryColumns[] = {
     {"field_B_bytes", "bytes", "memory of body B's distance field (empty: the model does not read it)",
      [](const SummaryRow& r, CsvLine& l) { r.field_B_bytes >= 0 ? l.Int(r.field_B_bytes) : l.Empty(); }},
     {"pointshell_A_bytes", "bytes", "memory of body A's pointshell: points, normals, tree (empty: the model does not read it)",
-     [](const SummaryRow& r, CsvLine& l) { r.pointshell_A_bytes >= 0 ? l.Int(r.pointshell_A_bytes) : l.Empty(); }},
+     [](const SummaryRow& r, CsvLine& l) { r.reads_pointshell() ? l.Int(r.pointshell_A_bytes) : l.Empty(); }},
 };
 
 }  // namespace

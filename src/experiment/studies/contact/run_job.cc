@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "contact/coherence_guard.h"
+#include "contact/scaled_contact_model.h"
 #include "deform/body_dynamics.h"
 #include "experiment/contact_placement.h"
 #include "experiment/studies/contact/contact_study.h"
@@ -184,6 +185,7 @@ struct ModelTrace {
   std::vector<int> levels;
   double nodes_sum = 0, max_depth = 0, max_displacement = 0;
   std::int64_t contact_faults = 0;
+  double wrench_scale = 1;  // model.stiffness: matched's factor (1: the model's own stiffness)
 
   explicit ModelTrace(std::int64_t cycles) {
     const std::size_t n = std::size_t(cycles);
@@ -270,6 +272,7 @@ void RunModel(const JobSetup& setup, const std::string& name, CycleStorage& stor
   const JobMotion& motion = setup.motion;
   SceneDynamics& dynamics = setup.dynamics;
   std::unique_ptr<ContactModel> model = MakeSceneContactModel(name, scene, setup.assets);
+  trace->wrench_scale = WrenchScaleOf(*model);
   // Depths in voxels only for models whose depth is measured on B's field grid.
   const double spacing =
       FindContactModel(name)->needs.depth_in_field_voxels ? setup.assets.B.field()->spacing() : 0.0;
@@ -310,6 +313,7 @@ SummaryRow Summarize(const JobSetup& setup, const std::string& name, ModelTrace&
   s.model = name;
   s.points = scene.pointshell_body.pointshell.points;
   s.cycles = cycles;
+  s.wrench_scale = trace.wrench_scale;
   const double radius = setup.assets.A.mesh()->Bounds().size().norm() / 2;
   const ContinuityMetrics c =
       ForceContinuity(trace.forces, trace.poses, setup.motion.dt, radius, setup.config.cutoff_hz);

@@ -397,7 +397,10 @@ void RegisterDeformedFieldStudy() {
   Study s;
   s.name = "deformed-field";
   s.description = "the field body's deformed distance field against the exact distance (sec. 4.2, Fig. 10)";
-  s.sections = {"deformation", "measure"};
+  s.sections = {
+      {"deformation", "mapping: loads, max_displacement (required)", "how the field body is deformed in each job"},
+      {"measure", "mapping: points, slice", "where the deformed field is compared with the exact distance"},
+  };
   s.required = {"deformation"};
   s.aliases = {{"max_displacement", "deformation.max_displacement"}};
   s.tables = {ErrorTable(), SliceTable()};

@@ -12,3 +12,7 @@ export const FORCE_COLOUR = 0xff3030;
 // Contact surfaces (pressure-field), by pressure: dark teal (0) through green to pale yellow
 // (the largest), hues clear of the bodies' and the contact red.
 export const PRESSURE_STOPS = [[0, 80, 70], [120, 200, 60], [255, 240, 120]];
+// Force plot tracks, one per model of a replay in the order of its model selector: the current
+// one is drawn thicker; hues clear of the bodies' orange and blue and of the contact red.
+export const TRACK_COLOURS = ['#ffd000', '#50d890', '#d080ff', '#ff80c0', '#a0f040', '#40e0d0', '#f0f0f0',
+                              '#c0a0ff', '#e0e070', '#80ffb0'];

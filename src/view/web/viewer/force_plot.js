@@ -1,12 +1,14 @@
-// The force plot under the 3D view: |F| against t of every track (the current one bright),
-// with a cursor at the current frame; a replay's models, or the live view's last 10 s.
+// The force plot under the 3D view: |F| against t of every track, each in its own colour and
+// named in the plot's legend (the current one thicker, its name marked), with a cursor at the
+// current frame; a replay's models, or the live view's last 10 s.
+import { TRACK_COLOURS } from './colours.js';
 import { fmt } from './util.js';
 
 // One track X (x.t, x.fmag) as a polyline of COLOUR on context G through X(t), Y(f), at most
 // ~2 samples per pixel of a plot WIDTH pixels wide.
-function curve(g, x, X, Y, colour, width) {
+function curve(g, x, X, Y, colour, width, lineWidth) {
   g.strokeStyle = colour;
-  g.lineWidth = 1.25;
+  g.lineWidth = lineWidth;
   g.beginPath();
   const step = Math.max(1, Math.floor(x.t.length / (2 * width)));
   for (let i = 0; i < x.t.length; i += step) {
@@ -40,6 +42,34 @@ function axes(g, area, ch, t0, t1, fmax) {
   g.fillText('t (s)', area.left + area.width / 2, ch - 6);
 }
 
+// Track K's colour.
+export function trackColour(k) { return TRACK_COLOURS[k % TRACK_COLOURS.length]; }
+
+// The tracks' names in their colours, top right inside AREA, on a dark backing so no curve
+// hides them; the current one marked and bold.
+function legend(g, area, tracks, current) {
+  const named = tracks.filter(function (x) { return x.name; });
+  if (named.length === 0) return;
+  g.font = '11px sans-serif';
+  const rows = tracks.map(function (x, k) { return {k: k, text: (k === current ? '\u25b6 ' : '') + (x.name || '')}; })
+                     .filter(function (r) { return tracks[r.k].name; });
+  let w = 0;
+  rows.forEach(function (r) { w = Math.max(w, g.measureText(r.text).width); });
+  const lineH = 13, pad = 4;
+  const left = area.left + area.width - w - 2 * pad - 14, top = area.top + 2;
+  g.fillStyle = 'rgba(20, 22, 26, 0.85)';
+  g.fillRect(left, top, w + 2 * pad + 14, rows.length * lineH + 2 * pad);
+  g.textAlign = 'left';
+  rows.forEach(function (r, i) {
+    const y = top + pad + i * lineH + 10;
+    g.fillStyle = trackColour(r.k);
+    g.fillRect(left + pad, y - 7, 10, 3);
+    g.font = (r.k === current ? 'bold ' : '') + '11px sans-serif';
+    g.fillText(r.text, left + pad + 14, y);
+  });
+  g.font = '11px sans-serif';
+}
+
 export class ForcePlot {
   // CANVAS: the <canvas> to draw on.
   constructor(canvas) {
@@ -70,12 +100,14 @@ export class ForcePlot {
     const X = function (t) { return area.left + (t - t0) / (t1 - t0) * area.width; };
     const Y = function (f) { return area.top + area.height * (1 - f / fmax); };
     axes(g, area, ch, t0, t1, fmax);
-    // Curves: the others grey, the current one yellow.
+    // Curves, each track in its colour; the current one last (on top) and thicker.
     tracks.forEach(function (x, k) {
-      if (k === current) return;
-      curve(g, x, X, Y, '#6c7178', area.width);
+      if (k !== current) curve(g, x, X, Y, trackColour(k), area.width, 1.25);
     });
-    curve(g, tr, X, Y, '#ffd000', area.width);
+    curve(g, tr, X, Y, trackColour(current), area.width, 2.5);
+    legend(g, area, tracks, current);
+    // The names the legend shows, for tests that read the page's DOM.
+    plot.setAttribute('data-legend', tracks.map(function (x) { return x.name || ''; }).join(','));
     // Cursor.
     g.strokeStyle = '#ffffff';
     g.beginPath();

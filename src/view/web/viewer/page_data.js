@@ -26,13 +26,28 @@ function resolveBlobs(x, blobs) {
   return out;
 }
 
+// A job's label as its option shows it: each value of a path (a scene file, a mesh) by its
+// file's name alone, each key path by its last key ("scene=scenes/block-joint.yaml
+// scene.bodies[name=tool].mesh=meshes/peg.obj" -> "scene=block-joint mesh=peg").
+export function shortLabel(label) {
+  return label.split(' ').map(function (pair) {
+    const at = pair.indexOf('=', Math.max(0, pair.indexOf(']')));  // past a selector's own '=' ([name=tool])
+    if (at < 0) return pair;
+    const key = pair.slice(0, at).replace(/^.*\]\./, '').replace(/^.*\./, '');
+    const value = pair.slice(at + 1).replace(/^.*\//, '').replace(/\.(yaml|yml|obj|off|stl|ply)(\.gz)?$/, '');
+    return key + '=' + value;
+  }).join(' ');
+}
+
 // The selector of PAGEDATA's jobs, JOBINDEX chosen: choosing another reloads the page at #job=I.
 function showJobSelector(pageData, jobIndex) {
   const jobSelect = document.getElementById('job');
   pageData.jobs.forEach(function (j) {
-    jobSelect.appendChild(el('option', {value: String(j.job)}, 'job ' + j.job + (j.label ? ': ' + j.label : '')));
+    jobSelect.appendChild(el('option', {value: String(j.job)}, 'job ' + j.job + (j.label ? ': ' + shortLabel(j.label) : '')));
   });
   jobSelect.value = String(pageData.jobs[jobIndex].job);
+  // The chosen job's whole label, wrapped under the selector (an option cannot wrap).
+  document.getElementById('job-label').textContent = pageData.jobs[jobIndex].label || '';
   jobSelect.addEventListener('change', function () {
     location.hash = 'job=' + encodeURIComponent(jobSelect.value);
     location.reload();

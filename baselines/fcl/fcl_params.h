@@ -1,0 +1,38 @@
+// The FCL baseline's own keys in a scene's model section (register_fcl.cc): the bounding
+// volume of its mesh hierarchies, FCL's contact cap, and whether each body is a triangle mesh
+// or the convex hull of its vertices.
+//
+// Not offered: FCL's own GJK/EPA solver for convex pairs (GST_INDEP). In FCL 0.7 it reports a
+// Convex pair's depth negated and its normal in object 1's frame (FCL PR #334), and even
+// corrected its depth is wrong: a 642-vertex ball hull pressed 0.5, 2 and 5 mm into a box gives
+// 0.38, 1.2 and 1.4 mm, with EPA's stores enlarged 32-fold alike. libccd's MPR (FCL's default)
+// gives the closed form within the tessellation (fcl_contact_model_test.cc).
+#pragma once
+
+#include <cstddef>
+
+#include "util/param_table.h"
+
+namespace contactlab {
+
+// The bounding volume of FCL's BVHModel (fcl/math/bv/). All give the same contacts: the
+// triangle pairs tested are the same, the BV only changes what is culled and at what cost.
+enum class FclBv { kObbrss, kObb, kRss, kKios, kAabb, kKdop16, kKdop18, kKdop24 };
+
+// What FCL collides: each body's triangle mesh (BVHModel, triangle-pair contacts with a depth
+// local to the pair), or fcl::Convex of its vertices (one contact with the depth of the two
+// convex hulls' overlap by libccd's MPR; sensible for convex bodies only).
+enum class FclShape { kMesh, kConvex };
+
+struct FclOwnParams {
+  FclBv bv = FclBv::kObbrss;
+  long long max_contacts = 100000;
+  FclShape shape = FclShape::kMesh;
+};
+
+// The rows' names of the choices, for messages.
+const char* FclBvName(FclBv bv);
+
+const ParamTable<FclOwnParams>& FclOwnParamTable();
+
+}  // namespace contactlab
