@@ -20,9 +20,11 @@ namespace {
 // The body's inner-sphere packing: largest empty spheres inside its field (Protosphere
 // prototypes, sphere_packing.h) until SPHERES are placed or their volume reaches COVERAGE of the
 // body's.
-// The default, 80 % of the volume, is the fullest packing whose cycle stays within the 1 kHz
-// budget on the bench scenes (block-joint: 0.4 ms; 90 % takes it to 26 ms), and it halves the
-// magnitude error against the exact overlap volume of 2000 spheres (docs/models.md).
+// The default, 80 % of the volume, is the only target of experiments/packing-fill.yaml that
+// gives a force on all three of compare-volume's scenes within the 1 kHz budget: below it
+// bumpy-cube-plate's packings never meet on the 3 mm press; at 85 % block-joint takes 9.5 ms
+// p99 (at 80 %: 0.90-0.98 ms, median 0.25 ms). Its calibrated error against the exact overlap
+// volume is 17-24 % (24-36 % at 70-75 %, 11-16 % at the floor) (docs/results-models.md).
 struct InnerSphereSpec {
   int spheres = 1 << 20;   // at most this many spheres
   double coverage = 0.8;   // stop once this fraction of the volume is covered (0: no target)
