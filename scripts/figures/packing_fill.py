@@ -23,7 +23,7 @@ def reached(row):
 
 @figure(experiments=["packing-fill"], outputs=["packing_fill.png", "packing_fill_table.png", "packing_fill_table.md"])
 def packing_fill(results):
-    rows = [r for r in results.load("packing-fill", SUMMARY) if r[SUMMARY.model] == "inner-spheres"]
+    rows = [r for r in results.load("packing-fill", SUMMARY) or [] if r[SUMMARY.model] == "inner-spheres"]
     if not rows:
         return False
     fig, axes = plt.subplots(1, 3, figsize=(14, 4.2))
