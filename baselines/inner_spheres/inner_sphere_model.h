@@ -48,13 +48,14 @@
 #include "baselines/inner_spheres/sphere_tree.h"
 #include "contact/contact_model.h"
 #include "contact/contact_recorder.h"
+#include "contact/volume_fill.h"
 
 namespace contactlab {
 
 // Which K_B the model reports (above).
 enum class SphereStiffness { kHalfspace, kExact, kProjected };
 
-class InnerSphereModel final : public ContactModel {
+class InnerSphereModel final : public ContactModel, public VolumeFill {
  public:
   // K_V: the volume stiffness, N/m^2. STIFFNESS: the K_B reported. MAX_PAIRS: pairs held per
   // traversal level (beyond: the pair counts through its proxies). Throws Error for an empty
@@ -71,6 +72,9 @@ class InnerSphereModel final : public ContactModel {
     return true;
   }
   void LatestContacts(ContactList* out) const override { contacts_.Fill(X_WB_contacts_, 1.0, out); }
+  // The fraction of each body's volume its packing fills.
+  double fill_A() const override { return A_->Coverage(); }
+  double fill_B() const override { return B_->Coverage(); }
 
   double k_V() const { return k_V_; }
   SphereStiffness stiffness() const { return stiffness_; }

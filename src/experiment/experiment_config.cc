@@ -79,8 +79,8 @@ std::vector<PathStep> ParsePath(const std::string& path, const std::string& wher
       const std::size_t eq = sel.find('=');
       if (eq == std::string::npos) {
         step.value = sel;
-        if (sel.empty() || sel.find_first_not_of("0123456789") != std::string::npos) {
-          Fail(where, "key path '" + path + "': '[" + sel + "]' is neither an index nor field=value");
+        if (sel != "*" && (sel.empty() || sel.find_first_not_of("0123456789") != std::string::npos)) {
+          Fail(where, "key path '" + path + "': '[" + sel + "]' is neither an index, field=value nor *");
         }
       } else {
         step.field = sel.substr(0, eq);
@@ -326,6 +326,19 @@ void SetAtPath(YAML::Node doc, const std::string& path, const std::optional<YAML
     }
     // Pick an element of the list under s.key.
     if (!next || !next.IsSequence()) Fail(where, "cannot set '" + path + "': '" + s.key + "' is not a list");
+    if (s.field.empty() && s.value == "*") {
+      // "key[*]": every element gets the rest of the path (scene.bodies[*].inner_spheres.coverage
+      // sets both bodies' packings from one sweep axis).
+      if (next.size() == 0) Fail(where, "key path '" + path + "': '" + s.key + "' is an empty list");
+      if (last) Fail(where, "key path '" + path + "': [*] needs a key after it");
+      std::string rest;
+      for (std::size_t j = i + 1; j < steps.size(); ++j) {
+        rest += (rest.empty() ? "" : ".") + steps[j].key;
+        if (steps[j].pick) rest += "[" + (steps[j].field.empty() ? "" : steps[j].field + "=") + steps[j].value + "]";
+      }
+      for (std::size_t e = 0; e < next.size(); ++e) SetAtPath(next[e], rest, value, where);
+      return;
+    }
     std::size_t found = next.size();
     for (std::size_t e = 0; e < next.size(); ++e) {
       const bool match = s.field.empty() ? std::to_string(e) == s.value

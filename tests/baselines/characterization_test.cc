@@ -73,9 +73,9 @@ const std::vector<Recorded> kRecorded = {
     // Penetration volume of 2000-sphere packings (about 70 % of each volume): spheres stop short
     // of flat faces, so a box 3.3 mm into a box meets in one sphere pair (37 degrees off), and
     // the magnitude follows the packings' overlap, not the eq. (2) limit.
-    {"inner-spheres", "box-tilted/box", 37.6, 0.969, {0.0738, 0.0316}},
-    {"inner-spheres", "capsule/torus", 2.76, 0.765, {0.415, 0.235}},
-    {"inner-spheres", "sphere/box-halfspace", 2.86, 0.467, {1.15, 0.533}},
+    {"inner-spheres", "box-tilted/box", 7.15, 0.852, {0.347, 0.149}},
+    {"inner-spheres", "capsule/torus", 0.62, 0.506, {0.874, 0.495}},
+    {"inner-spheres", "sphere/box-halfspace", 0.33, 1.04, {2.04, 0.949}},
     {"inner-spheres", "sphere/sphere", 0.01, 0.94, {1.94, 1.55}},
     {"pointshell", "box-tilted/box", 2.23, 0.133, {1.07, 0.868}},
     {"pointshell", "capsule/torus", 0.64, 0.042, {0.971, 0.958}},

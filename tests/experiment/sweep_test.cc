@@ -289,6 +289,13 @@ TEST(SetAtPath, CreatesMappingsPicksElementsAndRemovesKeys) {
   EXPECT_THROW(SetAtPath(doc, "a..b", YAML::Node(1), "t"), Error);
   EXPECT_THROW(SetAtPath(doc, "list[2].v", YAML::Node(1), "t"), Error);
   EXPECT_THROW(SetAtPath(doc, "list[name=y.v", YAML::Node(1), "t"), Error);
+  // [*]: every element gets the rest of the path.
+  SetAtPath(doc, "list[*].w.z", YAML::Node(3), "t");
+  EXPECT_EQ(doc["list"][0]["w"]["z"].as<int>(), 3);
+  EXPECT_EQ(doc["list"][1]["w"]["z"].as<int>(), 3);
+  EXPECT_EQ(doc["list"][1]["v"].as<int>(), 7);
+  EXPECT_THROW(SetAtPath(doc, "list[*]", YAML::Node(1), "t"), Error);
+  EXPECT_THROW(SetAtPath(doc, "a[*].v", YAML::Node(1), "t"), Error);
 }
 
 TEST(Sweep, LabelledValuesWriteTheirValueAndNameTheJobByLabel) {

@@ -10,6 +10,7 @@ Usage: make_figures_test.py [PATH/TO/scripts/make_figures.py [PATH/TO/contactlab
 import ast
 import csv
 import json
+import math
 import os
 import re
 import shutil
@@ -369,6 +370,37 @@ class Continuity(unittest.TestCase):
             self.assertIsNone(traces.get_legend())
             self.assertEqual(len(fig.legends), 1)
             self.assertEqual({t.get_text() for t in fig.legends[0].get_texts()}, {"pointshell", "pressure-field"})
+
+
+class PackingFill(unittest.TestCase):
+    # x is the coverage the two packings reached, sqrt(fill_A fill_B), not the target asked (a
+    # mesh stops short of 95 %); the first panel is the force magnitude ratio 1 / ref_scale, the
+    # third the p99 cycle time with the 1 ms budget line, and the table lists every job.
+    def test_x_is_the_coverage_reached_and_the_ratio_is_the_inverse_scale(self):
+        from figures import packing_fill
+        S = common.SUMMARY
+        coverage = "scene.bodies[*].inner_spheres.coverage"
+        scene = "data/scenes/block-joint.yaml"
+        summary = [{"scene": scene, coverage: target, S.model: "inner-spheres", S.fill_A: a, S.fill_B: b,
+                    S.ref_scale: scale, S.rms_rel_error_calibrated: 0.3, S.median_dir_error_deg: 5.0,
+                    S.p99_us: p99}
+                   for target, a, b, scale, p99 in ((0.5, 0.5, 0.5, 4.0, 50.0), (0.95, 0.81, 0.9, 2.0, 3000.0))]
+        with tempfile.TemporaryDirectory() as root:
+            write_table(root, "packing-fill", S, ["scene", coverage], summary)
+            results = common.Results(root)
+            drawn, tables = {}, {}
+            results.save = lambda fig, name, **kw: drawn.setdefault(name, fig)
+            results.save_table = lambda header, lines, title, name: tables.setdefault(name, lines)
+            self.assertTrue(packing_fill.packing_fill(results))
+            ratio, _, times = drawn["packing_fill.png"].axes
+            x, y = ratio.lines[0].get_data()
+            self.assertAlmostEqual(x[0], 50.0)
+            self.assertAlmostEqual(x[1], 100 * math.sqrt(0.81 * 0.9))
+            self.assertEqual(list(y), [0.25, 0.5])
+            budget = [l for l in times.lines if l.get_label() == "1 kHz budget"]
+            self.assertEqual(list(budget[0].get_ydata()), [1000, 1000])
+            self.assertEqual([line[1] for line in tables["packing_fill_table"]], ["50", "95"])
+            self.assertEqual(tables["packing_fill_table"][1][7], "3000")
 
 
 class BaselineSettings(unittest.TestCase):

@@ -87,6 +87,9 @@ struct SummaryRow {
   // Memory of the body data the model reads (DistanceField and Pointshell memory_bytes); -1 when the
   // model does not read it: B's distance field and A's pointshell (points, normals, tree).
   std::int64_t field_B_bytes = -1, pointshell_A_bytes = -1;
+  // The fraction of A's and of B's volume the model's filling covers (contact/volume_fill.h,
+  // the inner spheres' packings); -1 when it fills none.
+  double fill_A = -1, fill_B = -1;
   // The model reads A's pointshell, so POINTS means something for it (summary.csv, run table).
   bool reads_pointshell() const { return pointshell_A_bytes >= 0; }
 };

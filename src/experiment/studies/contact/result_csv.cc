@@ -262,6 +262,10 @@ const TableColumn<SummaryRow> kSummaryColumns[] = {
      [](const SummaryRow& r, CsvLine& l) { r.field_B_bytes >= 0 ? l.Int(r.field_B_bytes) : l.Empty(); }},
     {"pointshell_A_bytes", "bytes", "memory of body A's pointshell: points, normals, tree (empty: the model does not read it)",
      [](const SummaryRow& r, CsvLine& l) { r.reads_pointshell() ? l.Int(r.pointshell_A_bytes) : l.Empty(); }},
+    {"fill_A", "", "fraction of body A's volume the model's filling covers: its inner-sphere packing (empty: it fills none)",
+     [](const SummaryRow& r, CsvLine& l) { l.NumOrEmpty("%.4f", r.fill_A); }},
+    {"fill_B", "", "fraction of body B's volume the model's filling covers (empty: it fills none)",
+     [](const SummaryRow& r, CsvLine& l) { l.NumOrEmpty("%.4f", r.fill_B); }},
 };
 
 }  // namespace

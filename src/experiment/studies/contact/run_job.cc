@@ -8,6 +8,7 @@
 
 #include "contact/coherence_guard.h"
 #include "contact/scaled_contact_model.h"
+#include "contact/volume_fill.h"
 #include "deform/body_dynamics.h"
 #include "experiment/contact_placement.h"
 #include "experiment/studies/contact/contact_study.h"
@@ -186,6 +187,7 @@ struct ModelTrace {
   double nodes_sum = 0, max_depth = 0, max_displacement = 0;
   std::int64_t contact_faults = 0;
   double wrench_scale = 1;  // model.stiffness: matched's factor (1: the model's own stiffness)
+  double fill_A = -1, fill_B = -1;  // contact/volume_fill.h (-1: the model fills no volume)
 
   explicit ModelTrace(std::int64_t cycles) {
     const std::size_t n = std::size_t(cycles);
@@ -273,6 +275,12 @@ void RunModel(const JobSetup& setup, const std::string& name, CycleStorage& stor
   SceneDynamics& dynamics = setup.dynamics;
   std::unique_ptr<ContactModel> model = MakeSceneContactModel(name, scene, setup.assets);
   trace->wrench_scale = WrenchScaleOf(*model);
+  // Its filling of the bodies' volumes, also under model.stiffness: matched's scaling.
+  const auto* scaled = dynamic_cast<const ScaledContactModel*>(model.get());
+  if (const auto* fill = dynamic_cast<const VolumeFill*>(scaled ? &scaled->inner() : model.get())) {
+    trace->fill_A = fill->fill_A();
+    trace->fill_B = fill->fill_B();
+  }
   // Depths in voxels only for models whose depth is measured on B's field grid.
   const double spacing =
       FindContactModel(name)->needs.depth_in_field_voxels ? setup.assets.B.field()->spacing() : 0.0;
@@ -347,6 +355,8 @@ SummaryRow Summarize(const JobSetup& setup, const std::string& name, ModelTrace&
     s.mean_force += f.norm() / double(cycles);
   }
   s.max_depth_voxels = trace.max_depth;
+  s.fill_A = trace.fill_A;
+  s.fill_B = trace.fill_B;
   s.coherence_resets = setup.coherence.resets();
   s.contact_faults = trace.contact_faults;
   if (dynamics.A) {
