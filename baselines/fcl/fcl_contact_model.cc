@@ -52,12 +52,7 @@ std::shared_ptr<fcl::CollisionGeometryd> MakeGeometry(const TriangleMesh& mesh, 
   switch (params.bv) {
     case FclBv::kObbrss: return MakeBvh<fcl::OBBRSSd>(mesh);
     case FclBv::kObb: return MakeBvh<fcl::OBBd>(mesh);
-    case FclBv::kRss: return MakeBvh<fcl::RSSd>(mesh);
     case FclBv::kKios: return MakeBvh<fcl::kIOSd>(mesh);
-    case FclBv::kAabb: return MakeBvh<fcl::AABBd>(mesh);
-    case FclBv::kKdop16: return MakeBvh<fcl::KDOPd<16>>(mesh);
-    case FclBv::kKdop18: return MakeBvh<fcl::KDOPd<18>>(mesh);
-    case FclBv::kKdop24: return MakeBvh<fcl::KDOPd<24>>(mesh);
   }
   Fail(where, "unknown fcl_bv");
 }

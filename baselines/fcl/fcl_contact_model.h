@@ -57,10 +57,9 @@ class FclContactModel final : public ContactModel {
   // stats: points_in_contact = contacts with δ > 0, nodes_visited = all FCL contacts,
   // max_penetration = largest δ. Throws nothing. FCL keeps its contact vector between calls
   // (cleared, capacity kept), so after the first deep query it does not allocate for
-  // contacts; its traversal allocates nothing for OBBRSS, OBB and kIOS. FCL itself allocates
-  // on every query with the other settings: for rss, aabb and the k-DOPs it copies both
-  // BVHModels (BVHCollideImpl, collision_func_matrix-inl.h), and for fcl_shape: convex libccd's
-  // support function allocates a visited-vertex list per call (Convex::findExtremeVertex).
+  // contacts; its traversal allocates nothing for OBBRSS, OBB and kIOS (the bounding volumes
+  // offered, fcl_params.h). With fcl_shape: convex, libccd's support function allocates a
+  // visited-vertex list per call (Convex::findExtremeVertex).
   ContactResult Evaluate(const ContactQuery& query) override;
   void Reset() override {}
   // FCL's contacts with δ > 0 (see the top of this file), recorded during Evaluate.

@@ -9,9 +9,7 @@ namespace {
 
 const std::vector<std::pair<std::string, FclBv>>& BvNames() {
   static const std::vector<std::pair<std::string, FclBv>> names{
-      {"obbrss", FclBv::kObbrss}, {"obb", FclBv::kObb},       {"rss", FclBv::kRss},
-      {"kios", FclBv::kKios},     {"aabb", FclBv::kAabb},     {"kdop16", FclBv::kKdop16},
-      {"kdop18", FclBv::kKdop18}, {"kdop24", FclBv::kKdop24}};
+      {"obbrss", FclBv::kObbrss}, {"obb", FclBv::kObb}, {"kios", FclBv::kKios}};
   return names;
 }
 
@@ -30,12 +28,12 @@ const ParamTable<FclOwnParams>& FclOwnParamTable() {
       "fcl", "The FCL baseline (fcl): its bounding volumes, contact cap and body shapes.",
       {
           P::Mapped("fcl_bv", PARAM_MEMBER(bv), BvNames(),
-                    "fcl: bounding volume of the mesh hierarchies (BVHModel). Every type gives the same "
-                    "contacts (the same triangle pairs are tested); obbrss, obb and kios are traversed with "
-                    "the bodies' transforms applied on the fly, while rss, aabb and the k-DOPs make FCL copy "
-                    "both hierarchies into the world frame and refit them on every query (slower, and it "
-                    "allocates). Applies to fcl_shape: mesh")
-              .Sweepable().Example("kdop24"),
+                    "fcl: bounding volume of the mesh hierarchies (BVHModel), each traversed with the bodies' "
+                    "transforms applied on the fly. Every type gives the same contacts (the same triangle pairs "
+                    "are tested). FCL's other types (rss, aabb, the k-DOPs) are not offered: FCL 0.7 collides "
+                    "them by copying both hierarchies every query, and that copy frees with delete[] what it "
+                    "took from malloc (fcl_params.h). Applies to fcl_shape: mesh")
+              .Sweepable().Example("kios"),
           P::Integer("fcl_max_contacts", PARAM_MEMBER(max_contacts), 1, 100000000,
                      "fcl: FCL's num_max_contacts, the most contacts one query reports (FCL stops its "
                      "traversal there, so a small cap keeps the first triangle pairs found, not the deepest)")

@@ -17,7 +17,13 @@ namespace contactlab {
 
 // The bounding volume of FCL's BVHModel (fcl/math/bv/). All give the same contacts: the
 // triangle pairs tested are the same, the BV only changes what is culled and at what cost.
-enum class FclBv { kObbrss, kObb, kRss, kKios, kAabb, kKdop16, kKdop18, kKdop24 };
+// Offered: the types FCL 0.7 traverses with the bodies' transforms applied on the fly. Not
+// offered: RSS, AABB and the k-DOPs. FCL collides those by copying both BVHModels into the world
+// frame on every query (BVHCollideImpl), and BVHModel's copy constructor allocates its nodes with
+// malloc while its destructor frees them with delete[] (AddressSanitizer: alloc-dealloc mismatch
+// inside libfcl, undefined behaviour). Measured before they were withdrawn: forces identical to
+// OBBRSS's, 4-540x slower (docs/results-models.md).
+enum class FclBv { kObbrss, kObb, kKios };
 
 // What FCL collides: each body's triangle mesh (BVHModel, triangle-pair contacts with a depth
 // local to the pair), or fcl::Convex of its vertices (one contact with the depth of the two
