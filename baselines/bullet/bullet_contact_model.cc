@@ -122,7 +122,8 @@ BulletContactModel::BulletContactModel(std::shared_ptr<const TriangleMesh> mesh_
   const std::string where = "contact model bullet";
   if (!mesh_A || !mesh_B) Fail(where, "needs both meshes");
   CheckPenaltyParams(params.penalty, where);
-  if (!(params.margin >= 0) || !std::isfinite(params.margin)) {
+  const BulletOwnParams& own = params.own;
+  if (!(own.margin >= 0) || !std::isfinite(own.margin)) {
     Fail(where, "bullet_margin must be finite and non-negative");
   }
   Impl& m = *impl_;
@@ -132,10 +133,10 @@ BulletContactModel::BulletContactModel(std::shared_ptr<const TriangleMesh> mesh_
   btGImpactCollisionAlgorithm::registerAlgorithm(&m.dispatcher);
   m.dispatcher.registerClosestPointsCreateFunc(GIMPACT_SHAPE_PROXYTYPE, GIMPACT_SHAPE_PROXYTYPE,
                                                &m.closest_points_func);
-  m.A.Build(*m.mesh_A, params.margin, params.shape, where + " (body A)");
-  m.B.Build(*m.mesh_B, params.margin, params.shape, where + " (body B)");
+  m.A.Build(*m.mesh_A, own.margin, own.shape, where + " (body A)");
+  m.B.Build(*m.mesh_B, own.margin, own.shape, where + " (body B)");
   m.collector.object_B = &m.B.object;
-  m.collector.margin_sum = params.subtract_margins ? 2 * params.margin : 0.0;
+  m.collector.margin_sum = own.subtract_margins ? 2 * own.margin : 0.0;
 }
 
 BulletContactModel::~BulletContactModel() = default;

@@ -38,18 +38,16 @@
 #include <cstdint>
 #include <memory>
 
-#include "contact/contact_model.h"
 #include "baselines/bullet/bullet_params.h"
+#include "contact/contact_model.h"
 #include "contact/penalty_params.h"
 #include "geometry/triangle_mesh.h"
 
 namespace contactlab {
 
 struct BulletContactParams {
-  PenaltyParams penalty;             // k_C per contact and the L / l scaling, as the paper's model
-  double margin = 0.0005;        // collision margin of each shape, metres (0.5 mm)
-  bool subtract_margins = true;  // δ = -s - 2 margin (true) or δ = -s (false)
-  BulletShape shape = BulletShape::kGImpact;  // what each mesh becomes (bullet_params.h)
+  PenaltyParams penalty;  // k_C per contact and the L / l scaling, as the paper's model
+  BulletOwnParams own;    // margin, its subtraction and each mesh's shape (bullet_params.h)
 };
 
 class BulletContactModel final : public ContactModel {

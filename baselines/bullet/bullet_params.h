@@ -17,9 +17,9 @@ enum class BulletShape {
 constexpr double kMaxBulletMargin = 0.01;
 
 struct BulletOwnParams {
-  double margin = 0.0005;        // metres
-  bool subtract_margins = true;  // δ = -s - 2 margin
-  BulletShape shape = BulletShape::kGImpact;
+  double margin = 0.0005;        // collision margin of each shape, metres (0.5 mm)
+  bool subtract_margins = true;  // δ = -s - 2 margin (true) or δ = -s (false)
+  BulletShape shape = BulletShape::kGImpact;  // what each mesh becomes
 };
 
 const ParamTable<BulletOwnParams>& BulletOwnParamTable();

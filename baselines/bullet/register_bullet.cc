@@ -15,12 +15,9 @@ void RegisterBulletContactModels() {
       .description = "Bullet GImpact contact manifolds as penalty contacts",
       .needs = {.mesh_A = true, .mesh_B = true},
       .make = [](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
-        const BulletOwnParams& own = in.Params(BulletOwnParamTable());
-        return std::make_unique<BulletContactModel>(in.A.mesh(), in.B.mesh(),
-                                                    BulletContactParams{.penalty = in.params.penalty,
-                                                                        .margin = own.margin,
-                                                                        .subtract_margins = own.subtract_margins,
-                                                                        .shape = own.shape});
+        return std::make_unique<BulletContactModel>(
+            in.A.mesh(), in.B.mesh(),
+            BulletContactParams{.penalty = in.params.penalty, .own = in.Params(BulletOwnParamTable())});
       },
       .pair_params = ParamBlock(BulletOwnParamTable()),
   });

@@ -48,8 +48,8 @@ std::shared_ptr<fcl::CollisionGeometryd> MakeConvex(const TriangleMesh& mesh) {
 std::shared_ptr<fcl::CollisionGeometryd> MakeGeometry(const TriangleMesh& mesh, const FclContactParams& params,
                                                       const std::string& where) {
   CheckMesh(mesh, where);
-  if (params.shape == FclShape::kConvex) return MakeConvex(mesh);
-  switch (params.bv) {
+  if (params.own.shape == FclShape::kConvex) return MakeConvex(mesh);
+  switch (params.own.bv) {
     case FclBv::kObbrss: return MakeBvh<fcl::OBBRSSd>(mesh);
     case FclBv::kObb: return MakeBvh<fcl::OBBd>(mesh);
     case FclBv::kKios: return MakeBvh<fcl::kIOSd>(mesh);
@@ -74,14 +74,14 @@ FclContactModel::FclContactModel(std::shared_ptr<const TriangleMesh> mesh_A, std
   const std::string where = "contact model fcl";
   if (!mesh_A || !mesh_B) Fail(where, "needs both meshes");
   CheckPenaltyParams(params.penalty, where);
-  if (params.max_contacts == 0) Fail(where, "fcl_max_contacts must be positive");
+  if (params.own.max_contacts <= 0) Fail(where, "fcl_max_contacts must be positive");
   impl_->mesh_A = std::move(mesh_A);
   impl_->mesh_B = std::move(mesh_B);
   impl_->geometry_A = MakeGeometry(*impl_->mesh_A, params, where + " (body A)");
   impl_->geometry_B = MakeGeometry(*impl_->mesh_B, params, where + " (body B)");
   impl_->object_A = std::make_unique<fcl::CollisionObjectd>(impl_->geometry_A);
   impl_->object_B = std::make_unique<fcl::CollisionObjectd>(impl_->geometry_B);
-  impl_->request = fcl::CollisionRequestd(params.max_contacts, /*enable_contact=*/true);
+  impl_->request = fcl::CollisionRequestd(std::size_t(params.own.max_contacts), /*enable_contact=*/true);
 }
 
 FclContactModel::~FclContactModel() = default;

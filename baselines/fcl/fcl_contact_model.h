@@ -31,18 +31,16 @@
 #include <cstddef>
 #include <memory>
 
-#include "contact/contact_model.h"
 #include "baselines/fcl/fcl_params.h"
+#include "contact/contact_model.h"
 #include "contact/penalty_params.h"
 #include "geometry/triangle_mesh.h"
 
 namespace contactlab {
 
 struct FclContactParams {
-  PenaltyParams penalty;             // k_C per contact and the L / l scaling, as the paper's model
-  std::size_t max_contacts = 100000; // FCL's num_max_contacts
-  FclBv bv = FclBv::kObbrss;         // bounding volume of the mesh hierarchies (fcl_shape: mesh)
-  FclShape shape = FclShape::kMesh;  // triangle meshes, or the convex hulls of their vertices
+  PenaltyParams penalty;  // k_C per contact and the L / l scaling, as the paper's model
+  FclOwnParams own;       // bounding volume, contact cap and each body's shape (fcl_params.h)
 };
 
 class FclContactModel final : public ContactModel {

@@ -31,9 +31,9 @@ enum class FclBv { kObbrss, kObb, kKios };
 enum class FclShape { kMesh, kConvex };
 
 struct FclOwnParams {
-  FclBv bv = FclBv::kObbrss;
-  long long max_contacts = 100000;
-  FclShape shape = FclShape::kMesh;
+  FclBv bv = FclBv::kObbrss;         // bounding volume of the mesh hierarchies (fcl_shape: mesh)
+  long long max_contacts = 100000;   // FCL's num_max_contacts
+  FclShape shape = FclShape::kMesh;  // triangle meshes, or the convex hulls of their vertices
 };
 
 // The rows' names of the choices, for messages.

@@ -15,12 +15,8 @@ void RegisterFclContactModels() {
       .description = "FCL 0.7 mesh-mesh contacts (OBBRSS) as penalty contacts",
       .needs = {.mesh_A = true, .mesh_B = true},
       .make = [](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
-        const FclOwnParams& own = in.Params(FclOwnParamTable());
-        return std::make_unique<FclContactModel>(in.A.mesh(), in.B.mesh(),
-                                                 FclContactParams{.penalty = in.params.penalty,
-                                                                  .max_contacts = std::size_t(own.max_contacts),
-                                                                  .bv = own.bv,
-                                                                  .shape = own.shape});
+        return std::make_unique<FclContactModel>(
+            in.A.mesh(), in.B.mesh(), FclContactParams{.penalty = in.params.penalty, .own = in.Params(FclOwnParamTable())});
       },
       .pair_params = ParamBlock(FclOwnParamTable()),
   });

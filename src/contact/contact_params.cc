@@ -31,12 +31,12 @@ const ParamTable<ContactParams>& ContactParamTable() {
                                                                        {"matched", StiffnessRule::kMatched}},
                     "own: each model's stiffness keys as given; matched: every model other than the paper's "
                     "pointshell has its wrench (force, torque, gradient) scaled by the one factor that makes it "
-                    "push back like the paper's model on a reference press (A moved toward B's origin from first "
-                    "touch to match_depth; the least-squares fit over four depths), the same as scaling the "
+                    "push back like the paper's model on a reference press (A moved toward B's origin to where "
+                    "its mesh first touches B, then match_depth further; one pose), the same as scaling the "
                     "model's own stiffness keys, since every model's wrench is linear in them")
               .Sweepable().Example("matched"),
           P::Number("match_depth", PARAM_MEMBER(match_depth), Above(0), AtMost(1),
-                    "stiffness: matched: how far past first touch the reference press goes")
+                    "stiffness: matched: how far past the meshes' first touch the reference press goes")
               .Unit("m").Sweepable().Example("0.002"),
       });
   return table;

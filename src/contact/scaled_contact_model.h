@@ -58,4 +58,11 @@ inline double WrenchScaleOf(const ContactModel& model) {
   return scaled ? scaled->scale() : 1.0;
 }
 
+// The model a ScaledContactModel scales, or MODEL itself: where a caller asks a model for a
+// capability by its type (contact/volume_fill.h), the scaling must not hide it.
+inline const ContactModel& UnscaledOf(const ContactModel& model) {
+  const auto* scaled = dynamic_cast<const ScaledContactModel*>(&model);
+  return scaled ? scaled->inner() : model;
+}
+
 }  // namespace contactlab

@@ -33,11 +33,9 @@ std::unique_ptr<ContactModel> MakeBullet(std::shared_ptr<const TriangleMesh> A, 
 }
 
 // The default parameters with SHAPE, MARGIN and SUBTRACT.
-BulletContactParams Settings(BulletShape shape, double margin = BulletContactParams().margin, bool subtract = true) {
+BulletContactParams Settings(BulletShape shape, double margin = BulletOwnParams().margin, bool subtract = true) {
   BulletContactParams p;
-  p.shape = shape;
-  p.margin = margin;
-  p.subtract_margins = subtract;
+  p.own = {.margin = margin, .subtract_margins = subtract, .shape = shape};
   return p;
 }
 

@@ -19,11 +19,9 @@ namespace {
 
 // The default parameters with BV, SHAPE and MAX_CONTACTS.
 FclContactParams Settings(FclBv bv, FclShape shape = FclShape::kMesh,
-                          std::size_t max_contacts = FclContactParams().max_contacts) {
+                          long long max_contacts = FclOwnParams().max_contacts) {
   FclContactParams p;
-  p.bv = bv;
-  p.shape = shape;
-  p.max_contacts = max_contacts;
+  p.own = {.bv = bv, .max_contacts = max_contacts, .shape = shape};
   return p;
 }
 

@@ -275,9 +275,7 @@ void RunModel(const JobSetup& setup, const std::string& name, CycleStorage& stor
   SceneDynamics& dynamics = setup.dynamics;
   std::unique_ptr<ContactModel> model = MakeSceneContactModel(name, scene, setup.assets);
   trace->wrench_scale = WrenchScaleOf(*model);
-  // Its filling of the bodies' volumes, also under model.stiffness: matched's scaling.
-  const auto* scaled = dynamic_cast<const ScaledContactModel*>(model.get());
-  if (const auto* fill = dynamic_cast<const VolumeFill*>(scaled ? &scaled->inner() : model.get())) {
+  if (const auto* fill = dynamic_cast<const VolumeFill*>(&UnscaledOf(*model))) {
     trace->fill_A = fill->fill_A();
     trace->fill_B = fill->fill_B();
   }
