@@ -12,22 +12,27 @@ constexpr int kTets[6][4] = {{0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7}, {0, 2, 6,
 // The zero set of the gap on tetrahedron TET of CELL, written to POLY: a triangle when one
 // corner is alone on its side, else a quad. Returns its vertex count, 0 when the gap keeps one
 // sign. *TOWARD: from the positive corners' mean to the others', the way g decreases.
-int CutTetrahedron(const LatticeCell& cell, const int* tet, PolyVertex* poly, Eigen::Vector3d* toward) {
+int CutTetrahedron(const LatticeCell& cell, const int* tet, PolyVertex* poly, Eigen::Vector3d* toward,
+                   VertexOrigin* origin) {
   const double* g = cell.g;
   int pos[4], neg[4], np = 0, nn = 0;
   for (int t = 0; t < 4; ++t) (g[tet[t]] > 0 ? pos[np++] : neg[nn++]) = tet[t];
   if (np == 0 || nn == 0) return 0;
   int m = 0;
-  auto cut = [&](int p, int q) { return Lerp(cell.corner[p], cell.corner[q], g[p] / (g[p] - g[q])); };
+  auto cut = [&](int p, int q) {
+    const double t = g[p] / (g[p] - g[q]);
+    if (origin) origin[m] = {p, q, t};
+    poly[m++] = Lerp(cell.corner[p], cell.corner[q], t);
+  };
   if (np == 1) {
-    for (int t = 0; t < 3; ++t) poly[m++] = cut(pos[0], neg[t]);
+    for (int t = 0; t < 3; ++t) cut(pos[0], neg[t]);
   } else if (nn == 1) {
-    for (int t = 0; t < 3; ++t) poly[m++] = cut(pos[t], neg[0]);
+    for (int t = 0; t < 3; ++t) cut(pos[t], neg[0]);
   } else {
-    poly[m++] = cut(pos[0], neg[0]);
-    poly[m++] = cut(pos[0], neg[1]);
-    poly[m++] = cut(pos[1], neg[1]);
-    poly[m++] = cut(pos[1], neg[0]);
+    cut(pos[0], neg[0]);
+    cut(pos[0], neg[1]);
+    cut(pos[1], neg[1]);
+    cut(pos[1], neg[0]);
   }
   *toward = Eigen::Vector3d::Zero();
   for (int t = 0; t < nn; ++t) *toward += cell.corner[neg[t]].x / nn;
@@ -41,17 +46,14 @@ constexpr int kCornerOffset[8] = {0, 1, kVerts, kVerts + 1, kVerts * kVerts, kVe
 
 }  // namespace
 
-void LoadBlockVertices(const float* phi_M, const float* phi_L, const PressureLaw& law, double reach,
-                       const VertexMask* needed, BlockVertices* v) {
-  const double reach_g = law.w_M * reach;  // only M's field moves: g = -w_M phi_M + w_L phi_L
+void LoadBlockVertices(const float* phi_M, const float* phi_L, const PressureLaw& law, BlockVertices* v) {
   for (int i = 0; i < kBlockVerts; ++i) {
-    if (needed && !needed->Has(i)) continue;
     const double pm = phi_M[i], pl = phi_L[i];
     const double g = law.Gap(pm, pl);
     v->g[i] = g;
-    v->flags[i] = std::uint8_t((g > 0 ? kGapPositive : 0) | (pm > 0 ? kOutsideM : 0) | (pl > 0 ? kOutsideL : 0) |
-                               (pm + pl <= 0 ? kOverlapped : 0) | (g > -reach_g ? kMayTurnPositive : 0) |
-                               (g <= reach_g ? kMayTurnNonPositive : 0) | (pm <= reach ? kMayBeInsideM : 0));
+    v->flags[i] =
+        std::uint8_t((g > 0 ? kGapPositive : 0) | (pm > 0 ? kOutsideM : 0) | (pl > 0 ? kOutsideL : 0) |
+                     (pm + pl <= 0 ? kOverlapped : 0));
   }
 }
 
@@ -70,15 +72,7 @@ bool MayHoldSurface(CellFlags f, bool clip_M, bool clip_L) {
          !(clip_L && (f.all & kOutsideL));
 }
 
-bool MayHoldSurfaceOnceMoved(CellFlags f, bool clip_M, bool clip_L) {
-  return (f.any & kMayTurnPositive) && (f.any & kMayTurnNonPositive) && !(clip_M && !(f.any & kMayBeInsideM)) &&
-         !(clip_L && (f.all & kOutsideL));
-}
-
-void AddCellCorners(int ci, int cj, int ck, VertexMask* mask) {
-  const int v0 = VertexIndex(ci, cj, ck);
-  for (const int off : kCornerOffset) mask->Add(v0 + off);
-}
+int CellCornerVertex(int ci, int cj, int ck, int c) { return VertexIndex(ci, cj, ck) + kCornerOffset[c]; }
 
 void LoadCell(const float* phi_M, const float* phi_L, const BlockVertices& v, const Eigen::Vector3d& x0, double h,
               int ci, int cj, int ck, LatticeCell* cell) {
@@ -96,18 +90,38 @@ void LoadCell(const float* phi_M, const float* phi_L, const BlockVertices& v, co
   cell->overlapped = overlapped;
 }
 
-double IntegrateCell(const LatticeCell& cell, const PressureLaw& law, PressureSums* sums, SurfaceRecord* record) {
+double IntegrateCell(const LatticeCell& cell, const PressureLaw& law, PressureSums* sums, SurfaceRecord* record,
+                     CornerSensitivity* b) {
   double cell_area = 0;
+  VertexOrigin cut_origin[kMaxPolygon], clip_origin[kMaxPolygon];
+  const bool tangents = b != nullptr;
   for (const auto& tet : kTets) {
     PolyVertex buffers[2][kMaxPolygon];
     Eigen::Vector3d toward;
-    int m = CutTetrahedron(cell, tet, buffers[0], &toward);
+    int m = CutTetrahedron(cell, tet, buffers[0], &toward, tangents ? cut_origin : nullptr);
     if (m == 0) continue;
+    const int cut_vertices = m;
     // A cell where the bodies overlap at every corner overlaps throughout (the fields are
     // linear on each tetrahedron): nothing to clip.
-    const PolyVertex* poly = cell.overlapped ? buffers[0] : ClipToOverlap(buffers, &m);
+    const PolyVertex* poly =
+        cell.overlapped ? buffers[0] : ClipToOverlap(buffers, &m, tangents ? clip_origin : nullptr);
     if (m < 3) continue;
     IntegratePolygon(poly, m, toward, law, sums, &cell_area, record);
+    if (tangents) {
+      // Backwards: the integration, the clip, the cut.
+      VertexAdjoint adjoint[kMaxPolygon], cut[kMaxPolygon];
+      PolygonAdjoints(poly, m, toward, law, adjoint);
+      const VertexAdjoint* at_cut = adjoint;
+      if (!cell.overlapped) {
+        for (int i = 0; i < cut_vertices; ++i) {
+          cut[i].x.setZero();
+          cut[i].s.setZero();
+        }
+        ClipAdjoints(buffers[0], clip_origin, adjoint, m, cut);
+        at_cut = cut;
+      }
+      CutAdjoints(cell, law, cut_origin, at_cut, cut_vertices, b);
+    }
   }
   return cell_area;
 }

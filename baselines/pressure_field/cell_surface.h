@@ -11,10 +11,11 @@
 #include "baselines/pressure_field/polygon_clip.h"
 #include "baselines/pressure_field/pressure_integration.h"
 #include "baselines/pressure_field/pressure_law.h"
+#include "baselines/pressure_field/pressure_tangents.h"
 
 namespace contactlab {
 
-// One cell of the lattice: its corners by bit (x = 1, y = 2, z = 4) with both fields there, the
+// One lattice cell: its corners by bit (x = 1, y = 2, z = 4) with both fields there, the
 // gap at each, and whether the bodies overlap at every corner.
 struct LatticeCell {
   PolyVertex corner[8];
@@ -24,13 +25,10 @@ struct LatticeCell {
 
 // What each vertex of a block says about the cells that share it, as bits (BlockVertices).
 enum VertexFlag : std::uint8_t {
-  kGapPositive = 1,         // g > 0
-  kOutsideM = 2,            // phi_M > 0
-  kOutsideL = 4,            // phi_L > 0
-  kOverlapped = 8,          // phi_M + phi_L <= 0
-  kMayTurnPositive = 16,    // g > -w_M reach: g may be > 0 once M's field moves by the reach
-  kMayTurnNonPositive = 32, // g <= w_M reach
-  kMayBeInsideM = 64,       // phi_M <= reach
+  kGapPositive = 1,  // g > 0
+  kOutsideM = 2,     // phi_M > 0
+  kOutsideL = 4,     // phi_L > 0
+  kOverlapped = 8,   // phi_M + phi_L <= 0
 };
 
 // The gap and the flags at a block's kBlockVerts vertices (lattice_blocks.h), computed once per
@@ -40,11 +38,8 @@ struct BlockVertices {
   std::uint8_t flags[kBlockVerts];
 };
 
-// Fills V from the fields PHI_M and PHI_L at a block's vertices, at the vertices in NEEDED
-// (null: all). REACH: how far M's field may move at any vertex in a later evaluation (metres; 0
-// when there is none), for MayHoldSurfaceOnceMoved.
-void LoadBlockVertices(const float* phi_M, const float* phi_L, const PressureLaw& law, double reach,
-                       const VertexMask* needed, BlockVertices* v);
+// Fills V from the fields PHI_M and PHI_L at a block's vertices.
+void LoadBlockVertices(const float* phi_M, const float* phi_L, const PressureLaw& law, BlockVertices* v);
 
 // The AND and the OR of the flags of the eight corners of the cell whose first vertex is (CI,
 // CJ, CK).
@@ -53,14 +48,12 @@ struct CellFlags {
 };
 CellFlags CornerFlags(const BlockVertices& v, int ci, int cj, int ck);
 
-// The cells' tests, from their corners' flags: the cell may hold surface when g changes sign over
-// it and no compliant body (CLIP_M, CLIP_L) lies wholly outside it; and may hold surface once M's
-// field has moved by up to the reach LoadBlockVertices was given (a superset of the first).
+// The cell may hold surface: g changes sign over it and no compliant body (CLIP_M, CLIP_L) lies
+// wholly outside it.
 bool MayHoldSurface(CellFlags f, bool clip_M, bool clip_L);
-bool MayHoldSurfaceOnceMoved(CellFlags f, bool clip_M, bool clip_L);
 
-// Adds the eight corners of the cell (CI, CJ, CK) to MASK.
-void AddCellCorners(int ci, int cj, int ck, VertexMask* mask);
+// The block vertex of the cell (CI, CJ, CK)'s corner C (bit x = 1, y = 2, z = 4).
+int CellCornerVertex(int ci, int cj, int ck, int c);
 
 // Loads the corners' fields and gaps of the cell (CI, CJ, CK) of a block with the fields PHI_M and
 // PHI_L at its vertices and V from them, and places the corners: the block's first vertex is X0
@@ -70,6 +63,9 @@ void LoadCell(const float* phi_M, const float* phi_L, const BlockVertices& v, co
 
 // Integrates the surface in CELL over its six tetrahedra into SUMS (and RECORD when not null),
 // clipped to where the bodies overlap (ClipToOverlap). Returns the cell's surface area.
-double IntegrateCell(const LatticeCell& cell, const PressureLaw& law, PressureSums* sums, SurfaceRecord* record);
+// B (null: not wanted): the sums' sensitivities to M's field at the cell's corners are added to
+// it (pressure_tangents.h).
+double IntegrateCell(const LatticeCell& cell, const PressureLaw& law, PressureSums* sums, SurfaceRecord* record,
+                     CornerSensitivity* b = nullptr);
 
 }  // namespace contactlab

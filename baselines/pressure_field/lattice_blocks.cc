@@ -71,6 +71,26 @@ std::int64_t CullBlocks(const DistanceField& field_L, const DistanceField& field
 
 void SampleBlock(const DistanceField& field, const Eigen::Vector3d& origin, double h,
                  const std::array<std::int32_t, 3>& blk, float* phi) {
+  // The lattice lies on the field's grid (FitLattice): inside the grid a vertex's value is its
+  // grid sample, read directly.
+  const double cells_per_step = h / field.spacing();
+  const int step = int(std::lround(cells_per_step));
+  std::int64_t first[3];
+  bool inside = !field.sparse() && step >= 1;
+  for (int d = 0; d < 3 && inside; ++d) {
+    first[d] = std::llround((origin[d] - field.origin()[d]) / field.spacing()) + std::int64_t(step) * blk[d];
+    inside = first[d] >= 0 && first[d] + std::int64_t(step) * kBlock < field.dims()[d];
+  }
+  if (inside) {
+    const float* values = field.values().data();
+    for (int k = 0; k < kVerts; ++k) {
+      for (int j = 0; j < kVerts; ++j) {
+        const float* row = values + field.Index(int(first[0]), int(first[1] + step * j), int(first[2] + step * k));
+        for (int i = 0; i < kVerts; ++i) phi[VertexIndex(i, j, k)] = row[step * i];
+      }
+    }
+    return;
+  }
   for (int k = 0; k < kVerts; ++k) {
     for (int j = 0; j < kVerts; ++j) {
       for (int i = 0; i < kVerts; ++i) {
@@ -89,17 +109,13 @@ LatticeInOther::LatticeInOther(const Pose& X_ML_in, double h) : X_ML(X_ML_in) {
 }
 
 void SampleBlockInOther(const DistanceField& field, const LatticeInOther& lattice, const Eigen::Vector3d& x0,
-                        float* phi, const VertexMask* needed) {
+                        float* phi) {
   const Eigen::Vector3d a0 = lattice.X_ML * x0;
   for (int k = 0; k < kVerts; ++k) {
     for (int j = 0; j < kVerts; ++j) {
       Eigen::Vector3d a = a0 + double(j) * lattice.step_j + double(k) * lattice.step_k;
-      // The same additions whichever vertices are needed, so a vertex's sample never depends on
-      // which others were taken.
       for (int i = 0; i < kVerts; ++i, a += lattice.step_i) {
-        const int v = VertexIndex(i, j, k);
-        if (needed && !needed->Has(v)) continue;
-        phi[v] = field.Distance(float(a.x()), float(a.y()), float(a.z()));
+        phi[VertexIndex(i, j, k)] = field.Distance(float(a.x()), float(a.y()), float(a.z()));
       }
     }
   }

@@ -17,7 +17,7 @@ namespace contactlab {
 constexpr int kBlock = 4;                  // cells per block side
 constexpr int kVerts = kBlock + 1;         // vertices per block side
 constexpr int kBlockVerts = kVerts * kVerts * kVerts;
-constexpr double kCullMargin = 0.5;        // cells: blocks kept within this of the surface (K_B steps)
+constexpr double kCullMargin = 0.5;        // cells: blocks kept within this of the surface (rounding)
 
 // A block's vertex (I, J, K) in its kBlockVerts samples, x fastest.
 inline int VertexIndex(int i, int j, int k) { return i + kVerts * (j + kVerts * k); }
@@ -49,7 +49,9 @@ std::int64_t CullBlocks(const DistanceField& field_L, const DistanceField& field
                         std::int64_t capacity, std::int64_t* nodes);
 
 // FIELD (the lattice body's) at the kBlockVerts vertices of the block whose first cell is BLK,
-// on the lattice (ORIGIN, spacing H), into PHI.
+// on the lattice (ORIGIN, spacing H: on FIELD's grid, every H / spacing-th point, as FitLattice
+// places it), into PHI: a dense field's samples where the block lies inside its grid, else its
+// Distance.
 void SampleBlock(const DistanceField& field, const Eigen::Vector3d& origin, double h,
                  const std::array<std::int32_t, 3>& blk, float* phi);
 
@@ -63,8 +65,8 @@ struct LatticeInOther {
 };
 
 // M's FIELD at the kBlockVerts vertices of the block whose first vertex is X0 (L's frame),
-// into PHI: at the vertices in NEEDED (null: all), the others left as they are.
+// into PHI.
 void SampleBlockInOther(const DistanceField& field, const LatticeInOther& lattice, const Eigen::Vector3d& x0,
-                        float* phi, const VertexMask* needed = nullptr);
+                        float* phi);
 
 }  // namespace contactlab

@@ -1,7 +1,7 @@
 // The pressure-field model (pressure_field_model.h; Elandt et al. 2019), composed of its parts:
 // the lattice and its culling (lattice_blocks.h), the surface in each cell (cell_surface.h), its
 // integration (pressure_integration.h), its patches (contact_patches.h) and K_B
-// (pressure_stiffness.h).
+// (pressure_stiffness.h), taken in the same pass in forward mode (pressure_tangents.h).
 #include "baselines/pressure_field/pressure_field_model.h"
 
 #include <algorithm>
@@ -17,8 +17,6 @@
 #include "util/error.h"
 
 namespace contactlab {
-
-struct PressureFieldModel::Sums : PressureSums {};
 
 PressureFieldModel::PressureFieldModel(PressureFieldSide A, PressureFieldSide B, const PressureFieldOptions& options)
     : options_(options) {
@@ -39,13 +37,11 @@ PressureFieldModel::PressureFieldModel(PressureFieldSide A, PressureFieldSide B,
     }
   }
   if (A.rigid && B.rigid) Fail(where, "both bodies are rigid: a pressure field needs one compliant body");
-  if (!(options_.lipschitz >= 1) || !(options_.fd_step > 0) || options_.max_blocks < 1 || options_.lattice < 1) {
-    Fail(where, "lipschitz must be >= 1, fd_step > 0, max_blocks >= 1 and lattice >= 1");
+  if (!(options_.lipschitz >= 1) || options_.max_blocks < 1 || options_.lattice < 1) {
+    Fail(where, "lipschitz must be >= 1, max_blocks >= 1 and lattice >= 1");
   }
   depth_A_ = -double(A.field->min_value());
   depth_B_ = -double(B.field->min_value());
-  const Aabb box_B = B.field->box();
-  radius_B_ = box_B.min.cwiseAbs().cwiseMax(box_B.max.cwiseAbs()).norm();
   lattice_is_A_ = A.field->spacing() < B.field->spacing();
   L_ = lattice_is_A_ ? std::move(A) : std::move(B);
   M_ = lattice_is_A_ ? std::move(B) : std::move(A);
@@ -54,19 +50,13 @@ PressureFieldModel::PressureFieldModel(PressureFieldSide A, PressureFieldSide B,
   const double c_M = M_.rigid ? 0 : -double(M_.field->min_value()) / M_.modulus;
   law_ = PressureLaw::FromCompliances(c_M, c_L);
   h_ = L_.field->spacing() * options_.lattice;
-  // K_B's difference steps: a hundredth of a cell, and the rotation that moves B's farthest
-  // point by as much.
-  step_x_ = options_.fd_step * h_;
-  step_w_ = options_.fd_step * h_ / std::max(radius_B_, h_);
   // Every block of L's box at spacing h fits (capped).
   const Eigen::Vector3d extent = L_.field->box().size() / (h_ * kBlock);
   const double fit = std::ceil(extent.x() + 1) * std::ceil(extent.y() + 1) * std::ceil(extent.z() + 1);
   const std::int64_t capacity = std::int64_t(std::min<double>(fit, double(options_.max_blocks)));
   blocks_.resize(std::size_t(capacity));
   block_phi_L_.resize(std::size_t(capacity) * kBlockVerts);
-  block_surface_.resize(std::size_t(capacity));
-  block_candidates_.resize(std::size_t(capacity));
-  block_candidate_corners_.resize(std::size_t(capacity));
+  block_sensitivity_.resize(6 * kBlockVerts);
   surface_cells_.resize(std::size_t(capacity) * kBlock * kBlock * kBlock);
   parent_.resize(surface_cells_.size());
 }
@@ -113,108 +103,104 @@ bool PressureFieldModel::FindBlocks(const Pose& X_LM, std::int64_t* nodes) {
   return num_blocks_ > 0;
 }
 
-double PressureFieldModel::StepReach(const Pose& X_LM, const std::array<std::int32_t, 3>& blk) const {
-  // B's origin in the lattice body's frame, and the farthest the block reaches from it.
-  const Eigen::Vector3d o_B = lattice_is_A_ ? X_LM.translation : Eigen::Vector3d::Zero();
-  const double half = 0.5 * kBlock * h_;
-  const Eigen::Vector3d centre = origin_ + h_ * Eigen::Vector3d(blk[0], blk[1], blk[2]) + Eigen::Vector3d::Constant(half);
-  const double radius = (centre - o_B).norm() + std::sqrt(3.0) * half;
-  // A vertex moves by at most step_x (a translation step) or step_w radius (a rotation step
-  // about B's origin) in M's frame. A trilinear field's gradient is at most sqrt(3) times its
-  // bound along an axis: twice the Lipschitz bound, and a thousandth of a cell for the rounding.
-  return 2 * options_.lipschitz * (step_x_ + step_w_ * radius) + 1e-3 * h_;
+Matrix6d PressureFieldModel::BlockStiffness(const Pose& X_LM, const Eigen::Vector3d& x0) const {
+  // M's field at a lattice vertex x (L's frame) moves with B's twist (v, w) (L's frame, rotation
+  // about B's origin o) by ∇phi_M · dy, dy the vertex's motion seen from M. When L is B,
+  // dy = R_ML (v + w × x); when L is A, B's motion moves the vertex the other way about o:
+  // dy = -R_ML (v + w × (x - o)). With n = R_LM ∇phi_M, the six derivatives are ±(n, (x - o) × n).
+  const double sign = lattice_is_A_ ? -1.0 : 1.0;
+  const Eigen::Vector3d o = lattice_is_A_ ? X_LM.translation : Eigen::Vector3d::Zero();
+  const Eigen::Matrix3d R_LM = X_LM.R();
+  const Pose X_ML = X_LM.Inverse();
+  Matrix6d D = Matrix6d::Zero();
+  for (int v = 0; v < kBlockVerts; ++v) {
+    if (!block_touched_.Has(v)) continue;
+    const int i = v % kVerts, j = (v / kVerts) % kVerts, k = v / (kVerts * kVerts);
+    const Eigen::Vector3d x = x0 + h_ * Eigen::Vector3d(i, j, k);
+    Eigen::Vector3d gradient;
+    M_.field->DistanceAndGradient(X_ML * x, &gradient);
+    const Eigen::Vector3d n = R_LM * gradient;
+    Vector6d d;
+    d.head<3>() = sign * n;
+    d.tail<3>() = sign * (x - o).cross(n);
+    D += Eigen::Map<const Vector6d>(block_sensitivity_.data() + 6 * v) * d.transpose();
+  }
+  return D;
 }
 
-void PressureFieldModel::Integrate(const Pose& X_LM, bool record, Sums* sums) {
+void PressureFieldModel::AddCornerSensitivity(const CornerSensitivity& b, int ci, int cj, int ck) {
+  for (int c = 0; c < 8; ++c) {
+    const int v = CellCornerVertex(ci, cj, ck, c);
+    Eigen::Map<Vector6d> at(block_sensitivity_.data() + 6 * v);
+    if (block_touched_.Has(v)) {
+      at += b.col(c);
+    } else {
+      at = b.col(c);
+      block_touched_.Add(v);
+    }
+  }
+}
+
+void PressureFieldModel::Integrate(const Pose& X_LM, PressureSums* sums, Matrix6d* D) {
   const DistanceField& fM = *M_.field;
   const LatticeInOther lattice_in_M(X_LM.Inverse(), h_);
   const PressureLaw& law = law_;
   const bool clip_M = !M_.rigid, clip_L = !L_.rigid;
-  const bool keep_candidates = record && options_.stiffness;
   SurfaceRecord recorder{&surface_, &surface_pressure_, record_capacity_,
                          contacts_.keeping() ? &contacts_ : nullptr};
-  if (record) {
-    num_surface_cells_ = 0;
-    surface_.clear();
-    surface_pressure_.clear();
-    std::fill(block_surface_.begin(), block_surface_.begin() + num_blocks_, std::uint8_t(0));
-  }
+  num_surface_cells_ = 0;
+  surface_.clear();
+  surface_pressure_.clear();
   float phi_M[kBlockVerts];
   BlockVertices vertices;
   LatticeCell cell;
+  CornerSensitivity corner_sensitivity;
   for (std::int64_t bi = 0; bi < num_blocks_; ++bi) {
     const auto& blk = blocks_[std::size_t(bi)];
     const float* phi_L = block_phi_L_.data() + bi * kBlockVerts;
     const Eigen::Vector3d x0 = origin_ + h_ * Eigen::Vector3d(blk[0], blk[1], blk[2]);
-    // The cells to look at: all of them, or for a stiffness step only those the recording pass
-    // found may hold surface once B has moved by a step, and M's field at their corners only.
-    const std::uint64_t cells = record ? ~std::uint64_t(0) : block_candidates_[std::size_t(bi)];
-    const VertexMask* needed = record ? nullptr : &block_candidate_corners_[std::size_t(bi)];
-    SampleBlockInOther(fM, lattice_in_M, x0, phi_M, needed);
-    LoadBlockVertices(phi_M, phi_L, law, keep_candidates ? StepReach(X_LM, blk) : 0, needed, &vertices);
-    std::uint64_t candidates = 0;
-    VertexMask corners;
+    SampleBlockInOther(fM, lattice_in_M, x0, phi_M);
+    LoadBlockVertices(phi_M, phi_L, law, &vertices);
+    if (D) block_touched_ = VertexMask();
     for (int ck = 0; ck < kBlock; ++ck) {
       for (int cj = 0; cj < kBlock; ++cj) {
         for (int ci = 0; ci < kBlock; ++ci) {
-          const int c = ci + kBlock * (cj + kBlock * ck);
-          if (!(cells >> c & 1)) continue;
-          const CellFlags flags = CornerFlags(vertices, ci, cj, ck);
-          if (keep_candidates && MayHoldSurfaceOnceMoved(flags, clip_M, clip_L)) {
-            candidates |= std::uint64_t(1) << c;
-            AddCellCorners(ci, cj, ck, &corners);
-          }
           // The surface in each cell the gap changes sign over, where no body is wholly away.
-          if (!MayHoldSurface(flags, clip_M, clip_L)) continue;
+          if (!MayHoldSurface(CornerFlags(vertices, ci, cj, ck), clip_M, clip_L)) continue;
           LoadCell(phi_M, phi_L, vertices, x0, h_, ci, cj, ck, &cell);
-          const double cell_area = IntegrateCell(cell, law, sums, record ? &recorder : nullptr);
+          if (D) corner_sensitivity.setZero();
+          const double cell_area = IntegrateCell(cell, law, sums, &recorder, D ? &corner_sensitivity : nullptr);
+          if (D) AddCornerSensitivity(corner_sensitivity, ci, cj, ck);
           sums->area += cell_area;
-          // The cells and blocks that carry surface, for patches and K_B.
-          if (record && cell_area > 0) block_surface_[std::size_t(bi)] = 1;
-          if (record && cell_area > 0 && num_surface_cells_ < std::int64_t(surface_cells_.size())) {
+          // The cells that carry surface, for patches.
+          if (cell_area > 0 && num_surface_cells_ < std::int64_t(surface_cells_.size())) {
             const std::int64_t i = blk[0] + ci, j = blk[1] + cj, k = blk[2] + ck;
             surface_cells_[std::size_t(num_surface_cells_++)] = i + stride_j_ * j + stride_k_ * k;
           }
         }
       }
     }
-    if (keep_candidates) {
-      block_candidates_[std::size_t(bi)] = candidates;
-      block_candidate_corners_[std::size_t(bi)] = corners;
-    }
+    if (D) *D += BlockStiffness(X_LM, x0);
   }
-}
-
-void PressureFieldModel::KeepSurfaceBlocks() {
-  std::int64_t kept = 0;
-  for (std::int64_t b = 0; b < num_blocks_; ++b) {
-    if (!block_surface_[std::size_t(b)]) continue;
-    if (kept != b) {
-      blocks_[std::size_t(kept)] = blocks_[std::size_t(b)];
-      block_candidates_[std::size_t(kept)] = block_candidates_[std::size_t(b)];
-      block_candidate_corners_[std::size_t(kept)] = block_candidate_corners_[std::size_t(b)];
-      std::copy_n(block_phi_L_.begin() + b * kBlockVerts, kBlockVerts, block_phi_L_.begin() + kept * kBlockVerts);
-    }
-    ++kept;
-  }
-  num_blocks_ = kept;
 }
 
 int PressureFieldModel::CountPatches() {
   return contactlab::CountPatches(surface_cells_.data(), num_surface_cells_, stride_j_, stride_k_, parent_.data());
 }
 
-Wrench PressureFieldModel::OnB(const Sums& sums, const Pose& X_WA, const Pose& X_WB) const {
+Wrench PressureFieldModel::OnB(const PressureSums& sums, const Pose& X_WA, const Pose& X_WB) const {
+  const Eigen::Vector3d& force = sums.force;
+  const Eigen::Vector3d& torque = sums.torque;
   Wrench w;
   if (!lattice_is_A_) {
     const Eigen::Matrix3d R = X_WB.R();
-    w.force = R * sums.force;
-    w.torque = R * sums.torque;
+    w.force = R * force;
+    w.torque = R * torque;
     return w;
   }
   // The sums are the wrench on A about A's origin: B feels the opposite, about its own origin.
   const Eigen::Matrix3d R = X_WA.R();
-  const Eigen::Vector3d F_A = R * sums.force, T_A = R * sums.torque;
+  const Eigen::Vector3d F_A = R * force, T_A = R * torque;
   w.force = -F_A;
   w.torque = -(T_A + (X_WA.translation - X_WB.translation).cross(F_A));
   return w;
@@ -234,23 +220,17 @@ ContactResult PressureFieldModel::Evaluate(const ContactQuery& query) {
     surface_pressure_.clear();
     return r;
   }
-  Sums base;
-  Integrate(X_LM, /*record=*/true, &base);
+  // The wrench, and its derivatives along B's twist in the same pass.
+  PressureSums base;
+  Matrix6d D = Matrix6d::Zero();
+  Integrate(X_LM, &base, options_.stiffness ? &D : nullptr);
   r.on_B = OnB(base, query.X_WA, query.X_WB);
   r.stats.contact_area = base.area;
   r.stats.max_penetration = std::max(0.0, base.max_penetration);
   r.stats.points_in_contact = std::int32_t(std::min<std::int64_t>(num_surface_cells_, INT32_MAX));
   r.stats.patches = CountPatches();
   if (options_.stiffness && base.area > 0) {
-    KeepSurfaceBlocks();
-    // Forward differences in B's pose over the blocks with surface: a step of 1/100 cell moves
-    // the surface into another block only where it passes within that of a block's face. In
-    // those blocks only the cells that may hold surface once moved are integrated again.
-    r.K_B = ForwardDifferenceStiffness(query.X_WB, r.on_B.AsVector(), step_x_, step_w_, [&](const Pose& X_WB) {
-      Sums s;
-      Integrate(LatticeToOther(query.X_WA, X_WB), /*record=*/false, &s);
-      return OnB(s, query.X_WA, X_WB);
-    });
+    r.K_B = PressureStiffnessOnB(D, r.on_B, lattice_is_A_, query.X_WA, query.X_WB);
   }
   return r;
 }

@@ -22,12 +22,11 @@
 // the lattice, and not at all when one field is finer: the wrench on A is then exactly the
 // opposite, by Newton's third law, of the wrench on B.
 
-// K_B by forward differences of the wrench (six re-evaluations of the blocks that carry surface,
-// the lattice body's samples reused), so it is the derivative of this discretisation, up to
-// O(step) and to surface that a step would carry into a block that had none. A re-evaluation
-// visits only the cells that may hold surface once B has moved by a step (the gap within a
-// Lipschitz bound of the step of zero at a corner) and samples M at their corners only: the
-// cells it skips hold none, so K_B is the same as from whole blocks.
+// K_B is the exact derivative of this discretised wrench in B's pose, taken in the same pass:
+// only M's field at the lattice's vertices depends on B's pose (the lattice is fixed in L), so
+// each vertex's value carries its six derivatives along B's twist (the trilinear field's
+// gradient, pressure_dual.h), forward through the cut, the clip and the integration. Surface
+// that a motion would carry into a cell that holds none has zero measure and adds nothing.
 // Stats: contact_area, patches (connected pieces, by cells sharing a face, edge or corner),
 // max_penetration (largest -(phi_A + phi_B) on the surface: the local overlap), points_in_contact
 // (cells carrying surface), nodes_visited (octree nodes and cells examined).
@@ -47,7 +46,9 @@
 #include <vector>
 
 #include "baselines/pressure_field/lattice_blocks.h"
+#include "baselines/pressure_field/pressure_integration.h"
 #include "baselines/pressure_field/pressure_law.h"
+#include "baselines/pressure_field/pressure_tangents.h"
 #include "contact/contact_model.h"
 #include "contact/contact_recorder.h"
 #include "sdf/distance_field.h"
@@ -63,8 +64,7 @@ struct PressureFieldSide {
 struct PressureFieldOptions {
   double lipschitz = 1;       // bound on |∇phi| of the fields, for culling
   int lattice = 1;            // lattice spacing, in cells of the finer field
-  double fd_step = 0.01;      // K_B's difference step, in lattice cells (rotation: cells / radius)
-  bool stiffness = true;      // compute K_B (six more surface evaluations)
+  bool stiffness = true;      // compute K_B (the integration carries six derivatives)
   std::int64_t max_blocks = 1 << 16;  // 4^3-cell blocks kept per query (beyond: not rendered)
 };
 
@@ -81,8 +81,6 @@ class PressureFieldModel final : public ContactModel {
   double depth_A() const { return depth_A_; }  // max(-phi_A), metres
   double depth_B() const { return depth_B_; }
   double spacing() const { return h_; }       // the lattice spacing
-  double step_x() const { return step_x_; }   // K_B's translation step (metres)
-  double step_w() const { return step_w_; }   // and rotation step (radians, about B's origin)
 
   // The contact surface of the latest Evaluate: the triangles the wrench was integrated over,
   // clipped to both insides, with the pressure at each corner.
@@ -93,20 +91,20 @@ class PressureFieldModel final : public ContactModel {
   void LatestContacts(ContactList* out) const override;
 
  private:
-  struct Sums;
   // The wrench on the lattice body L (L's frame, about L's origin) from the blocks found, with
-  // the other body M at X_LM. RECORD: also the cells with surface and the surface record.
-  void Integrate(const Pose& X_LM, bool record, Sums* sums);
-  // How far M's field may move at a vertex of the block BLK when B's pose takes a stiffness
-  // step (metres; a bound).
-  double StepReach(const Pose& X_LM, const std::array<std::int32_t, 3>& blk) const;
-  // Keeps the blocks that carried surface (block_surface_), in front.
-  void KeepSurfaceBlocks();
+  // the other body M at X_LM; also the cells with surface and the surface record. D (null:
+  // not wanted): the sums' derivatives along B's twist (L's frame), added.
+  void Integrate(const Pose& X_LM, PressureSums* sums, Matrix6d* D);
+  // Adds a cell's (CI, CJ, CK) corner sensitivities B to its block's vertices'.
+  void AddCornerSensitivity(const CornerSensitivity& b, int ci, int cj, int ck);
+  // The block's share of the sums' derivatives along B's twist (L's frame): each touched vertex's
+  // sensitivity times the derivative of M's field there (the block's first vertex is X0).
+  Matrix6d BlockStiffness(const Pose& X_LM, const Eigen::Vector3d& x0) const;
   // Finds the blocks that may hold surface with M at X_LM; false when there is none.
   bool FindBlocks(const Pose& X_LM, std::int64_t* nodes);
   int CountPatches();
   // The wrench on B (world, about B's origin) of SUMS, the lattice body's, at the poses.
-  Wrench OnB(const Sums& sums, const Pose& X_WA, const Pose& X_WB) const;
+  Wrench OnB(const PressureSums& sums, const Pose& X_WA, const Pose& X_WB) const;
   Pose LatticeToOther(const Pose& X_WA, const Pose& X_WB) const {
     return lattice_is_A_ ? X_WA.Inverse() * X_WB : X_WB.Inverse() * X_WA;
   }
@@ -114,8 +112,7 @@ class PressureFieldModel final : public ContactModel {
   PressureFieldOptions options_;
   bool lattice_is_A_ = false;  // A's field is strictly finer
   PressureFieldSide L_, M_;    // the lattice body and the other
-  double depth_A_ = 0, depth_B_ = 0, h_ = 0, radius_B_ = 0;
-  double step_x_ = 0, step_w_ = 0;  // K_B's difference steps (metres, radians)
+  double depth_A_ = 0, depth_B_ = 0, h_ = 0;
   // The two bodies' pressures and their gap p_M - p_L (up to a positive factor; a rigid side's
   // pressure counts as infinite inside it), whose zero set is the contact surface.
   PressureLaw law_;
@@ -128,10 +125,9 @@ class PressureFieldModel final : public ContactModel {
   // Surviving blocks: their first cell, and phi_L at their 125 vertices.
   std::vector<std::array<std::int32_t, 3>> blocks_;
   std::vector<float> block_phi_L_;
-  std::vector<std::uint8_t> block_surface_;  // the block carried surface in the latest Evaluate
-  // The block's cells (bit ci + 4 cj + 16 ck) that may hold surface once B takes a stiffness step.
-  std::vector<std::uint64_t> block_candidates_;
-  std::vector<VertexMask> block_candidate_corners_;  // their corners, where M is sampled
+  // The current block's vertices' sensitivities (six each), at the vertices touched.
+  std::vector<double> block_sensitivity_;
+  VertexMask block_touched_;
   std::int64_t num_blocks_ = 0;
   // Cells carrying surface (linear index in the lattice), for patches.
   std::vector<std::int64_t> surface_cells_;

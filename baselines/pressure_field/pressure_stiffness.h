@@ -1,6 +1,6 @@
-// K_B of the pressure-field model by forward differences of its wrench in B's pose
-// (pressure_field_model.h): the derivative of the discretised surface of Elandt et al. 2019,
-// up to O(step).
+// K_B of the pressure-field model (pressure_field_model.h): the exact derivative of its
+// discretised wrench (Elandt et al. 2019 on sampled fields) in B's pose, from the sums'
+// derivatives taken in forward mode through the cut, the clip and the integration.
 #pragma once
 
 #include "contact/contact_model.h"
@@ -8,21 +8,11 @@
 
 namespace contactlab {
 
-// B's pose X_WB moved along coordinate C of a world twist: C < 3 translates by STEP_X (metres)
-// along world axis C, C >= 3 rotates by STEP_W (radians) about world axis C - 3.
-Pose SteppedPose(const Pose& X_WB, int c, double step_x, double step_w);
-
-// d(wrench on B)/d(pose of B) by forward differences: column C is (WRENCH_ON_B(SteppedPose(X_WB,
-// C)) - W0) / step, with W0 the wrench at X_WB. WRENCH_ON_B: Pose -> Wrench (world frame).
-template <class WrenchOnB>
-Matrix6d ForwardDifferenceStiffness(const Pose& X_WB, const Vector6d& w0, double step_x, double step_w,
-                                    WrenchOnB&& wrench_on_B) {
-  Matrix6d K;
-  for (int c = 0; c < 6; ++c) {
-    const Pose X_WB_c = SteppedPose(X_WB, c, step_x, step_w);
-    K.col(c) = (wrench_on_B(X_WB_c).AsVector() - w0) / (c < 3 ? step_x : step_w);
-  }
-  return K;
-}
+// d(wrench on B)/d(B's world twist) (translation, then rotation about B's origin), from D, the
+// derivative of the lattice body L's sums (force, torque about L's origin, L's frame) along B's
+// twist in L's frame. ON_B: the wrench on B (world, about B's origin). LATTICE_IS_A: L is A (the
+// sums are the wrench on A, which does not move), else L is B (its sums turn with it).
+Matrix6d PressureStiffnessOnB(const Matrix6d& D, const Wrench& on_B, bool lattice_is_A, const Pose& X_WA,
+                              const Pose& X_WB);
 
 }  // namespace contactlab

@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "baselines/pressure_field/contact_patches.h"
+#include "baselines/pressure_field/lattice_blocks.h"
 #include "baselines/pressure_field/pressure_field_model.h"
 #include "baselines/pressure_field/pressure_field_params.h"
-#include "baselines/pressure_field/pressure_stiffness.h"
 #include "baselines/volumetric_cases.h"
 #include "contact/test_shells.h"
 #include "experiment/scene.h"
@@ -380,55 +380,113 @@ TEST(PressureField, StiffnessMatchesCentralDifferencesOfTheWrench) {
   EXPECT_GE(checked, 5);
 }
 
-// K_B re-integrates, for each of its six steps, only the cells the unstepped surface says may
-// hold surface once B has moved by a step. A cell it wrongly skipped would leave its share out of
-// a column. The reference: the same forward differences taken from whole evaluations at the
-// stepped poses (every block culled again, every cell looked at), with either body the lattice
-// one, compliant or rigid. They agree to rounding wherever no step carries the surface into a
-// block that held none (the documented approximation: 3 of 240 columns here, by at most 3e-8 of
-// the column, the same before cells were skipped), so nearly every column must match.
-TEST(PressureField, StiffnessStepsSkipOnlyCellsThatHoldNoSurface) {
+// The lattice body's field at a block's vertices is read from its grid where the block lies
+// inside it: the same as the field's own interpolation at those points, on every lattice
+// spacing, for blocks inside the grid and blocks that reach past it.
+TEST(PressureField, BlockSamplesAreTheFieldAtTheLatticeVertices) {
+  auto ball = Ball(0.012, 0.001);
+  const DistanceField& f = *ball;
+  for (const int lattice : {1, 2, 3}) {
+    const double h = f.spacing() * lattice;
+    const Eigen::Vector3d origin = f.origin() + f.spacing() * Eigen::Vector3d(1, 2, 0);
+    const int reach = int(f.dims().x() / lattice);
+    int inside = 0, outside = 0;
+    for (const std::array<std::int32_t, 3> blk : {std::array<std::int32_t, 3>{0, 0, 0}, {2, 3, 1}, {reach - 3, 1, 2},
+                                                   {reach - 1, reach - 2, 0}}) {
+      float phi[kBlockVerts];
+      SampleBlock(f, origin, h, blk, phi);
+      bool all_in = true;
+      for (int k = 0; k < kVerts; ++k) {
+        for (int j = 0; j < kVerts; ++j) {
+          for (int i = 0; i < kVerts; ++i) {
+            const Eigen::Vector3d x = origin + h * Eigen::Vector3d(blk[0] + i, blk[1] + j, blk[2] + k);
+            all_in = all_in && f.Inside(x);
+            // To the rounding of a float interpolation at float coordinates (a few units in the
+            // last place of the position and of the value).
+            EXPECT_NEAR(phi[VertexIndex(i, j, k)], f.Distance(x), 1e-6 * (std::abs(f.Distance(x)) + x.cwiseAbs().maxCoeff()))
+                << "lattice " << lattice << " block " << blk[0] << " " << blk[1] << " " << blk[2];
+          }
+        }
+      }
+      ++(all_in ? inside : outside);
+    }
+    EXPECT_GE(inside, 2);
+    EXPECT_GE(outside, 1);
+  }
+}
+
+// B's pose moved along coordinate C of a world twist: C < 3 translates by STEP along world axis
+// C, C >= 3 rotates by STEP (radians) about world axis C - 3 through B's origin.
+Pose TwistedPose(const Pose& X_WB, int c, double step) {
+  Pose X = X_WB;
+  if (c < 3) {
+    X.translation[c] += step;
+  } else {
+    Eigen::Vector3d w = Eigen::Vector3d::Zero();
+    w[c - 3] = step;
+    X.rotation = (RotationFromVector(w) * X.rotation).normalized();
+  }
+  return X;
+}
+
+// K_B is the exact derivative of the discretised wrench, carried through the integration in
+// forward mode. The reference: central differences of whole evaluations (every block culled
+// and every cell cut again at the moved pose), with either body the lattice one, compliant or
+// rigid. The wrench is smooth in the pose except where a moved vertex of the lattice crosses a
+// face of the other field's grid (a kink: the trilinear field's gradient jumps) or the cut of a
+// cell changes shape, and the fields are sampled at float positions, which blurs a difference
+// at a step of 1e-3 cells by about 1e-3 of it. Measured: half the columns agree to 5e-4 of their
+// size, 90 % to 2e-3, all to 1 %; the median difference halves with the step down to 3e-3
+// cells and then stays, as the kinks and the float positions predict. So 90 % of the columns
+// must agree to 3e-3 and every one to 2 %. A derivative that left out the rotation of the sums'
+// frame, the moment arm of B's origin, a clip or the pressure's change along the surface is
+// off by far more.
+TEST(PressureField, StiffnessIsTheDerivativeOfTheDiscretisedWrench) {
   auto ball = Ball(0.012, 0.001);
   auto fine_ball = Ball(0.012, 0.0008);
   auto cube = Cube(0.01, 0.001);
   struct Case {
     PressureFieldSide A, B;
   };
-  const Case cases[] = {{{ball, 1e5, false}, {cube, 2e5, false}},   // B the lattice body
+  const Case cases[] = {{{ball, 1e5, false}, {cube, 2e5, false}},       // B the lattice body
                         {{fine_ball, 1e5, false}, {cube, 2e5, false}},  // A the lattice body
                         {{ball, 1e5, false}, {cube, 0, true}},
                         {{fine_ball, 0, true}, {cube, 3e5, false}}};
   PressureFieldOptions plain;
   plain.stiffness = false;
-  int columns = 0, matched = 0;
+  int columns = 0, close = 0;
+  double worst = 0;
   for (const Case& k : cases) {
     PressureFieldModel model(k.A, k.B);
     PressureFieldModel wrench_only(k.A, k.B, plain);
+    const double step_x = 1e-3 * model.spacing(), step_w = step_x / 0.02;
     for (const Overlap& o : RandomOverlaps(10, 0.016)) {
       const ContactResult r = model.Evaluate(At(o.X_WA, o.X_WB));
       if (r.stats.contact_area < 2e-5) continue;
       const Vector6d w0 = wrench_only.Evaluate(At(o.X_WA, o.X_WB)).on_B.AsVector();
+      EXPECT_EQ(r.on_B.AsVector(), w0) << "the wrench does not depend on whether K_B is taken";
       for (int c = 0; c < 6; ++c) {
-        const double step = c < 3 ? model.step_x() : model.step_w();
-        const Pose X = SteppedPose(o.X_WB, c, model.step_x(), model.step_w());
-        const Vector6d reference = (wrench_only.Evaluate(At(o.X_WA, X)).on_B.AsVector() - w0) / step;
+        const double step = c < 3 ? step_x : step_w;
+        const Vector6d plus = wrench_only.Evaluate(At(o.X_WA, TwistedPose(o.X_WB, c, step))).on_B.AsVector();
+        const Vector6d minus = wrench_only.Evaluate(At(o.X_WA, TwistedPose(o.X_WB, c, -step))).on_B.AsVector();
+        const Vector6d reference = (plus - minus) / (2 * step);
         const Vector6d column = r.K_B.col(c);
         // Force rows and torque rows, each on its own scale.
         const double f = std::max(column.head<3>().norm(), reference.head<3>().norm()) + 1e-12;
         const double t = std::max(column.tail<3>().norm(), reference.tail<3>().norm()) + 1e-15;
+        const double error = std::max((column.head<3>() - reference.head<3>()).norm() / f,
+                                      (column.tail<3>() - reference.tail<3>()).norm() / t);
         ++columns;
-        if ((column.head<3>() - reference.head<3>()).norm() <= 1e-9 * f &&
-            (column.tail<3>() - reference.tail<3>()).norm() <= 1e-9 * t) {
-          ++matched;
-        } else {
-          std::printf("column %d differs: %s\n", c, ::testing::PrintToString(Vector6d(column - reference)).c_str());
-        }
+        if (error <= 3e-3) ++close;
+        worst = std::max(worst, error);
       }
     }
   }
-  std::printf("K_B columns equal to whole-evaluation differences: %d of %d\n", matched, columns);
+  std::printf("K_B columns within 3e-3 of central differences: %d of %d; largest difference %.3g\n", close, columns,
+              worst);
   EXPECT_GE(columns, 120);
-  EXPECT_GE(matched, columns - columns / 40);
+  EXPECT_GE(close, columns - columns / 10);
+  EXPECT_LT(worst, 0.02);
 }
 
 // Both bodies at 1e307 Pa once rendered no contact at all (E / depth overflowed); 1e306 gave
