@@ -100,7 +100,7 @@ ContactResult InnerSphereModel::Evaluate(const ContactQuery& query) {
   std::int64_t count = 0, next_count = 0;
   level_[0] = {0, 0};
   count = 1;
-  int levels_done = -1;
+  int levels_done = -1, levels_walked = -1;
   bool degraded = false;
   // Counts a pair through its proxies (the budget or the pair buffer ran out).
   auto approximate = [&](const SphereTreeNode& na, const SphereTreeNode& nb) {
@@ -135,6 +135,7 @@ ContactResult InnerSphereModel::Evaluate(const ContactQuery& query) {
       }
     }
     if (!degraded) ++levels_done;
+    ++levels_walked;
     std::swap(level_, next_);
     count = next_count;
   }
@@ -155,6 +156,7 @@ ContactResult InnerSphereModel::Evaluate(const ContactQuery& query) {
   r.stats.points_in_contact = sums.pairs;
   r.stats.nodes_visited = visited;
   r.stats.level_rendered = levels_done;
+  r.stats.degraded = degraded ? std::max(1, levels_walked - levels_done) : 0;
   r.stats.max_penetration = sums.max_depth;
   return r;
 }

@@ -30,7 +30,9 @@
 // model) stops it: each overlapping pair not yet resolved then counts as the lens of its two
 // proxy spheres (each a subtree's volume at its centroid). Stats: points_in_contact = sphere
 // pairs overlapping, nodes_visited = pairs tested, level_rendered = levels completed before the
-// budget ran out, max_penetration = the largest overlap depth r_a + r_b - d of a pair.
+// budget ran out, degraded = the levels the traversal went on past it (at least 1 when the
+// budget or the pair buffer cut it), max_penetration = the largest overlap depth r_a + r_b - d
+// of a pair.
 // Contacts (KeepContacts / LatestContacts): the overlapping sphere pairs, one per pair counted
 // (as many as stats.points_in_contact, a pair of proxy spheres included when the budget cut the
 // traversal): the centre of the overlap (the midpoint, on the line of centres, of the segment

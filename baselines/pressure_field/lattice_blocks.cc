@@ -33,7 +33,7 @@ bool FitLattice(const Aabb& box_M, const Aabb& box_L, const Eigen::Vector3d& o_L
 std::int64_t CullBlocks(const DistanceField& field_L, const DistanceField& field_M, const Pose& X_ML,
                         const PressureLaw& law, const Eigen::Vector3d& origin, const Eigen::Vector3i& cells,
                         double h, int root, double lipschitz, std::array<std::int32_t, 3>* blocks,
-                        std::int64_t capacity, std::int64_t* nodes) {
+                        std::int64_t capacity, std::int64_t* nodes, std::int64_t limit) {
   const double margin = kCullMargin * h;
   struct Node {
     std::int32_t i, j, k, size;
@@ -63,6 +63,7 @@ std::int64_t CullBlocks(const DistanceField& field_L, const DistanceField& field
       }
       continue;
     }
+    if (limit > 0 && kept >= limit) return limit + 1;
     if (kept >= capacity) continue;  // over capacity: not rendered
     blocks[kept++] = {n.i, n.j, n.k};
   }

@@ -42,11 +42,12 @@ bool FitLattice(const Aabb& box_M, const Aabb& box_L, const Eigen::Vector3d& o_L
 // it weighs the fields by weights that sum to 1), that it lies outside a body or holds no zero
 // of LAW's gap. FIELD_L is in the lattice's frame, FIELD_M at X_ML. Writes up to CAPACITY
 // blocks' first cells to BLOCKS (the rest are not rendered) and returns their number; adds the
-// nodes examined to *NODES.
+// nodes examined to *NODES. LIMIT (> 0): once more than LIMIT blocks qualify the culling stops
+// and returns LIMIT + 1 (a time budget's test: the lattice is too fine).
 std::int64_t CullBlocks(const DistanceField& field_L, const DistanceField& field_M, const Pose& X_ML,
                         const PressureLaw& law, const Eigen::Vector3d& origin, const Eigen::Vector3i& cells,
                         double h, int root, double lipschitz, std::array<std::int32_t, 3>* blocks,
-                        std::int64_t capacity, std::int64_t* nodes);
+                        std::int64_t capacity, std::int64_t* nodes, std::int64_t limit = 0);
 
 // FIELD (the lattice body's) at the kBlockVerts vertices of the block whose first cell is BLK,
 // on the lattice (ORIGIN, spacing H: on FIELD's grid, every H / spacing-th point, as FitLattice

@@ -49,7 +49,7 @@ PressureFieldModel::PressureFieldModel(PressureFieldSide A, PressureFieldSide B,
   const double c_L = L_.rigid ? 0 : -double(L_.field->min_value()) / L_.modulus;
   const double c_M = M_.rigid ? 0 : -double(M_.field->min_value()) / M_.modulus;
   law_ = PressureLaw::FromCompliances(c_M, c_L);
-  h_ = L_.field->spacing() * options_.lattice;
+  base_h_ = h_ = L_.field->spacing() * options_.lattice;
   // Every block of L's box at spacing h fits (capped).
   const Eigen::Vector3d extent = L_.field->box().size() / (h_ * kBlock);
   const double fit = std::ceil(extent.x() + 1) * std::ceil(extent.y() + 1) * std::ceil(extent.z() + 1);
@@ -84,7 +84,29 @@ void PressureFieldModel::LatestContacts(ContactList* out) const {
   contacts_.Fill(X_WL_, lattice_is_A_ ? -1.0 : 1.0, out);
 }
 
-bool PressureFieldModel::FindBlocks(const Pose& X_LM, std::int64_t* nodes) {
+bool PressureFieldModel::FindBlocks(const Pose& X_LM, std::int64_t budget, std::int64_t* nodes, int* doublings) {
+  // The lattice at the configured spacing, doubled while its blocks hold more cells than the
+  // budget allows (graceful degradation: a coarser surface, fewer cells).
+  // Each try stops culling as soon as the budget is exceeded, so its cost is bounded too.
+  constexpr std::int64_t kCellsPerBlock = kBlock * kBlock * kBlock;
+  const std::int64_t limit = budget > 0 ? std::max<std::int64_t>(1, budget / kCellsPerBlock) : 0;
+  h_ = base_h_;
+  *doublings = 0;
+  bool overlap = CullLattice(X_LM, *doublings < kMaxLatticeDoublings ? limit : 0, nodes);
+  while (overlap && limit > 0 && num_blocks_ > limit && *doublings < kMaxLatticeDoublings) {
+    ++*doublings;
+    h_ *= 2;
+    overlap = CullLattice(X_LM, *doublings < kMaxLatticeDoublings ? limit : 0, nodes);
+  }
+  // L's field at the blocks' vertices.
+  const DistanceField& fL = *L_.field;
+  for (std::int64_t b = 0; b < num_blocks_; ++b) {
+    SampleBlock(fL, origin_, h_, blocks_[std::size_t(b)], block_phi_L_.data() + b * kBlockVerts);
+  }
+  return overlap;
+}
+
+bool PressureFieldModel::CullLattice(const Pose& X_LM, std::int64_t limit, std::int64_t* nodes) {
   num_blocks_ = 0;
   const DistanceField& fM = *M_.field;
   const DistanceField& fL = *L_.field;
@@ -94,12 +116,9 @@ bool PressureFieldModel::FindBlocks(const Pose& X_LM, std::int64_t* nodes) {
   stride_k_ = stride_j_ * (cells_.y() + kBlock);
   int root = kBlock;
   while (root < cells_.maxCoeff()) root *= 2;
-  // The blocks that may hold surface, then L's field at their vertices.
+  // The blocks that may hold surface.
   num_blocks_ = CullBlocks(fL, fM, X_LM.Inverse(), law_, origin_, cells_, h_, root, options_.lipschitz, blocks_.data(),
-                           std::int64_t(blocks_.size()), nodes);
-  for (std::int64_t b = 0; b < num_blocks_; ++b) {
-    SampleBlock(fL, origin_, h_, blocks_[std::size_t(b)], block_phi_L_.data() + b * kBlockVerts);
-  }
+                           std::int64_t(blocks_.size()), nodes, limit);
   return num_blocks_ > 0;
 }
 
@@ -212,8 +231,10 @@ ContactResult PressureFieldModel::Evaluate(const ContactQuery& query) {
   contacts_.Clear();
   const Pose X_LM = LatticeToOther(query.X_WA, query.X_WB);
   std::int64_t nodes = 0;
-  const bool overlap = FindBlocks(X_LM, &nodes);
+  int doublings = 0;
+  const bool overlap = FindBlocks(X_LM, query.node_budget, &nodes, &doublings);
   r.stats.nodes_visited = nodes + num_blocks_ * kBlock * kBlock * kBlock;
+  r.stats.degraded = doublings;
   if (!overlap) {
     num_surface_cells_ = 0;
     surface_.clear();

@@ -29,7 +29,15 @@
 // that a motion would carry into a cell that holds none has zero measure and adds nothing.
 // Stats: contact_area, patches (connected pieces, by cells sharing a face, edge or corner),
 // max_penetration (largest -(phi_A + phi_B) on the surface: the local overlap), points_in_contact
-// (cells carrying surface), nodes_visited (octree nodes and cells examined).
+// (cells carrying surface), nodes_visited (octree nodes and cells examined), degraded (the
+// lattice doublings the budget forced).
+//
+// Time budget (graceful degradation): the query's node_budget counts lattice cells, the cells
+// of the blocks that survive culling (each sampled at its vertices and tested). When they
+// exceed it the lattice doubles its spacing, up to kMaxLatticeDoublings times (16x), until they
+// fit: the surface is then cut from a coarser sampling of the same fields, a quarter of the
+// cells for each doubling on a surface. The wrench keeps its meaning (pressures and areas are
+// the same fields'), and loses the detail finer than the lattice, as pressure_lattice does.
 // Contacts (KeepContacts / LatestContacts): the contact surface's polygons (one per tetrahedron
 // of a cell the surface crosses, clipped to the overlap; several per cell, so more than
 // stats.points_in_contact, which counts cells), each with its centroid (world), its unit normal
@@ -61,6 +69,9 @@ struct PressureFieldSide {
   bool rigid = false;
 };
 
+// The lattice doublings a time budget may force (pressure_field_model.h).
+constexpr int kMaxLatticeDoublings = 4;
+
 struct PressureFieldOptions {
   double lipschitz = 1;       // bound on |∇phi| of the fields, for culling
   int lattice = 1;            // lattice spacing, in cells of the finer field
@@ -80,7 +91,7 @@ class PressureFieldModel final : public ContactModel {
 
   double depth_A() const { return depth_A_; }  // max(-phi_A), metres
   double depth_B() const { return depth_B_; }
-  double spacing() const { return h_; }       // the lattice spacing
+  double spacing() const { return base_h_; }  // the lattice spacing (before any budget coarsens it)
 
   // The contact surface of the latest Evaluate: the triangles the wrench was integrated over,
   // clipped to both insides, with the pressure at each corner.
@@ -100,8 +111,13 @@ class PressureFieldModel final : public ContactModel {
   // The block's share of the sums' derivatives along B's twist (L's frame): each touched vertex's
   // sensitivity times the derivative of M's field there (the block's first vertex is X0).
   Matrix6d BlockStiffness(const Pose& X_LM, const Eigen::Vector3d& x0) const;
-  // Finds the blocks that may hold surface with M at X_LM; false when there is none.
-  bool FindBlocks(const Pose& X_LM, std::int64_t* nodes);
+  // Finds the blocks that may hold surface with M at X_LM and samples L's field at them, on the
+  // configured lattice or, when their cells exceed BUDGET (> 0), on one *DOUBLINGS times
+  // coarser (at most kMaxLatticeDoublings); false when there is none.
+  bool FindBlocks(const Pose& X_LM, std::int64_t budget, std::int64_t* nodes, int* doublings);
+  // Fits the lattice of spacing h_ and culls its blocks; false when none may hold surface.
+  // LIMIT > 0: stops once more than LIMIT blocks qualify (num_blocks_ = LIMIT + 1).
+  bool CullLattice(const Pose& X_LM, std::int64_t limit, std::int64_t* nodes);
   int CountPatches();
   // The wrench on B (world, about B's origin) of SUMS, the lattice body's, at the poses.
   Wrench OnB(const PressureSums& sums, const Pose& X_WA, const Pose& X_WB) const;
@@ -112,7 +128,8 @@ class PressureFieldModel final : public ContactModel {
   PressureFieldOptions options_;
   bool lattice_is_A_ = false;  // A's field is strictly finer
   PressureFieldSide L_, M_;    // the lattice body and the other
-  double depth_A_ = 0, depth_B_ = 0, h_ = 0;
+  double depth_A_ = 0, depth_B_ = 0;
+  double base_h_ = 0, h_ = 0;  // the configured lattice spacing, and the latest query's
   // The two bodies' pressures and their gap p_M - p_L (up to a positive factor; a rigid side's
   // pressure counts as infinite inside it), whose zero set is the contact surface.
   PressureLaw law_;

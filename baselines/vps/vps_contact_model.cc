@@ -86,11 +86,18 @@ ContactResult VpsContactModel::Evaluate(const ContactQuery& query) {
   X_WB_contacts_ = query.X_WB;
   const bool keep = contacts_.keeping();
 
+  const std::int64_t budget = query.node_budget;
+  int looked_at = n;  // the prefix of the points the budget let the loop reach
   for (int i = 0; i < n; ++i) {
     // Temporal coherence: the point cannot touch before its next check.
     if (coherence && cycle < next_check_[i]) {
       ++skipped;
       continue;
+    }
+    // The time budget: the points in front (a uniform sample, the shell's order) stand for all.
+    if (budget > 0 && visited >= budget) {
+      looked_at = i;
+      break;
     }
     ++visited;
     // The point in B's frame and its voxel.
@@ -162,7 +169,9 @@ ContactResult VpsContactModel::Evaluate(const ContactQuery& query) {
   }
 
   ContactResult result;
+  if (looked_at < n) acc.Scale(double(n) / double(looked_at));
   acc.Finish(params_.penalty, query.X_WB, &result);
+  result.stats.degraded = looked_at < n ? int(std::ceil(std::log2(double(n) / double(looked_at)))) : 0;
   result.stats.nodes_visited = visited;
   result.stats.nodes_skipped_coherence = skipped;
   result.stats.level_rendered = -1;

@@ -36,6 +36,15 @@
 // VpsContactModel::Evaluate): a surface voxel counts only points below its centre, and the
 // interior starts a whole surface layer below the surface.
 //
+// Time budget (graceful degradation): the query's node_budget counts the points looked at (the
+// coherence's skipped points cost next to nothing and are not counted). Past it the loop stops,
+// and the points it reached, a prefix of the pointshell, stand for the whole: the sums are
+// counted n / reached times (ContactAccumulator::Scale). The shell's order makes a prefix a
+// uniform sample (the voxel-centre shell is shuffled, the repulsion shell is ordered by level),
+// and the same prefix each cycle, so the answer does not flicker. stats.degraded =
+// ceil(log2(n / reached)): the halvings of the share of points tested. Points past the prefix
+// keep their coherence state and are looked at again when the budget allows.
+//
 // Contacts (KeepContacts / LatestContacts): one per point with depth > 0, as many as
 // stats.points_in_contact: the point's world position, the direction of its force on B, -N in
 // the world, and its depth as the force model above takes it (metres).
@@ -100,7 +109,8 @@ class VpsContactModel final : public ContactModel {
                   std::shared_ptr<const DistanceField> field, const VpsContactParams& params);
 
   std::string_view name() const override { return name_; }
-  // One haptic cycle: allocation-free, throws nothing. query.node_budget is ignored.
+  // One haptic cycle: allocation-free, throws nothing. query.node_budget (> 0) bounds the
+  // points looked at (see the top of this file).
   ContactResult Evaluate(const ContactQuery& query) override;
   void Reset() override;
   // The points with depth > 0 (see the top of this file), recorded during Evaluate.

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 
 #include "contact/contact_model.h"
 #include "contact/penalty_params.h"
@@ -67,6 +68,18 @@ class ContactAccumulator {
 
   int count() const { return count_; }
   double max_penetration() const { return max_penetration_; }
+
+  // Counts each point added so far F times (F >= 1): a budget that looked at one point in F of a
+  // uniform sample stands for the whole (the sums, their gradient and the count, rounded).
+  void Scale(double f) {
+    force_ *= f;
+    torque_ *= f;
+    M_ *= f;
+    MP_ *= f;
+    PM_ *= f;
+    PMP_ *= f;
+    count_ = int(std::lround(double(count_) * f));
+  }
 
   // The wrench on B (world frame, torque about B's origin) and its gradient under the
   // penalty law PENALTY: k_C, scaled by L / l when l >= L points touch (L = 0 disables it).

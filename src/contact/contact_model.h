@@ -46,6 +46,12 @@ struct ContactStats {
   // 1 when the model refused the query and gave no force: a deformation whose size does not
   // fit its body. The haptic cycle and the runners count it as a fault.
   std::int32_t faults = 0;
+  // How far the query's work budget (ContactQuery::node_budget) made the model degrade: 0 when
+  // it did all its work; else the steps it fell short by, in the model's own documented unit
+  // (the paper's model: tree levels left out; pressure-field: doublings of its lattice; vps:
+  // halvings of the share of points tested; inner-spheres: levels of the pair tree left out;
+  // pointshell-ccd: 1, a search stopped and the proxy with it).
+  std::int32_t degraded = 0;
 };
 
 struct ContactQuery {

@@ -211,6 +211,7 @@ class TreeTraversalState {
     stats->nodes_visited = visited;
     stats->level_rendered = rendered;
     stats->nodes_skipped_coherence = skipped;
+    stats->degraded = rendered < max_level ? max_level - std::max(rendered, 0) : 0;
   }
 
  private:

@@ -415,6 +415,42 @@ TEST(PressureField, BlockSamplesAreTheFieldAtTheLatticeVertices) {
   }
 }
 
+// The time budget counts lattice cells. Past it the lattice doubles until the cells fit, so the
+// answer is that of the model configured on the coarser lattice (the same fields on the same
+// grid), wrench and K_B, and the stat says how many doublings; within it nothing changes.
+TEST(PressureField, ABudgetBelowTheCellsCoarsensTheLatticeAsTheLatticeKeyWould) {
+  auto ball = Ball(0.012, 0.001);
+  auto cube = Cube(0.01, 0.001);
+  PressureFieldModel model({ball, 1e5, false}, {cube, 2e5, false});
+  int degraded_seen = 0;
+  for (const Overlap& o : RandomOverlaps(6, 0.016)) {
+    ContactQuery q = At(o.X_WA, o.X_WB);
+    const ContactResult full = model.Evaluate(q);
+    if (full.stats.contact_area < 2e-5) continue;
+    EXPECT_EQ(full.stats.degraded, 0);
+    // The cells of the blocks kept: nodes_visited less the octree nodes (at most a few hundred).
+    q.node_budget = full.stats.nodes_visited * 10;
+    const ContactResult roomy = model.Evaluate(q);
+    EXPECT_EQ(roomy.stats.degraded, 0);
+    EXPECT_EQ(roomy.on_B.AsVector(), full.on_B.AsVector());
+    for (const std::int64_t budget : {full.stats.nodes_visited / 3, full.stats.nodes_visited / 20, std::int64_t(64)}) {
+      q.node_budget = budget;
+      const ContactResult r = model.Evaluate(q);
+      ASSERT_GE(r.stats.degraded, 1) << "budget " << budget;
+      ASSERT_LE(r.stats.degraded, kMaxLatticeDoublings);
+      degraded_seen = std::max(degraded_seen, r.stats.degraded);
+      PressureFieldOptions coarse;
+      coarse.lattice = 1 << r.stats.degraded;
+      PressureFieldModel reference({ball, 1e5, false}, {cube, 2e5, false}, coarse);
+      const ContactResult c = reference.Evaluate(At(o.X_WA, o.X_WB));
+      EXPECT_EQ(r.on_B.AsVector(), c.on_B.AsVector()) << "budget " << budget;
+      EXPECT_EQ(r.K_B, c.K_B) << "budget " << budget;
+      EXPECT_EQ(r.stats.points_in_contact, c.stats.points_in_contact);
+    }
+  }
+  EXPECT_GE(degraded_seen, 2);
+}
+
 // B's pose moved along coordinate C of a world twist: C < 3 translates by STEP along world axis
 // C, C >= 3 rotates by STEP (radians) about world axis C - 3 through B's origin.
 Pose TwistedPose(const Pose& X_WB, int c, double step) {

@@ -66,7 +66,8 @@ TEST(Runner, SmallSweepWritesLongFormatCsvAndMeta) {
   const auto cycles = Lines(dir / "out" / "cycles.csv");
   EXPECT_EQ(cycles.front(),
             "experiment,job,points,model,cycle,t,x,y,z,qw,qx,qy,qz,fx,fy,fz,tx,ty,tz,contacts,nodes,level,max_penetration,"
-            "depth_voxels,contact_area,patches,time_us,ref_fx,ref_fy,ref_fz,step_us,step_B_us,elastic_energy_J,kinetic_energy_J,max_displacement,q,q_B");
+            "depth_voxels,contact_area,patches,degraded,time_us,ref_fx,ref_fy,ref_fz,step_us,step_B_us,elastic_energy_J,kinetic_energy_J,"
+            "max_displacement,q,q_B");
   EXPECT_EQ(cycles.size(), 1u + 2 * 2 * 41);  // header + jobs x models x cycles (0.04 s at 1 kHz)
   // The tree and the linear traversal of the deepest level agree; the linear model is its own
   // reference, so its error is zero.

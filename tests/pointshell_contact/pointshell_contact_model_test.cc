@@ -177,6 +177,7 @@ TEST(PointshellContactModel, DegradationRendersTheDeepestLevelThatFitsAndHoldsIt
   PointshellContactModel full(Variant::kTree, shell, field, params);
   const ContactResult unlimited = full.Evaluate(q);
   ASSERT_EQ(unlimited.stats.level_rendered, 3);
+  EXPECT_EQ(unlimited.stats.degraded, 0);
   const std::int64_t need = unlimited.stats.nodes_visited;
   // With exactly enough budget for everything, the deepest level is rendered (warm after the first cycle).
   for (std::int64_t budget : {need / 3, need / 2, need, 2 * need}) {
@@ -187,6 +188,8 @@ TEST(PointshellContactModel, DegradationRendersTheDeepestLevelThatFitsAndHoldsIt
       q.cycle = cycle;
       const ContactResult r = model.Evaluate(q);
       levels.push_back(r.stats.level_rendered);
+      // The degradation stat: the levels the budget left out.
+      EXPECT_EQ(r.stats.degraded, 3 - r.stats.level_rendered);
       EXPECT_LE(r.stats.nodes_visited, std::max<std::int64_t>(budget, shell->level_node_begin[1]));
       // The forces equal a linear traversal of the rendered level.
       PointshellContactParams lp = params;

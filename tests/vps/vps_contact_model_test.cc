@@ -59,6 +59,43 @@ Pose RandomPose(std::mt19937& rng, double spread) {
           spread * Eigen::Vector3d(u(rng), u(rng), u(rng))};
 }
 
+// The time budget counts the points looked at; past it the points reached stand for all. On a
+// plate pressed flat every point has the same depth, so any prefix stands for the whole exactly:
+// the force is the closed form k_C L depth at every budget, with the L / l scaling on (L = 10)
+// and off (L = 0: k_C depth n). The stat counts the halvings of the share looked at, and a
+// budget of n or more changes nothing.
+TEST(VpsContactModel, ABudgetLooksAtAPrefixThatStandsForTheWholeShell) {
+  auto shell = PointGrid(Eigen::Vector3d::UnitZ());
+  const int n = shell->num_points();  // 49
+  for (const int L : {10, 0}) {
+    VpsContactParams params;
+    params.penalty.k_C = 2000;
+    params.penalty.L = L;
+    VpsContactModel model("vps", shell, PlateField(), params);
+    ContactQuery q;
+    q.X_WA = Pose::FromTranslation(Eigen::Vector3d(0.01, -0.007, -0.6 * kH));
+    const ContactResult full = model.Evaluate(q);
+    ASSERT_EQ(full.stats.points_in_contact, n);
+    EXPECT_EQ(full.stats.degraded, 0);
+    const double depth = -full.on_B.force.z() / (params.penalty.k_C * (L > 0 ? L : n));
+    ASSERT_GT(depth, 0.5 * kH);
+    for (const int budget : {n, 2 * n}) {
+      q.node_budget = budget;
+      const ContactResult r = model.Evaluate(q);
+      EXPECT_EQ(r.on_B.AsVector(), full.on_B.AsVector());
+      EXPECT_EQ(r.stats.degraded, 0);
+    }
+    for (const int budget : {30, 24, 12, 5, 1}) {
+      q.node_budget = budget;
+      const ContactResult r = model.Evaluate(q);
+      EXPECT_EQ(r.stats.nodes_visited, budget);
+      EXPECT_EQ(r.stats.degraded, int(std::ceil(std::log2(double(n) / budget)))) << "budget " << budget;
+      EXPECT_NEAR(r.on_B.force.z(), full.on_B.force.z(), 1e-9 * std::abs(full.on_B.force.z())) << "budget " << budget;
+      EXPECT_NEAR(r.on_B.force.head<2>().norm(), 0, 1e-9 * std::abs(full.on_B.force.z()));
+    }
+  }
+}
+
 TEST(VpsContactModel, SurfaceModelFlatPlateForceIsKLTimesTheTangentPlaneDepthAlongTheNormal) {
   auto shell = PointGrid(Eigen::Vector3d::UnitZ());
   VpsContactParams params;

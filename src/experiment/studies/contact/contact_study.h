@@ -42,6 +42,7 @@ struct CycleRow {
   double depth_voxels = 0;      // max_penetration / spacing of the field body's field (pointshell models)
   double contact_area = 0;      // m^2, models with a contact surface (pressure-field)
   int patches = 0;              // its connected pieces
+  int degraded = 0;             // steps the budget made the model degrade (ContactStats)
   double time_us = 0;
   bool has_reference = false;
   Eigen::Vector3d reference_force = Eigen::Vector3d::Zero();
@@ -64,6 +65,7 @@ struct SummaryRow {
   std::int64_t cycles = 0;
   double max_jump = 0, lipschitz = 0, hf_share = 0;
   double median_us = 0, p99_us = 0, max_us = 0, mean_nodes = 0, level_switches_per_s = 0;
+  double degraded_share = 0;  // share of the cycles the budget made the model degrade
   double rms_rel_error = -1, max_dir_error_deg = -1;  // -1: no reference
   // Against the reference (metrics.h, ErrorAgainstReference; -1: no reference or no force):
   // the fitted stiffness scale, the relative RMS error after it, direction error quantiles.

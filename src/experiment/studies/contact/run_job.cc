@@ -185,6 +185,7 @@ struct ModelTrace {
   std::vector<double> times, step_times, step_times_B;
   std::vector<int> levels;
   double nodes_sum = 0, max_depth = 0, max_displacement = 0;
+  std::int64_t degraded_cycles = 0;
   std::int64_t contact_faults = 0;
   double wrench_scale = 1;  // model.stiffness: matched's factor (1: the model's own stiffness)
   double fill_A = -1, fill_B = -1;  // contact/volume_fill.h (-1: the model fills no volume)
@@ -206,6 +207,7 @@ struct ModelTrace {
     times.push_back(row.time_us);
     levels.push_back(row.level);
     nodes_sum += double(row.nodes);
+    if (row.degraded > 0) ++degraded_cycles;
     max_depth = std::max(max_depth, row.depth_voxels);
   }
 };
@@ -262,6 +264,7 @@ CycleRow MakeCycleRow(const JobSetup& setup, const std::string& name, std::int64
   row.depth_voxels = spacing > 0 ? r.stats.max_penetration / spacing : 0.0;
   row.contact_area = r.stats.contact_area;
   row.patches = r.stats.patches;
+  row.degraded = r.stats.degraded;
   return row;
 }
 
@@ -332,6 +335,7 @@ SummaryRow Summarize(const JobSetup& setup, const std::string& name, ModelTrace&
   s.max_us = t.max_us;
   s.level_switches_per_s = t.level_switches_per_second;
   s.mean_nodes = trace.nodes_sum / double(cycles);
+  s.degraded_share = double(trace.degraded_cycles) / double(cycles);
   const double force_scale = MedianForceInContact(trace.forces);
   if (force_scale > 0) {
     s.max_jump_rel = c.max_jump / force_scale;
