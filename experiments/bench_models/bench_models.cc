@@ -10,6 +10,9 @@
 // per configuration, outside the timed loop: -∇V when CGAL can corefine the two meshes, else
 // the direction of the dense-quadrature eq. (2) limit (counter ref_kind = 1 or 2; 0 = none).
 // Counters: contacts (points or contacts contributing), dir_err_deg, force_N, ref_kind.
+// Moving contact (moving/): per-cycle percentiles while A slides through the deep configuration.
+// Deep press (deep/): A leaned 20 mm into B and back, without and with each real-time model's
+// time budget (its node_budget unit): does the budget keep the cycle's p99.9 within 1 ms?
 // Quick mode (CONTACTLAB_BENCH_QUICK=1): the procedural sphere-on-plate scene only.
 #include <benchmark/benchmark.h>
 
@@ -21,6 +24,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "contact/register_contact_models.h"
@@ -227,6 +231,57 @@ void BM_ModelAtSpeed(benchmark::State& state, std::string scene_file, std::strin
   state.SetItemsProcessed(cycles);
 }
 
+// A user leaning on the device: A pressed from the deep (2 mm) configuration along the line of
+// the bodies' origins to 20 mm past first contact and back, 0.1 mm a cycle (0.1 m/s at 1 kHz),
+// with the query's node budget BUDGET (each model's own unit, ContactStats::degraded; 0: none).
+// Counters p50_us, p99_us, p999_us: per-cycle times; degraded: the share of cycles the budget
+// made the model degrade; force_N: the largest |F|.
+void BM_ModelDeepPress(benchmark::State& state, std::string scene_file, std::string model_name, std::int64_t budget) {
+  const Configuration* config = nullptr;
+  ContactModel* model = PreparedModel(state, scene_file, model_name, 1, &config);
+  if (!model) return;
+  const Configuration& c = *config;
+  const Eigen::Vector3d n = (c.X_WB.translation - c.X_WA.translation).normalized();
+  constexpr double kStep = 1e-4, kDepth = 0.018;  // metres a cycle, and past the deep configuration
+  constexpr std::size_t kKept = 1 << 16;
+  std::vector<double> times(kKept);
+  ContactQuery q;
+  q.X_WB = c.X_WB;
+  q.node_budget = budget;
+  model->Reset();
+  std::int64_t cycles = 0, degraded = 0;
+  double largest = 0;
+  for (auto _ : state) {
+    q.X_WA = c.X_WA;
+    q.X_WA.translation += (Triangle(cycles, kStep, 0.5 * kDepth) + 0.5 * kDepth) * n;
+    q.cycle = cycles;
+    const auto t0 = std::chrono::steady_clock::now();
+    const ContactResult r = model->Evaluate(q);
+    const auto t1 = std::chrono::steady_clock::now();
+    benchmark::DoNotOptimize(r);
+    times[std::size_t(cycles) % kKept] = std::chrono::duration<double, std::micro>(t1 - t0).count();
+    degraded += r.stats.degraded > 0;
+    largest = std::max(largest, r.on_B.force.norm());
+    ++cycles;
+  }
+  times.resize(std::min<std::size_t>(kKept, std::size_t(cycles)));
+  std::sort(times.begin(), times.end());
+  auto quantile = [&](double f) { return times.empty() ? NAN : times[std::size_t(f * double(times.size() - 1))]; };
+  state.counters["p50_us"] = quantile(0.5);
+  state.counters["p99_us"] = quantile(0.99);
+  state.counters["p999_us"] = quantile(0.999);
+  state.counters["degraded"] = cycles > 0 ? double(degraded) / double(cycles) : 0;
+  state.counters["force_N"] = largest;
+  state.SetItemsProcessed(cycles);
+}
+
+// The budget each real-time model gets in the deep press (its own unit, ContactStats::degraded):
+// the paper's model and pointshell-ccd tree nodes, inner-spheres sphere pairs, pressure-field
+// lattice cells, vps points looked at.
+constexpr std::pair<const char*, std::int64_t> kDeepBudgets[] = {
+    {"pointshell", 3000}, {"pointshell-ccd", 3000}, {"inner-spheres", 3000},
+    {"pressure-field", 2000}, {"vps", 20000}, {"vps-repulsion", 20000}};
+
 void RegisterAll() {
   RegisterContactModels();
   std::vector<std::string> scenes;
@@ -269,6 +324,20 @@ void RegisterAll() {
                                  (speed == 1.0 ? "1m_s" : "20m_s");
         benchmark::RegisterBenchmark(name.c_str(), BM_ModelAtSpeed, scene, model, speed)->Unit(benchmark::kMicrosecond);
       }
+    }
+    // Deep press, unbudgeted and with each model's budget; FCL and Bullet have none.
+    const std::string stem = std::filesystem::path(scene).stem().string();
+    for (const auto& [model, budget] : kDeepBudgets) {
+      for (const std::int64_t b : {std::int64_t(0), budget}) {
+        const std::string name = "deep/" + stem + "/" + model + "/budget_" + std::to_string(b);
+        benchmark::RegisterBenchmark(name.c_str(), BM_ModelDeepPress, scene, std::string(model), b)
+            ->Unit(benchmark::kMicrosecond);
+      }
+    }
+    for (const char* model : {"fcl", "bullet"}) {
+      const std::string name = "deep/" + stem + "/" + model + "/budget_0";
+      benchmark::RegisterBenchmark(name.c_str(), BM_ModelDeepPress, scene, std::string(model), std::int64_t(0))
+          ->Unit(benchmark::kMicrosecond);
     }
   }
 }

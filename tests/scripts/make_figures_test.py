@@ -403,6 +403,39 @@ class PackingFill(unittest.TestCase):
             self.assertEqual(tables["packing_fill_table"][1][7], "3000")
 
 
+class BudgetModels(unittest.TestCase):
+    # Each budgeted run is measured against the same model without a budget on the same cycles:
+    # the relative RMS of the force difference. Forces of 10 N against 9 N and 12 N give 10 % and
+    # 20 %; the p99 on the twin axis and the table's degraded share come from summary.csv.
+    def test_error_is_against_the_unbudgeted_run_of_the_same_model(self):
+        from figures import budget_models
+        C, S = common.CYCLES, common.SUMMARY
+        scene = "data/scenes/knight-screwdriver.yaml"
+        cycles, summary = [], []
+        for budget, fz, p99, share in ((0, 10.0, 2500.0, 0.0), (1000, 9.0, 800.0, 0.5), (300, 12.0, 200.0, 1.0)):
+            for k in range(3):
+                cycles.append({"scene": scene, "node_budget": budget, C.model: "vps", C.cycle: k, C.fz: fz})
+            summary.append({"scene": scene, "node_budget": budget, S.model: "vps", S.p99_us: p99,
+                            S.degraded_share: share})
+        with tempfile.TemporaryDirectory() as root:
+            write_table(root, "budget-models", C, ["scene", "node_budget"], cycles)
+            write_table(root, "budget-models", S, ["scene", "node_budget"], summary)
+            results = common.Results(root)
+            drawn, tables = {}, {}
+            results.save = lambda fig, name, **kw: drawn.setdefault(name, fig)
+            results.save_table = lambda header, lines, title, name: tables.setdefault(name, lines)
+            self.assertTrue(budget_models.budget_models(results))
+            panel = drawn["budget_models.png"].axes[0]
+            x, y = panel.lines[0].get_data()
+            self.assertEqual(list(x), [300, 1000])
+            self.assertAlmostEqual(y[0], 20.0)
+            self.assertAlmostEqual(y[1], 10.0)
+            rows = tables["budget_models_table"]
+            self.assertEqual([r[2] for r in rows], ["none", "300", "1000"])
+            self.assertEqual([r[3] for r in rows], ["0", "100", "50"])
+            self.assertEqual([r[5] for r in rows], ["2500", "200", "800"])
+
+
 class BaselineSettings(unittest.TestCase):
     # Each job of baseline-settings sets one FCL and one Bullet key; its label reads "FCL setting /
     # Bullet setting": each model's rows are listed under its own part of the label, with the
