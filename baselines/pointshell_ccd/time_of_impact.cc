@@ -72,6 +72,12 @@ double DistanceAt(const DistanceField& field, const Frame& F, const Eigen::Vecto
   return field.Distance(float(q.x()), float(q.y()), float(q.z()));
 }
 
+// The frame of B at pose (R0, O0), as MotionFrames::At(0) builds it for a motion from there
+// (the identity quaternion times R0 is R0, bit for bit).
+Frame StartFrame(const Eigen::Quaterniond& R0, const Eigen::Vector3d& o0) {
+  return {R0.toRotationMatrix().transpose(), o0};
+}
+
 // What every impact search along one motion reads: B's field at the motion's frames, the level
 // points stop at, the Lipschitz bound λ and the slack eps.
 struct LevelAlongMotion {
@@ -104,10 +110,12 @@ double RefineCrossing(const LevelAlongMotion& m, const Eigen::Vector3d& p_A, dou
 }
 
 // The earliest time in [T0, T_HIT) at which the point P_A (A's frame), moving no faster than
-// SPEED, reaches its level; T_HIT or later when it does not.
-double PointImpact(const LevelAlongMotion& m, const Eigen::Vector3d& p_A, double speed, double t0, double t_hit) {
+// SPEED, reaches its level; T_HIT or later when it does not. D0: its distance at T0 when known
+// (else null).
+double PointImpact(const LevelAlongMotion& m, const Eigen::Vector3d& p_A, double speed, double t0, double t_hit,
+                   const float* d0_known) {
   double t = t0;
-  const double d0 = DistanceAt(m.field, m.frames.At(t), p_A);
+  const double d0 = d0_known ? double(*d0_known) : DistanceAt(m.field, m.frames.At(t), p_A);
   const double lvl = t0 == 0 ? std::min(m.level, d0 - m.eps) : m.level;
   // Steps may pass a dip down to the field's zero (never below it), or eps below a level
   // that is itself below eps.
@@ -134,11 +142,13 @@ double PointImpact(const LevelAlongMotion& m, const Eigen::Vector3d& p_A, double
 
 // Conservative advancement of a node (centre C in A's frame, bounding radius R, moving no
 // faster than SPEED) from T: the time from which its subtree may reach the level, at most
-// kNodeSteps steps on; T_HIT or later when none of it can before T_HIT.
+// kNodeSteps steps on; T_HIT or later when none of it can before T_HIT. D_T: C's distance at T
+// when known (else null).
 double AdvanceNode(const LevelAlongMotion& m, const Eigen::Vector3d& c, double r, double speed, double t,
-                   double t_hit) {
+                   double t_hit, const float* d_t) {
   for (int step = 0; step < kNodeSteps; ++step) {
-    const double f = DistanceAt(m.field, m.frames.At(t), c) - m.lambda * r - m.level;
+    const double d = step == 0 && d_t ? double(*d_t) : DistanceAt(m.field, m.frames.At(t), c);
+    const double f = d - m.lambda * r - m.level;
     if (!(f > m.eps)) break;  // may reach the level from t on
     t += f / (m.lambda * speed);
     if (t >= t_hit) break;
@@ -164,6 +174,8 @@ ImpactSearch::ImpactSearch(std::shared_ptr<const Pointshell> shell, std::shared_
   next_.reserve(nodes);
   queue_t_.reserve(nodes);
   next_t_.reserve(nodes);
+  start_stamp_.assign(nodes, 0u);
+  start_d_.assign(nodes, 0.f);
 }
 
 ImpactResult ImpactSearch::Earliest(const BlendMotion& motion, const ImpactParams& params) {
@@ -178,6 +190,8 @@ ImpactResult ImpactSearch::Earliest(const BlendMotion& motion, const ImpactParam
   const double eps = std::max(params.slack, std::numeric_limits<double>::min());
   double t_hit = 1;
   const LevelAlongMotion along{field, frames, level, lambda, eps};
+  // The nodes that start at t = 0 take their distance from the latest Near when it ran here.
+  start_valid_ = near_kept_ && motion.R0.coeffs() == near_R_.coeffs() && motion.o0 == near_o_;
 
   // Breadth-first over the tree from its top level, each node with the time it starts at.
   queue_.clear();
@@ -209,8 +223,9 @@ ImpactResult ImpactSearch::Earliest(const BlendMotion& motion, const ImpactParam
       const double r = s.node_radius[n];
       const double speed = theta * (std::max((c - motion.o0).norm(), (c - o1).norm()) + r) + travel;
       if (!(speed > 0)) continue;  // a point on the rotation axis at B's origin does not move
+      const float* d_start = t == 0 ? StartDistance(n) : nullptr;
       if (leaf) {
-        const double ti = PointImpact(along, c, speed, t, t_hit);
+        const double ti = PointImpact(along, c, speed, t, t_hit, d_start);
         if (ti < t_hit) {
           t_hit = ti;
           result.hit = true;
@@ -218,7 +233,7 @@ ImpactResult ImpactSearch::Earliest(const BlendMotion& motion, const ImpactParam
         }
         continue;
       }
-      t = AdvanceNode(along, c, r, speed, t, t_hit);
+      t = AdvanceNode(along, c, r, speed, t, t_hit, d_start);
       if (t >= t_hit) continue;  // culled: nothing of it reaches the level before the earliest impact
       for (std::int32_t ch = s.child_begin[n]; ch < s.child_begin[n + 1]; ++ch) {
         next_.push_back(ch);
@@ -229,6 +244,7 @@ ImpactResult ImpactSearch::Earliest(const BlendMotion& motion, const ImpactParam
     std::swap(queue_t_, next_t_);
   }
   result.t = t_hit;
+  start_valid_ = false;
   return result;
 }
 
@@ -239,12 +255,28 @@ int ImpactSearch::Near(const Pose& X_AB, double band, double lipschitz, std::int
   if (s.num_levels() == 0) return 0;
   const Pose X_BA = X_AB.Inverse();
   const Eigen::Matrix3d R_BA = X_BA.R(), R_AB = X_AB.R();
+  // The float lookups as Earliest makes them at a motion's start (kept for it, see the header);
+  // a near point's distance and gradient in double at X_BA c.
+  const Frame F = StartFrame(X_AB.rotation, X_AB.translation);
+  if (++stamp_ == 0) {  // the stamp wrapped: forget every node's
+    std::fill(start_stamp_.begin(), start_stamp_.end(), 0u);
+    stamp_ = 1;
+  }
+  near_R_ = X_AB.rotation;
+  near_o_ = X_AB.translation;
+  near_kept_ = true;
+  auto lookup = [&](std::int32_t n, const Eigen::Vector3d& c) {
+    const float d = float(DistanceAt(field, F, c));
+    start_stamp_[std::size_t(n)] = stamp_;
+    start_d_[std::size_t(n)] = d;
+    return double(d);
+  };
   int written = 0;
   std::int64_t count = 0;
-  auto emit = [&](std::int32_t ip, const Eigen::Vector3d& c, const Eigen::Vector3d& q, double bound) {
+  auto emit = [&](std::int32_t ip, const Eigen::Vector3d& c, double bound) {
     if (written >= capacity) return;
     Eigen::Vector3d g;
-    const double d = field.DistanceAndGradient(q, &g);
+    const double d = field.DistanceAndGradient(R_BA * c + X_BA.translation, &g);
     NearPoint& np = out[written++];
     np.point = ip;
     np.distance = std::min(d, bound);
@@ -260,20 +292,19 @@ int ImpactSearch::Near(const Pose& X_AB, double band, double lipschitz, std::int
     for (const std::int32_t n : queue_) {
       const std::int32_t ip = s.node_point[n];
       const Eigen::Vector3d c(s.x[ip], s.y[ip], s.z[ip]);
-      const Eigen::Vector3d q = R_BA * c + X_BA.translation;
       const double r = s.node_radius[n];
       if (node_budget > 0 && count >= node_budget) {
         // Not expanded: its point stands for the subtree at the subtree's lower bound.
         if (degraded) *degraded = true;
-        const double bound = field.Distance(float(q.x()), float(q.y()), float(q.z())) - lipschitz * r;
-        if (bound <= band) emit(ip, c, q, bound);
+        const double bound = lookup(n, c) - lipschitz * r;
+        if (bound <= band) emit(ip, c, bound);
         continue;
       }
       ++count;
-      const double d = field.Distance(float(q.x()), float(q.y()), float(q.z()));
+      const double d = lookup(n, c);
       if (d - lipschitz * r > band) continue;
       if (leaf) {
-        emit(ip, c, q, std::numeric_limits<double>::infinity());
+        emit(ip, c, std::numeric_limits<double>::infinity());
         continue;
       }
       for (std::int32_t ch = s.child_begin[n]; ch < s.child_begin[n + 1]; ++ch) next_.push_back(ch);

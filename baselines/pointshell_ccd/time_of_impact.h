@@ -99,14 +99,34 @@ class ImpactSearch {
   // CAPACITY; the rest counted in *TOTAL when not null). Past NODE_BUDGET nodes (<= 0: no
   // limit) the nodes not expanded are reported as their own point at their lower bound
   // d(c) - λ r. Adds the nodes visited to *VISITED. Returns how many were written.
+  //
+  // It keeps the distance of every node it visits: an Earliest whose motion starts at X_AB
+  // (the proxy's constrained step after its active set) reads them instead of looking them up
+  // again, for every node that starts at t = 0 (all those within 1.5 level of B, which Near
+  // visited: its band is twice the level). Near and Earliest place a point at the same pose by
+  // the same arithmetic, so the distances are the very ones Earliest would compute.
   int Near(const Pose& X_AB, double band, double lipschitz, std::int64_t node_budget, NearPoint* out, int capacity,
            std::int64_t* visited, bool* degraded);
 
  private:
+  // The distance Near kept for NODE, or null when the latest Near did not visit it or ran at
+  // another pose than R0, O0.
+  const float* StartDistance(std::int32_t node) const {
+    return start_valid_ && start_stamp_[std::size_t(node)] == stamp_ ? &start_d_[std::size_t(node)] : nullptr;
+  }
+
   std::shared_ptr<const Pointshell> shell_;
   std::shared_ptr<const DistanceField> field_;
   std::vector<std::int32_t> queue_, next_;  // breadth-first node queues
   std::vector<double> queue_t_, next_t_;    // each node's start time
+  // The latest Near: its pose, and per node the distance there, valid where the node's stamp is
+  // stamp_. start_valid_ is set by Earliest for the one motion it is running.
+  Eigen::Quaterniond near_R_ = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d near_o_ = Eigen::Vector3d::Zero();
+  bool near_kept_ = false, start_valid_ = false;
+  std::uint32_t stamp_ = 0;
+  std::vector<std::uint32_t> start_stamp_;
+  std::vector<float> start_d_;
 };
 
 }  // namespace contactlab

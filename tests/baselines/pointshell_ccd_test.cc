@@ -224,6 +224,57 @@ TEST(TimeOfImpact, NearFindsExactlyThePointsWithinTheBand) {
   }
 }
 
+TEST(TimeOfImpact, AfterANearSearchAtItsStartEarliestGivesTheFreshSearchsAnswer) {
+  // Earliest reads the distances the latest Near kept when its motion starts at Near's pose. A
+  // sphere shell touching a rounded box (in the band, so whole subtrees start at t = 0), moved
+  // at random: the answer after Near at the start, after Near elsewhere, and of a search that
+  // never ran Near must be the same, and never past the brute-force impact on the field's zero.
+  auto shell = SphereShell(0.008, 4, 3);
+  auto field = SampleField(
+      [](const Eigen::Vector3d& p) {
+        const Eigen::Vector3d q = p.cwiseAbs() - Eigen::Vector3d(0.012, 0.009, 0.006);
+        return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0) - 0.002;
+      },
+      Eigen::Vector3d(-0.03, -0.03, -0.03), Eigen::Vector3d(0.03, 0.03, 0.03), 0.001);
+  ImpactSearch cached(shell, field), fresh(shell, field);
+  std::vector<NearPoint> out(shell->num_points());
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const double level = 2e-4, slack = 1e-4;
+  int hits = 0, near_points = 0;
+  for (int trial = 0; trial < 30; ++trial) {
+    // B's pose in A with the shell 1.5 levels from B's surface: bisect B's distance along DIR.
+    const Eigen::Vector3d dir = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+    const Eigen::Quaterniond R = RotationFromVector(Eigen::Vector3d(u(rng), u(rng), u(rng)));
+    double lo = 0.0, hi = 0.05;
+    for (int it = 0; it < 60; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (SmallestDistance(*shell, *field, Pose{R, -mid * dir}) < 1.5 * level ? lo : hi) = mid;
+    }
+    const Pose X0{R, -hi * dir};
+    // Mostly along the surface, partly into it, turning.
+    const Eigen::Vector3d side = dir.unitOrthogonal();
+    const Eigen::Vector3d v = 0.004 * u(rng) * side + 0.002 * (u(rng) + 1) * dir;
+    const BlendMotion m = BlendMotion::From(X0, v, 0.5 * Eigen::Vector3d(u(rng), u(rng), u(rng)));
+    const ImpactParams params{level, slack, 1.0, 0};
+    const ImpactResult reference = fresh.Earliest(m, params);
+    std::int64_t visited = 0;
+    near_points += cached.Near(X0, 2 * level, 1.0, 0, out.data(), int(out.size()), &visited, nullptr);
+    const ImpactResult after_near = cached.Earliest(m, params);
+    EXPECT_EQ(after_near.t, reference.t) << trial;
+    EXPECT_EQ(after_near.hit, reference.hit) << trial;
+    EXPECT_EQ(after_near.point, reference.point) << trial;
+    EXPECT_EQ(after_near.nodes_visited, reference.nodes_visited) << trial;
+    // Near at another pose: its distances are not this motion's.
+    cached.Near(m.At(0.5), 2 * level, 1.0, 0, out.data(), int(out.size()), &visited, nullptr);
+    EXPECT_EQ(cached.Earliest(m, params).t, reference.t) << trial;
+    EXPECT_LE(reference.t, BruteForceImpact(*shell, *field, m, -1e-7) + 1e-9) << trial;
+    hits += reference.hit;
+  }
+  EXPECT_GT(near_points, 30);  // the starts were in the band
+  EXPECT_GT(hits, 10);         // and the motions reached the box
+}
+
 // --- The proxy model ---------------------------------------------------------------------------
 
 // The registry's defaults for a field box of radius 5.2 cm: k = k_C L, k_rot = k R_B^2.
