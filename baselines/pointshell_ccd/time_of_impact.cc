@@ -20,51 +20,10 @@ constexpr int kPointSteps = 64;
 constexpr int kRefineSteps = 60;
 constexpr double kRefineWidth = 1e-10;
 
-// Where B is at one time of a motion: p_B = Rt (p_A - o).
+// Where B is at one pose: p_B = Rt (p_A - o).
 struct Frame {
   Eigen::Matrix3d Rt;
   Eigen::Vector3d o;
-};
-
-class MotionFrames {
- public:
-  explicit MotionFrames(const BlendMotion& m) : m_(m), theta_(m.w.norm()) {
-    axis_ = theta_ > 0 ? Eigen::Vector3d(m.w / theta_) : Eigen::Vector3d::UnitX();
-    R0t_ = m.R0.toRotationMatrix().transpose();
-  }
-  double theta() const { return theta_; }
-  // The frame at T; the latest one is kept, since the nodes of a level often start at one time.
-  const Frame& At(double t) const {
-    if (t == last_t_) return last_;
-    last_t_ = t;
-    if (theta_ == 0) {
-      last_ = {R0t_, m_.o0 + t * m_.v};
-    } else {
-      // exp(t θ [k]) R0 by its quaternion; below 0.1 rad the half-angle's sine and cosine by
-      // their series (exact to double rounding: the first term left out is below 1e-17).
-      const double h = 0.5 * t * theta_;
-      double c, sn;
-      if (h < 0.1) {
-        const double h2 = h * h;
-        sn = h * (1 - h2 / 6 * (1 - h2 / 20 * (1 - h2 / 42 * (1 - h2 / 72))));
-        c = 1 - h2 / 2 * (1 - h2 / 12 * (1 - h2 / 30 * (1 - h2 / 56 * (1 - h2 / 90))));
-      } else {
-        sn = std::sin(h);
-        c = std::cos(h);
-      }
-      const Eigen::Quaterniond R = Eigen::Quaterniond(c, sn * axis_.x(), sn * axis_.y(), sn * axis_.z()) * m_.R0;
-      last_ = {R.toRotationMatrix().transpose(), m_.o0 + t * m_.v};
-    }
-    return last_;
-  }
-
- private:
-  const BlendMotion& m_;
-  double theta_;
-  Eigen::Vector3d axis_;
-  Eigen::Matrix3d R0t_;
-  mutable double last_t_ = -1;
-  mutable Frame last_;
 };
 
 double DistanceAt(const DistanceField& field, const Frame& F, const Eigen::Vector3d& p_A) {
@@ -72,30 +31,97 @@ double DistanceAt(const DistanceField& field, const Frame& F, const Eigen::Vecto
   return field.Distance(float(q.x()), float(q.y()), float(q.z()));
 }
 
-// The frame of B at pose (R0, O0), as MotionFrames::At(0) builds it for a motion from there
-// (the identity quaternion times R0 is R0, bit for bit).
+// The frame of B at pose (R0, O0), the start of a motion from there.
 Frame StartFrame(const Eigen::Quaterniond& R0, const Eigen::Vector3d& o0) {
   return {R0.toRotationMatrix().transpose(), o0};
 }
 
-// What every impact search along one motion reads: B's field at the motion's frames, the level
+// Where a point of A is in B's frame along one motion. With R(t) = exp(φ [k]) R0, φ = t θ,
+//     q(t) = R0^T exp(-φ [k]) (a - t v),   a = p - o0,
+// and exp(-φ [k]) x = x cos φ - (k x x) sin φ + k (k·x) (1 - cos φ), so with the point's
+// A1 = R0^T a, A2 = R0^T (k x a), ka = k·a and the motion's K = R0^T k, V1 = R0^T v,
+// V2 = R0^T (k x v), kv = k·v:
+//     q(t) = c A1 - s A2 + (1 - c) ka K - t (c V1 - s V2 + (1 - c) kv K).
+// A point's terms are made once (PointPath); each time then costs a few products, where a
+// frame per time (a quaternion, its matrix, a matrix product) cost about three times as much.
+// At t = 0 the sum is A1 bit for bit: the start frame's R0^T (p - o0), as Near computes it.
+class MotionPaths {
+ public:
+  struct PointPath {
+    Eigen::Vector3d A1, A2;
+    double ka = 0;
+  };
+
+  explicit MotionPaths(const BlendMotion& m) : theta_(m.w.norm()) {
+    k_ = theta_ > 0 ? Eigen::Vector3d(m.w / theta_) : Eigen::Vector3d::Zero();
+    R0t_ = m.R0.toRotationMatrix().transpose();
+    o0_ = m.o0;
+    K_ = R0t_ * k_;
+    V1_ = R0t_ * m.v;
+    V2_ = R0t_ * k_.cross(m.v);
+    kv_ = k_.dot(m.v);
+  }
+  double theta() const { return theta_; }
+
+  PointPath Of(const Eigen::Vector3d& p_A) const {
+    const Eigen::Vector3d a = p_A - o0_;
+    return {R0t_ * a, R0t_ * k_.cross(a), k_.dot(a)};
+  }
+
+  // The point in B's frame at T.
+  Eigen::Vector3d At(const PointPath& P, double t) const {
+    if (theta_ == 0) return P.A1 - t * V1_;
+    // cos φ, sin φ and 1 - cos φ; below 0.1 rad by their series (the first term left out is
+    // below 1e-17 of the sum).
+    const double phi = t * theta_;
+    double c, sn, omc;
+    if (phi < 0.1) {
+      const double p2 = phi * phi;
+      sn = phi * (1 - p2 * (1.0 / 6) * (1 - p2 * (1.0 / 20) * (1 - p2 * (1.0 / 42) * (1 - p2 * (1.0 / 72)))));
+      omc = p2 * 0.5 * (1 - p2 * (1.0 / 12) * (1 - p2 * (1.0 / 30) * (1 - p2 * (1.0 / 56) * (1 - p2 * (1.0 / 90)))));
+      c = 1 - omc;
+    } else {
+      sn = std::sin(phi);
+      c = std::cos(phi);
+      const double half = std::sin(0.5 * phi);
+      omc = 2 * half * half;
+    }
+    const Eigen::Vector3d point = c * P.A1 - sn * P.A2 + (omc * P.ka) * K_;
+    const Eigen::Vector3d travel = c * V1_ - sn * V2_ + (omc * kv_) * K_;
+    return point - t * travel;
+  }
+
+  double DistanceAt(const DistanceField& field, const PointPath& P, double t) const {
+    const Eigen::Vector3d q = At(P, t);
+    return field.Distance(float(q.x()), float(q.y()), float(q.z()));
+  }
+
+ private:
+  double theta_;
+  Eigen::Matrix3d R0t_;
+  Eigen::Vector3d o0_, k_, K_, V1_, V2_;
+  double kv_ = 0;
+};
+
+// What every impact search along one motion reads: B's field along the motion's paths, the level
 // points stop at, the Lipschitz bound λ and the slack eps.
 struct LevelAlongMotion {
   const DistanceField& field;
-  const MotionFrames& frames;
+  const MotionPaths& paths;
   double level, lambda, eps;
+  double DistanceAt(const MotionPaths::PointPath& P, double t) const { return paths.DistanceAt(field, P, t); }
 };
 
-// The crossing of point P_A (A's frame) through LVL, bracketed in [A, B] with f(a) > 0 >= f(b),
+// The crossing of a point (its path P) through LVL, bracketed in [A, B] with f(a) > 0 >= f(b),
 // f = d - LVL. Illinois regula falsi; the impact is taken at a (a time at which the point is
 // still above its level).
-double RefineCrossing(const LevelAlongMotion& m, const Eigen::Vector3d& p_A, double lvl, double a, double fa,
+double RefineCrossing(const LevelAlongMotion& m, const MotionPaths::PointPath& P, double lvl, double a, double fa,
                       double b, double fb) {
   int side = 0;
   for (int it = 0; it < kRefineSteps && b - a > kRefineWidth; ++it) {
     double t = b - fb * (b - a) / (fb - fa);
     if (!(t > a && t < b)) t = 0.5 * (a + b);
-    const double ft = DistanceAt(m.field, m.frames.At(t), p_A) - lvl;
+    const double ft = m.DistanceAt(P, t) - lvl;
     if (ft > 0) {
       a = t, fa = ft;
       if (side == -1) fb *= 0.5;
@@ -115,7 +141,8 @@ double RefineCrossing(const LevelAlongMotion& m, const Eigen::Vector3d& p_A, dou
 double PointImpact(const LevelAlongMotion& m, const Eigen::Vector3d& p_A, double speed, double t0, double t_hit,
                    const float* d0_known) {
   double t = t0;
-  const double d0 = d0_known ? double(*d0_known) : DistanceAt(m.field, m.frames.At(t), p_A);
+  const MotionPaths::PointPath P = m.paths.Of(p_A);
+  const double d0 = d0_known ? double(*d0_known) : m.DistanceAt(P, t);
   const double lvl = t0 == 0 ? std::min(m.level, d0 - m.eps) : m.level;
   // Steps may pass a dip down to the field's zero (never below it), or eps below a level
   // that is itself below eps.
@@ -129,11 +156,11 @@ double PointImpact(const LevelAlongMotion& m, const Eigen::Vector3d& p_A, double
       // by then and is below it there, the crossing is bracketed; otherwise it dips at most
       // DIP below its level before t_hit.
       if (f >= m.lambda * speed * (t_hit - t)) return 2.0;
-      const double fe = DistanceAt(m.field, m.frames.At(t_hit), p_A) - lvl;
-      return fe > 0 ? 2.0 : RefineCrossing(m, p_A, lvl, t, f, t_hit, fe);
+      const double fe = m.DistanceAt(P, t_hit) - lvl;
+      return fe > 0 ? 2.0 : RefineCrossing(m, P, lvl, t, f, t_hit, fe);
     }
-    const double f1 = DistanceAt(m.field, m.frames.At(t1), p_A) - lvl;
-    if (f1 <= 0) return RefineCrossing(m, p_A, lvl, t, f, t1, f1);
+    const double f1 = m.DistanceAt(P, t1) - lvl;
+    if (f1 <= 0) return RefineCrossing(m, P, lvl, t, f, t1, f1);
     t = t1;
     f = f1;
   }
@@ -146,8 +173,10 @@ double PointImpact(const LevelAlongMotion& m, const Eigen::Vector3d& p_A, double
 // when known (else null).
 double AdvanceNode(const LevelAlongMotion& m, const Eigen::Vector3d& c, double r, double speed, double t,
                    double t_hit, const float* d_t) {
+  if (d_t && !(double(*d_t) - m.lambda * r - m.level > m.eps)) return t;  // may reach the level from t on
+  const MotionPaths::PointPath P = m.paths.Of(c);
   for (int step = 0; step < kNodeSteps; ++step) {
-    const double d = step == 0 && d_t ? double(*d_t) : DistanceAt(m.field, m.frames.At(t), c);
+    const double d = step == 0 && d_t ? double(*d_t) : m.DistanceAt(P, t);
     const double f = d - m.lambda * r - m.level;
     if (!(f > m.eps)) break;  // may reach the level from t on
     t += f / (m.lambda * speed);
@@ -182,14 +211,14 @@ ImpactResult ImpactSearch::Earliest(const BlendMotion& motion, const ImpactParam
   ImpactResult result;
   const Pointshell& s = *shell_;
   const DistanceField& field = *field_;
-  const MotionFrames frames(motion);
-  const double theta = frames.theta(), travel = motion.v.norm();
+  const MotionPaths paths(motion);
+  const double theta = paths.theta(), travel = motion.v.norm();
   if (s.num_levels() == 0 || (theta == 0 && travel == 0)) return result;
   const Eigen::Vector3d o1 = motion.o0 + motion.v;
   const double lambda = params.lipschitz, level = params.level;
   const double eps = std::max(params.slack, std::numeric_limits<double>::min());
   double t_hit = 1;
-  const LevelAlongMotion along{field, frames, level, lambda, eps};
+  const LevelAlongMotion along{field, paths, level, lambda, eps};
   // The nodes that start at t = 0 take their distance from the latest Near when it ran here.
   start_valid_ = near_kept_ && motion.R0.coeffs() == near_R_.coeffs() && motion.o0 == near_o_;
 
