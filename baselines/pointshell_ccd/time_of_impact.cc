@@ -16,6 +16,9 @@ namespace {
 constexpr int kNodeSteps = 4;
 // Steps a point takes before it stops where it is (a safe time, earlier than its impact).
 constexpr int kPointSteps = 64;
+// Points the leaf level steps at once: their steps are independent, and the processor overlaps
+// them.
+constexpr int kLanes = 4;
 // Regula-falsi iterations and the bracket width (in t) at which the impact is taken.
 constexpr int kRefineSteps = 60;
 constexpr double kRefineWidth = 1e-10;
@@ -135,36 +138,127 @@ double RefineCrossing(const LevelAlongMotion& m, const MotionPaths::PointPath& P
   return a;
 }
 
-// The earliest time in [T0, T_HIT) at which the point P_A (A's frame), moving no faster than
-// SPEED, reaches its level; T_HIT or later when it does not. D0: its distance at T0 when known
-// (else null).
-double PointImpact(const LevelAlongMotion& m, const Eigen::Vector3d& p_A, double speed, double t0, double t_hit,
-                   const float* d0_known) {
-  double t = t0;
-  const MotionPaths::PointPath P = m.paths.Of(p_A);
-  const double d0 = d0_known ? double(*d0_known) : m.DistanceAt(P, t);
-  const double lvl = t0 == 0 ? std::min(m.level, d0 - m.eps) : m.level;
-  // Steps may pass a dip down to the field's zero (never below it), or eps below a level
-  // that is itself below eps.
-  const double dip = std::max(m.eps, lvl);
-  double f = d0 - lvl;
-  if (!(f > 0)) return f <= 0 ? t0 : 2.0;  // at the level at t0 (NaN: a field without values here)
-  for (int step = 0; step < kPointSteps; ++step) {
-    const double t1 = t + std::max(f, dip) / (m.lambda * speed);
+// The earliest time in [T0, T_HIT) at which a point, moving no faster than its speed, reaches
+// its level, a step at a time: Begin, then Step until it says it is done. Each step looks the
+// field up once and the next depends on it, so one point's steps wait for each other; the leaf
+// level of the search keeps kLanes points going at once, their steps independent.
+class PointSteps {
+ public:
+  // Starts point P_A (A's frame) moving at SPEED from T0, D0_KNOWN its distance there when
+  // known (else null). True when it is done already, with its time in *OUT.
+  bool Begin(const LevelAlongMotion& m, const Eigen::Vector3d& p_A, double speed, double t0, const float* d0_known,
+             double* out) {
+    t_ = t0;
+    P_ = m.paths.Of(p_A);
+    const double d0 = d0_known ? double(*d0_known) : m.DistanceAt(P_, t_);
+    lvl_ = t0 == 0 ? std::min(m.level, d0 - m.eps) : m.level;
+    // Steps may pass a dip down to the field's zero (never below it), or eps below a level
+    // that is itself below eps.
+    dip_ = std::max(m.eps, lvl_);
+    ls_ = m.lambda * speed;
+    f_ = d0 - lvl_;
+    steps_ = 0;
+    if (f_ > 0) return false;
+    *out = f_ <= 0 ? t0 : 2.0;  // at the level at t0 (NaN: a field without values here)
+    return true;
+  }
+
+  // One step with T_HIT the earliest impact so far. True when the point is done: *OUT is the
+  // time it reaches its level, or T_HIT or later when it does not before T_HIT.
+  bool Step(const LevelAlongMotion& m, double t_hit, double* out) {
+    if (steps_ == kPointSteps) {
+      *out = t_;  // out of steps: safe up to here
+      return true;
+    }
+    ++steps_;
+    const double t1 = t_ + std::max(f_, dip_) / ls_;
     if (t1 >= t_hit) {
       // The step passes the earliest impact so far. If the point may have reached its level
       // by then and is below it there, the crossing is bracketed; otherwise it dips at most
       // DIP below its level before t_hit.
-      if (f >= m.lambda * speed * (t_hit - t)) return 2.0;
-      const double fe = m.DistanceAt(P, t_hit) - lvl;
-      return fe > 0 ? 2.0 : RefineCrossing(m, P, lvl, t, f, t_hit, fe);
+      if (f_ >= ls_ * (t_hit - t_)) {
+        *out = 2.0;
+        return true;
+      }
+      const double fe = m.DistanceAt(P_, t_hit) - lvl_;
+      *out = fe > 0 ? 2.0 : RefineCrossing(m, P_, lvl_, t_, f_, t_hit, fe);
+      return true;
     }
-    const double f1 = m.DistanceAt(P, t1) - lvl;
-    if (f1 <= 0) return RefineCrossing(m, P, lvl, t, f, t1, f1);
-    t = t1;
-    f = f1;
+    const double f1 = m.DistanceAt(P_, t1) - lvl_;
+    if (f1 <= 0) {
+      *out = RefineCrossing(m, P_, lvl_, t_, f_, t1, f1);
+      return true;
+    }
+    t_ = t1;
+    f_ = f1;
+    return false;
   }
-  return t;  // out of steps: safe up to here
+
+ private:
+  MotionPaths::PointPath P_;
+  double t_ = 0, f_ = 0, lvl_ = 0, dip_ = 0, ls_ = 0;  // ls: λ times the speed
+  int steps_ = 0;
+};
+
+// The tree's last level (SHELL's nodes QUEUE[k] from times QUEUE_T[k], in that order): each
+// point's earliest impact before *T_HIT, kLanes points in flight, *T_HIT and RESULT updated as
+// they finish. START_DISTANCE(node): its distance kept by Near, or null.
+template <class StartDistanceOf>
+void LeafLevel(const Pointshell& s, const std::vector<std::int32_t>& queue, const std::vector<double>& queue_t,
+               const LevelAlongMotion& along, const BlendMotion& motion, std::int64_t node_budget,
+               StartDistanceOf&& start_distance, double* t_hit, ImpactResult* result) {
+  const double theta = along.paths.theta(), travel = motion.v.norm();
+  const Eigen::Vector3d o1 = motion.o0 + motion.v;
+  PointSteps lane[kLanes];
+  std::int32_t lane_point[kLanes];
+  int busy = 0;
+  auto done = [&](double ti, std::int32_t ip) {
+    if (ti < *t_hit) {
+      *t_hit = ti;
+      result->hit = true;
+      result->point = ip;
+    }
+  };
+  std::size_t k = 0;
+  while (k < queue.size() || busy > 0) {
+    // Fill the free lanes from the queue, in its order.
+    while (busy < kLanes && k < queue.size()) {
+      const std::int32_t n = queue[k];
+      const double t = queue_t[k++];
+      if (t >= *t_hit) continue;
+      if (node_budget > 0 && result->nodes_visited >= node_budget) {
+        // Not expanded: the point reaches the level no earlier than T.
+        result->degraded = true;
+        result->hit = true;
+        result->point = -1;
+        *t_hit = t;
+        continue;
+      }
+      ++result->nodes_visited;
+      const std::int32_t ip = s.node_point[n];
+      const Eigen::Vector3d c(s.x[ip], s.y[ip], s.z[ip]);
+      const double speed = theta * (std::max((c - motion.o0).norm(), (c - o1).norm()) + s.node_radius[n]) + travel;
+      if (!(speed > 0)) continue;  // a point on the rotation axis at B's origin does not move
+      double ti;
+      if (lane[busy].Begin(along, c, speed, t, t == 0 ? start_distance(n) : nullptr, &ti)) {
+        done(ti, ip);
+      } else {
+        lane_point[busy++] = ip;
+      }
+    }
+    // One step of every point in flight; a point that is done hands its lane to the last one.
+    for (int i = 0; i < busy;) {
+      double ti;
+      if (lane[i].Step(along, *t_hit, &ti)) {
+        done(ti, lane_point[i]);
+        --busy;
+        lane[i] = lane[busy];
+        lane_point[i] = lane_point[busy];
+      } else {
+        ++i;
+      }
+    }
+  }
 }
 
 // Conservative advancement of a node (centre C in A's frame, bounding radius R, moving no
@@ -229,9 +323,9 @@ ImpactResult ImpactSearch::Earliest(const BlendMotion& motion, const ImpactParam
     queue_.push_back(n);
     queue_t_.push_back(0);
   }
+  // Every level but the last: the nodes' conservative advancement. The last: the points'.
   const int levels = s.num_levels();
-  for (int L = 0; L < levels && !queue_.empty(); ++L) {
-    const bool leaf = L == levels - 1;
+  for (int L = 0; L < levels - 1 && !queue_.empty(); ++L) {
     next_.clear();
     next_t_.clear();
     for (std::size_t k = 0; k < queue_.size(); ++k) {
@@ -253,15 +347,6 @@ ImpactResult ImpactSearch::Earliest(const BlendMotion& motion, const ImpactParam
       const double speed = theta * (std::max((c - motion.o0).norm(), (c - o1).norm()) + r) + travel;
       if (!(speed > 0)) continue;  // a point on the rotation axis at B's origin does not move
       const float* d_start = t == 0 ? StartDistance(n) : nullptr;
-      if (leaf) {
-        const double ti = PointImpact(along, c, speed, t, t_hit, d_start);
-        if (ti < t_hit) {
-          t_hit = ti;
-          result.hit = true;
-          result.point = ip;
-        }
-        continue;
-      }
       t = AdvanceNode(along, c, r, speed, t, t_hit, d_start);
       if (t >= t_hit) continue;  // culled: nothing of it reaches the level before the earliest impact
       for (std::int32_t ch = s.child_begin[n]; ch < s.child_begin[n + 1]; ++ch) {
@@ -272,6 +357,8 @@ ImpactResult ImpactSearch::Earliest(const BlendMotion& motion, const ImpactParam
     std::swap(queue_, next_);
     std::swap(queue_t_, next_t_);
   }
+  LeafLevel(s, queue_, queue_t_, along, motion, params.node_budget,
+            [this](std::int32_t n) { return StartDistance(n); }, &t_hit, &result);
   result.t = t_hit;
   start_valid_ = false;
   return result;
