@@ -138,6 +138,10 @@ double RefineCrossing(const LevelAlongMotion& m, const MotionPaths::PointPath& P
   return a;
 }
 
+// A node's distance at its start time when known, else null: inherited from its parent (KNOWN,
+// NaN when not), or kept by Near (START: null when not).
+const float* KnownDistance(const float& known, const float* start) { return known == known ? &known : start; }
+
 // The earliest time in [T0, T_HIT) at which a point, moving no faster than its speed, reaches
 // its level, a step at a time: Begin, then Step until it says it is done. Each step looks the
 // field up once and the next depends on it, so one point's steps wait for each other; the leaf
@@ -200,12 +204,13 @@ class PointSteps {
   int steps_ = 0;
 };
 
-// The tree's last level (SHELL's nodes QUEUE[k] from times QUEUE_T[k], in that order): each
+// The tree's last level (SHELL's nodes QUEUE[k] from times QUEUE_T[k], their distance there
+// QUEUE_D[k] when inherited, NaN when not, in that order): each
 // point's earliest impact before *T_HIT, kLanes points in flight, *T_HIT and RESULT updated as
 // they finish. START_DISTANCE(node): its distance kept by Near, or null.
 template <class StartDistanceOf>
 void LeafLevel(const Pointshell& s, const std::vector<std::int32_t>& queue, const std::vector<double>& queue_t,
-               const LevelAlongMotion& along, const BlendMotion& motion, std::int64_t node_budget,
+               const std::vector<float>& queue_d, const LevelAlongMotion& along, const BlendMotion& motion, std::int64_t node_budget,
                StartDistanceOf&& start_distance, double* t_hit, ImpactResult* result) {
   const double theta = along.paths.theta(), travel = motion.v.norm();
   const Eigen::Vector3d o1 = motion.o0 + motion.v;
@@ -224,6 +229,7 @@ void LeafLevel(const Pointshell& s, const std::vector<std::int32_t>& queue, cons
     // Fill the free lanes from the queue, in its order.
     while (busy < kLanes && k < queue.size()) {
       const std::int32_t n = queue[k];
+      const float& known = queue_d[k];
       const double t = queue_t[k++];
       if (t >= *t_hit) continue;
       if (node_budget > 0 && result->nodes_visited >= node_budget) {
@@ -240,7 +246,7 @@ void LeafLevel(const Pointshell& s, const std::vector<std::int32_t>& queue, cons
       const double speed = theta * (std::max((c - motion.o0).norm(), (c - o1).norm()) + s.node_radius[n]) + travel;
       if (!(speed > 0)) continue;  // a point on the rotation axis at B's origin does not move
       double ti;
-      if (lane[busy].Begin(along, c, speed, t, t == 0 ? start_distance(n) : nullptr, &ti)) {
+      if (lane[busy].Begin(along, c, speed, t, KnownDistance(known, t == 0 ? start_distance(n) : nullptr), &ti)) {
         done(ti, ip);
       } else {
         lane_point[busy++] = ip;
@@ -264,20 +270,29 @@ void LeafLevel(const Pointshell& s, const std::vector<std::int32_t>& queue, cons
 // Conservative advancement of a node (centre C in A's frame, bounding radius R, moving no
 // faster than SPEED) from T: the time from which its subtree may reach the level, at most
 // kNodeSteps steps on; T_HIT or later when none of it can before T_HIT. D_T: C's distance at T
-// when known (else null).
+// when known (else null). *D_END: C's distance at the time returned when it was looked up
+// there (NaN otherwise), which the node's first child, the same point, starts from.
 double AdvanceNode(const LevelAlongMotion& m, const Eigen::Vector3d& c, double r, double speed, double t,
-                   double t_hit, const float* d_t) {
-  if (d_t && !(double(*d_t) - m.lambda * r - m.level > m.eps)) return t;  // may reach the level from t on
+                   double t_hit, const float* d_t, float* d_end) {
+  *d_end = std::numeric_limits<float>::quiet_NaN();
+  if (d_t && !(double(*d_t) - m.lambda * r - m.level > m.eps)) {  // may reach the level from t on
+    *d_end = *d_t;
+    return t;
+  }
   const MotionPaths::PointPath P = m.paths.Of(c);
   for (int step = 0; step < kNodeSteps; ++step) {
     const double d = step == 0 && d_t ? double(*d_t) : m.DistanceAt(P, t);
     const double f = d - m.lambda * r - m.level;
-    if (!(f > m.eps)) break;  // may reach the level from t on
+    if (!(f > m.eps)) {  // may reach the level from t on
+      *d_end = float(d);
+      break;
+    }
     t += f / (m.lambda * speed);
     if (t >= t_hit) break;
   }
   return t;
 }
+
 
 }  // namespace
 
@@ -297,6 +312,8 @@ ImpactSearch::ImpactSearch(std::shared_ptr<const Pointshell> shell, std::shared_
   next_.reserve(nodes);
   queue_t_.reserve(nodes);
   next_t_.reserve(nodes);
+  queue_d_.reserve(nodes);
+  next_d_.reserve(nodes);
   start_stamp_.assign(nodes, 0u);
   start_d_.assign(nodes, 0.f);
 }
@@ -317,17 +334,21 @@ ImpactResult ImpactSearch::Earliest(const BlendMotion& motion, const ImpactParam
   start_valid_ = near_kept_ && motion.R0.coeffs() == near_R_.coeffs() && motion.o0 == near_o_;
 
   // Breadth-first over the tree from its top level, each node with the time it starts at.
+  constexpr float kUnknown = std::numeric_limits<float>::quiet_NaN();
   queue_.clear();
   queue_t_.clear();
+  queue_d_.clear();
   for (std::int32_t n = s.level_node_begin[0]; n < s.level_node_begin[1]; ++n) {
     queue_.push_back(n);
     queue_t_.push_back(0);
+    queue_d_.push_back(kUnknown);
   }
   // Every level but the last: the nodes' conservative advancement. The last: the points'.
   const int levels = s.num_levels();
   for (int L = 0; L < levels - 1 && !queue_.empty(); ++L) {
     next_.clear();
     next_t_.clear();
+    next_d_.clear();
     for (std::size_t k = 0; k < queue_.size(); ++k) {
       const std::int32_t n = queue_[k];
       double t = queue_t_[k];
@@ -346,18 +367,21 @@ ImpactResult ImpactSearch::Earliest(const BlendMotion& motion, const ImpactParam
       const double r = s.node_radius[n];
       const double speed = theta * (std::max((c - motion.o0).norm(), (c - o1).norm()) + r) + travel;
       if (!(speed > 0)) continue;  // a point on the rotation axis at B's origin does not move
-      const float* d_start = t == 0 ? StartDistance(n) : nullptr;
-      t = AdvanceNode(along, c, r, speed, t, t_hit, d_start);
+      float d_end;
+      t = AdvanceNode(along, c, r, speed, t, t_hit, KnownDistance(queue_d_[k], t == 0 ? StartDistance(n) : nullptr),
+                      &d_end);
       if (t >= t_hit) continue;  // culled: nothing of it reaches the level before the earliest impact
       for (std::int32_t ch = s.child_begin[n]; ch < s.child_begin[n + 1]; ++ch) {
         next_.push_back(ch);
         next_t_.push_back(t);
+        next_d_.push_back(ch == s.child_begin[n] && s.node_point[ch] == ip ? d_end : kUnknown);
       }
     }
     std::swap(queue_, next_);
     std::swap(queue_t_, next_t_);
+    std::swap(queue_d_, next_d_);
   }
-  LeafLevel(s, queue_, queue_t_, along, motion, params.node_budget,
+  LeafLevel(s, queue_, queue_t_, queue_d_, along, motion, params.node_budget,
             [this](std::int32_t n) { return StartDistance(n); }, &t_hit, &result);
   result.t = t_hit;
   start_valid_ = false;
@@ -381,12 +405,12 @@ int ImpactSearch::Near(const Pose& X_AB, double band, double lipschitz, std::int
   near_R_ = X_AB.rotation;
   near_o_ = X_AB.translation;
   near_kept_ = true;
-  auto lookup = [&](std::int32_t n, const Eigen::Vector3d& c) {
-    const float d = float(DistanceAt(field, F, c));
+  auto keep = [&](std::int32_t n, float d) {
     start_stamp_[std::size_t(n)] = stamp_;
     start_d_[std::size_t(n)] = d;
     return double(d);
   };
+  auto lookup = [&](std::int32_t n, const Eigen::Vector3d& c) { return keep(n, float(DistanceAt(field, F, c))); };
   int written = 0;
   std::int64_t count = 0;
   auto emit = [&](std::int32_t ip, const Eigen::Vector3d& c, double bound) {
@@ -399,33 +423,47 @@ int ImpactSearch::Near(const Pose& X_AB, double band, double lipschitz, std::int
     np.p_A = c;
     np.gradient_A = R_AB * g;
   };
+  // Each node with its point's distance when its parent, the same point, looked it up (NaN
+  // when not).
+  constexpr float kUnknown = std::numeric_limits<float>::quiet_NaN();
   queue_.clear();
-  for (std::int32_t n = s.level_node_begin[0]; n < s.level_node_begin[1]; ++n) queue_.push_back(n);
+  queue_d_.clear();
+  for (std::int32_t n = s.level_node_begin[0]; n < s.level_node_begin[1]; ++n) {
+    queue_.push_back(n);
+    queue_d_.push_back(kUnknown);
+  }
   const int levels = s.num_levels();
   for (int L = 0; L < levels && !queue_.empty(); ++L) {
     const bool leaf = L == levels - 1;
     next_.clear();
-    for (const std::int32_t n : queue_) {
+    next_d_.clear();
+    for (std::size_t k = 0; k < queue_.size(); ++k) {
+      const std::int32_t n = queue_[k];
       const std::int32_t ip = s.node_point[n];
       const Eigen::Vector3d c(s.x[ip], s.y[ip], s.z[ip]);
       const double r = s.node_radius[n];
+      const float inherited = queue_d_[k];
+      const double d = inherited == inherited ? keep(n, inherited) : lookup(n, c);
       if (node_budget > 0 && count >= node_budget) {
         // Not expanded: its point stands for the subtree at the subtree's lower bound.
         if (degraded) *degraded = true;
-        const double bound = lookup(n, c) - lipschitz * r;
+        const double bound = d - lipschitz * r;
         if (bound <= band) emit(ip, c, bound);
         continue;
       }
       ++count;
-      const double d = lookup(n, c);
       if (d - lipschitz * r > band) continue;
       if (leaf) {
         emit(ip, c, std::numeric_limits<double>::infinity());
         continue;
       }
-      for (std::int32_t ch = s.child_begin[n]; ch < s.child_begin[n + 1]; ++ch) next_.push_back(ch);
+      for (std::int32_t ch = s.child_begin[n]; ch < s.child_begin[n + 1]; ++ch) {
+        next_.push_back(ch);
+        next_d_.push_back(ch == s.child_begin[n] && s.node_point[ch] == ip ? float(d) : kUnknown);
+      }
     }
     std::swap(queue_, next_);
+    std::swap(queue_d_, next_d_);
   }
   if (visited) *visited += count;
   return written;

@@ -119,6 +119,9 @@ class ImpactSearch {
   std::shared_ptr<const DistanceField> field_;
   std::vector<std::int32_t> queue_, next_;  // breadth-first node queues
   std::vector<double> queue_t_, next_t_;    // each node's start time
+  // Each node's distance at its start time when its parent, the same point one level up,
+  // looked it up there (NaN when not): a first child does not look it up again.
+  std::vector<float> queue_d_, next_d_;
   // The latest Near: its pose, and per node the distance there, valid where the node's stamp is
   // stamp_. start_valid_ is set by Earliest for the one motion it is running.
   Eigen::Quaterniond near_R_ = Eigen::Quaterniond::Identity();
