@@ -149,11 +149,12 @@ const float* KnownDistance(const float& known, const float* start) { return know
 class PointSteps {
  public:
   // Starts point P_A (A's frame) moving at SPEED from T0, D0_KNOWN its distance there when
-  // known (else null). True when it is done already, with its time in *OUT.
+  // known (else null), T_HIT the earliest impact so far. True when it is done already, with its
+  // time in *OUT.
   bool Begin(const LevelAlongMotion& m, const Eigen::Vector3d& p_A, double speed, double t0, const float* d0_known,
-             double* out) {
+             double t_hit, double* out) {
     t_ = t0;
-    P_ = m.paths.Of(p_A);
+    if (!d0_known) P_ = m.paths.Of(p_A);
     const double d0 = d0_known ? double(*d0_known) : m.DistanceAt(P_, t_);
     lvl_ = t0 == 0 ? std::min(m.level, d0 - m.eps) : m.level;
     // Steps may pass a dip down to the field's zero (never below it), or eps below a level
@@ -162,9 +163,18 @@ class PointSteps {
     ls_ = m.lambda * speed;
     f_ = d0 - lvl_;
     steps_ = 0;
-    if (f_ > 0) return false;
-    *out = f_ <= 0 ? t0 : 2.0;  // at the level at t0 (NaN: a field without values here)
-    return true;
+    if (!(f_ > 0)) {
+      *out = f_ <= 0 ? t0 : 2.0;  // at the level at t0 (NaN: a field without values here)
+      return true;
+    }
+    // The first step as Step takes it when it passes T_HIT without a lookup (a later, earlier
+    // T_HIT would end it the same way): most points far from B end here, their path unmade.
+    if (t_ + std::max(f_, dip_) / ls_ >= t_hit && f_ >= ls_ * (t_hit - t_)) {
+      *out = 2.0;
+      return true;
+    }
+    if (d0_known) P_ = m.paths.Of(p_A);
+    return false;
   }
 
   // One step with T_HIT the earliest impact so far. True when the point is done: *OUT is the
@@ -246,7 +256,8 @@ void LeafLevel(const Pointshell& s, const std::vector<std::int32_t>& queue, cons
       const double speed = theta * (std::max((c - motion.o0).norm(), (c - o1).norm()) + s.node_radius[n]) + travel;
       if (!(speed > 0)) continue;  // a point on the rotation axis at B's origin does not move
       double ti;
-      if (lane[busy].Begin(along, c, speed, t, KnownDistance(known, t == 0 ? start_distance(n) : nullptr), &ti)) {
+      if (lane[busy].Begin(along, c, speed, t, KnownDistance(known, t == 0 ? start_distance(n) : nullptr), *t_hit,
+                           &ti)) {
         done(ti, ip);
       } else {
         lane_point[busy++] = ip;
@@ -279,8 +290,13 @@ double AdvanceNode(const LevelAlongMotion& m, const Eigen::Vector3d& c, double r
     *d_end = *d_t;
     return t;
   }
-  const MotionPaths::PointPath P = m.paths.Of(c);
+  MotionPaths::PointPath P;  // made at the first lookup (a node culled on its known distance needs none)
+  bool made = false;
   for (int step = 0; step < kNodeSteps; ++step) {
+    if (!(step == 0 && d_t) && !made) {
+      P = m.paths.Of(c);
+      made = true;
+    }
     const double d = step == 0 && d_t ? double(*d_t) : m.DistanceAt(P, t);
     const double f = d - m.lambda * r - m.level;
     if (!(f > m.eps)) {  // may reach the level from t on
