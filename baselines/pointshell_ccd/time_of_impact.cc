@@ -279,36 +279,115 @@ void LeafLevel(const Pointshell& s, const std::vector<std::int32_t>& queue, cons
 }
 
 // Conservative advancement of a node (centre C in A's frame, bounding radius R, moving no
-// faster than SPEED) from T: the time from which its subtree may reach the level, at most
-// kNodeSteps steps on; T_HIT or later when none of it can before T_HIT. D_T: C's distance at T
-// when known (else null). *D_END: C's distance at the time returned when it was looked up
-// there (NaN otherwise), which the node's first child, the same point, starts from.
-double AdvanceNode(const LevelAlongMotion& m, const Eigen::Vector3d& c, double r, double speed, double t,
-                   double t_hit, const float* d_t, float* d_end) {
-  *d_end = std::numeric_limits<float>::quiet_NaN();
-  if (d_t && !(double(*d_t) - m.lambda * r - m.level > m.eps)) {  // may reach the level from t on
-    *d_end = *d_t;
-    return t;
+// faster than SPEED) from T, a step at a time like PointSteps: the time from which its subtree
+// may reach the level, at most kNodeSteps steps on; T_HIT or later when none of it can before
+// T_HIT. With the time, the distance of C there when the last step looked it up there (NaN
+// otherwise), which the node's first child, the same point, starts from.
+class NodeSteps {
+ public:
+  // Starts the node from T, D_T its distance there when known (else null). True when it is
+  // done already (on D_T), with its time and distance in *T_OUT, *D_OUT.
+  bool Begin(const LevelAlongMotion& m, const Eigen::Vector3d& c, double r, double speed, double t, double t_hit,
+             const float* d_t, double* t_out, float* d_out) {
+    c_ = c;
+    r_ = r;
+    speed_ = speed;
+    t_ = t;
+    step_ = 0;
+    made_ = false;
+    if (!d_t) return false;
+    return Advance(m, double(*d_t), t_hit, t_out, d_out);
   }
-  MotionPaths::PointPath P;  // made at the first lookup (a node culled on its known distance needs none)
-  bool made = false;
-  for (int step = 0; step < kNodeSteps; ++step) {
-    if (!(step == 0 && d_t) && !made) {
-      P = m.paths.Of(c);
-      made = true;
-    }
-    const double d = step == 0 && d_t ? double(*d_t) : m.DistanceAt(P, t);
-    const double f = d - m.lambda * r - m.level;
-    if (!(f > m.eps)) {  // may reach the level from t on
-      *d_end = float(d);
-      break;
-    }
-    t += f / (m.lambda * speed);
-    if (t >= t_hit) break;
-  }
-  return t;
-}
 
+  // One step (a lookup) with T_HIT the earliest impact so far; as Begin.
+  bool Step(const LevelAlongMotion& m, double t_hit, double* t_out, float* d_out) {
+    if (!made_) {  // made at the first lookup: a node culled on its known distance needs none
+      P_ = m.paths.Of(c_);
+      made_ = true;
+    }
+    return Advance(m, m.DistanceAt(P_, t_), t_hit, t_out, d_out);
+  }
+
+ private:
+  // The step from the distance D at the node's time.
+  bool Advance(const LevelAlongMotion& m, double d, double t_hit, double* t_out, float* d_out) {
+    const double f = d - m.lambda * r_ - m.level;
+    if (!(f > m.eps)) {  // may reach the level from t on
+      *t_out = t_;
+      *d_out = float(d);
+      return true;
+    }
+    t_ += f / (m.lambda * speed_);
+    if (++step_ == kNodeSteps || t_ >= t_hit) {
+      *t_out = t_;
+      *d_out = std::numeric_limits<float>::quiet_NaN();
+      return true;
+    }
+    return false;
+  }
+
+  MotionPaths::PointPath P_;
+  Eigen::Vector3d c_;
+  double r_ = 0, speed_ = 0, t_ = 0;
+  int step_ = 0;
+  bool made_ = false;
+};
+
+// One level above the last (SHELL's nodes QUEUE[k] from times QUEUE_T[k], their distance there
+// QUEUE_D[k] when inherited, NaN when not): each node's advanced time into ADV_T[k] (infinite
+// when it was not advanced) and its distance there into ADV_D[k], kLanes nodes in flight. The
+// earliest impact changes only where the budget cuts a node (*T_HIT, RESULT), in queue order,
+// so each node advances exactly as it would alone. START_DISTANCE as for LeafLevel.
+template <class StartDistanceOf>
+void NodeLevel(const Pointshell& s, const std::vector<std::int32_t>& queue, const std::vector<double>& queue_t,
+               const std::vector<float>& queue_d, const LevelAlongMotion& along, const BlendMotion& motion,
+               std::int64_t node_budget, StartDistanceOf&& start_distance, double* t_hit, ImpactResult* result,
+               std::vector<double>* adv_t, std::vector<float>* adv_d) {
+  const double theta = along.paths.theta(), travel = motion.v.norm();
+  const Eigen::Vector3d o1 = motion.o0 + motion.v;
+  adv_t->assign(queue.size(), std::numeric_limits<double>::infinity());
+  adv_d->resize(queue.size());
+  NodeSteps lane[kLanes];
+  std::size_t lane_k[kLanes];
+  int busy = 0;
+  std::size_t k = 0;
+  while (k < queue.size() || busy > 0) {
+    // Fill the free lanes from the queue, in its order.
+    while (busy < kLanes && k < queue.size()) {
+      const std::size_t j = k++;
+      const std::int32_t n = queue[j];
+      const double t = queue_t[j];
+      if (t >= *t_hit) continue;
+      if (node_budget > 0 && result->nodes_visited >= node_budget) {
+        // Not expanded: its subtree reaches the level no earlier than T.
+        result->degraded = true;
+        result->hit = true;
+        result->point = -1;
+        *t_hit = t;
+        continue;
+      }
+      ++result->nodes_visited;
+      const std::int32_t ip = s.node_point[n];
+      const Eigen::Vector3d c(s.x[ip], s.y[ip], s.z[ip]);
+      const double r = s.node_radius[n];
+      const double speed = theta * (std::max((c - motion.o0).norm(), (c - o1).norm()) + r) + travel;
+      if (!(speed > 0)) continue;  // a point on the rotation axis at B's origin does not move
+      const float* known = KnownDistance(queue_d[j], t == 0 ? start_distance(n) : nullptr);
+      if (!lane[busy].Begin(along, c, r, speed, t, *t_hit, known, &(*adv_t)[j], &(*adv_d)[j])) lane_k[busy++] = j;
+    }
+    // One step of every node in flight; a node that is done hands its lane to the last one.
+    for (int i = 0; i < busy;) {
+      const std::size_t j = lane_k[i];
+      if (lane[i].Step(along, *t_hit, &(*adv_t)[j], &(*adv_d)[j])) {
+        --busy;
+        lane[i] = lane[busy];
+        lane_k[i] = lane_k[busy];
+      } else {
+        ++i;
+      }
+    }
+  }
+}
 
 }  // namespace
 
@@ -330,6 +409,8 @@ ImpactSearch::ImpactSearch(std::shared_ptr<const Pointshell> shell, std::shared_
   next_t_.reserve(nodes);
   queue_d_.reserve(nodes);
   next_d_.reserve(nodes);
+  adv_t_.reserve(nodes);
+  adv_d_.reserve(nodes);
   start_stamp_.assign(nodes, 0u);
   start_d_.assign(nodes, 0.f);
 }
@@ -341,7 +422,6 @@ ImpactResult ImpactSearch::Earliest(const BlendMotion& motion, const ImpactParam
   const MotionPaths paths(motion);
   const double theta = paths.theta(), travel = motion.v.norm();
   if (s.num_levels() == 0 || (theta == 0 && travel == 0)) return result;
-  const Eigen::Vector3d o1 = motion.o0 + motion.v;
   const double lambda = params.lipschitz, level = params.level;
   const double eps = std::max(params.slack, std::numeric_limits<double>::min());
   double t_hit = 1;
@@ -360,45 +440,31 @@ ImpactResult ImpactSearch::Earliest(const BlendMotion& motion, const ImpactParam
     queue_d_.push_back(kUnknown);
   }
   // Every level but the last: the nodes' conservative advancement. The last: the points'.
+  const auto start_distance = [this](std::int32_t n) { return StartDistance(n); };
   const int levels = s.num_levels();
   for (int L = 0; L < levels - 1 && !queue_.empty(); ++L) {
+    NodeLevel(s, queue_, queue_t_, queue_d_, along, motion, params.node_budget, start_distance, &t_hit, &result,
+              &adv_t_, &adv_d_);
+    // The children of the nodes not culled (nothing of a culled node reaches the level before
+    // the earliest impact), in the queue's order.
     next_.clear();
     next_t_.clear();
     next_d_.clear();
     for (std::size_t k = 0; k < queue_.size(); ++k) {
+      const double t = adv_t_[k];
+      if (!(t < t_hit)) continue;
       const std::int32_t n = queue_[k];
-      double t = queue_t_[k];
-      if (t >= t_hit) continue;
-      if (params.node_budget > 0 && result.nodes_visited >= params.node_budget) {
-        // Not expanded: its subtree reaches the level no earlier than T.
-        result.degraded = true;
-        result.hit = true;
-        result.point = -1;
-        t_hit = t;
-        continue;
-      }
-      ++result.nodes_visited;
-      const std::int32_t ip = s.node_point[n];
-      const Eigen::Vector3d c(s.x[ip], s.y[ip], s.z[ip]);
-      const double r = s.node_radius[n];
-      const double speed = theta * (std::max((c - motion.o0).norm(), (c - o1).norm()) + r) + travel;
-      if (!(speed > 0)) continue;  // a point on the rotation axis at B's origin does not move
-      float d_end;
-      t = AdvanceNode(along, c, r, speed, t, t_hit, KnownDistance(queue_d_[k], t == 0 ? StartDistance(n) : nullptr),
-                      &d_end);
-      if (t >= t_hit) continue;  // culled: nothing of it reaches the level before the earliest impact
       for (std::int32_t ch = s.child_begin[n]; ch < s.child_begin[n + 1]; ++ch) {
         next_.push_back(ch);
         next_t_.push_back(t);
-        next_d_.push_back(ch == s.child_begin[n] && s.node_point[ch] == ip ? d_end : kUnknown);
+        next_d_.push_back(ch == s.child_begin[n] && s.node_point[ch] == s.node_point[n] ? adv_d_[k] : kUnknown);
       }
     }
     std::swap(queue_, next_);
     std::swap(queue_t_, next_t_);
     std::swap(queue_d_, next_d_);
   }
-  LeafLevel(s, queue_, queue_t_, queue_d_, along, motion, params.node_budget,
-            [this](std::int32_t n) { return StartDistance(n); }, &t_hit, &result);
+  LeafLevel(s, queue_, queue_t_, queue_d_, along, motion, params.node_budget, start_distance, &t_hit, &result);
   result.t = t_hit;
   start_valid_ = false;
   return result;

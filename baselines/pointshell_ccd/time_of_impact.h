@@ -132,6 +132,9 @@ class ImpactSearch {
   // Each node's distance at its start time when its parent, the same point one level up,
   // looked it up there (NaN when not): a first child does not look it up again.
   std::vector<float> queue_d_, next_d_;
+  // Each queued node's advanced time and its distance there (Earliest, one level at a time).
+  std::vector<double> adv_t_;
+  std::vector<float> adv_d_;
   // The latest Near: its pose, and per node the distance there, valid where the node's stamp is
   // stamp_. start_valid_ is set by Earliest for the one motion it is running.
   Eigen::Quaterniond near_R_ = Eigen::Quaterniond::Identity();
