@@ -29,12 +29,13 @@
 // What a search looks up. A node's first child is its own point one level down, and starts
 // where the parent stopped advancing: when that was at a lookup, the child takes its distance
 // rather than looking it up again. A motion that starts where the latest Near ran takes the
-// distances Near looked up there for every node that starts at t = 0 (Near, below). The points
-// of the last level advance four at a time, a step of each in turn (one point's steps depend on
-// each other, different points' do not); each sees the earliest impact found so far when it
-// steps, so which points are in flight together can move a point's steps that are cut at that
-// time, and with them, within the dips above, the impact found (by about 1e-6 of the step in
-// the tunnelling and slide runs).
+// distances Near looked up there for every node that starts at t = 0 (Near, below). Each level
+// advances four nodes or points at a time, a step of each in turn (one node's steps depend on
+// each other, different nodes' do not). Above the last level the earliest impact does not move,
+// so each node advances exactly as alone; on the last, each point sees the earliest impact found
+// so far when it steps, so which points are in flight together can move a point's steps that
+// are cut at that time, and with them, within the dips above, the impact found (by about 1e-6
+// of the step in the tunnelling and slide runs).
 //
 // Graceful degradation: past a node budget the remaining nodes are not expanded; each stops
 // the motion at its own conservative time (a bound, never later than any of its points), so a
