@@ -138,6 +138,12 @@ double RefineCrossing(const LevelAlongMotion& m, const MotionPaths::PointPath& P
   return a;
 }
 
+// max(|C - O0|, |C - O1|) with one square root (the larger square's root is the larger root,
+// bit for bit).
+double FartherEnd(const Eigen::Vector3d& c, const Eigen::Vector3d& o0, const Eigen::Vector3d& o1) {
+  return std::sqrt(std::max((c - o0).squaredNorm(), (c - o1).squaredNorm()));
+}
+
 // A node's distance at its start time when known, else null: inherited from its parent (KNOWN,
 // NaN when not), or kept by Near (START: null when not).
 const float* KnownDistance(const float& known, const float* start) { return known == known ? &known : start; }
@@ -253,7 +259,7 @@ void LeafLevel(const Pointshell& s, const std::vector<std::int32_t>& queue, cons
       ++result->nodes_visited;
       const std::int32_t ip = s.node_point[n];
       const Eigen::Vector3d c(s.x[ip], s.y[ip], s.z[ip]);
-      const double speed = theta * (std::max((c - motion.o0).norm(), (c - o1).norm()) + s.node_radius[n]) + travel;
+      const double speed = theta * (FartherEnd(c, motion.o0, o1) + s.node_radius[n]) + travel;
       if (!(speed > 0)) continue;  // a point on the rotation axis at B's origin does not move
       double ti;
       if (lane[busy].Begin(along, c, speed, t, KnownDistance(known, t == 0 ? start_distance(n) : nullptr), *t_hit,
@@ -370,7 +376,7 @@ void NodeLevel(const Pointshell& s, const std::vector<std::int32_t>& queue, cons
       const std::int32_t ip = s.node_point[n];
       const Eigen::Vector3d c(s.x[ip], s.y[ip], s.z[ip]);
       const double r = s.node_radius[n];
-      const double speed = theta * (std::max((c - motion.o0).norm(), (c - o1).norm()) + r) + travel;
+      const double speed = theta * (FartherEnd(c, motion.o0, o1) + r) + travel;
       if (!(speed > 0)) continue;  // a point on the rotation axis at B's origin does not move
       const float* known = KnownDistance(queue_d[j], t == 0 ? start_distance(n) : nullptr);
       if (!lane[busy].Begin(along, c, r, speed, t, *t_hit, known, &(*adv_t)[j], &(*adv_d)[j])) lane_k[busy++] = j;
