@@ -275,6 +275,63 @@ TEST(TimeOfImpact, AfterANearSearchAtItsStartEarliestGivesTheFreshSearchsAnswer)
   EXPECT_GT(hits, 10);         // and the motions reached the box
 }
 
+TEST(TimeOfImpact, AFirstChildThatIsAnotherPointLooksItselfUp) {
+  // Both searches hand a node's distance to its first child when the child is the same point
+  // one level down, as every built tree has it. On a tree whose leaves are swapped so that a
+  // first child is its sibling's point, each must still look that point up: Near's set and
+  // Earliest's time stay those of brute force.
+  auto built = SphereShell(0.01, 8, 3);
+  auto shell = std::make_shared<Pointshell>(*built);
+  const int leaf_level = shell->num_levels() - 1;
+  int swapped = 0;
+  for (std::int32_t n = shell->level_node_begin[leaf_level - 1]; n < shell->level_node_begin[leaf_level]; ++n) {
+    const std::int32_t first = shell->child_begin[n];
+    if (shell->child_begin[n + 1] - first < 2) continue;
+    std::swap(shell->node_point[first], shell->node_point[first + 1]);
+    ++swapped;
+  }
+  ASSERT_GT(swapped, 10);
+  auto field = Halfspace();
+  ImpactSearch search(shell, field), search_built(built, field);
+  std::vector<NearPoint> out(shell->num_points());
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const double level = 1e-4, band = 5e-4;
+  int hits = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    // B turned at random, its surface 1.5 levels below the shell (bisected along z).
+    const Eigen::Quaterniond R = RotationFromVector(0.5 * Eigen::Vector3d(u(rng), u(rng), u(rng)));
+    const double x = 0.001 * u(rng), y = 0.001 * u(rng);
+    double lo = 0.0, hi = 0.05;
+    for (int it = 0; it < 60; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (SmallestDistance(*shell, *field, Pose{R, Eigen::Vector3d(x, y, -mid)}) < 1.5 * level ? lo : hi) = mid;
+    }
+    const Pose X_AB{R, Eigen::Vector3d(x, y, -hi)};
+    std::int64_t visited = 0;
+    const int n = search.Near(X_AB, band, 1.0, 0, out.data(), int(out.size()), &visited, nullptr);
+    const Pose X_BA = X_AB.Inverse();
+    int expected = 0;
+    for (int i = 0; i < shell->num_points(); ++i) expected += field->Distance(X_BA * PointOf(*shell, i)) <= band;
+    EXPECT_EQ(n, expected) << trial;
+    EXPECT_GT(n, 0) << trial;
+    // From the pose Near ran at, toward B and sideways, turning.
+    const BlendMotion m = BlendMotion::From(
+        X_AB, Eigen::Vector3d(0.003 * u(rng), 0.003 * u(rng), 0.001 * (u(rng) + 1)), 0.3 * Eigen::Vector3d(u(rng), u(rng), u(rng)));
+    const ImpactResult r = search.Earliest(m, {level, level / 2, 1.0, 0});
+    EXPECT_LE(r.t, BruteForceImpact(*shell, *field, m, -1e-7) + 1e-9) << trial;
+    // The same points in the built tree's order: the same impact (the points in flight
+    // together differ, which moves it by far less than this).
+    search_built.Near(X_AB, band, 1.0, 0, out.data(), int(out.size()), &visited, nullptr);
+    EXPECT_NEAR(r.t, search_built.Earliest(m, {level, level / 2, 1.0, 0}).t, 1e-6) << trial;
+    if (r.hit) {
+      ++hits;
+      EXPECT_LE(SmallestDistance(*shell, *field, m.At(r.t)), level + 1e-7) << trial;
+    }
+  }
+  EXPECT_GT(hits, 5);
+}
+
 // --- The proxy model ---------------------------------------------------------------------------
 
 // The registry's defaults for a field box of radius 5.2 cm: k = k_C L, k_rot = k R_B^2.
