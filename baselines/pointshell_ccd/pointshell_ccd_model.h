@@ -12,7 +12,15 @@
 //      M = diag(k, k, k, k_rot, k_rot, k_rot) subject to those constraints, by projected
 //      Gauss-Seidel on the multipliers (a 6-vector kept in step with them);
 //   3. the move: along that twist only as far as the earliest time any point reaches l
-//      (time_of_impact.h); when nothing is reached the step is done and so is the cycle.
+//      (time_of_impact.h); when nothing is reached the step is done and so is the cycle. The
+//      impact search starts where the active set's search ran and takes the distances it
+//      looked up there (every node within 1.5 l of B starts the motion at t = 0) rather than
+//      looking them up again.
+// A cycle's cost grows with the nodes the two searches visit near B (those within about 2 l of
+// B, and those whose bound reaches l along the step) and, most of all, with the steps of the
+// points in sliding contact: each advances by l / 2 to l of its path per lookup, so their
+// lookups grow with the active points times the proxy's travel over l (up to 64 each a step),
+// and with the constrained steps the cycle takes.
 // The wrench on B is the spring between proxy and B: F = k (p_WP - p_WB), τ = k_rot φ with
 // φ = log(R_WP R_WB^T) (about B's origin), unsaturated. K_B is its derivative with the proxy
 // sliding: the proxy follows B along every direction no pushing constraint blocks, so

@@ -224,6 +224,114 @@ TEST(TimeOfImpact, NearFindsExactlyThePointsWithinTheBand) {
   }
 }
 
+TEST(TimeOfImpact, AfterANearSearchAtItsStartEarliestGivesTheFreshSearchsAnswer) {
+  // Earliest reads the distances the latest Near kept when its motion starts at Near's pose. A
+  // sphere shell touching a rounded box (in the band, so whole subtrees start at t = 0), moved
+  // at random: the answer after Near at the start, after Near elsewhere, and of a search that
+  // never ran Near must be the same, and never past the brute-force impact on the field's zero.
+  auto shell = SphereShell(0.008, 4, 3);
+  auto field = SampleField(
+      [](const Eigen::Vector3d& p) {
+        const Eigen::Vector3d q = p.cwiseAbs() - Eigen::Vector3d(0.012, 0.009, 0.006);
+        return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0) - 0.002;
+      },
+      Eigen::Vector3d(-0.03, -0.03, -0.03), Eigen::Vector3d(0.03, 0.03, 0.03), 0.001);
+  ImpactSearch cached(shell, field), fresh(shell, field);
+  std::vector<NearPoint> out(shell->num_points());
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const double level = 2e-4, slack = 1e-4;
+  int hits = 0, near_points = 0;
+  for (int trial = 0; trial < 30; ++trial) {
+    // B's pose in A with the shell 1.5 levels from B's surface: bisect B's distance along DIR.
+    const Eigen::Vector3d dir = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+    const Eigen::Quaterniond R = RotationFromVector(Eigen::Vector3d(u(rng), u(rng), u(rng)));
+    double lo = 0.0, hi = 0.05;
+    for (int it = 0; it < 60; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (SmallestDistance(*shell, *field, Pose{R, -mid * dir}) < 1.5 * level ? lo : hi) = mid;
+    }
+    const Pose X0{R, -hi * dir};
+    // Mostly along the surface, partly into it, turning.
+    const Eigen::Vector3d side = dir.unitOrthogonal();
+    const Eigen::Vector3d v = 0.004 * u(rng) * side + 0.002 * (u(rng) + 1) * dir;
+    const BlendMotion m = BlendMotion::From(X0, v, 0.5 * Eigen::Vector3d(u(rng), u(rng), u(rng)));
+    const ImpactParams params{level, slack, 1.0, 0};
+    const ImpactResult reference = fresh.Earliest(m, params);
+    std::int64_t visited = 0;
+    near_points += cached.Near(X0, 2 * level, 1.0, 0, out.data(), int(out.size()), &visited, nullptr);
+    const ImpactResult after_near = cached.Earliest(m, params);
+    EXPECT_EQ(after_near.t, reference.t) << trial;
+    EXPECT_EQ(after_near.hit, reference.hit) << trial;
+    EXPECT_EQ(after_near.point, reference.point) << trial;
+    EXPECT_EQ(after_near.nodes_visited, reference.nodes_visited) << trial;
+    // Near at another pose: its distances are not this motion's.
+    cached.Near(m.At(0.5), 2 * level, 1.0, 0, out.data(), int(out.size()), &visited, nullptr);
+    EXPECT_EQ(cached.Earliest(m, params).t, reference.t) << trial;
+    EXPECT_LE(reference.t, BruteForceImpact(*shell, *field, m, -1e-7) + 1e-9) << trial;
+    hits += reference.hit;
+  }
+  EXPECT_GT(near_points, 30);  // the starts were in the band
+  EXPECT_GT(hits, 10);         // and the motions reached the box
+}
+
+TEST(TimeOfImpact, AFirstChildThatIsAnotherPointLooksItselfUp) {
+  // Both searches hand a node's distance to its first child when the child is the same point
+  // one level down, as every built tree has it. On a tree whose leaves are swapped so that a
+  // first child is its sibling's point, each must still look that point up: Near's set and
+  // Earliest's time stay those of brute force.
+  auto built = SphereShell(0.01, 8, 3);
+  auto shell = std::make_shared<Pointshell>(*built);
+  const int leaf_level = shell->num_levels() - 1;
+  int swapped = 0;
+  for (std::int32_t n = shell->level_node_begin[leaf_level - 1]; n < shell->level_node_begin[leaf_level]; ++n) {
+    const std::int32_t first = shell->child_begin[n];
+    if (shell->child_begin[n + 1] - first < 2) continue;
+    std::swap(shell->node_point[first], shell->node_point[first + 1]);
+    ++swapped;
+  }
+  ASSERT_GT(swapped, 10);
+  auto field = Halfspace();
+  ImpactSearch search(shell, field), search_built(built, field);
+  std::vector<NearPoint> out(shell->num_points());
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const double level = 1e-4, band = 5e-4;
+  int hits = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    // B turned at random, its surface 1.5 levels below the shell (bisected along z).
+    const Eigen::Quaterniond R = RotationFromVector(0.5 * Eigen::Vector3d(u(rng), u(rng), u(rng)));
+    const double x = 0.001 * u(rng), y = 0.001 * u(rng);
+    double lo = 0.0, hi = 0.05;
+    for (int it = 0; it < 60; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (SmallestDistance(*shell, *field, Pose{R, Eigen::Vector3d(x, y, -mid)}) < 1.5 * level ? lo : hi) = mid;
+    }
+    const Pose X_AB{R, Eigen::Vector3d(x, y, -hi)};
+    std::int64_t visited = 0;
+    const int n = search.Near(X_AB, band, 1.0, 0, out.data(), int(out.size()), &visited, nullptr);
+    const Pose X_BA = X_AB.Inverse();
+    int expected = 0;
+    for (int i = 0; i < shell->num_points(); ++i) expected += field->Distance(X_BA * PointOf(*shell, i)) <= band;
+    EXPECT_EQ(n, expected) << trial;
+    EXPECT_GT(n, 0) << trial;
+    // From the pose Near ran at, toward B and sideways, turning.
+    const BlendMotion m = BlendMotion::From(
+        X_AB, Eigen::Vector3d(0.003 * u(rng), 0.003 * u(rng), 0.001 * (u(rng) + 1)), 0.3 * Eigen::Vector3d(u(rng), u(rng), u(rng)));
+    const ImpactResult r = search.Earliest(m, {level, level / 2, 1.0, 0});
+    EXPECT_LE(r.t, BruteForceImpact(*shell, *field, m, -1e-7) + 1e-9) << trial;
+    // The same points in the built tree's order: the same impact (the points in flight
+    // together differ, which moves it by far less than this).
+    search_built.Near(X_AB, band, 1.0, 0, out.data(), int(out.size()), &visited, nullptr);
+    EXPECT_NEAR(r.t, search_built.Earliest(m, {level, level / 2, 1.0, 0}).t, 1e-6) << trial;
+    if (r.hit) {
+      ++hits;
+      EXPECT_LE(SmallestDistance(*shell, *field, m.At(r.t)), level + 1e-7) << trial;
+    }
+  }
+  EXPECT_GT(hits, 5);
+}
+
 // --- The proxy model ---------------------------------------------------------------------------
 
 // The registry's defaults for a field box of radius 5.2 cm: k = k_C L, k_rot = k R_B^2.
