@@ -245,6 +245,7 @@ ContactResult PointshellCcdModel::Evaluate(const ContactQuery& query) {
   out.stats.points_in_contact = pushing;
   out.stats.nodes_visited = visited;
   out.stats.level_rendered = degraded ? -1 : search_.shell().num_levels() - 1;
+  out.stats.degraded = degraded ? 1 : 0;
   out.stats.max_penetration = deepest;
   return out;
 }

@@ -34,7 +34,8 @@
 // this is how far the device has pressed past the proxy there; 0 where it has not).
 //
 // Graceful degradation: the scene's node budget is shared by the cycle's searches; past it a
-// node is not expanded and stands for its subtree conservatively (the proxy stops early).
+// node is not expanded and stands for its subtree conservatively (the proxy stops early), and
+// stats.degraded is 1.
 // Allocation-free and exception-free in Evaluate. Rigid bodies only.
 #pragma once
 

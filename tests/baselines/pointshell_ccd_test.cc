@@ -393,6 +393,35 @@ TEST(PointshellCcd, NeverCrossesAThinSlabAndAlwaysPushesBack) {
   }
 }
 
+// A node budget stops the searches early; the proxy then stops short, so it still never crosses
+// the slab, and the stat says the cycle degraded (0 without a budget).
+TEST(PointshellCcd, UnderANodeBudgetItStopsShortAndSaysItDegraded) {
+  const double w = 5e-4, offset = 5e-5;
+  auto shell = SphereShell(0.01, 8, 3);
+  auto slab = Slab(w, 2.5e-4);
+  for (const std::int64_t budget : {std::int64_t(0), std::int64_t(8)}) {
+    PointshellCcdModel model(shell, slab, ProxyParams(offset));
+    ContactQuery q;
+    q.node_budget = budget;
+    int degraded = 0;
+    for (int i = 0; i < 60; ++i) {
+      q.X_WB = Pose::FromTranslation(Eigen::Vector3d(0.0003, -0.0002, -0.012 + 1e-3 * i));
+      q.cycle = i;
+      const ContactResult r = model.Evaluate(q);
+      degraded += r.stats.degraded;
+      EXPECT_LE(r.stats.degraded, 1);
+      Pose X_WP;
+      ASSERT_TRUE(model.Proxy(&X_WP));
+      EXPECT_GE(SmallestDistance(*shell, *slab, X_WP), -offset) << "budget " << budget << " cycle " << i;
+    }
+    if (budget == 0) {
+      EXPECT_EQ(degraded, 0);
+    } else {
+      EXPECT_GT(degraded, 0);
+    }
+  }
+}
+
 TEST(PointshellCcd, SlidesAlongAFaceWithoutTangentialForceAndItsStiffnessMatchesFiniteDifferences) {
   // B's halfspace pressed 2 mm up into a ball (A) and moved sideways: the proxy slides on the
   // surface; the force on B is along -z (B pushed back out), k (depth + offset).
