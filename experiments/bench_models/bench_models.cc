@@ -191,6 +191,19 @@ double Triangle(std::int64_t k, double step, double amplitude) {
   return u < 2 * amplitude ? u - amplitude : 3 * amplitude - u;
 }
 
+// Counters p50_us, p99_us, p999_us from TIMES, a ring of per-cycle microseconds of which the
+// latest CYCLES (at most its size) are filled.
+void SetCycleTimeCounters(benchmark::State& state, std::vector<double>* times, std::int64_t cycles) {
+  times->resize(std::min<std::size_t>(times->size(), std::size_t(cycles)));
+  std::sort(times->begin(), times->end());
+  auto quantile = [&](double f) {
+    return times->empty() ? NAN : (*times)[std::size_t(f * double(times->size() - 1))];
+  };
+  state.counters["p50_us"] = quantile(0.5);
+  state.counters["p99_us"] = quantile(0.99);
+  state.counters["p999_us"] = quantile(0.999);
+}
+
 // One query per cycle while A slides back and forth across B at SPEED (m/s at 1 kHz) through the
 // deep (2 mm) configuration, 2 cm either side, along a direction perpendicular to the line of
 // the bodies' origins: the cost of a moving contact, where coherence and a proxy's sliding do
@@ -221,12 +234,7 @@ void BM_ModelAtSpeed(benchmark::State& state, std::string scene_file, std::strin
     contacts += r.stats.points_in_contact;
     ++cycles;
   }
-  times.resize(std::min<std::size_t>(kKept, std::size_t(cycles)));
-  std::sort(times.begin(), times.end());
-  auto quantile = [&](double f) { return times.empty() ? NAN : times[std::size_t(f * double(times.size() - 1))]; };
-  state.counters["p50_us"] = quantile(0.5);
-  state.counters["p99_us"] = quantile(0.99);
-  state.counters["p999_us"] = quantile(0.999);
+  SetCycleTimeCounters(state, &times, cycles);
   state.counters["contacts"] = cycles > 0 ? double(contacts) / double(cycles) : 0;
   state.SetItemsProcessed(cycles);
 }
@@ -264,12 +272,7 @@ void BM_ModelDeepPress(benchmark::State& state, std::string scene_file, std::str
     largest = std::max(largest, r.on_B.force.norm());
     ++cycles;
   }
-  times.resize(std::min<std::size_t>(kKept, std::size_t(cycles)));
-  std::sort(times.begin(), times.end());
-  auto quantile = [&](double f) { return times.empty() ? NAN : times[std::size_t(f * double(times.size() - 1))]; };
-  state.counters["p50_us"] = quantile(0.5);
-  state.counters["p99_us"] = quantile(0.99);
-  state.counters["p999_us"] = quantile(0.999);
+  SetCycleTimeCounters(state, &times, cycles);
   state.counters["degraded"] = cycles > 0 ? double(degraded) / double(cycles) : 0;
   state.counters["force_N"] = largest;
   state.SetItemsProcessed(cycles);
