@@ -14,6 +14,13 @@
 namespace contactlab {
 namespace {
 
+// The low BITS bits of V in reverse order.
+std::uint64_t BitReversed(std::uint64_t v, int bits) {
+  std::uint64_t r = 0;
+  for (int b = 0; b < bits; ++b, v >>= 1) r = (r << 1) | (v & 1);
+  return r;
+}
+
 // Cycles a point may skip when it cannot touch before moving GAP metres at STEP metres per
 // cycle: the first cycle offset m with m * STEP >= GAP (shrunk slightly against rounding of
 // the point's voxel). At least 1 (look again next cycle).
@@ -86,18 +93,32 @@ ContactResult VpsContactModel::Evaluate(const ContactQuery& query) {
   X_WB_contacts_ = query.X_WB;
   const bool keep = contacts_.keeping();
 
+  // With a time budget the points are visited in the bit-reversed order of their index, so that
+  // the points reached when it runs out are spread evenly over the shell (each level of which is
+  // ordered along a Morton curve: its own prefix would be one region); without, in order. Runs
+  // of 16 consecutive points (a cache line of each array) in bit-reversed order of the runs cost
+  // less per point but sample patches: measured 20 mm deep, 9-26 % force error at 10,000 points
+  // against 1.3-3.9 % point by point.
   const std::int64_t budget = query.node_budget;
-  int looked_at = n;  // the prefix of the points the budget let the loop reach
-  for (int i = 0; i < n; ++i) {
+  const bool budgeted = budget > 0;
+  int bits = 0;
+  while ((std::int64_t(1) << bits) < n) ++bits;
+  const std::int64_t order = budgeted ? std::int64_t(1) << bits : n;
+  int looked_at = n;  // the points the budget let the loop reach
+  int reached = 0;
+  for (std::int64_t j = 0; j < order; ++j) {
+    const int i = budgeted ? int(BitReversed(std::uint64_t(j), bits)) : int(j);
+    if (i >= n) continue;
+    // The time budget: the points reached stand for all.
+    if (budgeted && visited >= budget && !(coherence && cycle < next_check_[i])) {
+      looked_at = reached;
+      break;
+    }
+    ++reached;
     // Temporal coherence: the point cannot touch before its next check.
     if (coherence && cycle < next_check_[i]) {
       ++skipped;
       continue;
-    }
-    // The time budget: the points in front (a uniform sample, the shell's order) stand for all.
-    if (budget > 0 && visited >= budget) {
-      looked_at = i;
-      break;
     }
     ++visited;
     // The point in B's frame and its voxel.

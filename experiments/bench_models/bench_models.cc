@@ -283,7 +283,7 @@ void BM_ModelDeepPress(benchmark::State& state, std::string scene_file, std::str
 // lattice cells, vps points looked at.
 constexpr std::pair<const char*, std::int64_t> kDeepBudgets[] = {
     {"pointshell", 3000}, {"pointshell-ccd", 3000}, {"inner-spheres", 3000},
-    {"pressure-field", 1000}, {"vps", 10000}, {"vps-repulsion", 10000}};
+    {"pressure-field", 1000}, {"vps", 5000}, {"vps-repulsion", 5000}};
 
 void RegisterAll() {
   RegisterContactModels();
