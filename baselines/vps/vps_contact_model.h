@@ -41,7 +41,9 @@
 // are visited in the bit-reversed order of their index (each level of a shell is ordered along a
 // Morton curve, so its prefix would be one region; the bit-reversed order spreads the first m
 // evenly over it; it also costs up to 4.7x more per point, measured, than visiting them in order,
-// which a budget chosen for a time must allow for), and past the budget the loop stops: the points it reached stand for the
+// which a budget chosen for a time must allow for; runs of 16 consecutive points, a cache line of
+// each array, cost less but sample patches: 9-26 % force error at 10,000 points 20 mm deep,
+// against 1.3-3.9 % point by point), and past the budget the loop stops: the points it reached stand for the
 // whole, their sums counted n / reached times (ContactAccumulator::Scale). The same points each
 // cycle, so the answer does not flicker. stats.degraded = ceil(log2(n / reached)): the halvings
 // of the share of points tested. Points not reached keep their coherence state and are looked at
