@@ -224,6 +224,17 @@ class PointSteps {
 // QUEUE_D[k] when inherited, NaN when not, in that order): each
 // point's earliest impact before *T_HIT, kLanes points in flight, *T_HIT and RESULT updated as
 // they finish. START_DISTANCE(node): its distance kept by Near, or null.
+// Past NODE_BUDGET nodes a queued point or node is not expanded: it (its subtree) reaches the
+// level no earlier than its time T, which becomes the impact. True when that is so.
+bool BudgetCutsAt(std::int64_t node_budget, double t, double* t_hit, ImpactResult* result) {
+  if (!(node_budget > 0 && result->nodes_visited >= node_budget)) return false;
+  result->degraded = true;
+  result->hit = true;
+  result->point = -1;
+  *t_hit = t;
+  return true;
+}
+
 template <class StartDistanceOf>
 void LeafLevel(const Pointshell& s, const std::vector<std::int32_t>& queue, const std::vector<double>& queue_t,
                const std::vector<float>& queue_d, const LevelAlongMotion& along, const BlendMotion& motion, std::int64_t node_budget,
@@ -248,14 +259,7 @@ void LeafLevel(const Pointshell& s, const std::vector<std::int32_t>& queue, cons
       const float& known = queue_d[k];
       const double t = queue_t[k++];
       if (t >= *t_hit) continue;
-      if (node_budget > 0 && result->nodes_visited >= node_budget) {
-        // Not expanded: the point reaches the level no earlier than T.
-        result->degraded = true;
-        result->hit = true;
-        result->point = -1;
-        *t_hit = t;
-        continue;
-      }
+      if (BudgetCutsAt(node_budget, t, t_hit, result)) continue;
       ++result->nodes_visited;
       const std::int32_t ip = s.node_point[n];
       const Eigen::Vector3d c(s.x[ip], s.y[ip], s.z[ip]);
@@ -364,14 +368,7 @@ void NodeLevel(const Pointshell& s, const std::vector<std::int32_t>& queue, cons
       const std::int32_t n = queue[j];
       const double t = queue_t[j];
       if (t >= *t_hit) continue;
-      if (node_budget > 0 && result->nodes_visited >= node_budget) {
-        // Not expanded: its subtree reaches the level no earlier than T.
-        result->degraded = true;
-        result->hit = true;
-        result->point = -1;
-        *t_hit = t;
-        continue;
-      }
+      if (BudgetCutsAt(node_budget, t, t_hit, result)) continue;
       ++result->nodes_visited;
       const std::int32_t ip = s.node_point[n];
       const Eigen::Vector3d c(s.x[ip], s.y[ip], s.z[ip]);

@@ -94,23 +94,23 @@ double IntegrateCell(const LatticeCell& cell, const PressureLaw& law, PressureSu
                      CornerSensitivity* b) {
   double cell_area = 0;
   VertexOrigin cut_origin[kMaxPolygon], clip_origin[kMaxPolygon];
-  const bool tangents = b != nullptr;
+  const bool adjoints = b != nullptr;
   for (const auto& tet : kTets) {
     PolyVertex buffers[2][kMaxPolygon];
     Eigen::Vector3d toward;
-    int m = CutTetrahedron(cell, tet, buffers[0], &toward, tangents ? cut_origin : nullptr);
+    int m = CutTetrahedron(cell, tet, buffers[0], &toward, adjoints ? cut_origin : nullptr);
     if (m == 0) continue;
     const int cut_vertices = m;
     // A cell where the bodies overlap at every corner overlaps throughout (the fields are
     // linear on each tetrahedron): nothing to clip.
     const PolyVertex* poly =
-        cell.overlapped ? buffers[0] : ClipToOverlap(buffers, &m, tangents ? clip_origin : nullptr);
+        cell.overlapped ? buffers[0] : ClipToOverlap(buffers, &m, adjoints ? clip_origin : nullptr);
     if (m < 3) continue;
-    IntegratePolygon(poly, m, toward, law, sums, &cell_area, record);
-    if (tangents) {
+    const double sign = IntegratePolygon(poly, m, toward, law, sums, &cell_area, record);
+    if (adjoints) {
       // Backwards: the integration, the clip, the cut.
       VertexAdjoint adjoint[kMaxPolygon], cut[kMaxPolygon];
-      PolygonAdjoints(poly, m, toward, law, adjoint);
+      PolygonAdjoints(poly, m, sign, law, adjoint);
       const VertexAdjoint* at_cut = adjoint;
       if (!cell.overlapped) {
         for (int i = 0; i < cut_vertices; ++i) {

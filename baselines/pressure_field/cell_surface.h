@@ -11,7 +11,7 @@
 #include "baselines/pressure_field/polygon_clip.h"
 #include "baselines/pressure_field/pressure_integration.h"
 #include "baselines/pressure_field/pressure_law.h"
-#include "baselines/pressure_field/pressure_tangents.h"
+#include "baselines/pressure_field/pressure_adjoints.h"
 
 namespace contactlab {
 
@@ -64,7 +64,7 @@ void LoadCell(const float* phi_M, const float* phi_L, const BlockVertices& v, co
 // Integrates the surface in CELL over its six tetrahedra into SUMS (and RECORD when not null),
 // clipped to where the bodies overlap (ClipToOverlap). Returns the cell's surface area.
 // B (null: not wanted): the sums' sensitivities to M's field at the cell's corners are added to
-// it (pressure_tangents.h).
+// it (pressure_adjoints.h).
 double IntegrateCell(const LatticeCell& cell, const PressureLaw& law, PressureSums* sums, SurfaceRecord* record,
                      CornerSensitivity* b = nullptr);
 

@@ -1,7 +1,7 @@
 // The pressure-field model (pressure_field_model.h; Elandt et al. 2019), composed of its parts:
 // the lattice and its culling (lattice_blocks.h), the surface in each cell (cell_surface.h), its
 // integration (pressure_integration.h), its patches (contact_patches.h) and K_B
-// (pressure_stiffness.h), taken in the same pass in forward mode (pressure_tangents.h).
+// (pressure_stiffness.h), taken in the same pass in reverse mode (pressure_adjoints.h).
 #include "baselines/pressure_field/pressure_field_model.h"
 
 #include <algorithm>

@@ -56,7 +56,7 @@
 #include "baselines/pressure_field/lattice_blocks.h"
 #include "baselines/pressure_field/pressure_integration.h"
 #include "baselines/pressure_field/pressure_law.h"
-#include "baselines/pressure_field/pressure_tangents.h"
+#include "baselines/pressure_field/pressure_adjoints.h"
 #include "contact/contact_model.h"
 #include "contact/contact_recorder.h"
 #include "sdf/distance_field.h"

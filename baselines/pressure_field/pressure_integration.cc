@@ -7,7 +7,7 @@
 
 namespace contactlab {
 
-void IntegratePolygon(const PolyVertex* poly, int m, const Eigen::Vector3d& toward, const PressureLaw& law,
+double IntegratePolygon(const PolyVertex* poly, int m, const Eigen::Vector3d& toward, const PressureLaw& law,
                       PressureSums* sums, double* area, SurfaceRecord* record) {
   // The polygon's orientation against the direction of decreasing gap.
   Eigen::Vector3d area_vector = Eigen::Vector3d::Zero();
@@ -50,6 +50,7 @@ void IntegratePolygon(const PolyVertex* poly, int m, const Eigen::Vector3d& towa
     record->contacts->Add(poly_centroid / poly_area, sign * area_vector.normalized(), poly_depth / poly_area, poly_area,
                           poly_pressure / poly_area);
   }
+  return sign;
 }
 
 }  // namespace contactlab

@@ -36,7 +36,8 @@ struct SurfaceRecord {
 // polygon as one contact: its centroid, its normal n, the depth -(phi_M + phi_L) at the
 // centroid (the local overlap of the two bodies), its area and its mean pressure, so that
 // area * pressure * n is the polygon's force exactly. A polygon of zero area is not kept.
-void IntegratePolygon(const PolyVertex* poly, int m, const Eigen::Vector3d& toward, const PressureLaw& law,
+// Returns the polygon's orientation: +1 when its vertex order turns its normal TOWARD, else -1.
+double IntegratePolygon(const PolyVertex* poly, int m, const Eigen::Vector3d& toward, const PressureLaw& law,
                       PressureSums* sums, double* area, SurfaceRecord* record);
 
 }  // namespace contactlab

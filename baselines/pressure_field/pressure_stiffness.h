@@ -1,6 +1,7 @@
 // K_B of the pressure-field model (pressure_field_model.h): the exact derivative of its
 // discretised wrench (Elandt et al. 2019 on sampled fields) in B's pose, from the sums'
-// derivatives taken in forward mode through the cut, the clip and the integration.
+// derivatives taken in reverse mode through the integration, the clip and the cut
+// (pressure_adjoints.h).
 #pragma once
 
 #include "contact/contact_model.h"

@@ -191,6 +191,16 @@ double Triangle(std::int64_t k, double step, double amplitude) {
   return u < 2 * amplitude ? u - amplitude : 3 * amplitude - u;
 }
 
+// MODEL's answer to Q, its wall time in microseconds in *MICROSECONDS.
+ContactResult TimedQuery(ContactModel* model, const ContactQuery& q, double* microseconds) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const ContactResult r = model->Evaluate(q);
+  const auto t1 = std::chrono::steady_clock::now();
+  benchmark::DoNotOptimize(r);
+  *microseconds = std::chrono::duration<double, std::micro>(t1 - t0).count();
+  return r;
+}
+
 // Counters p50_us, p99_us, p999_us from TIMES, a ring of per-cycle microseconds of which the
 // latest CYCLES (at most its size) are filled.
 void SetCycleTimeCounters(benchmark::State& state, std::vector<double>* times, std::int64_t cycles) {
@@ -226,11 +236,7 @@ void BM_ModelAtSpeed(benchmark::State& state, std::string scene_file, std::strin
     q.X_WA = c.X_WA;
     q.X_WA.translation += Triangle(cycles, speed * 1e-3, 0.02) * tangent;
     q.cycle = cycles;
-    const auto t0 = std::chrono::steady_clock::now();
-    const ContactResult r = model->Evaluate(q);
-    const auto t1 = std::chrono::steady_clock::now();
-    benchmark::DoNotOptimize(r);
-    times[std::size_t(cycles) % kKept] = std::chrono::duration<double, std::micro>(t1 - t0).count();
+    const ContactResult r = TimedQuery(model, q, &times[std::size_t(cycles) % kKept]);
     contacts += r.stats.points_in_contact;
     ++cycles;
   }
@@ -263,11 +269,7 @@ void BM_ModelDeepPress(benchmark::State& state, std::string scene_file, std::str
     q.X_WA = c.X_WA;
     q.X_WA.translation += (Triangle(cycles, kStep, 0.5 * kDepth) + 0.5 * kDepth) * n;
     q.cycle = cycles;
-    const auto t0 = std::chrono::steady_clock::now();
-    const ContactResult r = model->Evaluate(q);
-    const auto t1 = std::chrono::steady_clock::now();
-    benchmark::DoNotOptimize(r);
-    times[std::size_t(cycles) % kKept] = std::chrono::duration<double, std::micro>(t1 - t0).count();
+    const ContactResult r = TimedQuery(model, q, &times[std::size_t(cycles) % kKept]);
     degraded += r.stats.degraded > 0;
     largest = std::max(largest, r.on_B.force.norm());
     ++cycles;

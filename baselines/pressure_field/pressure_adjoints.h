@@ -28,9 +28,9 @@ struct VertexAdjoint {
   Eigen::Matrix<double, 6, 1> s;
 };
 
-// What IntegratePolygon adds for POLY (M vertices, normal turned TOWARD decreasing gap), its
+// What IntegratePolygon adds for POLY (M vertices, the orientation SIGN it returned), its
 // derivative in each vertex's position and overlap, into OUT.
-void PolygonAdjoints(const PolyVertex* poly, int m, const Eigen::Vector3d& toward, const PressureLaw& law,
+void PolygonAdjoints(const PolyVertex* poly, int m, double sign, const PressureLaw& law,
                      VertexAdjoint* out);
 // Through a clip: the M clipped vertices' adjoints OUT_ADJ (ORIGIN: vertices of IN, N of them),
 // added to IN_ADJ.

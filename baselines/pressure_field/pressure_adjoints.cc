@@ -1,5 +1,5 @@
-// Reverse-mode derivatives of the pressure-field surface's wrench (pressure_tangents.h).
-#include "baselines/pressure_field/pressure_tangents.h"
+// Reverse-mode derivatives of the pressure-field surface's wrench (pressure_adjoints.h).
+#include "baselines/pressure_field/pressure_adjoints.h"
 
 #include <Eigen/Geometry>
 
@@ -7,12 +7,10 @@
 
 namespace contactlab {
 
-void PolygonAdjoints(const PolyVertex* poly, int m, const Eigen::Vector3d& toward, const PressureLaw& law,
+void PolygonAdjoints(const PolyVertex* poly, int m, double sign, const PressureLaw& law,
                      VertexAdjoint* out) {
-  // The orientation, as IntegratePolygon takes it (constant under a small motion).
-  Eigen::Vector3d area_vector = Eigen::Vector3d::Zero();
-  for (int t = 1; t + 1 < m; ++t) area_vector += (poly[t].x - poly[0].x).cross(poly[t + 1].x - poly[0].x);
-  const double c = 0.5 * (area_vector.dot(toward) < 0 ? -1.0 : 1.0);
+  // The orientation is IntegratePolygon's (constant under a small motion).
+  const double c = 0.5 * sign;
   double p[kMaxPolygon];
   Eigen::Matrix<double, 6, 1> by_p[kMaxPolygon];  // the derivative in each vertex's pressure
   for (int t = 0; t < m; ++t) {
