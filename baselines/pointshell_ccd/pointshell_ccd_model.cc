@@ -17,6 +17,9 @@ namespace {
 // the multipliers are taken as converged.
 constexpr int kSweeps = 40;
 constexpr double kViolationTolerance = 1e-2;
+// Constraint updates (one point's multiplier in one sweep) that cost about one lookup of the
+// budget (bench_models deep/: a sweep over n points against n node visits of the search).
+constexpr std::int64_t kUpdatesPerLookup = 8;
 
 // POSE with a unit quaternion (UnitQuaternion). False when POSE is not finite.
 bool UnitPose(const Pose& pose, Pose* out) {
@@ -126,9 +129,11 @@ double PointshellCcdModel::LoadConstraints(int n, const Eigen::Vector3d& o, Eige
   return deepest_violation;
 }
 
-void PointshellCcdModel::SolveMultipliers(int n, Eigen::Vector3d* v, Eigen::Vector3d* w) {
+int PointshellCcdModel::SolveMultipliers(int n, int max_sweeps, Eigen::Vector3d* v, Eigen::Vector3d* w) {
   const double l = params_.offset, k = params_.stiffness, kr = params_.rot_stiffness;
-  for (int sweep = 0; sweep < kSweeps && n > 0; ++sweep) {
+  int sweep = 0;
+  while (sweep < max_sweeps && n > 0) {
+    ++sweep;
     double worst = 0;
     for (int i = 0; i < n; ++i) {
       const NearPoint& c = near_[i];
@@ -142,8 +147,9 @@ void PointshellCcdModel::SolveMultipliers(int n, Eigen::Vector3d* v, Eigen::Vect
       }
       worst = std::max(worst, violation);
     }
-    if (worst <= kViolationTolerance * l) break;
+    if (worst <= kViolationTolerance * l) return -sweep;
   }
+  return sweep;
 }
 
 void PointshellCcdModel::KeepMultipliers(int n) {
@@ -192,24 +198,38 @@ ContactResult PointshellCcdModel::Evaluate(const ContactQuery& query) {
   const double k = params_.stiffness, kr = params_.rot_stiffness;
   const double radius = std::sqrt(kr / k);  // the length at which a rotation weighs like a translation
   const std::int64_t budget = query.node_budget;
-  std::int64_t visited = 0;
+  std::int64_t visited = 0;  // nodes visited by the searches
+  std::int64_t work = 0;     // the budget's units: nodes, steps and constraint updates (header)
   bool degraded = false;
   int pushing = 0;
   int last_n = 0;  // the active points of the last step
   double deepest = 0;
   Matrix6d G = Matrix6d::Zero();  // sum of u u^T over pushing constraints, u = M^-1/2 J^T
-  auto remaining = [&] { return budget > 0 ? std::max<std::int64_t>(1, budget - visited) : std::int64_t(0); };
+  auto remaining = [&] { return budget > 0 ? std::max<std::int64_t>(1, budget - work) : std::int64_t(0); };
 
   for (int it = 0; it < params_.iterations; ++it) {
+    if (budget > 0 && work >= budget) {  // spent: the proxy stays where the last step left it
+      degraded = true;
+      break;
+    }
     // The active set at the proxy, and the straight step to B.
+    const std::int64_t before = visited;
     const int n = search_.Near(X_AP_, 2 * l, lambda, remaining(), near_.data(), int(near_.size()), &visited, &degraded);
+    work += visited - before + n;  // its nodes, and the gradient of each point it keeps
     last_n = n;
     const BlendMotion goal = BlendMotion::Between(X_AP_, X_AB);
     Eigen::Vector3d v = goal.v, w = goal.w;
     const double deepest_violation = LoadConstraints(n, X_AP_.translation, &v, &w, &deepest);
     // min 1/2 (ξ - ξ_goal)^T M (ξ - ξ_goal) subject to J_i ξ <= d_i - l: projected Gauss-Seidel
     // on the multipliers, ξ = ξ_goal - M^-1 sum J_i^T μ_i kept up to date.
-    SolveMultipliers(n, &v, &w);
+    // The sweeps the budget leaves (at least one); a solve cut short is a degraded one.
+    int sweeps = kSweeps;
+    if (budget > 0 && n > 0) {
+      sweeps = int(std::clamp<std::int64_t>((budget - work) * kUpdatesPerLookup / n, 1, kSweeps));
+    }
+    const int swept = SolveMultipliers(n, sweeps, &v, &w);
+    work += std::int64_t(std::abs(swept)) * n / kUpdatesPerLookup;
+    if (swept == sweeps && sweeps < kSweeps) degraded = true;
     LimitCorrection(goal, radius, deepest_violation, &v, &w);
     KeepMultipliers(n);
     pushing = TightConstraints(n, v, w, &G);
@@ -220,6 +240,7 @@ ContactResult PointshellCcdModel::Evaluate(const ContactQuery& query) {
     const BlendMotion step = BlendMotion::From(X_AP_, v, w);
     const ImpactResult hit = search_.Earliest(step, {l, 0.5 * l, lambda, remaining()});
     visited += hit.nodes_visited;
+    work += hit.nodes_visited + hit.steps;
     degraded = degraded || hit.degraded;
     X_AP_ = step.At(hit.t);
     if (!hit.hit) break;  // the step completed: the constrained goal is reached

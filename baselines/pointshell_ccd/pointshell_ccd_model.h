@@ -33,9 +33,13 @@
 // in B at the query's pose of B, max(0, -d) (the proxy holds it at the offset l outside, so
 // this is how far the device has pressed past the proxy there; 0 where it has not).
 //
-// Graceful degradation: the scene's node budget is shared by the cycle's searches; past it a
-// node is not expanded and stands for its subtree conservatively (the proxy stops early), and
-// stats.degraded is 1.
+// Graceful degradation: the scene's node budget bounds the cycle's work, counted in lookups: a
+// node visited by either search and a step of a node or point along the motion are one each, and
+// eight constraint updates of the solve (one point in one sweep) are one. The searches share it
+// (past it a node is not expanded and stands for its subtree conservatively, and the nodes and
+// points in flight stop: the proxy stops early, never passes through); the solve takes the
+// sweeps it leaves, at least one, and no constrained step starts once it is spent. stats.degraded
+// is 1 when it cut anything; stats.nodes_visited counts the searches' nodes alone.
 // Allocation-free and exception-free in Evaluate. Rigid bodies only.
 #pragma once
 
@@ -97,8 +101,9 @@ class PointshellCcdModel final : public ContactModel {
   // multiplier warm-started from the point's latest one, applied to (V, W). *DEEPEST: the
   // deepest penetration. Returns the largest violation l - d_i.
   double LoadConstraints(int n, const Eigen::Vector3d& o, Eigen::Vector3d* v, Eigen::Vector3d* w, double* deepest);
-  // Projected Gauss-Seidel sweeps on the multipliers, (V, W) kept in step with them.
-  void SolveMultipliers(int n, Eigen::Vector3d* v, Eigen::Vector3d* w);
+  // Projected Gauss-Seidel sweeps on the multipliers, at most MAX_SWEEPS, (V, W) kept in step
+  // with them. Returns the sweeps made, negated when they converged.
+  int SolveMultipliers(int n, int max_sweeps, Eigen::Vector3d* v, Eigen::Vector3d* w);
   // Keeps the multipliers per point for the next step's warm start, forgetting the previous.
   void KeepMultipliers(int n);
   // The constraints the step (V, W) ends on: *G = sum of u u^T over them, u = M^-1/2 J^T.

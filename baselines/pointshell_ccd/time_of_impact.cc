@@ -183,6 +183,9 @@ class PointSteps {
     return false;
   }
 
+  // The time the point has safely reached.
+  double time() const { return t_; }
+
   // One step with T_HIT the earliest impact so far. True when the point is done: *OUT is the
   // time it reaches its level, or T_HIT or later when it does not before T_HIT.
   bool Step(const LevelAlongMotion& m, double t_hit, double* out) {
@@ -226,8 +229,12 @@ class PointSteps {
 // they finish. START_DISTANCE(node): its distance kept by Near, or null.
 // Past NODE_BUDGET nodes a queued point or node is not expanded: it (its subtree) reaches the
 // level no earlier than its time T, which becomes the impact. True when that is so.
+// Whether NODE_BUDGET (<= 0: none) leaves no room for WANTED more nodes or steps.
+bool BudgetShort(std::int64_t node_budget, const ImpactResult& result, std::int64_t wanted) {
+  return node_budget > 0 && result.nodes_visited + result.steps + wanted > node_budget;
+}
 bool BudgetCutsAt(std::int64_t node_budget, double t, double* t_hit, ImpactResult* result) {
-  if (!(node_budget > 0 && result->nodes_visited >= node_budget)) return false;
+  if (!BudgetShort(node_budget, *result, 1)) return false;
   result->degraded = true;
   result->hit = true;
   result->point = -1;
@@ -273,7 +280,14 @@ void LeafLevel(const Pointshell& s, const std::vector<std::int32_t>& queue, cons
         lane_point[busy++] = ip;
       }
     }
+    // Past the budget the points in flight stop where they are: none reaches its level before.
+    if (busy > 0 && BudgetShort(node_budget, *result, busy)) {
+      for (int i = 0; i < busy; ++i) BudgetCutsAt(node_budget, std::min(*t_hit, lane[i].time()), t_hit, result);
+      busy = 0;
+      continue;
+    }
     // One step of every point in flight; a point that is done hands its lane to the last one.
+    result->steps += busy;
     for (int i = 0; i < busy;) {
       double ti;
       if (lane[i].Step(along, *t_hit, &ti)) {
@@ -308,6 +322,9 @@ class NodeSteps {
     if (!d_t) return false;
     return Advance(m, double(*d_t), t_hit, t_out, d_out);
   }
+
+  // The time from which the subtree may reach the level, as far as the steps so far say.
+  double time() const { return t_; }
 
   // One step (a lookup) with T_HIT the earliest impact so far; as Begin.
   bool Step(const LevelAlongMotion& m, double t_hit, double* t_out, float* d_out) {
@@ -378,7 +395,19 @@ void NodeLevel(const Pointshell& s, const std::vector<std::int32_t>& queue, cons
       const float* known = KnownDistance(queue_d[j], t == 0 ? start_distance(n) : nullptr);
       if (!lane[busy].Begin(along, c, r, speed, t, *t_hit, known, &(*adv_t)[j], &(*adv_d)[j])) lane_k[busy++] = j;
     }
+    // Past the budget the nodes in flight stop where they are: their subtrees may reach the
+    // level from there on.
+    if (busy > 0 && BudgetShort(node_budget, *result, busy)) {
+      result->degraded = true;
+      for (int i = 0; i < busy; ++i) {
+        (*adv_t)[lane_k[i]] = lane[i].time();
+        (*adv_d)[lane_k[i]] = std::numeric_limits<float>::quiet_NaN();
+      }
+      busy = 0;
+      continue;
+    }
     // One step of every node in flight; a node that is done hands its lane to the last one.
+    result->steps += busy;
     for (int i = 0; i < busy;) {
       const std::size_t j = lane_k[i];
       if (lane[i].Step(along, *t_hit, &(*adv_t)[j], &(*adv_d)[j])) {
@@ -412,6 +441,7 @@ ImpactSearch::ImpactSearch(std::shared_ptr<const Pointshell> shell, std::shared_
   next_t_.reserve(nodes);
   queue_d_.reserve(nodes);
   next_d_.reserve(nodes);
+  band_.reserve(nodes);
   adv_t_.reserve(nodes);
   adv_d_.reserve(nodes);
   start_stamp_.assign(nodes, 0u);
@@ -522,6 +552,7 @@ int ImpactSearch::Near(const Pose& X_AB, double band, double lipschitz, std::int
     const bool leaf = L == levels - 1;
     next_.clear();
     next_d_.clear();
+    band_.clear();
     for (std::size_t k = 0; k < queue_.size(); ++k) {
       const std::int32_t n = queue_[k];
       const std::int32_t ip = s.node_point[n];
@@ -529,23 +560,28 @@ int ImpactSearch::Near(const Pose& X_AB, double band, double lipschitz, std::int
       const double r = s.node_radius[n];
       const float inherited = queue_d_[k];
       const double d = inherited == inherited ? keep(n, inherited) : lookup(n, c);
-      if (node_budget > 0 && count >= node_budget) {
-        // Not expanded: its point stands for the subtree at the subtree's lower bound.
-        if (degraded) *degraded = true;
-        const double bound = d - lipschitz * r;
-        if (bound <= band) emit(ip, c, bound);
-        continue;
-      }
       ++count;
       if (d - lipschitz * r > band) continue;
       if (leaf) {
         emit(ip, c, std::numeric_limits<double>::infinity());
         continue;
       }
+      band_.push_back(n);
       for (std::int32_t ch = s.child_begin[n]; ch < s.child_begin[n + 1]; ++ch) {
         next_.push_back(ch);
         next_d_.push_back(ch == s.child_begin[n] && s.node_point[ch] == ip ? float(d) : kUnknown);
       }
+    }
+    if (!leaf && node_budget > 0 && count + std::int64_t(next_.size()) > node_budget) {
+      // The next level does not fit: this level's nodes in the band stand for their subtrees,
+      // each at its subtree's lower bound.
+      if (degraded) *degraded = true;
+      for (const std::int32_t n : band_) {
+        const std::int32_t ip = s.node_point[n];
+        const Eigen::Vector3d c(s.x[ip], s.y[ip], s.z[ip]);
+        emit(ip, c, double(start_d_[std::size_t(n)]) - lipschitz * s.node_radius[n]);
+      }
+      break;
     }
     std::swap(queue_, next_);
     std::swap(queue_d_, next_d_);

@@ -37,9 +37,11 @@
 // are cut at that time, and with them, within the dips above, the impact found (by about 1e-6
 // of the step in the tunnelling and slide runs).
 //
-// Graceful degradation: past a node budget the remaining nodes are not expanded; each stops
-// the motion at its own conservative time (a bound, never later than any of its points), so a
-// small budget makes the proxy stop early, never pass through.
+// Graceful degradation: the budget counts the nodes visited and the lookups of the nodes and
+// points stepping along the motion, one each. Past it the remaining nodes are not expanded and
+// the nodes and points in flight take no further step; each stops the motion at its own
+// conservative time (a bound, never later than any of its points), so a small budget makes the
+// proxy stop early, never pass through.
 //
 // Allocation-free and exception-free after construction.
 #pragma once
@@ -76,7 +78,7 @@ struct ImpactParams {
   double level = 0;       // metres: a point touches when its distance to B reaches it
   double slack = 0;       // ε, metres, < level: see above (the dips that may go unseen)
   double lipschitz = 1;   // λ >= 1, bound on |∇d|
-  std::int64_t node_budget = 0;  // nodes to visit at most; <= 0: no limit
+  std::int64_t node_budget = 0;  // nodes visited plus steps taken, at most; <= 0: no limit
 };
 
 struct ImpactResult {
@@ -84,6 +86,7 @@ struct ImpactResult {
   bool hit = false;
   std::int32_t point = -1;      // the point that reaches it (-1: none, or a node cut by the budget)
   std::int64_t nodes_visited = 0;
+  std::int64_t steps = 0;  // lookups of nodes and points stepping along the motion
   bool degraded = false;  // the budget cut the traversal
 };
 
@@ -107,9 +110,11 @@ class ImpactSearch {
   ImpactResult Earliest(const BlendMotion& motion, const ImpactParams& params);
 
   // The points whose distance at pose X_AB (B in A) is at most BAND, written to OUT (at most
-  // CAPACITY; the rest counted in *TOTAL when not null). Past NODE_BUDGET nodes (<= 0: no
-  // limit) the nodes not expanded are reported as their own point at their lower bound
-  // d(c) - λ r. Adds the nodes visited to *VISITED. Returns how many were written.
+  // CAPACITY, the rest left out). It descends a level only when all of
+  // that level's nodes fit in NODE_BUDGET (<= 0: no limit) beside those visited; where the next
+  // level does not fit, this level's nodes within the band are reported as their own point at
+  // their subtree's lower bound d(c) - λ r, and *DEGRADED is set. Adds the nodes visited to
+  // *VISITED. Returns how many were written.
   //
   // It keeps the distance of every node it visits: an Earliest whose motion starts at X_AB
   // (the proxy's constrained step after its active set) reads them instead of looking them up
@@ -133,6 +138,7 @@ class ImpactSearch {
   // Each node's distance at its start time when its parent, the same point one level up,
   // looked it up there (NaN when not): a first child does not look it up again.
   std::vector<float> queue_d_, next_d_;
+  std::vector<std::int32_t> band_;  // Near: the nodes of the current level within the band
   // Each queued node's advanced time and its distance there (Earliest, one level at a time).
   std::vector<double> adv_t_;
   std::vector<float> adv_d_;

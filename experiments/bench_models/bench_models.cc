@@ -281,7 +281,7 @@ void BM_ModelDeepPress(benchmark::State& state, std::string scene_file, std::str
 }
 
 // The budget each real-time model gets in the deep press (its own unit, ContactStats::degraded):
-// the paper's model and pointshell-ccd tree nodes, inner-spheres sphere pairs, pressure-field
+// the paper's model tree nodes, pointshell-ccd lookups, inner-spheres sphere pairs, pressure-field
 // lattice cells, vps points looked at.
 constexpr std::pair<const char*, std::int64_t> kDeepBudgets[] = {
     {"pointshell", 3000}, {"pointshell-ccd", 3000}, {"inner-spheres", 3000},

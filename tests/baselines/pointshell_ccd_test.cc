@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -194,7 +195,40 @@ TEST(TimeOfImpact, ANodeBudgetStopsEarlierNeverLater) {
   for (const std::int64_t budget : {1, 4, 16, 64, 256}) {
     const ImpactResult cut = search.Earliest(m, {1e-4, 5e-5, 1.0, budget});
     EXPECT_LE(cut.t, full.t + 1e-12) << budget;
-    EXPECT_LE(cut.nodes_visited, budget) << budget;
+    // The budget counts the points' and nodes' steps along the motion beside the nodes.
+    EXPECT_LE(cut.nodes_visited + cut.steps, budget) << budget;
+  }
+  EXPECT_GT(full.steps, 0);
+}
+
+// Near under a budget visits no more nodes than it allows (beyond the top level, which it always
+// visits), says it degraded, and what it reports stays a lower bound: its smallest distance is no
+// larger than the smallest of the points in the band, found without a budget.
+TEST(TimeOfImpact, NearUnderABudgetVisitsNoMoreAndBoundsTheDistancesFromBelow) {
+  auto shell = SphereShell(0.01, 8, 3);
+  auto field = Halfspace();
+  ImpactSearch search(shell, field);
+  const Pose X_AB = Pose::FromTranslation(Eigen::Vector3d(0, 0, -0.0095));  // half a millimetre deep
+  const double band = 2e-4;
+  std::vector<NearPoint> out(std::size_t(shell->num_points()));
+  std::int64_t visited = 0;
+  bool degraded = false;
+  const int n_full = search.Near(X_AB, band, 1.0, 0, out.data(), int(out.size()), &visited, &degraded);
+  ASSERT_GT(n_full, 0);
+  EXPECT_FALSE(degraded);
+  double least = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < n_full; ++i) least = std::min(least, out[std::size_t(i)].distance);
+  const std::int64_t top = shell->level_node_begin[1] - shell->level_node_begin[0];
+  for (const std::int64_t budget : {std::int64_t(1), top, 4 * top, visited - 1}) {
+    std::int64_t used = 0;
+    bool cut = false;
+    const int n = search.Near(X_AB, band, 1.0, budget, out.data(), int(out.size()), &used, &cut);
+    EXPECT_LE(used, std::max(budget, top)) << budget;
+    EXPECT_TRUE(cut) << budget;
+    ASSERT_GT(n, 0) << budget;
+    double reported = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < n; ++i) reported = std::min(reported, out[std::size_t(i)].distance);
+    EXPECT_LE(reported, least + 1e-12) << budget;
   }
 }
 
