@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "bench_common.h"
+#include "haptics/cpu_affinity.h"
 #include "haptics/device_factory.h"
 #include "haptics/halfspace_contact_model.h"
 #include "haptics/haptic_cycle.h"
@@ -19,17 +20,23 @@
 namespace contactlab {
 namespace {
 
-// The halfspace model plus a busy-wait of a fixed number of microseconds: a stand-in for a
-// contact model of known cost.
+// The halfspace model plus a stand-in for a contact model of known cost: a busy-wait of a fixed
+// number of microseconds (fixed wall time), then a fixed amount of arithmetic (OPS steps of one
+// dependent multiply-add chain, no memory traffic): the same instructions every cycle, so any
+// spread in their CPU time is the machine's, not the work's.
 class WorkloadModel final : public ContactModel {
  public:
-  WorkloadModel(ContactModel& inner, double busy_us) : inner_(inner), busy_ns_(std::int64_t(busy_us * 1e3)) {}
+  WorkloadModel(ContactModel& inner, double busy_us, std::int64_t ops)
+      : inner_(inner), busy_ns_(std::int64_t(busy_us * 1e3)), ops_(ops) {}
   std::string_view name() const override { return "workload"; }
   ContactResult Evaluate(const ContactQuery& q) override {
     const std::int64_t until = MonotonicNowNs() + busy_ns_;
     ContactResult r = inner_.Evaluate(q);
     while (MonotonicNowNs() < until) {
     }
+    double x = chain_;
+    for (std::int64_t k = 0; k < ops_; ++k) x = x * 0.9999999 + 1e-7;
+    chain_ = x;  // kept, so the chain is computed
     return r;
   }
   void Reset() override { inner_.Reset(); }
@@ -37,6 +44,8 @@ class WorkloadModel final : public ContactModel {
  private:
   ContactModel& inner_;
   std::int64_t busy_ns_;
+  std::int64_t ops_;
+  double chain_ = 1;
 };
 
 }  // namespace
@@ -46,12 +55,17 @@ int main(int argc, char** argv) {
   using namespace contactlab;
   CLI::App app{"Runs the real-time haptic loop with the sim device and reports cycle-time percentiles"};
   double seconds = 60, workload_us = 100, rate = 1000;
-  int points_per_edge = 8;
+  std::int64_t workload_ops = 0;
+  int points_per_edge = 8, cpu = -1;
   bool quick = bench::QuickRun(), no_rt = false;
   std::string device_spec;
   app.add_option("--seconds", seconds, "run time (default 60; 1 in quick mode)")->check(CLI::PositiveNumber);
   app.add_option("--workload-us", workload_us, "busy work per cycle inside the contact model, microseconds")
       ->check(CLI::Range(0.0, 100000.0));
+  app.add_option("--workload-ops", workload_ops,
+                 "fixed arithmetic per cycle: steps of one dependent multiply-add chain (about 1 ns each), after the busy work")
+      ->check(CLI::Range(std::int64_t(0), std::int64_t(100000000)));
+  app.add_option("--cpu", cpu, "pin the loop thread to CPU N and keep the record consumer off it")->check(CLI::NonNegativeNumber);
   app.add_option("--points-per-edge", points_per_edge, "halfspace sample points per box edge")->check(CLI::Range(2, 200));
   app.add_option("--rate", rate, "cycle rate, Hz")->check(CLI::Range(1.0, 20000.0));
   app.add_flag("--quick", quick, "1 second run");
@@ -64,7 +78,7 @@ int main(int argc, char** argv) {
   try {
     // Scene: the sim hand circles 3 cm while pressing a box 5 mm into a halfspace.
     HalfspaceContactModel halfspace(MakeBoxSamplePoints(Eigen::Vector3d(0.02, 0.02, 0.01), points_per_edge), 1000.0);
-    WorkloadModel model(halfspace, workload_us);
+    WorkloadModel model(halfspace, workload_us, workload_ops);
     std::unique_ptr<HapticDevice> owned;
     if (device_spec.empty()) {
       owned = std::make_unique<SimDevice>(SimDeviceParams{}, [](double t) {
@@ -80,6 +94,8 @@ int main(int argc, char** argv) {
     opt.rate_hz = rate;
     opt.duration_seconds = seconds;
     opt.try_realtime = !no_rt;
+    opt.cpu = cpu;
+    if (cpu >= 0) KeepThisThreadOffCpu(cpu);  // the consumer below inherits it
     InstallStopSignalHandlers();
     HapticLoop loop(cycle, opt);
 
@@ -94,8 +110,9 @@ int main(int argc, char** argv) {
       }
       while (loop.records().TryPop(&rec)) ++consumed;
     });
-    std::printf("haptic_loop_timing: %.1f s at %.0f Hz, workload %.0f us + %ld halfspace points%s\n", seconds, rate,
-                workload_us, long(halfspace.points().cols()), quick ? " (quick)" : "");
+    std::printf("haptic_loop_timing: %.1f s at %.0f Hz, workload %.0f us + %lld ops + %ld halfspace points%s\n",
+                seconds, rate, workload_us, (long long)workload_ops, long(halfspace.points().cols()),
+                quick ? " (quick)" : "");
     const HapticLoopReport report = loop.Run();
     done.store(true);
     consumer.join();
