@@ -503,6 +503,30 @@ class SpeedVsError(unittest.TestCase):
             self.assertEqual(points(first), [(5.0, 0.2), (500.0, 0.1)])  # fcl: no value, no point
             self.assertEqual(points(second), [(5.0, 0.03), (500.0, 0.95)])
 
+    # Swept over node_budget, a budgeted run is drawn only where its budget bound (degraded_share
+    # > 0), joined by a dotted line to the same model's unbudgeted point on the same scene.
+    def test_a_budget_that_bound_is_drawn_from_the_unbudgeted_point(self):
+        from figures import speed_vs_error
+        S = common.SUMMARY
+        scene = "data/scenes/block-joint.yaml"
+        rows = []
+        for budget, pf, ps, shares in (("0", (500, 0.95), (5, 0.03), (0, 0)), ("1000", (90, 0.97), (4, 0.03), (0.8, 0))):
+            rows.append({"scene": scene, "offset": "0", "node_budget": budget, S.model: "pressure-field",
+                         S.median_us: pf[0], S.p99_us: pf[0] + 1, S.rms_rel_error: pf[1], S.degraded_share: shares[0]})
+            rows.append({"scene": scene, "offset": "0", "node_budget": budget, S.model: "pointshell",
+                         S.median_us: ps[0], S.p99_us: ps[0] + 1, S.rms_rel_error: ps[1], S.degraded_share: shares[1]})
+        with tempfile.TemporaryDirectory() as root:
+            write_table(root, "speed-vs-error", S, ["scene", "offset", "node_budget"], rows)
+            results = common.Results(root)
+            drawn = {}
+            results.save = lambda fig, name, **kw: drawn.setdefault(name, fig)
+            self.assertTrue(speed_vs_error.speed_vs_error(results))
+            ax = drawn["speed_vs_error.png"].axes[0]
+            points = sorted(tuple(o.get_offsets()[0]) for o in ax.collections)
+            self.assertEqual(points, [(5.0, 0.03), (90.0, 0.97), (500.0, 0.95)])  # pointshell's 1000: never bound
+            dotted = [tuple(map(tuple, line.get_xydata())) for line in ax.lines if line.get_linestyle() == ":"]
+            self.assertEqual(dotted, [((500.0, 0.95), (90.0, 0.97))])
+
 
 class ClosedLoop(unittest.TestCase):
     # Swept over the stiffness rule (closed-loop-matched), a model is one line per rule, with the
