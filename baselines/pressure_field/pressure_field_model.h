@@ -24,9 +24,10 @@
 
 // K_B is the exact derivative of this discretised wrench in B's pose, taken in the same pass:
 // only M's field at the lattice's vertices depends on B's pose (the lattice is fixed in L), so
-// each vertex's value carries its six derivatives along B's twist (the trilinear field's
-// gradient, pressure_dual.h), forward through the cut, the clip and the integration. Surface
-// that a motion would carry into a cell that holds none has zero measure and adds nothing.
+// the wrench is differentiated backwards through each polygon's integration, clip and cut down
+// to a 6-vector sensitivity per lattice vertex (pressure_adjoints.h), which each block then
+// multiplies once by the field's gradient along B's twist (pressure_stiffness.h). Surface that a
+// motion would carry into a cell that holds none has zero measure and adds nothing.
 // Stats: contact_area, patches (connected pieces, by cells sharing a face, edge or corner),
 // max_penetration (largest -(phi_A + phi_B) on the surface: the local overlap), points_in_contact
 // (cells carrying surface), nodes_visited (octree nodes and cells examined), degraded (the
