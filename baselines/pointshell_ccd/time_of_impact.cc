@@ -223,16 +223,13 @@ class PointSteps {
   int steps_ = 0;
 };
 
-// The tree's last level (SHELL's nodes QUEUE[k] from times QUEUE_T[k], their distance there
-// QUEUE_D[k] when inherited, NaN when not, in that order): each
-// point's earliest impact before *T_HIT, kLanes points in flight, *T_HIT and RESULT updated as
-// they finish. START_DISTANCE(node): its distance kept by Near, or null.
-// Past NODE_BUDGET nodes a queued point or node is not expanded: it (its subtree) reaches the
-// level no earlier than its time T, which becomes the impact. True when that is so.
 // Whether NODE_BUDGET (<= 0: none) leaves no room for WANTED more nodes or steps.
 bool BudgetShort(std::int64_t node_budget, const ImpactResult& result, std::int64_t wanted) {
   return node_budget > 0 && result.nodes_visited + result.steps + wanted > node_budget;
 }
+
+// Past NODE_BUDGET a queued point or node is not expanded: it (its subtree) reaches the level
+// no earlier than its time T, which becomes the impact (*T_HIT, RESULT). True when that is so.
 bool BudgetCutsAt(std::int64_t node_budget, double t, double* t_hit, ImpactResult* result) {
   if (!BudgetShort(node_budget, *result, 1)) return false;
   result->degraded = true;
@@ -242,6 +239,11 @@ bool BudgetCutsAt(std::int64_t node_budget, double t, double* t_hit, ImpactResul
   return true;
 }
 
+// The tree's last level (SHELL's nodes QUEUE[k] from times QUEUE_T[k], their distance there
+// QUEUE_D[k] when inherited, NaN when not, in that order): each point's earliest impact before
+// *T_HIT, kLanes points in flight, *T_HIT and RESULT updated as they finish.
+// START_DISTANCE(node): its distance kept by Near, or null. Past NODE_BUDGET the queued points
+// are cut (BudgetCutsAt) and those in flight stop at the time they have safely reached.
 template <class StartDistanceOf>
 void LeafLevel(const Pointshell& s, const std::vector<std::int32_t>& queue, const std::vector<double>& queue_t,
                const std::vector<float>& queue_d, const LevelAlongMotion& along, const BlendMotion& motion, std::int64_t node_budget,
@@ -364,7 +366,9 @@ class NodeSteps {
 // QUEUE_D[k] when inherited, NaN when not): each node's advanced time into ADV_T[k] (infinite
 // when it was not advanced) and its distance there into ADV_D[k], kLanes nodes in flight. The
 // earliest impact changes only where the budget cuts a node (*T_HIT, RESULT), in queue order,
-// so each node advances exactly as it would alone. START_DISTANCE as for LeafLevel.
+// so each node advances exactly as it would alone; past the budget the nodes in flight keep the
+// time they have reached (their subtrees may reach the level from there). START_DISTANCE as for
+// LeafLevel.
 template <class StartDistanceOf>
 void NodeLevel(const Pointshell& s, const std::vector<std::int32_t>& queue, const std::vector<double>& queue_t,
                const std::vector<float>& queue_d, const LevelAlongMotion& along, const BlendMotion& motion,
