@@ -131,10 +131,12 @@ double PointshellCcdModel::LoadConstraints(int n, const Eigen::Vector3d& o, Eige
   return deepest_violation;
 }
 
-int PointshellCcdModel::SolveMultipliers(int n, int max_sweeps, Eigen::Vector3d* v, Eigen::Vector3d* w) {
+int PointshellCcdModel::SolveMultipliers(int n, int max_sweeps, Eigen::Vector3d* v, Eigen::Vector3d* w,
+                                         bool* converged) {
   const double l = params_.offset, k = params_.stiffness, kr = params_.rot_stiffness;
+  *converged = n == 0;
   int sweep = 0;
-  while (sweep < max_sweeps && n > 0) {
+  while (sweep < max_sweeps && !*converged) {
     ++sweep;
     double worst = 0;
     for (int i = 0; i < n; ++i) {
@@ -149,7 +151,7 @@ int PointshellCcdModel::SolveMultipliers(int n, int max_sweeps, Eigen::Vector3d*
       }
       worst = std::max(worst, violation);
     }
-    if (worst <= kViolationTolerance * l) return -sweep;
+    *converged = worst <= kViolationTolerance * l;
   }
   return sweep;
 }
@@ -229,9 +231,9 @@ ContactResult PointshellCcdModel::Evaluate(const ContactQuery& query) {
     if (budget > 0 && n > 0) {
       sweeps = int(std::clamp<std::int64_t>((budget - work) * kUpdatesPerLookup / n, 1, kSweeps));
     }
-    const int swept = SolveMultipliers(n, sweeps, &v, &w);
-    work += std::int64_t(std::abs(swept)) * n / kUpdatesPerLookup;
-    if (swept == sweeps && sweeps < kSweeps) degraded = true;
+    bool converged = false;
+    work += std::int64_t(SolveMultipliers(n, sweeps, &v, &w, &converged)) * n / kUpdatesPerLookup;
+    degraded = degraded || (!converged && sweeps < kSweeps);
     LimitCorrection(goal, radius, deepest_violation, &v, &w);
     KeepMultipliers(n);
     pushing = TightConstraints(n, v, w, &G);

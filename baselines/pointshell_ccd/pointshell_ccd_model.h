@@ -102,8 +102,8 @@ class PointshellCcdModel final : public ContactModel {
   // deepest penetration. Returns the largest violation l - d_i.
   double LoadConstraints(int n, const Eigen::Vector3d& o, Eigen::Vector3d* v, Eigen::Vector3d* w, double* deepest);
   // Projected Gauss-Seidel sweeps on the multipliers, at most MAX_SWEEPS, (V, W) kept in step
-  // with them. Returns the sweeps made, negated when they converged.
-  int SolveMultipliers(int n, int max_sweeps, Eigen::Vector3d* v, Eigen::Vector3d* w);
+  // with them. Returns the sweeps made; *CONVERGED: whether the last left no violation.
+  int SolveMultipliers(int n, int max_sweeps, Eigen::Vector3d* v, Eigen::Vector3d* w, bool* converged);
   // Keeps the multipliers per point for the next step's warm start, forgetting the previous.
   void KeepMultipliers(int n);
   // The constraints the step (V, W) ends on: *G = sum of u u^T over them, u = M^-1/2 J^T.

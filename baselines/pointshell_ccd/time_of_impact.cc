@@ -228,14 +228,22 @@ bool BudgetShort(std::int64_t node_budget, const ImpactResult& result, std::int6
   return node_budget > 0 && result.nodes_visited + result.steps + wanted > node_budget;
 }
 
-// Past NODE_BUDGET a queued point or node is not expanded: it (its subtree) reaches the level
-// no earlier than its time T, which becomes the impact (*T_HIT, RESULT). True when that is so.
+// The budget stops a point or node at T: it (its subtree) reaches the level no earlier, so the
+// impact is T at the latest (*T_HIT, RESULT).
+void CutAt(double t, double* t_hit, ImpactResult* result) {
+  result->degraded = true;
+  if (t < *t_hit) {
+    result->hit = true;
+    result->point = -1;
+    *t_hit = t;
+  }
+}
+
+// Past NODE_BUDGET a queued point or node (starting at T < *T_HIT) is not expanded: CutAt(T).
+// True when that is so.
 bool BudgetCutsAt(std::int64_t node_budget, double t, double* t_hit, ImpactResult* result) {
   if (!BudgetShort(node_budget, *result, 1)) return false;
-  result->degraded = true;
-  result->hit = true;
-  result->point = -1;
-  *t_hit = t;
+  CutAt(t, t_hit, result);
   return true;
 }
 
@@ -284,7 +292,7 @@ void LeafLevel(const Pointshell& s, const std::vector<std::int32_t>& queue, cons
     }
     // Past the budget the points in flight stop where they are: none reaches its level before.
     if (busy > 0 && BudgetShort(node_budget, *result, busy)) {
-      for (int i = 0; i < busy; ++i) BudgetCutsAt(node_budget, std::min(*t_hit, lane[i].time()), t_hit, result);
+      for (int i = 0; i < busy; ++i) CutAt(lane[i].time(), t_hit, result);
       busy = 0;
       continue;
     }

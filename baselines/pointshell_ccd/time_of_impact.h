@@ -110,11 +110,11 @@ class ImpactSearch {
   ImpactResult Earliest(const BlendMotion& motion, const ImpactParams& params);
 
   // The points whose distance at pose X_AB (B in A) is at most BAND, written to OUT (at most
-  // CAPACITY, the rest left out). It descends a level only when all of
-  // that level's nodes fit in NODE_BUDGET (<= 0: no limit) beside those visited; where the next
-  // level does not fit, this level's nodes within the band are reported as their own point at
-  // their subtree's lower bound d(c) - λ r, and *DEGRADED is set. Adds the nodes visited to
-  // *VISITED. Returns how many were written.
+  // CAPACITY, the rest left out). It descends a level only when all of that level's nodes fit in
+  // NODE_BUDGET (<= 0: no limit) beside those visited; where the next level does not fit, this
+  // level's nodes within the band are reported as their own point at their subtree's lower
+  // bound d(c) - λ r, and *DEGRADED is set. Adds the nodes visited to *VISITED. Returns how many
+  // were written.
   //
   // It keeps the distance of every node it visits: an Earliest whose motion starts at X_AB
   // (the proxy's constrained step after its active set) reads them instead of looking them up

@@ -52,6 +52,15 @@ VpsContactModel::VpsContactModel(std::string name, std::shared_ptr<const Pointsh
   interior_depth_ = params.interior_depth >= 0 ? params.interior_depth : 0.5 * std::sqrt(3.0) * v;
   for (int a = 0; a < 3; ++a) box_hi_[a] = float(voxmap_.origin()[a] + v * voxmap_.dims()[a]);
   next_check_.assign(std::size_t(shell_->num_points()), std::numeric_limits<std::int64_t>::min());
+  // The order a budget visits the points in: their indices in bit-reversed order.
+  const int n = shell_->num_points();
+  int bits = 0;
+  while ((std::int64_t(1) << bits) < n) ++bits;
+  budget_order_.reserve(std::size_t(n));
+  for (std::int64_t j = 0; j < (std::int64_t(1) << bits); ++j) {
+    const std::uint64_t i = BitReversed(std::uint64_t(j), bits);
+    if (i < std::uint64_t(n)) budget_order_.push_back(std::int32_t(i));
+  }
 }
 
 void VpsContactModel::Reset() {
@@ -96,20 +105,14 @@ ContactResult VpsContactModel::Evaluate(const ContactQuery& query) {
   // With a time budget, points in the bit-reversed order of their index (vps_contact_model.h).
   const std::int64_t budget = query.node_budget;
   const bool budgeted = budget > 0;
-  int bits = 0;
-  while ((std::int64_t(1) << bits) < n) ++bits;
-  const std::int64_t order = budgeted ? std::int64_t(1) << bits : n;
   int looked_at = n;  // the points the budget let the loop reach
-  int reached = 0;
-  for (std::int64_t j = 0; j < order; ++j) {
-    const int i = budgeted ? int(BitReversed(std::uint64_t(j), bits)) : int(j);
-    if (i >= n) continue;
+  for (int j = 0; j < n; ++j) {
+    const int i = budgeted ? budget_order_[std::size_t(j)] : j;
     // The time budget: the points reached stand for all.
     if (budgeted && visited >= budget && !(coherence && cycle < next_check_[i])) {
-      looked_at = reached;
+      looked_at = j;
       break;
     }
-    ++reached;
     // Temporal coherence: the point cannot touch before its next check.
     if (coherence && cycle < next_check_[i]) {
       ++skipped;

@@ -38,16 +38,16 @@
 //
 // Time budget (graceful degradation): the query's node_budget counts the points looked at (the
 // coherence's skipped points cost next to nothing and are not counted). With a budget the points
-// are visited in the bit-reversed order of their index (each level of a shell is ordered along a
-// Morton curve, so its prefix would be one region; the bit-reversed order spreads the first m
-// evenly over it; it also costs up to 4.7x more per point, measured, than visiting them in order,
-// which a budget chosen for a time must allow for; runs of 16 consecutive points, a cache line of
-// each array, cost less but sample patches: 9-26 % force error at 10,000 points 20 mm deep,
-// against 1.3-3.9 % point by point), and past the budget the loop stops: the points it reached stand for the
-// whole, their sums counted n / reached times (ContactAccumulator::Scale). The same points each
-// cycle, so the answer does not flicker. stats.degraded = ceil(log2(n / reached)): the halvings
-// of the share of points tested. Points not reached keep their coherence state and are looked at
-// again when the budget allows.
+// are visited in the bit-reversed order of their index, computed once at construction: each
+// level of a shell is ordered along a Morton curve, so its prefix would be one region, and the
+// bit-reversed order spreads the first m evenly over it. Its spread reads cost more per point
+// than visiting the points in order, which a budget chosen for a time must allow for; runs of
+// 16 consecutive points (a cache line of each array) cost less but sample patches: 9-26 % force
+// error at 10,000 points 20 mm deep, against 1.3-3.9 % point by point. Past the budget the loop
+// stops: the points it reached stand for the whole, their sums counted n / reached times
+// (ContactAccumulator::Scale). The same points each cycle, so the answer does not flicker.
+// stats.degraded = ceil(log2(n / reached)): the halvings of the share of points tested. Points
+// not reached keep their coherence state and are looked at again when the budget allows.
 //
 // Contacts (KeepContacts / LatestContacts): one per point with depth > 0, as many as
 // stats.points_in_contact: the point's world position, the direction of its force on B, -N in
@@ -143,6 +143,7 @@ class VpsContactModel final : public ContactModel {
 
   // Scratch sized once at construction.
   std::vector<std::int64_t> next_check_;  // (#P) temporal coherence: first cycle to look again
+  std::vector<std::int32_t> budget_order_;  // (#P) the points' indices in bit-reversed order (a budget's)
   ContactRecorder contacts_;  // the latest Evaluate's contacts, B's frame, when kept
   Pose X_WB_contacts_;        // and B's pose then
 };

@@ -188,17 +188,30 @@ TEST(TimeOfImpact, ANodeBudgetStopsEarlierNeverLater) {
   auto shell = SphereShell(0.01, 8, 3);
   auto field = Halfspace();
   ImpactSearch search(shell, field);
-  const BlendMotion m = BlendMotion::From(Pose::FromTranslation(Eigen::Vector3d(0, 0, -0.015)),
-                                          Eigen::Vector3d(0.001, 0, 0.01), Eigen::Vector3d(0.2, 0, 0));
-  const ImpactResult full = search.Earliest(m, {1e-4, 5e-5, 1.0, 0});
-  ASSERT_TRUE(full.hit);
-  for (const std::int64_t budget : {1, 4, 16, 64, 256}) {
-    const ImpactResult cut = search.Earliest(m, {1e-4, 5e-5, 1.0, budget});
-    EXPECT_LE(cut.t, full.t + 1e-12) << budget;
-    // The budget counts the points' and nodes' steps along the motion beside the nodes.
-    EXPECT_LE(cut.nodes_visited + cut.steps, budget) << budget;
+  // The motion of old, then random ones from below, turning: every budget up to the whole
+  // search's work, so that the budget also runs out with one to three points or nodes in flight.
+  std::vector<BlendMotion> motions = {BlendMotion::From(Pose::FromTranslation(Eigen::Vector3d(0, 0, -0.015)),
+                                                        Eigen::Vector3d(0.001, 0, 0.01), Eigen::Vector3d(0.2, 0, 0))};
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 12; ++trial) {
+    motions.push_back(BlendMotion::From(Pose{RotationFromVector(0.5 * Eigen::Vector3d(u(rng), u(rng), u(rng))),
+                                             Eigen::Vector3d(0.002 * u(rng), 0.002 * u(rng), -0.0125)},
+                                        Eigen::Vector3d(0.002 * u(rng), 0.002 * u(rng), 0.006),
+                                        Eigen::Vector3d(u(rng), u(rng), u(rng))));
   }
-  EXPECT_GT(full.steps, 0);
+  for (std::size_t i = 0; i < motions.size(); ++i) {
+    const BlendMotion& m = motions[i];
+    const ImpactResult full = search.Earliest(m, {1e-4, 5e-5, 1.0, 0});
+    ASSERT_TRUE(full.hit) << i;
+    EXPECT_GT(full.steps, 0) << i;
+    for (std::int64_t budget = 1; budget <= full.nodes_visited + full.steps; ++budget) {
+      const ImpactResult cut = search.Earliest(m, {1e-4, 5e-5, 1.0, budget});
+      EXPECT_LE(cut.t, full.t + 1e-12) << "motion " << i << " budget " << budget;
+      // The budget counts the points' and nodes' steps along the motion beside the nodes.
+      EXPECT_LE(cut.nodes_visited + cut.steps, budget) << "motion " << i << " budget " << budget;
+    }
+  }
 }
 
 // Near under a budget visits no more nodes than it allows (beyond the top level, which it always
