@@ -107,20 +107,18 @@ double IntegrateCell(const LatticeCell& cell, const PressureLaw& law, PressureSu
         cell.overlapped ? buffers[0] : ClipToOverlap(buffers, &m, adjoints ? clip_origin : nullptr);
     if (m < 3) continue;
     const double sign = IntegratePolygon(poly, m, toward, law, sums, &cell_area, record);
-    if (adjoints) {
+    if (adjoints && cell.overlapped) {
+      CutPolygonAdjoints(cell, poly, m, sign, law, cut_origin, b);  // no clip: one pass
+    } else if (adjoints) {
       // Backwards: the integration, the clip, the cut.
       VertexAdjoint adjoint[kMaxPolygon], cut[kMaxPolygon];
       PolygonAdjoints(poly, m, sign, law, adjoint);
-      const VertexAdjoint* at_cut = adjoint;
-      if (!cell.overlapped) {
-        for (int i = 0; i < cut_vertices; ++i) {
-          cut[i].x.setZero();
-          cut[i].s.setZero();
-        }
-        ClipAdjoints(buffers[0], clip_origin, adjoint, m, cut);
-        at_cut = cut;
+      for (int i = 0; i < cut_vertices; ++i) {
+        cut[i].x.setZero();
+        cut[i].s.setZero();
       }
-      CutAdjoints(cell, law, cut_origin, at_cut, cut_vertices, b);
+      ClipAdjoints(buffers[0], clip_origin, adjoint, m, cut);
+      CutAdjoints(cell, law, cut_origin, cut, cut_vertices, b);
     }
   }
   return cell_area;

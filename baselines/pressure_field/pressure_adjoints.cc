@@ -57,6 +57,54 @@ void PolygonAdjoints(const PolyVertex* poly, int m, double sign, const PressureL
   for (int t = 0; t < m; ++t) out[t].s = p[t] > 0 ? Eigen::Matrix<double, 6, 1>(-law.k * by_p[t]) : by_p[t] * 0.0;
 }
 
+void CutPolygonAdjoints(const LatticeCell& cell, const PolyVertex* poly, int m, double sign, const PressureLaw& law,
+                        const VertexOrigin* origin, CornerSensitivity* b) {
+  using Vector6 = Eigen::Matrix<double, 6, 1>;
+  const double c = 0.5 * sign;
+  double p[kMaxPolygon];
+  Eigen::Vector3d edge[kMaxPolygon];
+  Vector6 along[kMaxPolygon], by_p[kMaxPolygon];  // the derivative along the edge, in the pressure
+  for (int t = 0; t < m; ++t) {
+    p[t] = law.Pressure(poly[t]);
+    edge[t] = cell.corner[origin[t].b].x - cell.corner[origin[t].a].x;
+    along[t].setZero();
+    by_p[t].setZero();
+  }
+  for (int t = 1; t + 1 < m; ++t) {
+    // PolygonAdjoints' triangle, its 6x3 sensitivity G_j of each vertex applied to the edge e:
+    // force f a_j x e; torque a_j (xp . e) - (xp . a_j) e - beta av x e.
+    const int v[3] = {0, t, t + 1};
+    const Eigen::Vector3d &x0 = poly[0].x, &x1 = poly[t].x, &x2 = poly[t + 1].x;
+    const Eigen::Vector3d e1 = x1 - x0, e2 = x2 - x0;
+    const Eigen::Vector3d av = c * e1.cross(e2);
+    const double psum = p[0] + p[t] + p[t + 1];
+    const Eigen::Vector3d X = x0 + x1 + x2;
+    const Eigen::Vector3d xp = (psum * X + p[0] * x0 + p[t] * x1 + p[t + 1] * x2) / 12;
+    const double f = psum / 3;
+    const Eigen::Vector3d a[3] = {c * (e2 - e1), -c * e2, c * e1};
+    for (int j = 0; j < 3; ++j) {
+      const int i = v[j];
+      const Eigen::Vector3d& e = edge[i];
+      const double beta = (psum + p[i]) / 12;
+      along[i].head<3>() += f * a[j].cross(e);
+      along[i].tail<3>() += xp.dot(e) * a[j] - xp.dot(a[j]) * e - beta * av.cross(e);
+      by_p[i].head<3>() += av / 3;
+      by_p[i].tail<3>() += ((X + poly[i].x) / 12).cross(av);
+    }
+  }
+  // CutAdjoints with the position's part along the edge as formed.
+  for (int i = 0; i < m; ++i) {
+    const Vector6 s_adj = p[i] > 0 ? Vector6(-law.k * by_p[i]) : Vector6::Zero();
+    const int P = origin[i].a, Q = origin[i].b;
+    const double t = origin[i].t;
+    const double gp = cell.g[P], gq = cell.g[Q], dg = gp - gq;
+    const double sp = cell.corner[P].phi_M + cell.corner[P].phi_L, sq = cell.corner[Q].phi_M + cell.corner[Q].phi_L;
+    const Vector6 by_t = along[i] + s_adj * (sq - sp);
+    b->col(P) += (1 - t) * s_adj + (law.w_M * gq / (dg * dg)) * by_t;
+    b->col(Q) += t * s_adj - (law.w_M * gp / (dg * dg)) * by_t;
+  }
+}
+
 void ClipAdjoints(const PolyVertex* in, const VertexOrigin* origin, const VertexAdjoint* out_adj, int m,
                   VertexAdjoint* in_adj) {
   for (int i = 0; i < m; ++i) {
