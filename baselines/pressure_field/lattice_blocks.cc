@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "sdf/batch_distance.h"
+
 namespace contactlab {
 
 bool FitLattice(const Aabb& box_M, const Aabb& box_L, const Eigen::Vector3d& o_L, const Pose& X_LM, double h,
@@ -111,15 +113,23 @@ LatticeInOther::LatticeInOther(const Pose& X_ML_in, double h) : X_ML(X_ML_in) {
 
 void SampleBlockInOther(const DistanceField& field, const LatticeInOther& lattice, const Eigen::Vector3d& x0,
                         float* phi) {
+  // The vertices in M's frame, placed in double and rounded once to float, then looked up a
+  // vector at a time (the batch's transform the identity: the points as they are, bit for bit).
+  float x[kBlockVerts], y[kBlockVerts], z[kBlockVerts];
   const Eigen::Vector3d a0 = lattice.X_ML * x0;
   for (int k = 0; k < kVerts; ++k) {
     for (int j = 0; j < kVerts; ++j) {
       Eigen::Vector3d a = a0 + double(j) * lattice.step_j + double(k) * lattice.step_k;
       for (int i = 0; i < kVerts; ++i, a += lattice.step_i) {
-        phi[VertexIndex(i, j, k)] = field.Distance(float(a.x()), float(a.y()), float(a.z()));
+        const int v = VertexIndex(i, j, k);
+        x[v] = float(a.x());
+        y[v] = float(a.y());
+        z[v] = float(a.z());
       }
     }
   }
+  static constexpr BatchTransform kIdentity{{1, 0, 0, 0, 1, 0, 0, 0, 1}, {0, 0, 0}};
+  BatchDistances(field, kIdentity, x, y, z, nullptr, kBlockVerts, phi);
 }
 
 }  // namespace contactlab
