@@ -77,7 +77,7 @@ int CellCornerVertex(int ci, int cj, int ck, int c) { return VertexIndex(ci, cj,
 void LoadCell(const float* phi_M, const float* phi_L, const BlockVertices& v, const Eigen::Vector3d& x0, double h,
               int ci, int cj, int ck, LatticeCell* cell) {
   const int v0 = VertexIndex(ci, cj, ck);
-  bool overlapped = true;
+  std::uint8_t overlapped_at = 0;
   for (int c = 0; c < 8; ++c) {
     const int i = v0 + kCornerOffset[c];
     PolyVertex& corner = cell->corner[c];
@@ -85,9 +85,9 @@ void LoadCell(const float* phi_M, const float* phi_L, const BlockVertices& v, co
     corner.phi_L = phi_L[i];
     corner.x = x0 + h * Eigen::Vector3d(ci + (c & 1), cj + ((c >> 1) & 1), ck + ((c >> 2) & 1));
     cell->g[c] = v.g[i];
-    overlapped = overlapped && (v.flags[i] & kOverlapped);
+    overlapped_at |= (v.flags[i] & kOverlapped) ? std::uint8_t(1 << c) : 0;
   }
-  cell->overlapped = overlapped;
+  cell->overlapped_at = overlapped_at;
 }
 
 double IntegrateCell(const LatticeCell& cell, const PressureLaw& law, PressureSums* sums, SurfaceRecord* record,
@@ -101,13 +101,14 @@ double IntegrateCell(const LatticeCell& cell, const PressureLaw& law, PressureSu
     int m = CutTetrahedron(cell, tet, buffers[0], &toward, adjoints ? cut_origin : nullptr);
     if (m == 0) continue;
     const int cut_vertices = m;
-    // A cell where the bodies overlap at every corner overlaps throughout (the fields are
-    // linear on each tetrahedron): nothing to clip.
-    const PolyVertex* poly =
-        cell.overlapped ? buffers[0] : ClipToOverlap(buffers, &m, adjoints ? clip_origin : nullptr);
+    // A tetrahedron whose corners all overlap overlaps throughout (the fields are linear on
+    // it): nothing to clip.
+    const int corners = (1 << tet[0]) | (1 << tet[1]) | (1 << tet[2]) | (1 << tet[3]);
+    const bool inside = (cell.overlapped_at & corners) == corners;
+    const PolyVertex* poly = inside ? buffers[0] : ClipToOverlap(buffers, &m, adjoints ? clip_origin : nullptr);
     if (m < 3) continue;
     const double sign = IntegratePolygon(poly, m, toward, law, sums, &cell_area, record);
-    if (adjoints && cell.overlapped) {
+    if (adjoints && inside) {
       CutPolygonAdjoints(cell, poly, m, sign, law, cut_origin, b);  // no clip: one pass
     } else if (adjoints) {
       // Backwards: the integration, the clip, the cut.

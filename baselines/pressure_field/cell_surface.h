@@ -16,11 +16,11 @@
 namespace contactlab {
 
 // One lattice cell: its corners by bit (x = 1, y = 2, z = 4) with both fields there, the
-// gap at each, and whether the bodies overlap at every corner.
+// gap at each, and the corners where the bodies overlap.
 struct LatticeCell {
   PolyVertex corner[8];
   double g[8];
-  bool overlapped = true;  // phi_M + phi_L <= 0 at every corner
+  std::uint8_t overlapped_at = 0xFF;  // the corners where phi_M + phi_L <= 0, a bit each
 };
 
 // What each vertex of a block says about the cells that share it, as bits (BlockVertices).
