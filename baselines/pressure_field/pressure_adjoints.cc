@@ -6,60 +6,80 @@
 #include "baselines/pressure_field/cell_surface.h"
 
 namespace contactlab {
+namespace {
+
+using Vector6 = Eigen::Matrix<double, 6, 1>;
+
+// IntegratePolygon's fan triangle (0, t, t + 1) of a polygon with the pressures P at its
+// vertices and orientation factor C = sign / 2: av = c e1 x e2, F = (psum / 3) av, T = xp x av
+// with xp = (psum X + sum p_j x_j) / 12, X = x0 + x1 + x2. The derivatives in its corner j's
+// position: d av / d x_j = [a_j]x with a_0 = c (e2 - e1), a_1 = -c e2, a_2 = c e1, so the force's
+// is f [a_j]x (f = psum / 3) and the torque's [xp]x [a_j]x - beta_j [av]x, where [xp]x [a]x =
+// a xp^T - (xp . a) I and beta_j = (psum + p_j) / 12.
+struct FanTriangle {
+  FanTriangle(const PolyVertex* poly, const double* p, int t, double c) : v{0, t, t + 1} {
+    const Eigen::Vector3d &x0 = poly[0].x, &x1 = poly[t].x, &x2 = poly[t + 1].x;
+    const Eigen::Vector3d e1 = x1 - x0, e2 = x2 - x0;
+    av = c * e1.cross(e2);
+    psum = p[0] + p[t] + p[t + 1];
+    f = psum / 3;
+    X = x0 + x1 + x2;
+    xp = (psum * X + p[0] * x0 + p[t] * x1 + p[t + 1] * x2) / 12;
+    a[0] = c * (e2 - e1);
+    a[1] = -c * e2;
+    a[2] = c * e1;
+  }
+  double beta(const double* p, int j) const { return (psum + p[v[j]]) / 12; }
+  // The derivative of its force and torque in corner J's pressure, added to *BY_P.
+  void AddPressureSensitivity(const PolyVertex* poly, int j, Vector6* by_p) const {
+    by_p->head<3>() += av / 3;
+    by_p->tail<3>() += ((X + poly[v[j]].x) / 12).cross(av);
+  }
+
+  int v[3];
+  Eigen::Vector3d av, X, xp, a[3];
+  double psum = 0, f = 0;
+};
+
+}  // namespace
 
 void PolygonAdjoints(const PolyVertex* poly, int m, double sign, const PressureLaw& law,
                      VertexAdjoint* out) {
   // The orientation is IntegratePolygon's (constant under a small motion).
   const double c = 0.5 * sign;
   double p[kMaxPolygon];
-  Eigen::Matrix<double, 6, 1> by_p[kMaxPolygon];  // the derivative in each vertex's pressure
+  Vector6 by_p[kMaxPolygon];  // the derivative in each vertex's pressure
   for (int t = 0; t < m; ++t) {
     p[t] = law.Pressure(poly[t]);
     out[t].x.setZero();
     by_p[t].setZero();
   }
   for (int t = 1; t + 1 < m; ++t) {
-    const int v[3] = {0, t, t + 1};
-    const Eigen::Vector3d &x0 = poly[0].x, &x1 = poly[t].x, &x2 = poly[t + 1].x;
-    const Eigen::Vector3d e1 = x1 - x0, e2 = x2 - x0;
-    // IntegratePolygon's triangle: av = c e1 x e2, F = (psum / 3) av, T = xp x av with
-    // xp = (psum X + sum p_j x_j) / 12, X = x0 + x1 + x2.
-    const Eigen::Vector3d av = c * e1.cross(e2);
-    const double psum = p[0] + p[t] + p[t + 1];
-    const Eigen::Vector3d X = x0 + x1 + x2;
-    const Eigen::Vector3d xp = (psum * X + p[0] * x0 + p[t] * x1 + p[t + 1] * x2) / 12;
-    // d av / d x_j = [a_j]x / (psum / 3) with a_0 = c (e2 - e1), a_1 = -c e2, a_2 = c e1 (times
-    // psum / 3, the force's). The torque's: [xp]x [a_j]x - ((psum + p_j) / 12) [av]x, where
-    // [xp]x [a]x = a xp^T - (xp . a) I.
-    const double f = psum / 3;
-    const Eigen::Vector3d a[3] = {c * (e2 - e1), -c * e2, c * e1};
+    const FanTriangle tri(poly, p, t, c);
     for (int j = 0; j < 3; ++j) {
-      Eigen::Matrix<double, 6, 3>& G = out[v[j]].x;
-      const Eigen::Vector3d& aj = a[j];
-      const double beta = (psum + p[v[j]]) / 12;
-      const Eigen::Vector3d fa = f * aj, bav = beta * av;
+      Eigen::Matrix<double, 6, 3>& G = out[tri.v[j]].x;
+      const Eigen::Vector3d& aj = tri.a[j];
+      const Eigen::Vector3d fa = tri.f * aj, bav = tri.beta(p, j) * tri.av;
       // Force rows: f [a_j]x.
       G(0, 1) -= fa.z(); G(0, 2) += fa.y();
       G(1, 0) += fa.z(); G(1, 2) -= fa.x();
       G(2, 0) -= fa.y(); G(2, 1) += fa.x();
       // Torque rows: a_j xp^T - (xp . a_j) I - beta [av]x.
-      G.bottomRows<3>().noalias() += aj * xp.transpose();
-      const double d = xp.dot(aj);
+      G.bottomRows<3>().noalias() += aj * tri.xp.transpose();
+      const double d = tri.xp.dot(aj);
       G(3, 0) -= d; G(4, 1) -= d; G(5, 2) -= d;
       G(3, 1) += bav.z(); G(3, 2) -= bav.y();
       G(4, 0) -= bav.z(); G(4, 2) += bav.x();
       G(5, 0) += bav.y(); G(5, 1) -= bav.x();
-      by_p[v[j]].head<3>() += av / 3;
-      by_p[v[j]].tail<3>() += ((X + poly[v[j]].x) / 12).cross(av);
+      tri.AddPressureSensitivity(poly, j, &by_p[tri.v[j]]);
     }
   }
   // p = max(0, -k s).
-  for (int t = 0; t < m; ++t) out[t].s = p[t] > 0 ? Eigen::Matrix<double, 6, 1>(-law.k * by_p[t]) : by_p[t] * 0.0;
+  for (int t = 0; t < m; ++t) out[t].s = p[t] > 0 ? Vector6(-law.k * by_p[t]) : Vector6(by_p[t] * 0.0);
 }
 
 void CutPolygonAdjoints(const LatticeCell& cell, const PolyVertex* poly, int m, double sign, const PressureLaw& law,
                         const VertexOrigin* origin, CornerSensitivity* b) {
-  using Vector6 = Eigen::Matrix<double, 6, 1>;
   const double c = 0.5 * sign;
   double p[kMaxPolygon];
   Eigen::Vector3d edge[kMaxPolygon];
@@ -71,25 +91,16 @@ void CutPolygonAdjoints(const LatticeCell& cell, const PolyVertex* poly, int m, 
     by_p[t].setZero();
   }
   for (int t = 1; t + 1 < m; ++t) {
-    // PolygonAdjoints' triangle, its 6x3 sensitivity G_j of each vertex applied to the edge e:
-    // force f a_j x e; torque a_j (xp . e) - (xp . a_j) e - beta av x e.
-    const int v[3] = {0, t, t + 1};
-    const Eigen::Vector3d &x0 = poly[0].x, &x1 = poly[t].x, &x2 = poly[t + 1].x;
-    const Eigen::Vector3d e1 = x1 - x0, e2 = x2 - x0;
-    const Eigen::Vector3d av = c * e1.cross(e2);
-    const double psum = p[0] + p[t] + p[t + 1];
-    const Eigen::Vector3d X = x0 + x1 + x2;
-    const Eigen::Vector3d xp = (psum * X + p[0] * x0 + p[t] * x1 + p[t + 1] * x2) / 12;
-    const double f = psum / 3;
-    const Eigen::Vector3d a[3] = {c * (e2 - e1), -c * e2, c * e1};
+    // Each corner's 6x3 sensitivity G_j applied to its edge e: force f a_j x e; torque
+    // a_j (xp . e) - (xp . a_j) e - beta av x e.
+    const FanTriangle tri(poly, p, t, c);
     for (int j = 0; j < 3; ++j) {
-      const int i = v[j];
+      const int i = tri.v[j];
       const Eigen::Vector3d& e = edge[i];
-      const double beta = (psum + p[i]) / 12;
-      along[i].head<3>() += f * a[j].cross(e);
-      along[i].tail<3>() += xp.dot(e) * a[j] - xp.dot(a[j]) * e - beta * av.cross(e);
-      by_p[i].head<3>() += av / 3;
-      by_p[i].tail<3>() += ((X + poly[i].x) / 12).cross(av);
+      const Eigen::Vector3d& aj = tri.a[j];
+      along[i].head<3>() += tri.f * aj.cross(e);
+      along[i].tail<3>() += tri.xp.dot(e) * aj - tri.xp.dot(aj) * e - tri.beta(p, j) * tri.av.cross(e);
+      tri.AddPressureSensitivity(poly, j, &by_p[i]);
     }
   }
   // CutAdjoints with the position's part along the edge as formed.
