@@ -128,8 +128,7 @@ void SampleBlockInOther(const DistanceField& field, const LatticeInOther& lattic
       }
     }
   }
-  static constexpr BatchTransform kIdentity{{1, 0, 0, 0, 1, 0, 0, 0, 1}, {0, 0, 0}};
-  BatchDistances(field, kIdentity, x, y, z, nullptr, kBlockVerts, phi);
+  BatchDistances(field, kIdentityTransform, x, y, z, nullptr, kBlockVerts, phi);
 }
 
 }  // namespace contactlab

@@ -41,6 +41,26 @@ struct FanTriangle {
   double psum = 0, f = 0;
 };
 
+// A vertex's sensitivity in its overlap s from that in its pressure BY_P: p = max(0, -k s).
+Vector6 OverlapSensitivity(double p, const PressureLaw& law, const Vector6& by_p) {
+  return p > 0 ? Vector6(-law.k * by_p) : Vector6(by_p * 0.0);
+}
+
+// Through one cut vertex, origin O on CELL's edge from corner p to q: its sensitivities in its
+// position along the edge, ALONG = (dW/dx) (x_q - x_p), and in its overlap, BY_S, added to the
+// corners' sensitivities *B. x = x_p + t (x_q - x_p), s = s_p + t (s_q - s_p), t = g_p / (g_p -
+// g_q) with g = -w_M phi_M + w_L phi_L; only phi_M moves, and s with it.
+void AddThroughCut(const LatticeCell& cell, const PressureLaw& law, const VertexOrigin& o, const Vector6& along,
+                   const Vector6& by_s, CornerSensitivity* b) {
+  const int p = o.a, q = o.b;
+  const PolyVertex &P = cell.corner[p], &Q = cell.corner[q];
+  const double gp = cell.g[p], gq = cell.g[q], dg = gp - gq;
+  const double sp = P.phi_M + P.phi_L, sq = Q.phi_M + Q.phi_L;
+  const Vector6 by_t = along + by_s * (sq - sp);
+  b->col(p) += (1 - o.t) * by_s + (law.w_M * gq / (dg * dg)) * by_t;
+  b->col(q) += o.t * by_s - (law.w_M * gp / (dg * dg)) * by_t;
+}
+
 }  // namespace
 
 void PolygonAdjoints(const PolyVertex* poly, int m, double sign, const PressureLaw& law,
@@ -74,8 +94,7 @@ void PolygonAdjoints(const PolyVertex* poly, int m, double sign, const PressureL
       tri.AddPressureSensitivity(poly, j, &by_p[tri.v[j]]);
     }
   }
-  // p = max(0, -k s).
-  for (int t = 0; t < m; ++t) out[t].s = p[t] > 0 ? Vector6(-law.k * by_p[t]) : Vector6(by_p[t] * 0.0);
+  for (int t = 0; t < m; ++t) out[t].s = OverlapSensitivity(p[t], law, by_p[t]);
 }
 
 void CutPolygonAdjoints(const LatticeCell& cell, const PolyVertex* poly, int m, double sign, const PressureLaw& law,
@@ -104,16 +123,7 @@ void CutPolygonAdjoints(const LatticeCell& cell, const PolyVertex* poly, int m, 
     }
   }
   // CutAdjoints with the position's part along the edge as formed.
-  for (int i = 0; i < m; ++i) {
-    const Vector6 s_adj = p[i] > 0 ? Vector6(-law.k * by_p[i]) : Vector6::Zero();
-    const int P = origin[i].a, Q = origin[i].b;
-    const double t = origin[i].t;
-    const double gp = cell.g[P], gq = cell.g[Q], dg = gp - gq;
-    const double sp = cell.corner[P].phi_M + cell.corner[P].phi_L, sq = cell.corner[Q].phi_M + cell.corner[Q].phi_L;
-    const Vector6 by_t = along[i] + s_adj * (sq - sp);
-    b->col(P) += (1 - t) * s_adj + (law.w_M * gq / (dg * dg)) * by_t;
-    b->col(Q) += t * s_adj - (law.w_M * gp / (dg * dg)) * by_t;
-  }
+  for (int i = 0; i < m; ++i) AddThroughCut(cell, law, origin[i], along[i], OverlapSensitivity(p[i], law, by_p[i]), b);
 }
 
 void ClipAdjoints(const PolyVertex* in, const VertexOrigin* origin, const VertexAdjoint* out_adj, int m,
@@ -130,7 +140,7 @@ void ClipAdjoints(const PolyVertex* in, const VertexOrigin* origin, const Vertex
     VertexAdjoint& B = in_adj[o.b];
     // x = x_a + t (x_b - x_a), s likewise, t = s_a / (s_a - s_b).
     const double sa = in[o.a].phi_M + in[o.a].phi_L, sb = in[o.b].phi_M + in[o.b].phi_L, d = sa - sb;
-    const Eigen::Matrix<double, 6, 1> by_t = g.x * (in[o.b].x - in[o.a].x) + g.s * (sb - sa);
+    const Vector6 by_t = g.x * (in[o.b].x - in[o.a].x) + g.s * (sb - sa);
     A.x += (1 - o.t) * g.x;
     B.x += o.t * g.x;
     A.s += (1 - o.t) * g.s - (sb / (d * d)) * by_t;
@@ -141,16 +151,8 @@ void ClipAdjoints(const PolyVertex* in, const VertexOrigin* origin, const Vertex
 void CutAdjoints(const LatticeCell& cell, const PressureLaw& law, const VertexOrigin* origin, const VertexAdjoint* adj,
                  int n, CornerSensitivity* b) {
   for (int i = 0; i < n; ++i) {
-    const int p = origin[i].a, q = origin[i].b;
-    const double t = origin[i].t;
-    const PolyVertex &P = cell.corner[p], &Q = cell.corner[q];
-    // x = x_p + t (x_q - x_p), s = s_p + t (s_q - s_p), t = g_p / (g_p - g_q) with
-    // g = -w_M phi_M + w_L phi_L; only phi_M moves, and s with it.
-    const double gp = cell.g[p], gq = cell.g[q], dg = gp - gq;
-    const double sp = P.phi_M + P.phi_L, sq = Q.phi_M + Q.phi_L;
-    const Eigen::Matrix<double, 6, 1> by_t = adj[i].x * (Q.x - P.x) + adj[i].s * (sq - sp);
-    b->col(p) += (1 - t) * adj[i].s + (law.w_M * gq / (dg * dg)) * by_t;
-    b->col(q) += t * adj[i].s - (law.w_M * gp / (dg * dg)) * by_t;
+    const Eigen::Vector3d edge = cell.corner[origin[i].b].x - cell.corner[origin[i].a].x;
+    AddThroughCut(cell, law, origin[i], adj[i].x * edge, adj[i].s, b);
   }
 }
 

@@ -33,7 +33,7 @@ struct VertexAdjoint {
 void PolygonAdjoints(const PolyVertex* poly, int m, double sign, const PressureLaw& law,
                      VertexAdjoint* out);
 // PolygonAdjoints and then CutAdjoints for a polygon that is a tetrahedron's cut itself (no
-// clip: the cell overlaps throughout), in one pass: each vertex moves only along its edge of
+// clip: the tetrahedron overlaps throughout), in one pass: each vertex moves only along its edge of
 // the cell, so only its position sensitivity along that edge is formed, never the 6x3 whole.
 // POLY (M vertices) came from CELL's corners as ORIGIN says; SIGN is IntegratePolygon's.
 void CutPolygonAdjoints(const LatticeCell& cell, const PolyVertex* poly, int m, double sign, const PressureLaw& law,

@@ -205,14 +205,13 @@ const DistanceField& CachedDenseSame(int cells) {
 // a tree level is often smaller), identity pose. Same counters as TimeLookups.
 void TimeBatchLookups(benchmark::State& state, const bench::QueryPoints& p, const DistanceField& f) {
   constexpr int kChunk = 256;
-  const BatchTransform identity{{1, 0, 0, 0, 1, 0, 0, 0, 1}, {0, 0, 0}};
   const int n = int(p.size());
   float d[kChunk];
   for (auto _ : state) {
     float sum = 0;
     for (int s = 0; s < n; s += kChunk) {
       const int m = std::min(kChunk, n - s);
-      BatchDistances(f, identity, p.x.data() + s, p.y.data() + s, p.z.data() + s, nullptr, m, d);
+      BatchDistances(f, kIdentityTransform, p.x.data() + s, p.y.data() + s, p.z.data() + s, nullptr, m, d);
       for (int k = 0; k < m; ++k) sum += d[k];
     }
     benchmark::DoNotOptimize(sum);

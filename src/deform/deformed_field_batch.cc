@@ -185,16 +185,15 @@ bool NearestAndPullBacksFor(int k, const DeformedDistanceField& field, const Def
 void DomainSums(const DeformedDistanceField& field, const DeformedFieldState& state, int dom, const float* x,
                 const float* y, const float* z, int nb, Scratch* s, float* HWY_RESTRICT sum) {
   const int k = field.neighbours();  // every domain holds at least k slots (its construction)
-  const BatchTransform identity{{1, 0, 0, 0, 1, 0, 0, 0, 1}, {0, 0, 0}};
   // Only the first k - 1 neighbours carry weight unless some point weighs its k-th (ties,
   // or points on a proxy): their lookups are skipped then.
   const int looked = NearestAndPullBacksFor(k, field, state, dom, x, y, z, nb, s) ? k : k - 1;
   const DistanceField& rest = field.domain_field(dom);
   if (nb == kBatch) {
-    BatchDistances(rest, identity, s->px, s->py, s->pz, nullptr, looked * kBatch, s->looked);
+    BatchDistances(rest, kIdentityTransform, s->px, s->py, s->pz, nullptr, looked * kBatch, s->looked);
   } else {
     for (int m = 0; m < looked; ++m) {
-      BatchDistances(rest, identity, s->px + m * kBatch, s->py + m * kBatch, s->pz + m * kBatch, nullptr, nb,
+      BatchDistances(rest, kIdentityTransform, s->px + m * kBatch, s->py + m * kBatch, s->pz + m * kBatch, nullptr, nb,
                      s->looked + m * kBatch);
     }
   }

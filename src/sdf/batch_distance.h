@@ -16,6 +16,10 @@ struct BatchTransform {
   float t[3];
 };
 
+// The identity: points looked up as they are, already in the field's frame (R p + t is p bit for
+// bit, each coordinate a fused 1 * p + 0).
+inline constexpr BatchTransform kIdentityTransform{{1, 0, 0, 0, 1, 0, 0, 0, 1}, {0, 0, 0}};
+
 // D[k] = FIELD.Distance(R p + t) for p = (X[i], Y[i], Z[i]), i = INDEX[k] (or i = k when INDEX
 // is null), k in [0, N). Equal to the scalar Distance to float rounding (the vector path uses
 // fused multiply-adds). Never allocates, never throws; the field must hold fewer than 2^31

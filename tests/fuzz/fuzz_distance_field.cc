@@ -32,7 +32,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const float y[5] = {float(c.y()), float(box.min.y()), float(box.max.y()), float(c.y() + 0.37 * e.y()), 0.f};
     const float z[5] = {float(c.z()), float(box.min.z()), float(box.max.z()), float(c.z() + 0.37 * e.z()), 0.f};
     float d[5];
-    contactlab::BatchDistances(field, {{1, 0, 0, 0, 1, 0, 0, 0, 1}, {0, 0, 0}}, x, y, z, nullptr, 5, d);
+    contactlab::BatchDistances(field, contactlab::kIdentityTransform, x, y, z, nullptr, 5, d);
   });
   return 0;
 }

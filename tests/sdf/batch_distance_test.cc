@@ -138,11 +138,10 @@ TEST(BatchDistances, LastGridPlanesUseTheLastCell) {
       z.push_back(float(p.z()));
     }
   }
-  const BatchTransform identity{{1, 0, 0, 0, 1, 0, 0, 0, 1}, {0, 0, 0}};
   ForEachTarget([&](const char* target) {
     SCOPED_TRACE(target);
     std::vector<float> d(x.size());
-    BatchDistances(af.field, identity, x.data(), y.data(), z.data(), nullptr, int(x.size()), d.data());
+    BatchDistances(af.field, kIdentityTransform, x.data(), y.data(), z.data(), nullptr, int(x.size()), d.data());
     for (std::size_t k = 0; k < x.size(); ++k) {
       const Eigen::Vector3d p(x[k], y[k], z[k]);
       EXPECT_NEAR(d[k], af.a.dot(p) + af.b, 1e-6) << k;
@@ -154,8 +153,7 @@ TEST(BatchDistances, AnEmptyFieldIsNeverInContact) {
   const DistanceField empty;
   const float x[5] = {0, 1, 2, 3, 4};
   float d[5];
-  const BatchTransform X{{1, 0, 0, 0, 1, 0, 0, 0, 1}, {0, 0, 0}};
-  BatchDistances(empty, X, x, x, x, nullptr, 5, d);
+  BatchDistances(empty, kIdentityTransform, x, x, x, nullptr, 5, d);
   for (float v : d) EXPECT_EQ(v, std::numeric_limits<float>::infinity());
 }
 

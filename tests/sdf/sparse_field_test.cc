@@ -172,13 +172,12 @@ TEST(SparseField, BatchLookupsEqualTheScalarOnEveryInstructionSet) {
   y.push_back(0);
   z.push_back(0);
   const int n = int(x.size());
-  BatchTransform identity{{1, 0, 0, 0, 1, 0, 0, 0, 1}, {0, 0, 0}};
   const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
   ASSERT_FALSE(targets.empty());
   for (std::int64_t target : targets) {
     hwy::SetSupportedTargetsForTest(target);
     std::vector<float> d(n);
-    BatchDistances(t.sparse, identity, x.data(), y.data(), z.data(), nullptr, n, d.data());
+    BatchDistances(t.sparse, kIdentityTransform, x.data(), y.data(), z.data(), nullptr, n, d.data());
     for (int i = 0; i < n - 1; ++i) {
       const float s = t.sparse.Distance(x[i], y[i], z[i]);
       ASSERT_NEAR(d[i], s, 1e-4f * float(t.h))
