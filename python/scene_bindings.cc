@@ -1,5 +1,5 @@
-// contactlab.Scene and contactlab.Body: a scene read from YAML (experiment/scene.h), its two
-// bodies' meshes, distance fields and pointshells (experiment/scene_assets.h) as NumPy arrays.
+// contactlab.Scene and contactlab.Body: a scene read from YAML (scene/scene.h), its two
+// bodies' meshes, distance fields and pointshells (scene/scene_assets.h) as NumPy arrays.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -9,8 +9,8 @@
 #include <string>
 
 #include "bindings.h"
-#include "experiment/scene.h"
-#include "experiment/scene_assets.h"
+#include "scene/scene.h"
+#include "scene/scene_assets.h"
 #include "geometry/mesh_io.h"
 #include "mesh_arrays.h"
 #include "poses.h"

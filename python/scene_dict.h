@@ -1,10 +1,10 @@
 // Scene.from_dict: a scene given as Python dicts, lists and scalars in the structure of a scene
-// YAML file (experiment/scene.h), a body's mesh optionally a contactlab.Mesh held in memory.
+// YAML file (scene/scene.h), a body's mesh optionally a contactlab.Mesh held in memory.
 #pragma once
 
 #include <pybind11/pybind11.h>
 
-#include "experiment/scene.h"
+#include "scene/scene.h"
 
 namespace contactlab::python {
 

@@ -4,8 +4,8 @@
 
 #include <memory>
 
-#include "experiment/scene.h"
-#include "experiment/scene_assets.h"
+#include "scene/scene.h"
+#include "scene/scene_assets.h"
 
 namespace contactlab::python {
 

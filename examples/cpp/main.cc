@@ -4,8 +4,8 @@
 #include <exception>
 
 #include "contact/register_contact_models.h"
-#include "experiment/scene.h"
-#include "experiment/scene_assets.h"
+#include "scene/scene.h"
+#include "scene/scene_assets.h"
 
 int main(int argc, char** argv) try {
   if (argc < 2) return std::fprintf(stderr, "usage: %s SCENE.yaml [MODEL]\n", argv[0]), 2;

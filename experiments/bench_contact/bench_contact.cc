@@ -28,9 +28,9 @@
 #include "placed_scene.h"
 #include "roofline.h"
 #include "pointshell_contact/pointshell_contact_model.h"
-#include "experiment/contact_placement.h"
-#include "experiment/scene_assets.h"
-#include "experiment/scene.h"
+#include "scene/contact_placement.h"
+#include "scene/scene_assets.h"
+#include "scene/scene.h"
 #include "util/data_path.h"
 
 namespace contactlab {

@@ -49,9 +49,9 @@
 #include "pointshell_contact/pointshell_contact_model.h"
 #include "deform/reduced_integrator.h"
 #include "deform/reduced_point_batch.h"
-#include "experiment/contact_placement.h"
-#include "experiment/scene.h"
-#include "experiment/scene_assets.h"
+#include "scene/contact_placement.h"
+#include "scene/scene.h"
+#include "scene/scene_assets.h"
 #include "util/data_path.h"
 #include "util/error.h"
 

@@ -32,9 +32,9 @@
 #include "bench_main.h"
 #include "placed_scene.h"
 #include "pointshell_contact/pointshell_contact_model.h"
-#include "experiment/contact_placement.h"
-#include "experiment/scene_assets.h"
-#include "experiment/scene.h"
+#include "scene/contact_placement.h"
+#include "scene/scene_assets.h"
+#include "scene/scene.h"
 #include "util/data_path.h"
 #include "util/error.h"
 #ifdef CONTACTLAB_HAVE_CGAL

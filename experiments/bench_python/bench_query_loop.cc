@@ -16,8 +16,8 @@
 #include "contact/register_contact_models.h"
 #include "bench_common.h"
 #include "bench_main.h"
-#include "experiment/scene.h"
-#include "experiment/scene_assets.h"
+#include "scene/scene.h"
+#include "scene/scene_assets.h"
 #include "util/data_path.h"
 
 namespace contactlab {

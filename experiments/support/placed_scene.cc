@@ -8,7 +8,7 @@
 #include <map>
 #include <vector>
 
-#include "experiment/contact_placement.h"
+#include "scene/contact_placement.h"
 #include "util/data_path.h"
 #include "util/error.h"
 

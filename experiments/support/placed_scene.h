@@ -11,8 +11,8 @@
 #include <string>
 
 #include "contact/contact_model.h"
-#include "experiment/scene.h"
-#include "experiment/scene_assets.h"
+#include "scene/scene.h"
+#include "scene/scene_assets.h"
 #include "geometry/pose.h"
 
 namespace contactlab::bench {
@@ -31,7 +31,7 @@ struct PlacedScene {
 };
 
 // Loads SCENE_FILE (A's pointshell gets POINTS and LEVELS when > 0) and places A with the
-// paper's linear model at kDepths (experiment/contact_placement.h TouchAlong); with ADD_OFFSET the target depth grows by the
+// paper's linear model at kDepths (scene/contact_placement.h TouchAlong); with ADD_OFFSET the target depth grows by the
 // pointshell's offset, so the meshes themselves (not the offset surface) overlap by about
 // kDepths, as the mesh-based models need. Cached per argument set for the program's lifetime.
 // CONTACTLAB_BENCH_FIELD=STORAGE:RESOLUTION (e.g. sparse:1024, dense:256) replaces the field

@@ -3,7 +3,7 @@
 // and 3) and prints the wrench on the field body, points in contact, nodes visited and level
 // rendered; --contacts also the model's contacts (ContactModel::LatestContacts).
 // --touch first moves the field body toward the pointshell body until it is DEPTH deep, as
-// `session --touch` does (experiment/contact_placement.h).
+// `session --touch` does (scene/contact_placement.h).
 // `contactlab models`: the registered contact models, what each needs and what it is.
 #include <nlohmann/json.hpp>
 
@@ -17,10 +17,10 @@
 #include "cli/command_registry.h"
 #include "contact/contact_stats_fields.h"
 #include "contact/model_registry.h"
-#include "experiment/contact_placement.h"
-#include "experiment/reduced_coordinates.h"
-#include "experiment/scene_assets.h"
-#include "experiment/scene.h"
+#include "scene/contact_placement.h"
+#include "scene/reduced_coordinates.h"
+#include "scene/scene_assets.h"
+#include "scene/scene.h"
 #include "util/data_path.h"
 #include "util/error.h"
 

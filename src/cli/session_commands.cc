@@ -31,9 +31,9 @@
 #include <vector>
 
 #include "cli/command_registry.h"
-#include "experiment/contact_placement.h"
-#include "experiment/scene_assets.h"
-#include "experiment/scene.h"
+#include "scene/contact_placement.h"
+#include "scene/scene_assets.h"
+#include "scene/scene.h"
 #include "haptics/cpu_affinity.h"
 #include "haptics/device_factory.h"
 #include "haptics/haptic_cycle.h"

@@ -17,8 +17,8 @@
 
 #include "cli/command_registry.h"
 #include "contact/model_registry.h"
-#include "experiment/scene.h"
-#include "experiment/scene_assets.h"
+#include "scene/scene.h"
+#include "scene/scene_assets.h"
 #include "util/atomic_file.h"
 #include "util/data_path.h"
 #include "util/error.h"

@@ -9,7 +9,7 @@
 
 namespace contactlab {
 
-// How a model's stiffness is set in a scene (experiment/stiffness_match.h).
+// How a model's stiffness is set in a scene (scene/stiffness_match.h).
 enum class StiffnessRule {
   kOwn,      // each model's own stiffness keys as given
   kMatched,  // every model's wrench scaled so a reference press gives the paper's model's force

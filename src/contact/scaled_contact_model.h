@@ -4,7 +4,7 @@
 // Every registered model's wrench is linear in its stiffness parameters (k_C of the penalty
 // models, the pressure field's modulus, the inner spheres' volume stiffness), so this is the
 // same as multiplying those parameters by s, without naming any of them: the scene key
-// `model.stiffness: matched` (experiment/stiffness_match.h) uses it to put every model at the
+// `model.stiffness: matched` (scene/stiffness_match.h) uses it to put every model at the
 // paper's model's stiffness. Allocation-free and throw-free in Evaluate, as the inner model.
 #pragma once
 

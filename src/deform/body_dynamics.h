@@ -5,7 +5,7 @@
 // stiffness, for a linearly implicit step) through the BodyDeformation that Prepare hands out;
 // after the query Step advances the body with them. The offline runner, the live session and
 // the closed-loop study all step their deformable bodies through it (built from a scene body by
-// MakeBodyDynamics, experiment/scene_assets.h). Allocation-free after construction.
+// MakeBodyDynamics, scene/scene_assets.h). Allocation-free after construction.
 #pragma once
 
 #include <Eigen/Core>

@@ -50,7 +50,7 @@ ReducedModel BuildReducedModel(const TetMesh& mesh, const ReducedModelOptions& o
 
 // The version of what BuildReducedModel (with the voxel tet mesh it is given) produces. Raise it
 // with any change that alters the output for the same inputs: cached results
-// (experiment/scene_assets.h) of an older version are then no longer found.
+// (scene/scene_assets.h) of an older version are then no longer found.
 inline constexpr int kReducedModelBuilderVersion = 1;
 
 // Versioned binary file (util/binary_io.h), magic "CLRM", version 1, with a checksum.

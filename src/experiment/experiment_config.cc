@@ -18,7 +18,7 @@ namespace {
 
 // Short sweep-axis names and the key paths they stand for.
 // The sweep aliases of a config of STUDY: the scene's (its parameter tables name the keys a sweep
-// may name alone, experiment/scene.h), the harness's own, and the study's.
+// may name alone, scene/scene.h), the harness's own, and the study's.
 // Built afresh at each call (a few dozen keys), never cached: a model registered later (a test's,
 // a Python one) brings its keys with it.
 std::map<std::string, std::string> AxisAliases(const Study& study) {

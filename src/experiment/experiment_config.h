@@ -54,8 +54,8 @@
 #include <utility>
 #include <vector>
 
-#include "experiment/scene.h"
-#include "experiment/trajectory.h"
+#include "scene/scene.h"
+#include "scene/trajectory.h"
 #include "util/config_node.h"
 
 namespace contactlab {

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "experiment/experiment_config.h"
-#include "experiment/scene_assets.h"
+#include "scene/scene_assets.h"
 
 namespace contactlab {
 

@@ -32,7 +32,7 @@ struct HapticCycleConfig {
   // Body A's dynamics when A is a deformable pointshell (paper sec. 4): its deformation is held
   // fixed during the contact query, then stepped once at the end of the cycle with the reduced
   // contact force (and stiffness), as the object's coupling mode and staggering say. Null: A is
-  // rigid. Must outlive the cycle (experiment/scene_assets.h MakeSceneDynamics builds it).
+  // rigid. Must outlive the cycle (scene/scene_assets.h MakeSceneDynamics builds it).
   BodyDynamics* dynamics_A = nullptr;
   // The haptic body H's own dynamics when H is a deformable field body (paper sec. 4.2 and 5,
   // "the deformable haptic object"): three configurations — the manipulandum, H's rigid

@@ -67,7 +67,7 @@ Pointshell BuildPointshell(const DistanceField& field, const PointshellOptions& 
                            const TriangleMesh* mesh = nullptr, PointshellBuildReport* report = nullptr);
 
 // The version of what BuildPointshell produces. Raise it with any change that alters the output for
-// the same inputs: cached results (experiment/scene_assets.h) of an older version are then no
+// the same inputs: cached results (scene/scene_assets.h) of an older version are then no
 // longer found.
 inline constexpr int kPointshellBuilderVersion = 1;
 

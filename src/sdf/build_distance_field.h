@@ -54,7 +54,7 @@ struct DistanceFieldOptions {
 DistanceField BuildDistanceField(const TriangleMesh& mesh, const DistanceFieldOptions& options = {});
 
 // The version of what BuildDistanceField produces. Raise it with any change that alters the output
-// for the same inputs: cached results (experiment/scene_assets.h) of an older version are then no
+// for the same inputs: cached results (scene/scene_assets.h) of an older version are then no
 // longer found.
 inline constexpr int kDistanceFieldBuilderVersion = 1;
 

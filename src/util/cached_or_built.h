@@ -1,5 +1,5 @@
 // A value read from its cache file when a good one is there, and otherwise built and saved:
-// the scene's fields, pointshells and reduced models (experiment/scene_assets.cc) and what
+// the scene's fields, pointshells and reduced models (scene/scene_assets.cc) and what
 // models derive from a field (an inner-sphere packing, ContactBody::DerivedCachePath).
 #pragma once
 

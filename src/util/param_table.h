@@ -31,7 +31,7 @@ namespace contactlab {
 // The member of a block's struct that a row fills: PARAM_MEMBER(material.density).
 #define PARAM_MEMBER(member) [](auto& s) -> auto& { return s.member; }
 
-// The cached artefacts of a body (experiment/scene_assets.h) a parameter's value may shape.
+// The cached artefacts of a body (scene/scene_assets.h) a parameter's value may shape.
 enum ParamArtefact : unsigned {
   kShapesNothing = 0,
   kShapesField = 1u << 0,

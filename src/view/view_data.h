@@ -12,8 +12,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "experiment/scene.h"
-#include "experiment/scene_assets.h"
+#include "scene/scene.h"
+#include "scene/scene_assets.h"
 
 namespace contactlab {
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <utility>
 
-#include "experiment/scene.h"
+#include "scene/scene.h"
 #include "penalty_model_checks.h"
 #include "util/config_node.h"
 #include "util/error.h"

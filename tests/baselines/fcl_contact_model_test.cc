@@ -9,7 +9,7 @@
 #include <cmath>
 #include <string>
 
-#include "experiment/scene.h"
+#include "scene/scene.h"
 #include "penalty_model_checks.h"
 #include "util/config_node.h"
 #include "util/error.h"

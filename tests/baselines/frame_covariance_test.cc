@@ -16,9 +16,9 @@
 
 #include "contact/register_contact_models.h"
 #include "contact/model_registry.h"
-#include "experiment/scene.h"
+#include "scene/scene.h"
 #include "experiment/deformable_fixture.h"
-#include "experiment/scene_assets.h"
+#include "scene/scene_assets.h"
 #include "test_support.h"
 #include "util/config_node.h"
 

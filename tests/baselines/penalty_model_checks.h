@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "contact/contact_model.h"
-#include "experiment/scene.h"
+#include "scene/scene.h"
 #include "geometry/procedural_shapes.h"
 #include "util/config_node.h"
 #include "util/error.h"

@@ -14,7 +14,7 @@
 #include "baselines/pointshell_ccd/pointshell_ccd_model.h"
 #include "baselines/pointshell_ccd/time_of_impact.h"
 #include "contact/test_shells.h"
-#include "experiment/scene.h"
+#include "scene/scene.h"
 #include "util/config_node.h"
 #include "util/error.h"
 

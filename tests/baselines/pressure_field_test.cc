@@ -18,7 +18,7 @@
 #include "baselines/pressure_field/pressure_field_params.h"
 #include "baselines/volumetric_cases.h"
 #include "contact/test_shells.h"
-#include "experiment/scene.h"
+#include "scene/scene.h"
 #include "util/config_node.h"
 #include "geometry/pose.h"
 #include "util/error.h"

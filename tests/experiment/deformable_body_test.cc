@@ -6,7 +6,7 @@
 #include <fstream>
 
 #include "experiment/experiment_config.h"
-#include "experiment/scene_assets.h"
+#include "scene/scene_assets.h"
 #include "test_support.h"
 #include "util/error.h"
 

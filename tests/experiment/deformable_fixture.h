@@ -11,7 +11,7 @@
 #include "reduced/reduced_state.h"
 #include "experiment/experiment_config.h"
 #include "experiment/studies/contact/contact_study.h"
-#include "experiment/scene_assets.h"
+#include "scene/scene_assets.h"
 #include "test_support.h"
 
 namespace contactlab::testing {

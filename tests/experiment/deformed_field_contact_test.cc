@@ -19,7 +19,7 @@
 #include "deform/reduced_integrator.h"
 #include "experiment/experiment_config.h"
 #include "experiment/studies/contact/contact_study.h"
-#include "experiment/scene_assets.h"
+#include "scene/scene_assets.h"
 #include "deformable_fixture.h"
 #include "deformable_references.h"
 #include "test_support.h"

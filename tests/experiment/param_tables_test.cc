@@ -15,8 +15,8 @@
 
 #include "contact/model_registry.h"
 #include "experiment/experiment_config.h"
-#include "experiment/scene.h"
-#include "experiment/scene_assets.h"
+#include "scene/scene.h"
+#include "scene/scene_assets.h"
 #include "test_support.h"
 #include "util/error.h"
 #include "util/param_table.h"

@@ -21,8 +21,8 @@
 #include "contact/model_registry.h"
 #include "deformable_fixture.h"
 #include "deformable_references.h"
-#include "experiment/scene.h"
-#include "experiment/scene_assets.h"
+#include "scene/scene.h"
+#include "scene/scene_assets.h"
 #include "test_support.h"
 #include "util/config_node.h"
 

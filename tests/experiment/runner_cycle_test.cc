@@ -14,7 +14,7 @@
 #include "contact/model_registry.h"
 #include "experiment/studies/contact/result_csv.h"
 #include "experiment/studies/contact/contact_study.h"
-#include "experiment/trajectory.h"
+#include "scene/trajectory.h"
 #include "scene_fixtures.h"
 #include "test_support.h"
 

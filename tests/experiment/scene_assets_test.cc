@@ -1,10 +1,10 @@
-#include "experiment/scene_assets.h"
+#include "scene/scene_assets.h"
 
 #include <gtest/gtest.h>
 
 #include <fstream>
 
-#include "experiment/scene.h"
+#include "scene/scene.h"
 #include "geometry/mesh_io.h"
 #include "geometry/procedural_shapes.h"
 #include "pointshell/pointshell_io.h"

@@ -1,4 +1,4 @@
-// model.stiffness: matched (experiment/stiffness_match.h), checked against what it claims, not
+// model.stiffness: matched (scene/stiffness_match.h), checked against what it claims, not
 // against its own arithmetic: a scaled wrench is the model at scaled stiffness (the paper's
 // model at twice k_C, the pressure field at twice its moduli), the matched factor of a model
 // that does not read k_C follows the paper's model's k_C exactly, and on the reference press,
@@ -14,9 +14,9 @@
 #include "contact/register_contact_models.h"
 #include "contact/scaled_contact_model.h"
 #include "experiment/deformable_fixture.h"
-#include "experiment/scene.h"
-#include "experiment/scene_assets.h"
-#include "experiment/stiffness_match.h"
+#include "scene/scene.h"
+#include "scene/scene_assets.h"
+#include "scene/stiffness_match.h"
 #include "scene_fixtures.h"
 #include "test_support.h"
 #include "util/config_node.h"

@@ -13,7 +13,7 @@
 
 #include "contact/model_registry.h"
 #include "experiment/studies/contact/contact_study.h"
-#include "experiment/scene.h"
+#include "scene/scene.h"
 #include "test_support.h"
 #include "util/atomic_file.h"
 #include "util/error.h"

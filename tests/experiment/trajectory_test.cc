@@ -1,4 +1,4 @@
-#include "experiment/trajectory.h"
+#include "scene/trajectory.h"
 
 #include <gtest/gtest.h>
 

@@ -1,10 +1,10 @@
-// libFuzzer target: scene YAML (experiment/scene.cc through util/config_node.cc): the strict
+// libFuzzer target: scene YAML (scene/scene.cc through util/config_node.cc): the strict
 // reader must refuse anything malformed with an Error, never a yaml-cpp exception or a crash.
 #include <cstddef>
 #include <cstdint>
 #include <string>
 
-#include "experiment/scene.h"
+#include "scene/scene.h"
 #include "fuzz_support.h"
 #include "util/config_node.h"
 

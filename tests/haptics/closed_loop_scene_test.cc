@@ -16,8 +16,8 @@
 #include <cstdio>
 
 #include "experiment/studies/closed_loop/closed_loop_stability.h"
-#include "experiment/scene.h"
-#include "experiment/scene_assets.h"
+#include "scene/scene.h"
+#include "scene/scene_assets.h"
 #include "scene_fixtures.h"
 #include "test_support.h"
 #include "util/data_path.h"

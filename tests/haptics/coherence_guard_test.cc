@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "allocation_counter.h"
-#include "experiment/scene.h"
-#include "experiment/scene_assets.h"
+#include "scene/scene.h"
+#include "scene/scene_assets.h"
 #include "haptics/haptic_cycle.h"
 #include "haptics/sim_device.h"
 #include "scene_fixtures.h"

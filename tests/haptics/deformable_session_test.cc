@@ -10,8 +10,8 @@
 #include <memory>
 
 #include "allocation_counter.h"
-#include "experiment/scene.h"
-#include "experiment/scene_assets.h"
+#include "scene/scene.h"
+#include "scene/scene_assets.h"
 #include "haptics/haptic_cycle.h"
 #include "haptics/haptic_loop.h"
 #include "haptics/sim_device.h"

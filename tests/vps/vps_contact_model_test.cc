@@ -17,7 +17,7 @@
 #include "baselines/vps/vps_pointshell.h"
 #include "pointshell_contact/pointshell_contact_model.h"
 #include "contact/test_shells.h"
-#include "experiment/scene_assets.h"
+#include "scene/scene_assets.h"
 #include "util/error.h"
 
 namespace contactlab {

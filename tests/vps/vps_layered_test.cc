@@ -20,7 +20,7 @@
 #include "baselines/vps/vps_params.h"
 #include "contact/register_contact_models.h"
 #include "contact/test_shells.h"
-#include "experiment/scene_assets.h"
+#include "scene/scene_assets.h"
 
 namespace contactlab {
 namespace {

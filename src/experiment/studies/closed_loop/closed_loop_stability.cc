@@ -8,7 +8,7 @@
 
 #include <Eigen/Geometry>
 
-#include "experiment/contact_placement.h"
+#include "scene/contact_placement.h"
 #include "haptics/haptic_cycle.h"
 #include "haptics/safety_filter.h"
 #include "haptics/sim_device.h"

@@ -11,7 +11,7 @@
 #include "experiment/result_table.h"
 #include "experiment/run_metadata.h"
 #include "experiment/runner.h"
-#include "experiment/scene_assets.h"
+#include "scene/scene_assets.h"
 #include "experiment/study.h"
 #include "util/error.h"
 

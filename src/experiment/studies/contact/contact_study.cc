@@ -8,7 +8,7 @@
 #include "experiment/studies/contact/convergence_table.h"
 #include "experiment/studies/contact/result_csv.h"
 #include "experiment/study.h"
-#include "experiment/trajectory.h"
+#include "scene/trajectory.h"
 #include "util/error.h"
 
 namespace contactlab {

@@ -10,7 +10,7 @@
 #include "contact/scaled_contact_model.h"
 #include "contact/volume_fill.h"
 #include "deform/body_dynamics.h"
-#include "experiment/contact_placement.h"
+#include "scene/contact_placement.h"
 #include "experiment/studies/contact/contact_study.h"
 #include "experiment/studies/contact/metrics.h"
 #include "pointshell_contact/pointshell_contact_params.h"

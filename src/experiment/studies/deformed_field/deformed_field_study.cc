@@ -15,7 +15,7 @@
 #include "experiment/result_table.h"
 #include "experiment/run_metadata.h"
 #include "experiment/study.h"
-#include "experiment/scene_assets.h"
+#include "scene/scene_assets.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
 

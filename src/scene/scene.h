@@ -137,7 +137,7 @@ struct Scene {
 };
 
 // The parameter tables of a scene's blocks (util/param_table.h): parsing, range checks, cache
-// keys (experiment/scene_assets.cc), sweep aliases (experiment/experiment_config.cc) and the
+// keys (scene/scene_assets.cc), sweep aliases (experiment/experiment_config.cc) and the
 // scene reference all come from them.
 const ParamTable<BodySpec>& BodyParams();
 const ParamTable<FieldSpec>& FieldParams();

@@ -1,4 +1,4 @@
-#include "experiment/scene_assets.h"
+#include "scene/scene_assets.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "contact/register_contact_models.h"
-#include "experiment/stiffness_match.h"
+#include "scene/stiffness_match.h"
 #include "geometry/mesh_from_arrays.h"
 #include "geometry/mesh_io.h"
 #include "geometry/procedural_shapes.h"

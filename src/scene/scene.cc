@@ -1,4 +1,4 @@
-#include "experiment/scene.h"
+#include "scene/scene.h"
 
 #include <algorithm>
 #include <array>

@@ -1,10 +1,10 @@
-#include "experiment/reduced_coordinates.h"
+#include "scene/reduced_coordinates.h"
 
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
-#include "experiment/scene_assets.h"
+#include "scene/scene_assets.h"
 #include "geometry/triangle_mesh.h"
 #include "util/atomic_file.h"
 #include "util/error.h"

@@ -1,4 +1,4 @@
-#include "experiment/trajectory.h"
+#include "scene/trajectory.h"
 
 #include <algorithm>
 #include <cmath>
@@ -306,7 +306,7 @@ std::string TypeList() {
 const ParamTable<TrajectorySpec>& TypeTable() {
   static const ParamTable<TrajectorySpec> table(
       "trajectory",
-      "The motion of the moving body in an experiment config (tables in `src/experiment/trajectory.cc`), relative to "
+      "The motion of the moving body in an experiment config (tables in `src/scene/trajectory.cc`), relative to "
       "its start pose: translation in the world frame, rotation about the body's origin. Its type chooses the other "
       "keys (below); a sweep names them by their path (`trajectory.depth`).",
       {P::Custom("type", "choice", TypeList(), "the kind of motion (required)",

@@ -20,8 +20,8 @@
 #include <string_view>
 
 #include "contact/contact_model.h"
-#include "experiment/scene.h"
-#include "experiment/scene_assets.h"
+#include "scene/scene.h"
+#include "scene/scene_assets.h"
 
 namespace contactlab {
 

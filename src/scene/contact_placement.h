@@ -8,8 +8,8 @@
 #include <string>
 
 #include "contact/contact_model.h"
-#include "experiment/scene.h"
-#include "experiment/scene_assets.h"
+#include "scene/scene.h"
+#include "scene/scene_assets.h"
 #include "geometry/pose.h"
 #include "pointshell_contact/pointshell_contact_params.h"
 

@@ -1,4 +1,4 @@
-#include "experiment/contact_placement.h"
+#include "scene/contact_placement.h"
 
 #include <cmath>
 

@@ -13,7 +13,7 @@
 #include "deform/deformed_distance_field.h"
 #include "deform/reduced_integrator.h"
 #include "deform/reduced_model.h"
-#include "experiment/scene.h"
+#include "scene/scene.h"
 #include "geometry/triangle_mesh.h"
 #include "pointshell/build_pointshell.h"
 #include "pointshell/pointshell.h"

@@ -1,4 +1,4 @@
-#include "experiment/stiffness_match.h"
+#include "scene/stiffness_match.h"
 
 #include <cmath>
 #include <cstdio>
