@@ -23,6 +23,7 @@
 #include "scene/reduced_coordinates.h"
 #include "scene/scene.h"
 #include "scene/scene_assets.h"
+#include "scene/scene_query.h"
 #include "poses.h"
 #include "scene_handle.h"
 #include "util/config_node.h"
@@ -90,10 +91,7 @@ class ModelLock {
 ContactResult EvaluateLocked(ModelHandle& h, const Pose& X_WA, const Pose& X_WB, bool reset,
                              const BodyDeformation* deformation_A, const BodyDeformation* deformation_B,
                              py::ssize_t row = -1) {
-  ContactQuery q;
-  q.X_WA = X_WA;
-  q.X_WB = X_WB;
-  q.node_budget = h.scene.node_budget;
+  ContactQuery q = SceneContactQuery(h.scene, X_WA, X_WB);
   q.deformation_A = deformation_A;
   q.deformation_B = deformation_B;
   if (reset) {

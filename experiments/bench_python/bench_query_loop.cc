@@ -18,6 +18,7 @@
 #include "bench_main.h"
 #include "scene/scene.h"
 #include "scene/scene_assets.h"
+#include "scene/scene_query.h"
 #include "util/data_path.h"
 
 namespace contactlab {
@@ -50,10 +51,7 @@ void BM_QueryLoop(benchmark::State& state) {
   std::vector<double> wrenches(6 * std::size_t(n));
   for (auto _ : state) {
     for (int i = 0; i < n; ++i) {
-      ContactQuery q;
-      q.X_WA = poses_A[std::size_t(i)];
-      q.X_WB = scene.field_body.pose;
-      q.node_budget = scene.node_budget;
+      const ContactQuery q = SceneContactQuery(scene, poses_A[std::size_t(i)], scene.field_body.pose);
       model->Reset();
       const ContactResult r = model->Evaluate(q);
       Eigen::Map<Vector6d>(wrenches.data() + 6 * i) = r.on_B.AsVector();

@@ -21,6 +21,7 @@
 #include "scene/reduced_coordinates.h"
 #include "scene/scene_assets.h"
 #include "scene/scene.h"
+#include "scene/scene_query.h"
 #include "util/data_path.h"
 #include "util/error.h"
 
@@ -96,9 +97,8 @@ void RunContact(const ContactArgs& args) {
   auto model = MakeSceneContactModel(model_name, scene, assets);
   ReducedVector reduced_force;
 
-  ContactQuery q;
-  q.X_WA = args.pose_a.empty() ? scene.pointshell_body.pose : ParsePose(args.pose_a, "--pose-a");
-  q.X_WB = args.pose_b.empty() ? scene.field_body.pose : ParsePose(args.pose_b, "--pose-b");
+  ContactQuery q = SceneContactQuery(scene, args.pose_a.empty() ? scene.pointshell_body.pose : ParsePose(args.pose_a, "--pose-a"),
+                                     args.pose_b.empty() ? scene.field_body.pose : ParsePose(args.pose_b, "--pose-b"));
   // --touch: the field body moved along the line from its origin to the pointshell body's.
   if (args.touch > 0) {
     const Eigen::Vector3d toward = q.X_WA.translation - q.X_WB.translation;
@@ -107,7 +107,7 @@ void RunContact(const ContactArgs& args) {
     }
     q.X_WB = TouchAlong(scene, assets, true, q.X_WA, q.X_WB, toward, args.touch, args.scene + ": --touch");
   }
-  q.node_budget = args.budget >= 0 ? args.budget : scene.node_budget;
+  if (args.budget >= 0) q.node_budget = args.budget;
   ReducedVector reduced_force_B;
   const BodyDeformation deformation_A{q_A.get(), &reduced_force}, deformation_B{q_B.get(), &reduced_force_B};
   if (assets.A.deformable()) q.deformation_A = &deformation_A;

@@ -34,6 +34,7 @@
 #include "scene/contact_placement.h"
 #include "scene/scene_assets.h"
 #include "scene/scene.h"
+#include "scene/scene_query.h"
 #include "haptics/cpu_affinity.h"
 #include "haptics/device_factory.h"
 #include "haptics/haptic_cycle.h"
@@ -190,15 +191,8 @@ std::unique_ptr<ContactPointMarks> MakeViewPointMarks(SessionScene& s) {
 // (stepped at the haptic rate) and the view's point marks (null without --view).
 HapticCycleConfig MakeSessionCycleConfig(const SessionArgs& args, SessionScene& s, SceneDynamics& dynamics,
                                          ContactPointMarks* marks) {
-  HapticCycleConfig config;
-  config.X_WA = s.scene.pointshell_body.pose;
-  config.node_budget = s.scene.node_budget;
-  config.max_point_speed = s.scene.model.max_point_speed;
-  config.cycle_seconds = s.scene.model.cycle_seconds;
-  config.body_radius_H = s.assets.B.mesh()->MaxVertexRadius();
+  HapticCycleConfig config = SceneCycleConfig(s.scene, s.assets, &dynamics);
   if (args.k_vc > 0) config.coupling.k_vc = args.k_vc;
-  config.dynamics_A = dynamics.A.get();
-  config.dynamics_B = dynamics.B.get();
   config.point_marks = marks;
   return config;
 }

@@ -20,6 +20,7 @@
 #include "view/display_points.h"
 #include "view/field_slice.h"
 #include "view/page_encoding.h"
+#include "scene/scene_query.h"
 
 namespace contactlab {
 namespace {
@@ -163,9 +164,8 @@ nlohmann::json SceneViewData(const Scene& scene, SceneAssets& assets, const Scen
     const auto model = MakeSceneContactModel(name, scene, assets);
     const int cap = std::max(1, options.max_surface_triangles);
     model->KeepContactSurface(cap);
-    ContactQuery q;
-    q.X_WA = poses ? poses->X_WA : scene.pointshell_body.pose;
-    q.X_WB = poses ? poses->X_WB : scene.field_body.pose;
+    const ContactQuery q = SceneContactQuery(scene, poses ? poses->X_WA : scene.pointshell_body.pose,
+                                             poses ? poses->X_WB : scene.field_body.pose);
     ContactSurface scratch;
     std::vector<float> corners, pressure;
     const std::size_t triangles = AppendSurfaceAt(*model, q, &scratch, &corners, &pressure);
@@ -200,10 +200,8 @@ nlohmann::json TrackSurface(const Replay& replay, const ReplayTrack& track, bool
     const int f = n == 1 ? 0 : int(std::llround(double(k) * (frames - 1) / (n - 1)));
     const float* p = track.pose.data() + 7 * std::size_t(f);
     const Pose X{Eigen::Quaterniond(p[3], p[4], p[5], p[6]).normalized(), Eigen::Vector3d(p[0], p[1], p[2])};
-    ContactQuery q;
-    q.X_WA = moving_is_B ? replay.scene.pointshell_body.pose : X;
-    q.X_WB = moving_is_B ? X : replay.scene.field_body.pose;
-    q.cycle = f;
+    const ContactQuery q = SceneContactQuery(replay.scene, moving_is_B ? replay.scene.pointshell_body.pose : X,
+                                             moving_is_B ? X : replay.scene.field_body.pose, f);
     AppendSurfaceAt(*model, q, &s, &corners, &pressure);
     kept.push_back(f);
     start.push_back(std::uint32_t(corners.size() / 9));

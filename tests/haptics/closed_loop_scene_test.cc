@@ -55,6 +55,31 @@ void Print(const char* what, const ClosedLoopMetrics& m) {
               static_cast<long long>(m.clamped_cycles));
 }
 
+// The scene's model.node_budget reaches every cycle of the loop (scene/scene_query.h
+// SceneCycleConfig, which MakeClosedLoopScene and the closed-loop study use): with a budget far
+// below what the press visits, the paper's model degrades to a coarser level, so fewer points
+// are ever in contact than without one. Before, the loop dropped the scene's budget and the two
+// runs were identical.
+TEST(ClosedLoopScene, NodeBudgetOfTheSceneReachesEveryCycle) {
+  testing::TempDir cache;
+  KnightScrewdriver s(cache);
+  ClosedLoopCase c;
+  c.motion = LoopMotion::kPush;
+  c.k_vc = 1000;
+  auto unlimited = MakeSceneContactModel("pointshell", s.scene, s.assets);
+  const ClosedLoopMetrics full = RunClosedLoop(*unlimited, s.where, c);
+  Scene budgeted = s.scene;
+  budgeted.node_budget = 8;
+  const ClosedLoopScene where = MakeClosedLoopScene(budgeted, s.assets);
+  EXPECT_EQ(where.cycle.node_budget, 8);
+  auto model = MakeSceneContactModel("pointshell", budgeted, s.assets);
+  const ClosedLoopMetrics cut = RunClosedLoop(*model, where, c);
+  Print("full", full);
+  Print("budget", cut);
+  EXPECT_GT(full.max_points_in_contact, 0);
+  EXPECT_LT(cut.max_points_in_contact, full.max_points_in_contact);
+}
+
 TEST(ClosedLoopScene, PaperModelIsPassiveAndSettlesOnKnightScrewdriverAtModerateStiffness) {
   testing::TempDir cache;
   KnightScrewdriver s(cache);
@@ -98,7 +123,7 @@ TEST(ClosedLoopScene, TheLoopRunsAtTheScenesRate) {
   const ClosedLoopMetrics slow = RunClosedLoop(*at_1k, s.where, c);
   s.scene.model.cycle_seconds = 1e-4;
   ClosedLoopScene fast_where = s.where;
-  fast_where.cycle_seconds = 1e-4;
+  fast_where.cycle.cycle_seconds = 1e-4;
   auto at_10k = MakeSceneContactModel("pointshell", s.scene, s.assets);
   const ClosedLoopMetrics fast = RunClosedLoop(*at_10k, fast_where, c);
   Print("1 kHz", slow);
@@ -171,7 +196,7 @@ TEST(ClosedLoopScene, TheStudyStepsADeformableBodyAndCountsRefusedQueries) {
   auto model = MakeSceneContactModel("pointshell", scene, assets);
   ClosedLoopCase c;
   c.push_depth = 0.004;
-  SceneDynamics dynamics = MakeSceneDynamics(assets, where.cycle_seconds);
+  SceneDynamics dynamics = MakeSceneDynamics(assets, where.cycle.cycle_seconds);
   ASSERT_NE(dynamics.A, nullptr);
   const ClosedLoopMetrics soft = RunClosedLoop(*model, where, c, &dynamics);
   const ClosedLoopMetrics held = RunClosedLoop(*model, where, c);  // no dynamics: the beam stays at rest
@@ -187,7 +212,7 @@ TEST(ClosedLoopScene, TheStudyStepsADeformableBodyAndCountsRefusedQueries) {
   Scene fewer = scene;
   fewer.pointshell_body.deformable->modes = 4;
   SceneAssets fewer_assets(fewer, KnightScrewdriver::Options(cache));
-  SceneDynamics wrong = MakeSceneDynamics(fewer_assets, where.cycle_seconds);
+  SceneDynamics wrong = MakeSceneDynamics(fewer_assets, where.cycle.cycle_seconds);
   const ClosedLoopMetrics refused = RunClosedLoop(*model, where, c, &wrong);
   EXPECT_EQ(refused.contact_faults, refused.cycles);
   EXPECT_EQ(refused.max_contact_force, 0.0);

@@ -10,6 +10,7 @@
 
 #include "scene/contact_placement.h"
 #include "haptics/haptic_cycle.h"
+#include "scene/scene_query.h"
 #include "haptics/safety_filter.h"
 #include "haptics/sim_device.h"
 
@@ -84,9 +85,7 @@ ClosedLoopScene MakeClosedLoopScene(const Scene& scene, SceneAssets& assets) {
   // Start back along the tilted approach so the line of motion still passes near A's origin.
   tilted.translation = w.X_WA.translation - (X_WH0.translation - w.X_WA.translation).norm() * w.corner_approach;
   w.X_WH_touch_tilted = TouchAlong(scene, assets, true, w.X_WA, tilted, w.corner_approach, kTouchDepth, where);
-  w.body_radius_H = assets.B.mesh()->MaxVertexRadius();
-  w.max_point_speed = scene.model.max_point_speed;
-  w.cycle_seconds = scene.model.cycle_seconds;
+  w.cycle = SceneCycleConfig(scene, assets, nullptr);
   return w;
 }
 
@@ -132,18 +131,14 @@ ClosedLoopMetrics RunClosedLoop(ContactModel& model, const ClosedLoopScene& w, c
   // The hand is integrated at 10 kHz or four times the loop's rate, whichever is finer, so that
   // the device's zero-order hold of each cycle's wrench is resolved at every rate swept.
   SimDeviceParams hand;
-  hand.step_seconds = std::min(hand.step_seconds, 0.25 * w.cycle_seconds);
+  hand.step_seconds = std::min(hand.step_seconds, 0.25 * w.cycle.cycle_seconds);
   SimDevice device(hand, target);
-  HapticCycleConfig config;
+  HapticCycleConfig config = w.cycle;
   config.coupling.k_vc = c.k_vc;
   config.coupling.k_vc_rot = c.k_vc_rot;
   config.coupling.alpha = c.alpha;
   config.alpha_per_cycle = c.alpha_per_cycle;
   config.safety.ramp_seconds = 0.05;  // the hand starts in free space; contact begins at 0.1 s
-  config.X_WA = w.X_WA;
-  config.max_point_speed = w.max_point_speed;
-  config.cycle_seconds = w.cycle_seconds;
-  config.body_radius_H = w.body_radius_H;
   if (dynamics != nullptr) {
     config.dynamics_A = dynamics->A.get();
     config.dynamics_B = dynamics->B.get();
@@ -154,7 +149,7 @@ ClosedLoopMetrics RunClosedLoop(ContactModel& model, const ClosedLoopScene& w, c
   ClosedLoopMetrics m;
   std::vector<Eigen::Vector3d> early_p, early_f, late_p, late_f;
   // One cycle every model.cycle_seconds (the scene's rate), in simulated time.
-  const std::int64_t period_ns = std::llround(w.cycle_seconds * 1e9);
+  const std::int64_t period_ns = std::llround(w.cycle.cycle_seconds * 1e9);
   const double cycle_ms = double(period_ns) / 1e6;  // exactly 1 at 1 kHz: the times below are i ms
   const int n = int(std::lround(run_end * 1000 / cycle_ms));
   Eigen::Vector3d last_f = Eigen::Vector3d::Zero();

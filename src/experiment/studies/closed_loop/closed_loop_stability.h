@@ -19,6 +19,7 @@
 #include "scene/scene.h"
 #include "scene/scene_assets.h"
 #include "geometry/pose.h"
+#include "haptics/haptic_cycle.h"
 
 namespace contactlab {
 
@@ -34,9 +35,9 @@ struct ClosedLoopScene {
   Eigen::Vector3d approach = Eigen::Vector3d::UnitX();         // unit, H's motion toward A
   Eigen::Vector3d corner_approach = Eigen::Vector3d::UnitX();  // unit
   Eigen::Vector3d slide = Eigen::Vector3d::UnitY();            // unit, perpendicular to approach
-  double body_radius_H = 0;       // m, for the coherence guard
-  double max_point_speed = 0;     // the scene's model.max_point_speed
-  double cycle_seconds = 1e-3;
+  // The scene's haptic cycle (scene/scene_query.h SceneCycleConfig: node budget, coherence
+  // guard, rate); each run sets its coupling and the bodies' dynamics on a copy.
+  HapticCycleConfig cycle;
 };
 
 // Approach: from H's scene pose straight toward A's origin; slide: perpendicular to it (world y
@@ -96,7 +97,7 @@ struct ClosedLoopMetrics {
 std::string StabilityVerdict(const ClosedLoopMetrics& m);
 
 // Runs one closed-loop case: MODEL's body B is H. The model is reset at the start. DYNAMICS
-// (MakeSceneDynamics of the scene at where.cycle_seconds; null or empty: both bodies rigid)
+// (MakeSceneDynamics of the scene at where.cycle.cycle_seconds; null or empty: both bodies rigid)
 // steps the deformable bodies at the end of each cycle; they start at rest.
 ClosedLoopMetrics RunClosedLoop(ContactModel& model, const ClosedLoopScene& where, const ClosedLoopCase& c,
                                 SceneDynamics* dynamics = nullptr);

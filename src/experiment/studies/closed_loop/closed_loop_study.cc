@@ -82,7 +82,7 @@ LoopJobResult RunClosedLoopJob(const Job& job, const RunOptions& options) {
   result.job = job;
   for (const std::string& name : job.models) {
     const std::unique_ptr<ContactModel> model = MakeSceneContactModel(name, job.scene, assets);
-    SceneDynamics dynamics = MakeSceneDynamics(assets, where.cycle_seconds);
+    SceneDynamics dynamics = MakeSceneDynamics(assets, where.cycle.cycle_seconds);
     for (LoopMotion motion : spec.motions) {
       LoopRow row{name, motion, spec.loop, {}, WrenchScaleOf(*model)};
       row.loop.motion = motion;

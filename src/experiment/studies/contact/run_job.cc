@@ -11,6 +11,7 @@
 #include "contact/volume_fill.h"
 #include "deform/body_dynamics.h"
 #include "scene/contact_placement.h"
+#include "scene/scene_query.h"
 #include "experiment/studies/contact/contact_study.h"
 #include "experiment/studies/contact/metrics.h"
 #include "pointshell_contact/pointshell_contact_params.h"
@@ -292,11 +293,8 @@ void RunModel(const JobSetup& setup, const std::string& name, CycleStorage& stor
     // The query at the moving body's pose: faster than the coherence assumes, this cycle
     // traverses in full; a deformation a step left non-finite (diverged) is not queried.
     const Pose X_moving = motion.At(k);
-    ContactQuery q;
-    q.X_WA = motion.moving_is_B ? motion.X_WA0 : X_moving;
-    q.X_WB = motion.moving_is_B ? X_moving : motion.X_WB0;
-    q.cycle = k;
-    q.node_budget = scene.node_budget;
+    ContactQuery q = SceneContactQuery(scene, motion.moving_is_B ? motion.X_WA0 : X_moving,
+                                       motion.moving_is_B ? X_moving : motion.X_WB0, k);
     ContactCycleQuery done;
     const ContactResult r = cycle.Evaluate(X_moving, &q, &done);
     CycleRow row = MakeCycleRow(setup, name, k, X_moving, q, r, spacing);
