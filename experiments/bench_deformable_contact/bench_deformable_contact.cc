@@ -45,6 +45,7 @@
 
 #include "bench_common.h"
 #include "bench_main.h"
+#include "placed_scene.h"
 #include "pointshell_contact/deformable_contact_models.h"
 #include "pointshell_contact/pointshell_contact_model.h"
 #include "deform/reduced_integrator.h"

@@ -11,9 +11,20 @@
 #include <string>
 
 #include "contact/contact_model.h"
+#include "pointshell_contact/pointshell_contact_params.h"
 #include "scene/scene.h"
 #include "scene/scene_assets.h"
 #include "geometry/pose.h"
+
+namespace contactlab {
+
+// The parameters of the paper's model in SCENE: the model section's shared keys and the
+// paper's own (level, cold_fraction, gradient), for the benchmarks that make it directly.
+inline PointshellContactParams PaperModelParams(const Scene& scene) {
+  return PointshellParamsOf(scene.model, scene.model_params.Get(PointshellOwnParamTable()));
+}
+
+}  // namespace contactlab
 
 namespace contactlab::bench {
 

@@ -28,7 +28,7 @@ struct Pointshell;
 class DeformablePointshell;
 class DeformedDistanceField;
 
-// One body's data, built on demand (and cached) by the caller: experiment/ implements it for
+// One body's data, built on demand (and cached) by the caller: scene/ implements it for
 // scene bodies. Each accessor throws Error naming the body when the data cannot be built.
 class ContactBody {
  public:
@@ -125,6 +125,16 @@ struct ContactModelEntry {
   std::optional<ModelParamBlock> pair_params;
   // Its blocks under each of the scene's bodies (ParamBlock(ITS_TABLE, "key", "meaning")).
   std::vector<ModelParamBlock> body_blocks;
+  // The harness's depth probe, when this entry provides it (scene/contact_placement.h
+  // TouchAlong: bodies placed at a penetration depth): a model made from the same inputs whose
+  // stats.max_penetration is the deepest penetration of A into B over all of A's points at every
+  // query, with no culling, no budget and no coherence. Null for every entry but the one that
+  // declares it (the paper's tree-less model at its deepest level).
+  ContactModelFactory make_depth_probe;
+  // The stiffness every model is put at under `model.stiffness: matched`
+  // (scene/stiffness_match.h): true on the one entry whose force at the reference press the
+  // others are scaled to (the paper's model).
+  bool stiffness_reference = false;
   // What the model refuses of the scene's parameters given which bodies deform, checked before
   // any body data is built: throws Error naming WHERE. Null: nothing beyond `needs`.
   std::function<void(const ContactParams& params, const ParamValues& model_params, bool deformable_A,

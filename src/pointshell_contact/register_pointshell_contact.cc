@@ -49,6 +49,16 @@ ContactModelEntry PaperModel(PointshellVariant variant) {
                                  : MakePaperModelFor<RigidShell>(variant, in);
       },
       .pair_params = ParamBlock(PointshellOwnParamTable()),
+      .body_blocks = {},
+      // The depth probe: every point of the deepest level, on the rigid sides (rest shapes).
+      .make_depth_probe = linear ? ContactModelFactory([](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
+        PointshellContactParams params = PointshellParamsOf(in.params, in.Params(PointshellOwnParamTable()));
+        params.level = -1;
+        return std::make_unique<PointshellContactModel>(PointshellContactModel::Variant::kLinear, in.A.pointshell(),
+                                                        in.B.field(), params);
+      })
+                                 : ContactModelFactory(),
+      .stiffness_reference = !linear,
       .check = [variant](const ContactParams& params, const ParamValues& own, bool, bool deformable_B,
                          std::string_view where) {
         CheckPointshellCoherence(PointshellParamsOf(params, own.Get(PointshellOwnParamTable())), variant,

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "pointshell_contact/pointshell_contact_model.h"
+#include "contact/model_registry.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -47,22 +47,23 @@ Placement PlaceAtDepth(ContactModel& model, const Pose& X_WA_start, const Pose& 
   return out;
 }
 
-PointshellContactParams PaperModelParams(const Scene& scene) {
-  return PointshellParamsOf(scene.model, scene.model_params.Get(PointshellOwnParamTable()));
-}
-
 Pose TouchAlong(const Scene& scene, SceneAssets& assets, bool move_B, const Pose& X_WA, const Pose& X_WB,
                 const Eigen::Vector3d& direction, double depth, const std::string& where) {
   const Eigen::Vector3d dir = direction.normalized();
-  PointshellContactParams params = PaperModelParams(scene);
-  params.level = -1;
-  PointshellContactModel probe(PointshellContactModel::Variant::kLinear, assets.A.pointshell(), assets.B.field(), params);
+  // The registry's depth probe (ContactModelEntry::make_depth_probe), from the scene's parameters.
+  const ContactModelEntry* probe_entry = nullptr;
+  for (const ContactModelEntry* e : ContactModelEntries()) {
+    if (e->make_depth_probe) probe_entry = e;
+  }
+  if (probe_entry == nullptr) Fail(where, "no registered contact model provides a depth probe");
+  const std::unique_ptr<ContactModel> probe =
+      probe_entry->make_depth_probe(ContactModelInputs{assets.A, assets.B, scene.model, scene.model_params});
   // Moving B by s along DIR is moving A by s against it; start a full reach back.
   const Eigen::Vector3d a_dir = move_B ? Eigen::Vector3d(-dir) : dir;
   const double reach = assets.A.mesh()->Bounds().size().norm() + assets.B.mesh()->Bounds().size().norm();
   Pose far = X_WA;
   far.translation -= reach * a_dir;
-  const Placement placed = PlaceAtDepth(probe, far, X_WB, a_dir, depth, 2 * reach);
+  const Placement placed = PlaceAtDepth(*probe, far, X_WB, a_dir, depth, 2 * reach);
   if (!placed.found) Fail(where, "the bodies never touch moving along the direction");
   if (!move_B) return placed.X_WA;
   Pose moved = X_WB;

@@ -11,7 +11,6 @@
 #include "scene/scene.h"
 #include "scene/scene_assets.h"
 #include "geometry/pose.h"
-#include "pointshell_contact/pointshell_contact_params.h"
 
 namespace contactlab {
 
@@ -21,11 +20,6 @@ struct Placement {
   double depth = 0;     // penetration reached (max_penetration stat), metres
   bool found = false;   // false when A passed through B's reach without reaching DEPTH
 };
-
-// The parameters of the paper's model in SCENE: the model section's shared keys and the
-// paper's own (level, cold_fraction, gradient), for the probes and benchmarks that make it
-// directly.
-PointshellContactParams PaperModelParams(const Scene& scene);
 
 // Starts A at X_WA_START (separated from B) and moves it by s * DIRECTION (world, normalised
 // here) for s in [0, MAX_TRAVEL]: marches in steps of DEPTH / 4 to the first s whose

@@ -14,7 +14,13 @@ namespace contactlab {
 
 namespace {
 
-constexpr std::string_view kPaperModel = "pointshell";
+// The entry whose stiffness the others are matched to (ContactModelEntry::stiffness_reference).
+std::string_view StiffnessReferenceModel(std::string_view where) {
+  for (const ContactModelEntry* e : ContactModelEntries()) {
+    if (e->stiffness_reference) return e->name;
+  }
+  Fail(where, "no registered contact model is the stiffness reference");
+}
 
 // How far A moves from X_WA_FAR along DIRECTION (unit, world) until a vertex of A's mesh first
 // reaches B's surface (B's signed distance field at X_WB): sphere tracing on the smallest
@@ -62,7 +68,7 @@ double MatchedStiffnessScale(ContactModel& model, std::string_view name, const S
   q.X_WA.translation += (travel + depth) * dir;
   q.X_WB = X_WB;
   std::unique_ptr<ContactModel> paper =
-      MakeContactModel(kPaperModel, ContactModelInputs{assets.A, assets.B, scene.model, scene.model_params}, where);
+      MakeContactModel(StiffnessReferenceModel(where), ContactModelInputs{assets.A, assets.B, scene.model, scene.model_params}, where);
   model.Reset();
   const Eigen::Vector3d F = paper->Evaluate(q).on_B.force;
   const Eigen::Vector3d m = model.Evaluate(q).on_B.force;
@@ -83,7 +89,8 @@ double MatchedStiffnessScale(ContactModel& model, std::string_view name, const S
 
 std::unique_ptr<ContactModel> ApplyStiffnessRule(std::unique_ptr<ContactModel> model, std::string_view name,
                                                  const Scene& scene, SceneAssets& assets) {
-  if (scene.model.stiffness == StiffnessRule::kOwn || name == kPaperModel) return model;
+  if (scene.model.stiffness == StiffnessRule::kOwn) return model;
+  if (const ContactModelEntry* entry = FindContactModel(name); entry != nullptr && entry->stiffness_reference) return model;
   const double scale = MatchedStiffnessScale(*model, name, scene, assets);
   return std::make_unique<ScaledContactModel>(std::move(model), scale);
 }

@@ -92,6 +92,59 @@ TEST(ModelRegistry, AFactoryGetsTheBodiesAndTheScenesParameters) {
   EXPECT_LT(r.on_B.force.z(), 0);  // B (below) is pushed down
 }
 
+// The harness places bodies at a depth with the registry's depth probe (scene/contact_placement.h),
+// never with a model named in its code: exactly one entry provides it, and its deepest
+// penetration is that of every point of A's deepest level (brute force on a halfspace), also
+// when the scene renders a coarser level.
+TEST(ModelRegistry, ExactlyOneEntryProvidesTheDepthProbeAndItReachesEveryPoint) {
+  int providers = 0;
+  for (const ContactModelEntry* e : ContactModelEntries()) providers += e->make_depth_probe ? 1 : 0;
+  ASSERT_EQ(providers, 1);
+  const ContactModelEntry* entry = nullptr;
+  for (const ContactModelEntry* e : ContactModelEntries()) {
+    if (e->make_depth_probe) entry = e;
+  }
+  // A unit sphere of points (A), 16 on its coarse level and 64 on its deepest, upside down so
+  // that its deepest point is on the deepest level only; B the halfspace z < 0.
+  FakeBody A, B;
+  std::vector<Eigen::Vector3d> p, n;
+  for (int i = 0; i < 64; ++i) {
+    const double z = -1 + (i + 0.5) / 32, r = std::sqrt(1 - z * z), phi = 2.39996 * i;
+    p.emplace_back(r * std::cos(phi), r * std::sin(phi), z);
+    n.push_back(-p.back());
+  }
+  A.shell_ = testing::MakeNestedShell(p, n, {16, 64});
+  B.field_ = testing::SampleField([](const Eigen::Vector3d& x) { return x.z(); }, Eigen::Vector3d(-2, -2, -2),
+                                  Eigen::Vector3d(2, 2, 2), 0.05);
+  ContactParams params;
+  ParamValues own;
+  own.Mutable(PointshellOwnParamTable()).level = 0;  // the scene renders the coarse level
+  const std::unique_ptr<ContactModel> probe = entry->make_depth_probe({A, B, params, own});
+  ContactQuery q;
+  q.X_WA = Pose{Eigen::Quaterniond(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX())), Eigen::Vector3d(0, 0, 0.9)};
+  double deepest = 0, deepest_coarse = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double d = -(q.X_WA * p[i]).z();
+    deepest = std::max(deepest, d);
+    if (i < 16) deepest_coarse = std::max(deepest_coarse, d);
+  }
+  ASSERT_GT(deepest, deepest_coarse + 0.01);  // the case tells the levels apart
+  EXPECT_NEAR(probe->Evaluate(q).stats.max_penetration, deepest, 1e-5);
+}
+
+// `model.stiffness: matched` scales every model to the entry that declares itself the
+// stiffness reference, never to a name in the harness's code: exactly one does, and it is a model
+// compared in experiments (not a reference-only entry).
+TEST(ModelRegistry, ExactlyOneEntryIsTheStiffnessReference) {
+  std::vector<std::string> references;
+  for (const ContactModelEntry* e : ContactModelEntries()) {
+    if (e->stiffness_reference) references.push_back(e->name);
+  }
+  ASSERT_EQ(references.size(), 1u);
+  const auto names = ContactModelNames();
+  EXPECT_NE(std::find(names.begin(), names.end(), references.front()), names.end());
+}
+
 TEST(ModelRegistry, AModelRegisteredFromOutsideIsMadeByName) {
   ContactModelEntry e;
   e.name = "no-force";
