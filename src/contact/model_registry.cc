@@ -50,6 +50,20 @@ const ContactModelEntry* FindContactModel(std::string_view name) {
   return it == registry.end() ? nullptr : &it->second;
 }
 
+const ContactModelEntry& SoleContactModelWith(const std::function<bool(const ContactModelEntry&)>& has,
+                                              std::string_view trait, std::string_view where) {
+  const ContactModelEntry* sole = nullptr;
+  for (const auto& [n, e] : Registry()) {
+    if (!has(e)) continue;
+    if (sole != nullptr) {
+      Fail(where, "several registered contact models declare " + std::string(trait) + ": " + sole->name + ", " + e.name);
+    }
+    sole = &e;
+  }
+  if (sole == nullptr) Fail(where, "no registered contact model declares " + std::string(trait));
+  return *sole;
+}
+
 void CheckContactModel(std::string_view name, const ContactParams& params, const ParamValues& model_params,
                        std::string_view body_A, bool deformable_A, std::string_view body_B, bool deformable_B,
                        std::string_view where) {

@@ -148,6 +148,12 @@ void RegisterContactModel(ContactModelEntry entry);
 // The entry registered as NAME, or null.
 const ContactModelEntry* FindContactModel(std::string_view name);
 
+// The one registered entry for which HAS holds: a trait exactly one entry declares (the depth
+// probe, the stiffness reference). Throws Error("WHERE: ...") naming TRAIT when none or several
+// entries declare it.
+const ContactModelEntry& SoleContactModelWith(const std::function<bool(const ContactModelEntry&)>& has,
+                                              std::string_view trait, std::string_view where);
+
 // Checks that model NAME can render bodies BODY_A and BODY_B (names, for messages) that deform
 // as DEFORMABLE_A and DEFORMABLE_B with PARAMS, without building anything: throws
 // Error("WHERE: unknown contact model 'x' (known: ...)") when NAME is unknown, Error when a body

@@ -33,6 +33,15 @@ std::unique_ptr<ContactModel> MakePaperModelFor(PointshellVariant variant, const
   return in.B.deformable() ? MakePaperModel<Shell, DeformedField>(variant, in) : MakePaperModel<Shell, GridField>(variant, in);
 }
 
+// The harness's depth probe (ContactModelEntry::make_depth_probe): every point of the deepest
+// level, on the rigid sides (the rest shapes), with the scene's other parameters.
+std::unique_ptr<ContactModel> MakeDepthProbe(const ContactModelInputs& in) {
+  PointshellContactParams params = PointshellParamsOf(in.params, in.Params(PointshellOwnParamTable()));
+  params.level = -1;
+  return std::make_unique<PointshellContactModel>(PointshellContactModel::Variant::kLinear, in.A.pointshell(),
+                                                  in.B.field(), params);
+}
+
 ContactModelEntry PaperModel(PointshellVariant variant) {
   const bool linear = variant == PointshellVariant::kLinear;
   return {
@@ -49,15 +58,7 @@ ContactModelEntry PaperModel(PointshellVariant variant) {
                                  : MakePaperModelFor<RigidShell>(variant, in);
       },
       .pair_params = ParamBlock(PointshellOwnParamTable()),
-      .body_blocks = {},
-      // The depth probe: every point of the deepest level, on the rigid sides (rest shapes).
-      .make_depth_probe = linear ? ContactModelFactory([](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
-        PointshellContactParams params = PointshellParamsOf(in.params, in.Params(PointshellOwnParamTable()));
-        params.level = -1;
-        return std::make_unique<PointshellContactModel>(PointshellContactModel::Variant::kLinear, in.A.pointshell(),
-                                                        in.B.field(), params);
-      })
-                                 : ContactModelFactory(),
+      .make_depth_probe = linear ? ContactModelFactory(MakeDepthProbe) : nullptr,
       .stiffness_reference = !linear,
       .check = [variant](const ContactParams& params, const ParamValues& own, bool, bool deformable_B,
                          std::string_view where) {

@@ -51,13 +51,10 @@ Pose TouchAlong(const Scene& scene, SceneAssets& assets, bool move_B, const Pose
                 const Eigen::Vector3d& direction, double depth, const std::string& where) {
   const Eigen::Vector3d dir = direction.normalized();
   // The registry's depth probe (ContactModelEntry::make_depth_probe), from the scene's parameters.
-  const ContactModelEntry* probe_entry = nullptr;
-  for (const ContactModelEntry* e : ContactModelEntries()) {
-    if (e->make_depth_probe) probe_entry = e;
-  }
-  if (probe_entry == nullptr) Fail(where, "no registered contact model provides a depth probe");
+  const ContactModelEntry& prober = SoleContactModelWith(
+      [](const ContactModelEntry& e) { return bool(e.make_depth_probe); }, "a depth probe", where);
   const std::unique_ptr<ContactModel> probe =
-      probe_entry->make_depth_probe(ContactModelInputs{assets.A, assets.B, scene.model, scene.model_params});
+      prober.make_depth_probe(ContactModelInputs{assets.A, assets.B, scene.model, scene.model_params});
   // Moving B by s along DIR is moving A by s against it; start a full reach back.
   const Eigen::Vector3d a_dir = move_B ? Eigen::Vector3d(-dir) : dir;
   const double reach = assets.A.mesh()->Bounds().size().norm() + assets.B.mesh()->Bounds().size().norm();

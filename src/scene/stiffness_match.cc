@@ -15,11 +15,9 @@ namespace contactlab {
 namespace {
 
 // The entry whose stiffness the others are matched to (ContactModelEntry::stiffness_reference).
-std::string_view StiffnessReferenceModel(std::string_view where) {
-  for (const ContactModelEntry* e : ContactModelEntries()) {
-    if (e->stiffness_reference) return e->name;
-  }
-  Fail(where, "no registered contact model is the stiffness reference");
+const ContactModelEntry& StiffnessReference(std::string_view where) {
+  return SoleContactModelWith([](const ContactModelEntry& e) { return e.stiffness_reference; },
+                              "the stiffness reference", where);
 }
 
 // How far A moves from X_WA_FAR along DIRECTION (unit, world) until a vertex of A's mesh first
@@ -68,7 +66,7 @@ double MatchedStiffnessScale(ContactModel& model, std::string_view name, const S
   q.X_WA.translation += (travel + depth) * dir;
   q.X_WB = X_WB;
   std::unique_ptr<ContactModel> paper =
-      MakeContactModel(StiffnessReferenceModel(where), ContactModelInputs{assets.A, assets.B, scene.model, scene.model_params}, where);
+      MakeContactModel(StiffnessReference(where).name, ContactModelInputs{assets.A, assets.B, scene.model, scene.model_params}, where);
   model.Reset();
   const Eigen::Vector3d F = paper->Evaluate(q).on_B.force;
   const Eigen::Vector3d m = model.Evaluate(q).on_B.force;

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <functional>
+#include <string>
 
 #include "contact/register_contact_models.h"
 #include "contact/test_shells.h"
@@ -50,6 +52,21 @@ class NoForceModel final : public ContactModel {
   void Reset() override {}
 };
 
+// A unit sphere of 64 points as A's pointshell, the first 16 its coarse level (a spiral from
+// the south pole up), and the halfspace z < 0 as B's field. Returns the points, A's frame.
+std::vector<Eigen::Vector3d> SphereOverHalfspace(FakeBody* A, FakeBody* B) {
+  std::vector<Eigen::Vector3d> p, n;
+  for (int i = 0; i < 64; ++i) {
+    const double z = -1 + (i + 0.5) / 32, r = std::sqrt(1 - z * z), phi = 2.39996 * i;
+    p.emplace_back(r * std::cos(phi), r * std::sin(phi), z);
+    n.push_back(-p.back());
+  }
+  A->shell_ = testing::MakeNestedShell(p, n, {16, 64});
+  B->field_ = testing::SampleField([](const Eigen::Vector3d& x) { return x.z(); }, Eigen::Vector3d(-2, -2, -2),
+                                   Eigen::Vector3d(2, 2, 2), 0.05);
+  return p;
+}
+
 TEST(ModelRegistry, ThePapersModelsAreBuiltInAndDeclareWhatTheyNeed) {
   for (const char* name : {"pointshell", "pointshell-linear"}) {
     const ContactModelEntry* e = FindContactModel(name);
@@ -64,15 +81,7 @@ TEST(ModelRegistry, ThePapersModelsAreBuiltInAndDeclareWhatTheyNeed) {
 TEST(ModelRegistry, AFactoryGetsTheBodiesAndTheScenesParameters) {
   // A unit sphere of points (A) against the halfspace z < 0 (B), A 0.1 below the plane's top.
   FakeBody A, B;
-  std::vector<Eigen::Vector3d> p, n;
-  for (int i = 0; i < 64; ++i) {
-    const double z = -1 + (i + 0.5) / 32, r = std::sqrt(1 - z * z), phi = 2.39996 * i;
-    p.emplace_back(r * std::cos(phi), r * std::sin(phi), z);
-    n.push_back(-p.back());
-  }
-  A.shell_ = testing::MakeNestedShell(p, n, {16, 64});
-  B.field_ = testing::SampleField([](const Eigen::Vector3d& x) { return x.z(); }, Eigen::Vector3d(-2, -2, -2),
-                                  Eigen::Vector3d(2, 2, 2), 0.05);
+  const std::vector<Eigen::Vector3d> p = SphereOverHalfspace(&A, &B);
   ContactParams params;
   params.penalty = {.k_C = 123, .L = 0};
   ParamValues own;  // the paper's own keys: level 1, the shell's deepest
@@ -100,26 +109,16 @@ TEST(ModelRegistry, ExactlyOneEntryProvidesTheDepthProbeAndItReachesEveryPoint) 
   int providers = 0;
   for (const ContactModelEntry* e : ContactModelEntries()) providers += e->make_depth_probe ? 1 : 0;
   ASSERT_EQ(providers, 1);
-  const ContactModelEntry* entry = nullptr;
-  for (const ContactModelEntry* e : ContactModelEntries()) {
-    if (e->make_depth_probe) entry = e;
-  }
+  const ContactModelEntry& entry =
+      SoleContactModelWith([](const ContactModelEntry& e) { return bool(e.make_depth_probe); }, "a depth probe", "test");
   // A unit sphere of points (A), 16 on its coarse level and 64 on its deepest, upside down so
   // that its deepest point is on the deepest level only; B the halfspace z < 0.
   FakeBody A, B;
-  std::vector<Eigen::Vector3d> p, n;
-  for (int i = 0; i < 64; ++i) {
-    const double z = -1 + (i + 0.5) / 32, r = std::sqrt(1 - z * z), phi = 2.39996 * i;
-    p.emplace_back(r * std::cos(phi), r * std::sin(phi), z);
-    n.push_back(-p.back());
-  }
-  A.shell_ = testing::MakeNestedShell(p, n, {16, 64});
-  B.field_ = testing::SampleField([](const Eigen::Vector3d& x) { return x.z(); }, Eigen::Vector3d(-2, -2, -2),
-                                  Eigen::Vector3d(2, 2, 2), 0.05);
+  const std::vector<Eigen::Vector3d> p = SphereOverHalfspace(&A, &B);
   ContactParams params;
   ParamValues own;
   own.Mutable(PointshellOwnParamTable()).level = 0;  // the scene renders the coarse level
-  const std::unique_ptr<ContactModel> probe = entry->make_depth_probe({A, B, params, own});
+  const std::unique_ptr<ContactModel> probe = entry.make_depth_probe({A, B, params, own});
   ContactQuery q;
   q.X_WA = Pose{Eigen::Quaterniond(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX())), Eigen::Vector3d(0, 0, 0.9)};
   double deepest = 0, deepest_coarse = 0;
@@ -143,6 +142,25 @@ TEST(ModelRegistry, ExactlyOneEntryIsTheStiffnessReference) {
   ASSERT_EQ(references.size(), 1u);
   const auto names = ContactModelNames();
   EXPECT_NE(std::find(names.begin(), names.end(), references.front()), names.end());
+}
+
+// A trait no entry, or more than one, declares is an error naming the trait and the entries.
+TEST(ModelRegistry, ASoleEntryLookupRefusesNoneAndSeveral) {
+  const auto message = [](const std::function<bool(const ContactModelEntry&)>& has) {
+    try {
+      SoleContactModelWith(has, "a made-up trait", "here");
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string none = message([](const ContactModelEntry&) { return false; });
+  EXPECT_NE(none.find("here: no registered contact model declares a made-up trait"), std::string::npos) << none;
+  // "pointshell" and "pointshell-linear" both start with "pointshell".
+  const std::string several = message([](const ContactModelEntry& e) { return e.name.rfind("pointshell", 0) == 0; });
+  EXPECT_NE(several.find("here: several registered contact models declare a made-up trait: pointshell"),
+            std::string::npos)
+      << several;
 }
 
 TEST(ModelRegistry, AModelRegisteredFromOutsideIsMadeByName) {

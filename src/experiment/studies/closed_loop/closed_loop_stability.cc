@@ -68,14 +68,15 @@ const char* LoopMotionName(LoopMotion motion) {
 
 ClosedLoopScene MakeClosedLoopScene(const Scene& scene, SceneAssets& assets) {
   ClosedLoopScene w;
-  w.X_WA = scene.pointshell_body.pose;
+  w.cycle = SceneCycleConfig(scene, assets, nullptr);
+  const Pose& X_WA = w.cycle.X_WA;
   const Pose X_WH0 = scene.field_body.pose;
-  w.approach = (w.X_WA.translation - X_WH0.translation).normalized();
+  w.approach = (X_WA.translation - X_WH0.translation).normalized();
   Eigen::Vector3d s = Eigen::Vector3d::UnitY() - Eigen::Vector3d::UnitY().dot(w.approach) * w.approach;
   if (s.norm() < 1e-6) s = Eigen::Vector3d::UnitZ() - Eigen::Vector3d::UnitZ().dot(w.approach) * w.approach;
   w.slide = s.normalized();
   const std::string where = scene.name + ": closed-loop poses";
-  w.X_WH_touch = TouchAlong(scene, assets, true, w.X_WA, X_WH0, w.approach, kTouchDepth, where);
+  w.X_WH_touch = TouchAlong(scene, assets, true, X_WA, X_WH0, w.approach, kTouchDepth, where);
   // Tilted: H rotated about the axis normal to approach and slide, approaching 30 degrees off.
   const Eigen::Vector3d axis = w.approach.cross(w.slide).normalized();
   const Eigen::AngleAxisd tilt(kTiltRadians, axis);
@@ -83,9 +84,8 @@ ClosedLoopScene MakeClosedLoopScene(const Scene& scene, SceneAssets& assets) {
   Pose tilted = X_WH0;
   tilted.rotation = (Eigen::Quaterniond(tilt) * X_WH0.rotation).normalized();
   // Start back along the tilted approach so the line of motion still passes near A's origin.
-  tilted.translation = w.X_WA.translation - (X_WH0.translation - w.X_WA.translation).norm() * w.corner_approach;
-  w.X_WH_touch_tilted = TouchAlong(scene, assets, true, w.X_WA, tilted, w.corner_approach, kTouchDepth, where);
-  w.cycle = SceneCycleConfig(scene, assets, nullptr);
+  tilted.translation = X_WA.translation - (X_WH0.translation - X_WA.translation).norm() * w.corner_approach;
+  w.X_WH_touch_tilted = TouchAlong(scene, assets, true, X_WA, tilted, w.corner_approach, kTouchDepth, where);
   return w;
 }
 

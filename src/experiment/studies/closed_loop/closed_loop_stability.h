@@ -29,14 +29,13 @@ const char* LoopMotionName(LoopMotion motion);
 // Where the hand goes on one scene: H's poses touching A (0.5 mm deep, found with the paper's
 // model by TouchAlong) for a straight and for a tilted approach, and the directions.
 struct ClosedLoopScene {
-  Pose X_WA;                      // A, static
   Pose X_WH_touch;                // H touching A approaching along `approach`
   Pose X_WH_touch_tilted;         // H tilted by 30 degrees, touching A along `corner_approach`
   Eigen::Vector3d approach = Eigen::Vector3d::UnitX();         // unit, H's motion toward A
   Eigen::Vector3d corner_approach = Eigen::Vector3d::UnitX();  // unit
   Eigen::Vector3d slide = Eigen::Vector3d::UnitY();            // unit, perpendicular to approach
-  // The scene's haptic cycle (scene/scene_query.h SceneCycleConfig: node budget, coherence
-  // guard, rate); each run sets its coupling and the bodies' dynamics on a copy.
+  // The scene's haptic cycle (scene/scene_query.h SceneCycleConfig: A's static pose X_WA, node
+  // budget, coherence guard, rate); each run sets its coupling and the bodies' dynamics on a copy.
   HapticCycleConfig cycle;
 };
 
