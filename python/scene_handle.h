@@ -10,9 +10,16 @@
 namespace contactlab::python {
 
 struct SceneHandle {
-  SceneHandle(Scene s, const AssetOptions& options) : scene(std::move(s)), assets(scene, options) {}
+  SceneHandle(Scene s, const AssetOptions& options) : scene(Checked(std::move(s))), assets(scene, options) {}
   Scene scene;
   SceneAssets assets;
+
+ private:
+  // The module's Scene holds two bodies; a scene of many bodies is refused by name.
+  static Scene Checked(Scene s) {
+    s.RequireTwoBodies("the Python module's Scene");
+    return s;
+  }
 };
 
 }  // namespace contactlab::python

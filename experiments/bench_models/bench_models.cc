@@ -35,6 +35,8 @@
 #include "scene/contact_placement.h"
 #include "scene/scene_assets.h"
 #include "scene/scene.h"
+#include "scene/scene_world.h"
+#include "clutter_scene.h"
 #include "util/data_path.h"
 #include "util/error.h"
 #ifdef CONTACTLAB_HAVE_CGAL
@@ -280,6 +282,95 @@ void BM_ModelDeepPress(benchmark::State& state, std::string scene_file, std::str
   state.SetItemsProcessed(cycles);
 }
 
+// The world of the cluttered scene of BODIES bodies with MODEL between the tool and each body,
+// made once (its bodies' data through the cache), or null with *ERROR.
+SceneWorld* ClutterWorld(int bodies, const std::string& model, std::string* error) {
+  static std::map<std::pair<int, std::string>, std::unique_ptr<SceneWorld>> worlds;
+  static std::map<std::pair<int, std::string>, std::string> errors;
+  const auto key = std::make_pair(bodies, model);
+  if (auto it = worlds.find(key); it != worlds.end()) return it->second.get();
+  if (auto it = errors.find(key); it != errors.end()) {
+    *error = it->second;
+    return nullptr;
+  }
+  try {
+    const std::string name = "clutter-" + std::to_string(bodies) + ".yaml";
+    const Scene scene = ParseScene(ConfigNode::LoadString(bench::ClutterSceneYaml(bodies), name));
+    AssetOptions options;
+    options.verbose = false;
+    return (worlds[key] = std::make_unique<SceneWorld>(scene, model, options)).get();
+  } catch (const Error& e) {
+    *error = errors[key] = e.what();
+    return nullptr;
+  }
+}
+
+// The tool of the cluttered scene sliding 2 cm either way along the wall at 1 m/s (1 mm a cycle
+// at 1 kHz), touching the floor and the wall throughout: one cycle over every pair per iteration.
+// Counters p50_us, p99_us, p999_us (per-cycle times), near (pairs near, mean), touching (mean),
+// contacts (points in contact, mean).
+void BM_Clutter(benchmark::State& state, int bodies, std::string model_name) {
+  std::string error;
+  SceneWorld* world = ClutterWorld(bodies, model_name, &error);
+  if (world == nullptr) {
+    state.SkipWithError(error.c_str());
+    return;
+  }
+  const Pose start = world->scene().bodies[std::size_t(world->tool())].pose;
+  constexpr std::size_t kKept = 1 << 16;
+  std::vector<double> times(kKept);
+  world->Reset();
+  std::int64_t cycles = 0, near = 0, touching = 0, contacts = 0;
+  for (auto _ : state) {
+    Pose X = start;
+    X.translation.y() += Triangle(cycles, 1e-3, 0.02);
+    const auto t0 = std::chrono::steady_clock::now();
+    const WorldResult& r = world->Evaluate(X, cycles);
+    const auto t1 = std::chrono::steady_clock::now();
+    benchmark::DoNotOptimize(r);
+    times[std::size_t(cycles) % kKept] = std::chrono::duration<double, std::micro>(t1 - t0).count();
+    near += r.stats.pairs_near;
+    touching += r.stats.pairs_touching;
+    contacts += r.stats.points_in_contact;
+    ++cycles;
+  }
+  SetCycleTimeCounters(state, &times, cycles);
+  const double n = double(std::max<std::int64_t>(1, cycles));
+  state.counters["near"] = double(near) / n;
+  state.counters["touching"] = double(touching) / n;
+  state.counters["contacts"] = double(contacts) / n;
+  state.SetItemsProcessed(cycles);
+}
+
+// The broad phase and pair bookkeeping alone on the same motion (SceneWorld::FindNearPairs):
+// counters p50_us, p99_us, p999_us per cycle.
+void BM_ClutterBroadPhase(benchmark::State& state, int bodies) {
+  std::string error;
+  SceneWorld* world = ClutterWorld(bodies, "pointshell", &error);
+  if (world == nullptr) {
+    state.SkipWithError(error.c_str());
+    return;
+  }
+  const Pose start = world->scene().bodies[std::size_t(world->tool())].pose;
+  constexpr std::size_t kKept = 1 << 16;
+  std::vector<double> times(kKept);
+  world->Reset();
+  std::int64_t cycles = 0;
+  for (auto _ : state) {
+    Pose X = start;
+    X.translation.y() += Triangle(cycles, 1e-3, 0.02);
+    const auto t0 = std::chrono::steady_clock::now();
+    world->FindNearPairs(X);
+    const auto t1 = std::chrono::steady_clock::now();
+    benchmark::DoNotOptimize(world->near_pairs().data());
+    times[std::size_t(cycles) % kKept] = std::chrono::duration<double, std::micro>(t1 - t0).count();
+    ++cycles;
+  }
+  SetCycleTimeCounters(state, &times, cycles);
+  state.counters["near"] = double(world->near_pairs().size());
+  state.SetItemsProcessed(cycles);
+}
+
 // The budget each real-time model gets in the deep press (its own unit, ContactStats::degraded):
 // the paper's model tree nodes, pointshell-ccd lookups, inner-spheres sphere pairs, pressure-field
 // lattice cells, vps points looked at.
@@ -289,6 +380,20 @@ constexpr std::pair<const char*, std::int64_t> kDeepBudgets[] = {
 
 void RegisterAll() {
   RegisterContactModels();
+  // Clutter: cost against the number of bodies at two contacts, per real-time model.
+  const std::vector<int> clutter = bench::QuickRun() ? std::vector<int>{3, 65} : std::vector<int>{3, 9, 65, 257};
+  const std::vector<std::string> clutter_models =
+      bench::QuickRun() ? std::vector<std::string>{"pointshell", "fcl"}
+                        : std::vector<std::string>{"pointshell", "pointshell-ccd", "vps", "pressure-field",
+                                                   "inner-spheres", "fcl", "bullet"};
+  for (const int bodies : clutter) {
+    for (const std::string& model : clutter_models) {
+      const std::string name = "clutter/" + std::to_string(bodies) + "/" + model;
+      benchmark::RegisterBenchmark(name.c_str(), BM_Clutter, bodies, model)->Unit(benchmark::kMicrosecond);
+    }
+    const std::string name = "clutter/" + std::to_string(bodies) + "/broad-phase";
+    benchmark::RegisterBenchmark(name.c_str(), BM_ClutterBroadPhase, bodies)->Unit(benchmark::kMicrosecond);
+  }
   std::vector<std::string> scenes;
   if (bench::QuickRun()) {
     scenes = {"scenes/sphere-on-plate.yaml"};

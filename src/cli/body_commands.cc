@@ -110,6 +110,7 @@ SceneBody LoadSceneBody(const std::string& scene_arg, const std::string& body_na
   for (const auto& in : other_inputs) CheckOutputIsNotInput(out, in, out_option);
   SceneBody sb;
   sb.scene = LoadScene(scene_file);
+  sb.scene.RequireTwoBodies("body");
   for (const BodySpec* b : {&sb.scene.field_body, &sb.scene.pointshell_body}) {
     if (const auto mesh_file = FindDataFile(b->mesh, FolderOf(scene_file))) CheckOutputIsNotInput(out, *mesh_file, out_option);
   }

@@ -2,6 +2,9 @@
 // [--contacts] [--json]`: evaluates one contact query of a scene (Barbič & James 2008, sec. 2.1
 // and 3) and prints the wrench on the field body, points in contact, nodes visited and level
 // rendered; --contacts also the model's contacts (ContactModel::LatestContacts).
+// A scene of many bodies (docs/scenes.md, "Many bodies"): the wrench on the tool summed over its
+// pairs, what was built for each body and one line per pair near the tool (--json: a "pairs"
+// array, each pair's bodies in its model's A/B order with the keys of a two-body query).
 // --touch first moves the field body toward the pointshell body until it is DEPTH deep, as
 // `session --touch` does (scene/contact_placement.h).
 // `contactlab models`: the registered contact models, what each needs and what it is.
@@ -22,6 +25,7 @@
 #include "scene/scene_assets.h"
 #include "scene/scene.h"
 #include "scene/scene_query.h"
+#include "scene/scene_world.h"
 #include "util/data_path.h"
 #include "util/error.h"
 
@@ -32,6 +36,7 @@ struct ContactArgs {
   std::string scene;
   std::string model;
   std::string pose_a, pose_b;
+  std::string pose_tool;  // a scene of many bodies: the tool's pose
   std::string q_a, q_b;
   std::string cache;
   bool no_cache = false;
@@ -83,12 +88,148 @@ nlohmann::json ContactsJson(const ContactList& contacts) {
   return c;
 }
 
+nlohmann::json Vec3(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+nlohmann::json Matrix6Json(const Matrix6d& K) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (int i = 0; i < 6; ++i) {
+    nlohmann::json row = nlohmann::json::array();
+    for (int c = 0; c < 6; ++c) row.push_back(K(i, c));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// A query's stats under their column names (contact/contact_stats_fields.h).
+void AddStats(const ContactStats& stats, nlohmann::json* j) {
+  for (const ContactStatField& f : kContactStatFields) {
+    if (f.count) {
+      (*j)[f.name] = std::int64_t(f.value(stats));
+    } else {
+      (*j)[f.name] = f.value(stats);
+    }
+  }
+}
+
+std::string Joined(const std::vector<std::string>& parts) {
+  std::string s;
+  for (const std::string& p : parts) s += (s.empty() ? "" : ", ") + p;
+  return s.empty() ? "nothing" : s;
+}
+
+// A scene of many bodies: one cycle over every pair, the tool at its scene pose or --pose-tool.
+void RunWorldContact(const ContactArgs& args, const Scene& scene, const AssetOptions& options) {
+  const std::string where = args.scene;
+  if (!args.pose_a.empty() || !args.pose_b.empty() || args.touch > 0 || !args.q_a.empty() || !args.q_b.empty()) {
+    Fail(where, "a scene of many bodies takes --pose-tool (the tool's pose; the other bodies stay at theirs), not "
+                "--pose-a, --pose-b, --touch, --q-a or --q-b");
+  }
+  if (!args.json) {
+    for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  }
+  const std::string model_name = args.model.empty() ? scene.models.front() : args.model;
+  SceneWorld world(scene, model_name, options);
+  const BodySpec& tool = scene.bodies[std::size_t(scene.tool)];
+  const Pose X_tool = args.pose_tool.empty() ? tool.pose : ParsePose(args.pose_tool, "--pose-tool");
+  constexpr int kMaxContacts = 1 << 20;
+  std::vector<std::uint8_t> has_contacts(std::size_t(world.pair_count()), 0);
+  if (args.contacts) {
+    for (int p = 0; p < world.pair_count(); ++p) has_contacts[std::size_t(p)] = world.model(p).KeepContacts(kMaxContacts);
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  const WorldResult r = world.Evaluate(X_tool, 0, args.budget);
+  const double micros = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+  if (r.stats.faults > 0) Fail(where, "a pair's model refused the query; no wrench");
+  if (!r.on_tool.force.allFinite() || !r.on_tool.torque.allFinite() || !r.K_tool.allFinite()) {
+    Fail(where, "a pair's model gave a non-finite wrench or stiffness at these poses; nothing printed");
+  }
+  auto name = [&](int body) { return scene.bodies[std::size_t(body)].name; };
+  if (args.json) {
+    nlohmann::json j;
+    j["scene"] = scene.name;
+    j["model"] = model_name;
+    j["tool"] = tool.name;
+    nlohmann::json bodies = nlohmann::json::array();
+    for (int b = 0; b < world.body_count(); ++b) bodies.push_back({{"name", name(b)}, {"built", world.body(b).Built()}});
+    j["bodies"] = bodies;
+    j["force"] = Vec3(r.on_tool.force);
+    j["torque"] = Vec3(r.on_tool.torque);
+    j["K_tool"] = Matrix6Json(r.K_tool);
+    j["pairs_near"] = r.stats.pairs_near;
+    j["pairs_touching"] = r.stats.pairs_touching;
+    j["pairs_degraded"] = r.stats.pairs_degraded;
+    j["points_in_contact"] = r.stats.points_in_contact;
+    j["nodes_visited"] = r.stats.nodes_visited;
+    j["evaluate_microseconds"] = micros;
+    nlohmann::json pairs = nlohmann::json::array();
+    for (int p = 0; p < world.pair_count(); ++p) {
+      const OrderedPair& pair = world.pair(p);
+      const PairOutcome& o = world.outcome(p);
+      nlohmann::json e;
+      e["bodies"] = {name(pair.A), name(pair.B)};
+      e["model"] = pair.model;
+      e["near"] = o.near;
+      e["node_budget"] = o.budget;
+      e["force"] = Vec3(o.result.on_B.force);
+      e["torque"] = Vec3(o.result.on_B.torque);
+      AddStats(o.result.stats, &e);
+      e["K_B"] = Matrix6Json(o.result.K_B);
+      if (args.contacts) {
+        ContactList contacts;
+        if (has_contacts[std::size_t(p)]) world.model(p).LatestContacts(&contacts);
+        e["contacts"] = has_contacts[std::size_t(p)] ? ContactsJson(contacts) : nlohmann::json(nullptr);
+      }
+      pairs.push_back(e);
+    }
+    j["pairs"] = pairs;
+    std::cout << j.dump(2) << "\n";
+    return;
+  }
+  std::printf("scene %s: %d bodies, tool %s, %d pairs (model %s unless the pair names its own)\n", scene.name.c_str(),
+              world.body_count(), tool.name.c_str(), world.pair_count(), model_name.c_str());
+  for (int b = 0; b < world.body_count(); ++b) {
+    std::printf("  built for %s: %s\n", name(b).c_str(), Joined(world.body(b).Built()).c_str());
+  }
+  std::printf("force on %s  [N]:   %+.6g %+.6g %+.6g\n", tool.name.c_str(), r.on_tool.force.x(), r.on_tool.force.y(),
+              r.on_tool.force.z());
+  std::printf("torque on %s [N m]: %+.6g %+.6g %+.6g (about its origin, world frame)\n", tool.name.c_str(),
+              r.on_tool.torque.x(), r.on_tool.torque.y(), r.on_tool.torque.z());
+  std::printf("pairs near %d, touching %d, degraded %d; points in contact %d, nodes visited %lld, %.1f us\n",
+              r.stats.pairs_near, r.stats.pairs_touching, r.stats.pairs_degraded, r.stats.points_in_contact,
+              static_cast<long long>(r.stats.nodes_visited), micros);
+  for (int p = 0; p < world.pair_count(); ++p) {
+    const OrderedPair& pair = world.pair(p);
+    const PairOutcome& o = world.outcome(p);
+    if (!o.near) continue;
+    const ContactResult& c = o.result;
+    std::printf("pair %s / %s (%s): force on %s %+.6g %+.6g %+.6g N, points in contact %d, nodes visited %lld, level "
+                "rendered %d, degraded %d, max penetration %.3g m\n",
+                name(pair.A).c_str(), name(pair.B).c_str(), pair.model.c_str(), name(pair.B).c_str(),
+                c.on_B.force.x(), c.on_B.force.y(), c.on_B.force.z(), c.stats.points_in_contact,
+                static_cast<long long>(c.stats.nodes_visited), c.stats.level_rendered, c.stats.degraded,
+                c.stats.max_penetration);
+    if (args.contacts) {
+      ContactList contacts;
+      if (has_contacts[std::size_t(p)]) world.model(p).LatestContacts(&contacts);
+      PrintContacts(pair.model, has_contacts[std::size_t(p)], contacts);
+    }
+  }
+  if (r.stats.pairs_near < world.pair_count()) {
+    std::printf("(%d pairs not near: their boxes do not overlap)\n", world.pair_count() - r.stats.pairs_near);
+  }
+}
+
 void RunContact(const ContactArgs& args) {
   const Scene scene = LoadScene(RequireDataFile(args.scene));
   AssetOptions options;
   options.cache_dir = args.cache;
   options.use_cache = !args.no_cache;
   options.verbose = !args.json;
+  if (scene.many_bodies()) {
+    RunWorldContact(args, scene, options);
+    return;
+  }
+  if (!args.pose_tool.empty()) Fail(args.scene, "--pose-tool is for a scene of many bodies (with `tool:`); give --pose-a or --pose-b");
   SceneAssets assets(scene, options);
   const std::string model_name = args.model.empty() ? scene.models.front() : args.model;
   std::unique_ptr<ReducedState> q_A, q_B;
@@ -132,21 +273,9 @@ void RunContact(const ContactArgs& args) {
     j["model"] = model_name;
     j["force"] = {r.on_B.force.x(), r.on_B.force.y(), r.on_B.force.z()};
     j["torque"] = {r.on_B.torque.x(), r.on_B.torque.y(), r.on_B.torque.z()};
-    for (const ContactStatField& f : kContactStatFields) {
-      if (f.count) {
-        j[f.name] = std::int64_t(f.value(r.stats));
-      } else {
-        j[f.name] = f.value(r.stats);
-      }
-    }
+    AddStats(r.stats, &j);
     j["evaluate_microseconds"] = micros;
-    nlohmann::json K = nlohmann::json::array();
-    for (int i = 0; i < 6; ++i) {
-      nlohmann::json row = nlohmann::json::array();
-      for (int c = 0; c < 6; ++c) row.push_back(r.K_B(i, c));
-      K.push_back(row);
-    }
-    j["K_B"] = K;
+    j["K_B"] = Matrix6Json(r.K_B);
     if (q.deformation_A != nullptr) {
       j["reduced_force_A"] = std::vector<double>(reduced_force.data(), reduced_force.data() + reduced_force.size());
     }
@@ -192,6 +321,9 @@ const CommandRegistration kContactCommands([](CLI::App& app) {
   cmd->add_option("--model", args->model, "contact model name (default: the scene's first model)");
   cmd->add_option("--pose-a", args->pose_a, "pose of the pointshell body: x,y,z,qw,qx,qy,qz (metres)");
   cmd->add_option("--pose-b", args->pose_b, "pose of the field body: x,y,z,qw,qx,qy,qz (metres)");
+  cmd->add_option("--pose-tool", args->pose_tool,
+                  "a scene of many bodies: the tool's pose, x,y,z,qw,qx,qy,qz (metres); every pair is queried and "
+                  "the wrench on the tool printed with one line per pair near it");
   cmd->add_option("--touch", args->touch,
                   "first move the field body toward the pointshell body until this deep, metres (from --pose-b or "
                   "the scene's pose)")

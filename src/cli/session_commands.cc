@@ -141,6 +141,7 @@ AssetOptions SessionAssetOptions(const SessionArgs& args) {
 // rate.
 Scene LoadSessionScene(const SessionArgs& args) {
   Scene scene = LoadScene(RequireDataFile(args.scene));
+  scene.RequireTwoBodies("session");
   if (args.rate > 0) scene.model.cycle_seconds = 1.0 / args.rate;
   if (args.budget >= 0) scene.node_budget = args.budget;
   (void)LoopRateOfCycle(scene.model.cycle_seconds, args.scene + ": model.cycle_seconds");

@@ -146,6 +146,7 @@ void RunView(const ViewArgs& args) {
     const fs::path scene_file = RequireDataFile(args.input);
     CheckOutputIsNotInput(args.out, scene_file, "--out");
     Scene scene = LoadScene(scene_file);
+    scene.RequireTwoBodies("view");
     if (!args.models.empty()) scene.models = args.models;
     for (const BodySpec* b : {&scene.field_body, &scene.pointshell_body}) {
       if (const auto mesh_file = FindDataFile(b->mesh, FolderOf(scene_file))) CheckOutputIsNotInput(args.out, *mesh_file, "--out");

@@ -613,6 +613,7 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
   }
   c.scene = ParseScene(ConfigNode(c.scene_document, std::make_shared<const std::string>(c.scene_file),
                                   scene.IsScalar() ? "" : "scene"));
+  c.scene.RequireTwoBodies("an experiment");
   if (auto m = root.Find("models")) {
     for (const ConfigNode& e : m->Elements()) c.models.push_back(e.AsString());
     if (c.models.empty()) m->Fail("lists no model");

@@ -366,8 +366,14 @@ const ParamTable<BodySpec>& BodyParams() {
                     [](const ConfigNode& v, BodySpec* b) { b->pose = ParsePoseNode(v); }, nullptr,
                     [](const BodySpec&) { return std::string("identity"); })
               .Example("[0, 0, 0.1, 1, 0, 0, 0]"),
-          P::Choice("role", PARAM_MEMBER(role), {"pointshell", "field"},
-                    "pointshell (body A) or field (body B); the two bodies take different roles (required)"),
+          P::Choice("role", PARAM_MEMBER(role), {"pointshell", "field", "both"},
+                    "two bodies: pointshell (body A) or field (body B), different roles (required); many bodies "
+                    "(`tool:`): what it may be in its pairs, pointshell, field or both (default both)"),
+          P::Number("deformation_bound", PARAM_MEMBER(deformation_bound), AtLeast(0), NoUpperBound(),
+                    "many bodies: how far a deformable body's surface may move, growing its broad-phase box")
+              .Unit("m")
+              .Default("a tenth of its largest half-extent; 0 when rigid")
+              .Example("0.005"),
           P::Block("field", PARAM_MEMBER(field), FieldParams(), "its distance field"),
           P::Block("pointshell", PARAM_MEMBER(pointshell), PointshellParams(), "its pointshell"),
           P::Custom("deformable", "block", "see `bodies[].deformable`", "a reduced deformable model (absent: rigid)",
@@ -384,11 +390,10 @@ const ParamTable<BodySpec>& BodyParams() {
     rows.push_back(P::Block(r.block->key, PARAM_MEMBER(model_blocks), *r.block->table, r.block->doc));
   }
   return ParamTable<BodySpec>(
-      "bodies[]", "One of the scene's two bodies: its mesh, placement, role, and the blocks that build its models.",
+      "bodies[]", "One of the scene's bodies: its mesh, placement, role, and the blocks that build its models.",
       std::move(rows),
       [](const ConfigNode& n, BodySpec* b) {
         (void)n.Get("mesh");  // required
-        (void)n.Get("role");
         if (!n.Has("name")) b->name = b->mesh;
         if (b->deformable && b->field.storage == "sparse") {
           n.Get("field").Get("storage").Fail(
@@ -429,6 +434,143 @@ Pose ParsePoseNode(const ConfigNode& n) {
   return pose;
 }
 
+namespace {
+
+// The index of the body NAME in SCENE, or -1.
+int BodyIndex(const Scene& scene, const std::string& name) {
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    if (scene.bodies[i].name == name) return int(i);
+  }
+  return -1;
+}
+
+// A scene of many bodies: the tool, the default pairs (the tool against every other body) and
+// the scene's `pairs:`, which add pairs and override a default pair's model and parameters.
+void ParseManyBodies(const ConfigNode& n, const std::vector<ConfigNode>& body_nodes, Scene* scene) {
+  for (std::size_t i = 0; i < scene->bodies.size(); ++i) {
+    BodySpec& b = scene->bodies[i];
+    if (b.role.empty()) b.role = "both";
+    for (std::size_t j = 0; j < i; ++j) {
+      if (scene->bodies[j].name == b.name) {
+        body_nodes[i].Fail("a second body named '" + b.name + "' (pairs and `tool` name bodies, so names are unique)");
+      }
+    }
+  }
+  if (!n.Has("tool")) {
+    n.Get("bodies").Fail("a scene of " + std::to_string(scene->bodies.size()) +
+                         " bodies names the body the device or the trajectory moves: tool: NAME");
+  }
+  const ConfigNode tool = n.Get("tool");
+  scene->tool = BodyIndex(*scene, tool.AsString());
+  if (scene->tool < 0) tool.Fail("'" + tool.AsString() + "' is none of the scene's bodies");
+  const std::string file_where = scene->file.empty() ? std::string("scene") : scene->file;
+  for (int i = 0; i < int(scene->bodies.size()); ++i) {
+    if (i == scene->tool) continue;
+    PairSpec p;
+    p.bodies = {scene->tool, i};
+    p.where = file_where + ": the tool against body '" + scene->bodies[std::size_t(i)].name + "'";
+    scene->pairs.push_back(p);
+  }
+  if (auto ps = n.Find("pairs")) {
+    std::vector<std::string> seen;
+    for (const ConfigNode& e : ps->Elements()) {
+      e.ExpectKeys({"bodies", "model", "params"});
+      const ConfigNode names = e.Get("bodies");
+      const std::vector<ConfigNode> two = names.Elements();
+      if (two.size() != 2) names.Fail("a pair names two bodies, got " + std::to_string(two.size()));
+      PairSpec p;
+      for (int k = 0; k < 2; ++k) {
+        p.bodies[std::size_t(k)] = BodyIndex(*scene, two[std::size_t(k)].AsString());
+        if (p.bodies[std::size_t(k)] < 0) two[std::size_t(k)].Fail("'" + two[std::size_t(k)].AsString() + "' is none of the scene's bodies");
+      }
+      if (p.bodies[0] == p.bodies[1]) names.Fail("a pair of body '" + two[0].AsString() + "' with itself");
+      const std::string key = std::to_string(std::min(p.bodies[0], p.bodies[1])) + "/" +
+                              std::to_string(std::max(p.bodies[0], p.bodies[1]));
+      if (std::find(seen.begin(), seen.end(), key) != seen.end()) {
+        names.Fail("the pair " + two[0].AsString() + " / " + two[1].AsString() + " is named twice");
+      }
+      seen.push_back(key);
+      p.where = e.Location();
+      if (auto m = e.Find("model")) {
+        p.model = m->AsString();
+        if (p.model != "none" && FindContactModel(p.model) == nullptr) {
+          std::string known;
+          for (const std::string& name : ContactModelNames()) known += (known.empty() ? "" : ", ") + name;
+          m->Fail("unknown contact model '" + p.model + "' (known: " + known + ", none)");
+        }
+      }
+      if (auto params = e.Find("params")) {
+        if (params->Has("node_budget") || params->Has("warm_threshold")) {
+          params->Fail("the node budget is the scene's, one for the cycle, shared by every pair (model.node_budget)");
+        }
+        const Scene own = WithModelSection(*scene, *params);
+        p.has_params = true;
+        p.params = own.model;
+        p.model_params = own.model_params;
+      }
+      // A pair of the tool replaces its default pair; any other is added.
+      auto same = [&](const PairSpec& q) {
+        return (q.bodies[0] == p.bodies[0] && q.bodies[1] == p.bodies[1]) ||
+               (q.bodies[0] == p.bodies[1] && q.bodies[1] == p.bodies[0]);
+      };
+      const auto it = std::find_if(scene->pairs.begin(), scene->pairs.end(), same);
+      if (it != scene->pairs.end()) {
+        *it = p;
+      } else {
+        scene->pairs.push_back(p);
+      }
+    }
+  }
+  scene->pairs.erase(std::remove_if(scene->pairs.begin(), scene->pairs.end(),
+                                    [](const PairSpec& p) { return p.model == "none"; }),
+                     scene->pairs.end());
+  // Every pair's model takes its bodies in some order, for every model the scene compares.
+  for (const PairSpec& p : scene->pairs) {
+    const std::vector<std::string> names = p.model.empty() ? scene->models : std::vector<std::string>{p.model};
+    for (const std::string& name : names) (void)OrderPair(*scene, p, name);
+  }
+  for (int i = 0; i < int(scene->bodies.size()); ++i) {
+    const bool used = i == scene->tool || std::any_of(scene->pairs.begin(), scene->pairs.end(), [&](const PairSpec& p) {
+                        return p.bodies[0] == i || p.bodies[1] == i;
+                      });
+    if (!used) {
+      scene->warnings.push_back(body_nodes[std::size_t(i)].Location() + ": body '" + scene->bodies[std::size_t(i)].name +
+                                "' is in no pair: nothing touches it");
+    }
+  }
+}
+
+}  // namespace
+
+OrderedPair OrderPair(const Scene& scene, const PairSpec& pair, std::string_view default_model) {
+  OrderedPair o;
+  o.model = pair.model.empty() ? std::string(default_model) : pair.model;
+  const ContactModelEntry* entry = FindContactModel(o.model);
+  const BodySpec& first = scene.bodies[std::size_t(pair.bodies[0])];
+  const BodySpec& second = scene.bodies[std::size_t(pair.bodies[1])];
+  if (entry == nullptr) {
+    Fail(pair.where, "unknown contact model '" + o.model + "' for the pair " + first.name + " / " + second.name);
+  }
+  const ContactModelNeeds& needs = entry->needs;
+  auto may_be_A = [&](const BodySpec& b) { return b.role != "field" || !(needs.pointshell_A || needs.field_A); };
+  auto may_be_B = [&](const BodySpec& b) { return b.role != "pointshell" || !needs.field_B; };
+  const ContactParams& params = pair.has_params ? pair.params : scene.model;
+  const ParamValues& model_params = pair.has_params ? pair.model_params : scene.model_params;
+  for (const auto& [a, b] : {std::pair{0, 1}, std::pair{1, 0}}) {
+    const BodySpec& A = scene.bodies[std::size_t(pair.bodies[std::size_t(a)])];
+    const BodySpec& B = scene.bodies[std::size_t(pair.bodies[std::size_t(b)])];
+    if (!may_be_A(A) || !may_be_B(B)) continue;
+    CheckContactModel(o.model, params, model_params, A.name, A.deformable.has_value(), B.name, B.deformable.has_value(),
+                      pair.where);
+    o.A = pair.bodies[std::size_t(a)];
+    o.B = pair.bodies[std::size_t(b)];
+    return o;
+  }
+  Fail(pair.where, "model " + o.model + " needs a pointshell body and a field body, and neither of " + first.name +
+                       " (role " + first.role + ") and " + second.name + " (role " + second.role +
+                       ") can take the role it lacks");
+}
+
 Scene ParseScene(const ConfigNode& n) {
   RegisterContactModels();  // a scene names models and their keys: every model the build holds
   // An experiment config where a scene belongs (`contactlab contact CONFIG.yaml`): it names a
@@ -437,18 +579,18 @@ Scene ParseScene(const ConfigNode& n) {
     Fail(n.file(), "this is an experiment config (it names a scene and has no bodies): use `contactlab run " +
                        n.file() + "` (a scene is a file like data/scenes/*.yaml)");
   }
-  n.ExpectKeys({"name", "bodies", "model", "models"});
+  n.ExpectKeys({"name", "bodies", "model", "models", "tool", "pairs"});
   Scene scene;
   scene.file = n.file();
   scene.name = n.String("name", std::filesystem::path(n.file()).stem().string());
   const std::vector<ConfigNode> bodies = n.Get("bodies").Elements();
-  if (bodies.size() != 2) n.Get("bodies").Fail("a scene needs exactly two bodies, got " + std::to_string(bodies.size()));
-  BodySpec a = BodyParams().Parse(bodies[0]);
-  BodySpec b = BodyParams().Parse(bodies[1]);
-  if (a.role == b.role) bodies[1].Get("role").Fail("the two bodies need different roles (one pointshell, one field)");
-  if (a.role == "field") std::swap(a, b);
-  scene.pointshell_body = a;
-  scene.field_body = b;
+  const bool many = n.Has("tool") || n.Has("pairs") || bodies.size() > 2;
+  if (bodies.size() < 2) n.Get("bodies").Fail("a scene needs at least two bodies, got " + std::to_string(bodies.size()));
+  if (bodies.size() > std::size_t(kMaxSceneBodies)) {
+    n.Get("bodies").Fail("a scene holds at most " + std::to_string(kMaxSceneBodies) + " bodies, got " +
+                         std::to_string(bodies.size()));
+  }
+  for (const ConfigNode& b : bodies) scene.bodies.push_back(BodyParams().Parse(b));
   if (auto m = n.Find("model")) scene = ModelSectionParams().Parse(*m, scene);
   if (auto ms = n.Find("models")) {
     for (const ConfigNode& e : ms->Elements()) scene.models.push_back(e.AsString());
@@ -456,12 +598,42 @@ Scene ParseScene(const ConfigNode& n) {
   } else {
     scene.models = {"pointshell"};
   }
+  if (many) {
+    ParseManyBodies(n, bodies, &scene);
+    // The two-body fields hold the tool and the first body it pairs with, for what reads a scene's
+    // sizes (a cycle's coherence guard takes the tool's radius through the caller).
+    scene.pointshell_body = scene.bodies[std::size_t(scene.tool)];
+    scene.field_body = scene.bodies[std::size_t(scene.tool == 0 ? 1 : 0)];
+    return scene;
+  }
+  BodySpec a = scene.bodies[0];
+  BodySpec b = scene.bodies[1];
+  for (int i = 0; i < 2; ++i) {
+    const std::string& role = scene.bodies[std::size_t(i)].role;
+    if (role.empty()) (void)bodies[std::size_t(i)].Get("role");  // required
+    if (role == "both") {
+      bodies[std::size_t(i)].Get("role").Fail("'both' is for a scene of many bodies (with `tool:`); a body of a "
+                                               "two-body scene is its pointshell or its field");
+    }
+  }
+  if (a.role == b.role) bodies[1].Get("role").Fail("the two bodies need different roles (one pointshell, one field)");
+  if (a.role == "field") std::swap(a, b);
+  scene.pointshell_body = a;
+  scene.field_body = b;
+  scene.bodies.clear();  // a two-body scene's bodies are pointshell_body and field_body, which sweeps change
   return scene;
 }
 
 Scene LoadScene(const std::filesystem::path& file) { return ParseScene(ConfigNode::LoadFile(file)); }
 
 Scene WithModelSection(Scene scene, const ConfigNode& node) { return ModelSectionParams().Parse(node, std::move(scene)); }
+
+void Scene::RequireTwoBodies(std::string_view what) const {
+  if (!many_bodies()) return;
+  Fail(file.empty() ? std::string("scene") : file,
+       std::string(what) + " takes a scene of two bodies; this one has " + std::to_string(bodies.size()) +
+           " bodies and a tool (`contactlab contact` queries every pair of it)");
+}
 
 Scene Scene::Swapped() const {
   Scene s = *this;
@@ -536,7 +708,28 @@ const std::vector<SceneBlock>& SceneBlocks() {
 }
 
 std::string SceneReference() {
-  std::string s;
+  // The scene's top-level keys, and the pairs of a scene of many bodies (ParseManyBodies).
+  std::string s =
+      "### scene\n\nThe top-level keys of a scene file (docs/scenes.md; \"Many bodies\" for `tool` and `pairs`).\n\n"
+      "| key | value | meaning |\n|---|---|---|\n"
+      "| `name` | text (default: the file's stem) | the scene's name |\n"
+      "| `bodies` | list of `bodies[]` blocks, 2 to " + std::to_string(kMaxSceneBodies) +
+      " | the bodies; two without `tool`: one pointshell, one field |\n"
+      "| `tool` | a body's name | the body the device or the trajectory moves; makes it a scene of many bodies, "
+      "required beyond two bodies |\n"
+      "| `pairs` | list of `pairs[]` blocks | pairs beside the default ones (the tool against every other body), "
+      "or a default pair's model and parameters |\n"
+      "| `model` | the `model` block | the models' parameters, every pair's unless it gives its own |\n"
+      "| `models` | list of model names (default: pointshell) | the contact models to compare (a pair without a "
+      "model of its own takes each in turn) |\n\n"
+      "### `pairs[]`\n\nA pair of a scene of many bodies: two bodies that may touch, and the model between them.\n\n"
+      "| key | value | meaning |\n|---|---|---|\n"
+      "| `bodies` | two body names (required) | the pair; taken in its model's A/B order: as written when each body "
+      "may take its role (`bodies[].role`), else exchanged |\n"
+      "| `model` | a registered model, or none (default: the model compared) | the pair's model; none removes a "
+      "default pair |\n"
+      "| `params` | a `model` block without node_budget | the pair's own model parameters, replacing the "
+      "scene's (the node budget is the cycle's, shared by every pair) |\n\n";
   for (const SceneBlock& b : SceneBlocks()) s += b.reference;
   return s;
 }

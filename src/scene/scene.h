@@ -1,5 +1,14 @@
-// Scenes: two bodies and the parameters of the contact models that act between them, read
-// from YAML. Body "pointshell" (A) carries the pointshell, body "field" (B) the distance
+// Scenes: bodies and the parameters of the contact models that act between them, read from
+// YAML. A scene of two bodies is written as below; a scene of many bodies (docs/scenes.md,
+// "Many bodies") names its tool and lists its pairs:
+//
+//   tool: part                    # the body the device or the trajectory moves
+//   pairs:                        # default: the tool against every other body
+//     - {bodies: [hose1, hose2], model: pointshell}            # a pair between two others
+//     - {bodies: [part, bracket], model: fcl, params: {k_C: 500}}  # a default pair's model
+//     - {bodies: [part, frame], model: none}                   # no pair
+//
+// A two-body scene: Body "pointshell" (A) carries the pointshell, body "field" (B) the distance
 // field; either may carry both so roles can be swapped in experiments.
 //
 //   name: dragon-on-bunny
@@ -42,8 +51,10 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <array>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "contact/contact_params.h"
@@ -65,6 +76,7 @@ namespace contactlab {
 inline constexpr int kMaxFieldResolution = 1024;       // cells along the longest side
 inline constexpr int kMaxPointshellPoints = 1 << 24;   // 16,777,216 points
 inline constexpr int kMaxPointshellLevels = 12;        // tree levels
+inline constexpr int kMaxSceneBodies = 1024;           // bodies of one scene
 
 struct FieldSpec {
   int resolution = 64;        // cells along the longest side
@@ -114,13 +126,31 @@ struct BodySpec {
   double scale = 1.0;
   bool center = false;
   Pose pose;                         // X_WBody at the scene's start
-  std::string role;                  // "pointshell" or "field"
+  // Two-body scene: "pointshell" or "field". Scene of many bodies (Scene::tool): what the body
+  // may be in its pairs, "pointshell", "field" or "both" (the default there).
+  std::string role;
   FieldSpec field;
   PointshellSpec pointshell;
   std::optional<DeformableSpec> deformable;  // none: rigid
+  // Scene of many bodies: how far its surface may move from where its reduced model's rest shape
+  // has it, metres, growing its broad-phase box (< 0: a tenth of its largest half-extent;
+  // a rigid body's is 0).
+  double deformation_bound = -1;
   ParamValues model_blocks;          // the registered models' blocks (pressure_field, inner_spheres, ...)
 };
 
+
+// A pair of a scene of many bodies (Scene::tool): two bodies the scene lets touch, and the
+// model between them. By default the tool against every other body; the scene's `pairs:` adds
+// pairs between other bodies and overrides a pair's model and its parameters.
+struct PairSpec {
+  std::array<int, 2> bodies{-1, -1};  // indices into Scene::bodies, as the pair names them
+  std::string model;                  // a registered model; "" the model being compared; "none": no pair
+  bool has_params = false;            // its own model section (below) instead of the scene's
+  ContactParams params;
+  ParamValues model_params;
+  std::string where;                  // "FILE:LINE: pairs[i]" (or the scene's file for a default pair)
+};
 
 struct Scene {
   std::string name;
@@ -131,6 +161,19 @@ struct Scene {
   ParamValues model_params;          // its keys of each registered model
   std::int64_t node_budget = 0;      // warm threshold V_W, nodes per cycle; 0 = unlimited
   std::vector<std::string> models;   // model names to compare (default: pointshell)
+  // A scene of many bodies (`tool:` given, or more than two bodies): every body in file order,
+  // the one the device or the trajectory moves, and the pairs (default ones included, "none"
+  // ones left out); pointshell_body and field_body hold the tool and another body. A two-body
+  // scene without `tool:` has tool -1 and no BODIES or PAIRS: pointshell_body and field_body
+  // are its bodies.
+  std::vector<BodySpec> bodies;
+  int tool = -1;
+  std::vector<PairSpec> pairs;
+  std::vector<std::string> warnings;  // what the scene holds that nothing uses (a body in no pair)
+  bool many_bodies() const { return tool >= 0; }
+  // Throws Error("FILE: WHAT ...") when this is a scene of many bodies, for the commands that
+  // read two bodies only.
+  void RequireTwoBodies(std::string_view what) const;
 
   // The same scene with the roles of the two bodies exchanged.
   Scene Swapped() const;
@@ -160,6 +203,18 @@ struct SceneBlock {
 const std::vector<SceneBlock>& SceneBlocks();
 // Every block's table, as Markdown (`contactlab params`, docs/scene-reference.md).
 std::string SceneReference();
+
+// A pair of a scene of many bodies as its model takes it: the model (the pair's own, else
+// DEFAULT_MODEL) and the two bodies in its A/B order (indices into Scene::bodies): as the pair
+// names them when each may take its role (BodySpec::role against the model's needs), else
+// exchanged. Throws Error naming the pair when neither order fits, when the model is unknown or
+// when it refuses a deformable body (CheckContactModel).
+struct OrderedPair {
+  std::string model;
+  int A = -1;
+  int B = -1;
+};
+OrderedPair OrderPair(const Scene& scene, const PairSpec& pair, std::string_view default_model);
 
 // Reads a scene from a YAML node (a whole file, or the "scene" key of an experiment).
 Scene ParseScene(const ConfigNode& node);

@@ -291,6 +291,17 @@ std::shared_ptr<const DeformedDistanceField> BodyAssets::deformed_field() {
   return deformed_field_;
 }
 
+std::vector<std::string> BodyAssets::Built() const {
+  std::vector<std::string> built;
+  if (mesh_) built.push_back("mesh");
+  if (field_) built.push_back("field");
+  if (pointshell_) built.push_back("pointshell");
+  if (reduced_model_) built.push_back("reduced model");
+  if (deformable_pointshell_) built.push_back("deformable pointshell");
+  if (deformed_field_) built.push_back("deformed field");
+  return built;
+}
+
 IntegratorOptions DeformableIntegratorOptions(const DeformableSpec& deformable, double dt) {
   IntegratorOptions o;
   o.time_step = dt;

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "contact/model_registry.h"
 #include "deform/body_dynamics.h"
@@ -82,6 +83,9 @@ class BodyAssets final : public ContactBody {
   std::filesystem::path DerivedCachePath(std::string_view key) override;
   // A key of the mesh content and load parameters (hex), part of every cache key.
   const std::string& mesh_key();
+  // What has been built or read so far, of: mesh, field, pointshell, reduced model, deformable
+  // pointshell, deformed field (what a scene's models needed of the body).
+  std::vector<std::string> Built() const;
 
  private:
   BodySpec spec_;

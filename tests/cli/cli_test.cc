@@ -105,6 +105,54 @@ TEST(Cli, ContactPrintsTheForceOnTheFieldBodyAsJson) {
   EXPECT_GT(K[14], -kC * L) << o.output;
 }
 
+// A scene of many bodies (data/scenes/tool-among-parts.yaml): the ball pressed 2 mm into the
+// floor and 2 mm against the wall, two brackets off to the side touching each other. `contact
+// --json` gives one entry per pair in its model's A/B order; the wrench on the tool is minus the
+// sum of the forces on the B of its pairs (it is their A), the brackets' pair stays out of it,
+// and the two equal presses push the ball equally up and away from the wall. Under --model fcl
+// no body gets more than its mesh. Commands that take two bodies refuse the scene by name.
+TEST(Cli, ContactQueriesEveryPairOfASceneOfManyBodies) {
+  testing::TempDir dir;
+  const std::string cache = " --cache " + (dir / "cache").string();
+  const Outcome o = RunCli("contact scenes/tool-among-parts.yaml --json" + cache);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const nlohmann::json j = nlohmann::json::parse(o.output);
+  EXPECT_EQ(j["tool"], "ball");
+  ASSERT_EQ(j["pairs"].size(), 5u);
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  int near = 0;
+  for (const nlohmann::json& p : j["pairs"]) {
+    near += p["near"].get<bool>();
+    const Eigen::Vector3d F(p["force"][0].get<double>(), p["force"][1].get<double>(), p["force"][2].get<double>());
+    if (p["bodies"][0] == "ball") sum -= F;
+    if (!p["near"].get<bool>()) EXPECT_EQ(F.norm(), 0) << p.dump();
+  }
+  EXPECT_EQ(j["pairs"][4]["bodies"], nlohmann::json({"bracket-a", "bracket-b"}));
+  EXPECT_EQ(j["pairs"][4]["model"], "fcl");
+  EXPECT_GT(j["pairs"][4]["points_in_contact"].get<int>(), 0);
+  EXPECT_EQ(near, j["pairs_near"].get<int>());
+  EXPECT_EQ(near, 3);
+  const Eigen::Vector3d F(j["force"][0].get<double>(), j["force"][1].get<double>(), j["force"][2].get<double>());
+  EXPECT_LT((F - sum).norm(), 1e-9 * F.norm()) << o.output;
+  ASSERT_GT(F.z(), 1.0);
+  EXPECT_NEAR(-F.x(), F.z(), 0.05 * F.z());
+  EXPECT_LT(std::abs(F.y()), 0.05 * F.z());
+  EXPECT_EQ(j["bodies"][1]["built"], nlohmann::json({"mesh", "field"}));
+  // Only meshes under FCL.
+  const Outcome fcl = RunCli("contact scenes/tool-among-parts.yaml --model fcl" + cache);
+  ASSERT_EQ(fcl.exit_code, 0) << fcl.output;
+  for (const char* body : {"ball", "floor", "wall", "bracket-a", "bracket-b"}) {
+    EXPECT_NE(fcl.output.find("built for " + std::string(body) + ": mesh\n"), std::string::npos) << fcl.output;
+  }
+  const Outcome pose_a = RunCli("contact scenes/tool-among-parts.yaml --pose-a 0,0,0,1,0,0,0" + cache);
+  EXPECT_NE(pose_a.exit_code, 0);
+  EXPECT_NE(pose_a.output.find("--pose-tool"), std::string::npos) << pose_a.output;
+  const Outcome session = RunCli("session scenes/tool-among-parts.yaml --device sim --duration 0.01" + cache);
+  EXPECT_NE(session.exit_code, 0);
+  EXPECT_NE(session.output.find("tool-among-parts.yaml: session takes a scene of two bodies"), std::string::npos)
+      << session.output;
+}
+
 // `contact --contacts --json`: the pointshell model lists one contact per point in contact,
 // each on the ball and below the plate at its distance below the plate's top (z = 0), pushing
 // the plate down, and k depth normal summed over them is the force printed (eq. (1) with

@@ -161,7 +161,8 @@ TEST(Scene, MissingMeshKeyAndBadRolesAreRejected) {
   EXPECT_NE(ErrorOf(Replace(kScene, "    mesh: \"sphere:0.05\"\n", "")).find("missing required key 'mesh'"), std::string::npos);
   EXPECT_NE(ErrorOf(Replace(kScene, "role: field\n", "role: pointshell\n")).find("different roles"), std::string::npos);
   EXPECT_NE(ErrorOf(Replace(kScene, "role: field\n", "role: wall\n")).find("bodies[1].role"), std::string::npos);
-  EXPECT_NE(ErrorOf("bodies: []\n").find("exactly two bodies"), std::string::npos);
+  EXPECT_NE(ErrorOf("bodies: []\n").find("at least two bodies, got 0"), std::string::npos);
+  EXPECT_NE(ErrorOf(Replace(kScene, "    role: field\n", "")).find("missing required key 'role'"), std::string::npos);
   EXPECT_NE(ErrorOf("bodies: [\n").find("YAML syntax error"), std::string::npos);
 }
 
