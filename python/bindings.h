@@ -15,5 +15,7 @@ void BindScene(pybind11::module_& m);
 void BindModel(pybind11::module_& m);
 // run(), register_model() (run_bindings.cc).
 void BindRun(pybind11::module_& m);
+// World, a scene of many bodies (world_bindings.cc).
+void BindWorld(pybind11::module_& m);
 
 }  // namespace contactlab::python

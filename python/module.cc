@@ -41,5 +41,6 @@ PYBIND11_MODULE(_core, m) {
   contactlab::python::BindScene(m);
   contactlab::python::BindModel(m);
   contactlab::python::BindRun(m);
+  contactlab::python::BindWorld(m);
   m.attr("__version__") = CONTACTLAB_VERSION;
 }

@@ -116,10 +116,19 @@ Scene SceneFromDict(py::handle d) {
   } catch (const Error& e) {
     throw ArgumentError(e.what());  // the dict is the call's argument
   }
-  // Each in-memory mesh to the body that names it: the parse placed the bodies by role.
+  // Each in-memory mesh to the body that names it: a scene of many bodies keeps them in order, a
+  // two-body scene's parse placed them by role.
   for (const auto& [i, mesh] : converter.meshes) {
+    if (scene.many_bodies()) {
+      scene.bodies[std::size_t(i)].mesh_data = mesh;
+      continue;
+    }
     const std::string role = root["bodies"][i]["role"].Scalar();
     (role == "pointshell" ? scene.pointshell_body : scene.field_body).mesh_data = mesh;
+  }
+  if (scene.many_bodies()) {  // the two-body fields' copies of the tool and another body (scene/scene.h)
+    scene.pointshell_body = scene.bodies[std::size_t(scene.tool)];
+    scene.field_body = scene.bodies[std::size_t(scene.tool == 0 ? 1 : 0)];
   }
   return scene;
 }

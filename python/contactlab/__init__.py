@@ -7,6 +7,8 @@
     batch = model.query_many(poses_A, poses_B)          # (N, 7) arrays -> (N, 6), (N, 6, 6)
     out = contactlab.run("experiments/continuity-models.yaml", out="/tmp/run", set={"models": ["pointshell"]})
     results = contactlab.load_results(out)              # results.summary, results.cycles: DataFrames
+    world = contactlab.World.load("scenes/tool-among-parts.yaml")   # a tool among many bodies
+    w = world.query(tool_pose)                          # w["force"], per pair w["pair_force"] (P, 3)
 
 Units are SI (metres, newtons); poses are (x, y, z, qw, qx, qy, qz) 7-vectors or 4x4 matrices.
 Errors raise contactlab.Error (a RuntimeError) with the library's message (file, line, key); a
@@ -49,6 +51,7 @@ try:
         Model,
         Pointshell,
         Scene,
+        World,
         __version__,
         model_description,
         models,
