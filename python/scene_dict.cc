@@ -127,8 +127,8 @@ Scene SceneFromDict(py::handle d) {
     (role == "pointshell" ? scene.pointshell_body : scene.field_body).mesh_data = mesh;
   }
   if (scene.many_bodies()) {  // the two-body fields' copies of the tool and another body (scene/scene.h)
-    scene.pointshell_body = scene.bodies[std::size_t(scene.tool)];
-    scene.field_body = scene.bodies[std::size_t(scene.tool == 0 ? 1 : 0)];
+    scene.field_body = scene.bodies[std::size_t(scene.tool)];
+    scene.pointshell_body = scene.bodies[std::size_t(scene.tool == 0 ? 1 : 0)];
   }
   return scene;
 }

@@ -35,6 +35,7 @@
 #include "scene/scene_assets.h"
 #include "scene/scene.h"
 #include "scene/scene_query.h"
+#include "scene/scene_world.h"
 #include "haptics/cpu_affinity.h"
 #include "haptics/device_factory.h"
 #include "haptics/haptic_cycle.h"
@@ -141,7 +142,6 @@ AssetOptions SessionAssetOptions(const SessionArgs& args) {
 // rate.
 Scene LoadSessionScene(const SessionArgs& args) {
   Scene scene = LoadScene(RequireDataFile(args.scene));
-  scene.RequireTwoBodies("session");
   if (args.rate > 0) scene.model.cycle_seconds = 1.0 / args.rate;
   if (args.budget >= 0) scene.node_budget = args.budget;
   (void)LoopRateOfCycle(scene.model.cycle_seconds, args.scene + ": model.cycle_seconds");
@@ -151,12 +151,28 @@ Scene LoadSessionScene(const SessionArgs& args) {
 // The scene side of a session: the scene, its fields and pointshells (built or read from the
 // cache), the contact model (--model, or the scene's first) and the haptic body's start pose
 // (--touch: where it touches the other body, moved toward it; else the scene's pose).
+//
+// A scene of many bodies: the model is the scene's world (scene/scene_world.h WorldContactModel,
+// every pair, the tool as the haptic body), its deformable bodies stepped by the world itself at
+// the loop's rate; --touch and --view take two bodies.
+std::unique_ptr<ContactModel> MakeSessionModel(const SessionArgs& args, const Scene& scene, SceneAssets& assets,
+                                               const std::string& model_name) {
+  if (!scene.many_bodies()) return MakeSceneContactModel(model_name, scene, assets);
+  if (args.touch > 0 || args.view) {
+    Fail(args.scene, "a scene of many bodies runs without --touch and --view (they place and draw two bodies); its "
+                     "tool starts at its scene pose");
+  }
+  auto world = std::make_unique<SceneWorld>(scene, model_name, SessionAssetOptions(args));
+  world->EnableDynamics(scene.model.cycle_seconds);
+  return std::make_unique<WorldContactModel>(std::move(world), model_name);
+}
+
 struct SessionScene {
   explicit SessionScene(const SessionArgs& args)
       : scene(LoadSessionScene(args)),
         assets(scene, SessionAssetOptions(args)),
         model_name(args.model.empty() ? scene.models.front() : args.model),
-        model(MakeSceneContactModel(model_name, scene, assets)),
+        model(MakeSessionModel(args, scene, assets, model_name)),
         X_WB_start(scene.field_body.pose) {
     if (args.touch > 0) {
       const Eigen::Vector3d toward = scene.pointshell_body.pose.translation - X_WB_start.translation;
@@ -289,6 +305,13 @@ void PrintSessionStart(const SessionArgs& args, const SessionScene& s, const Sce
   std::string deformable;
   if (dynamics.A) deformable += ", " + s.scene.pointshell_body.name + " deformable, r = " + std::to_string(dynamics.A->r());
   if (dynamics.B) deformable += ", " + s.scene.field_body.name + " deformable, r = " + std::to_string(dynamics.B->r());
+  if (s.scene.many_bodies()) {
+    auto& world = static_cast<WorldContactModel&>(*s.model).world();
+    int deforming = 0;
+    for (int b = 0; b < world.body_count(); ++b) deforming += world.dynamics(b) != nullptr;
+    deformable = ", " + std::to_string(world.body_count()) + " bodies, tool " + s.scene.field_body.name + ", " +
+                 std::to_string(world.pair_count()) + " pairs, " + std::to_string(deforming) + " deformable";
+  }
   std::printf("session: scene %s, model %s, device %s, %.1f s at %g Hz (Ctrl-C stops)%s\n", s.scene.name.c_str(),
               s.model_name.c_str(), args.device.c_str(), args.duration, rate_hz, deformable.c_str());
   std::printf("device: %s\n", device.description().c_str());
@@ -393,7 +416,8 @@ void RunSession(const SessionArgs& args) {
   KeepSessionThreadsOffLoopCpu(checked.cpu);
   SessionScene s(args);
   SessionDevice device(args.device, DeviceOptions{args.device_peers}, s.X_WB_start);
-  SceneDynamics dynamics = MakeSceneDynamics(s.assets, s.scene.model.cycle_seconds);
+  // A scene of many bodies steps its deformable bodies in its world (MakeSessionModel).
+  SceneDynamics dynamics = s.scene.many_bodies() ? SceneDynamics{} : MakeSceneDynamics(s.assets, s.scene.model.cycle_seconds);
   std::unique_ptr<ContactPointMarks> marks = args.view ? MakeViewPointMarks(s) : nullptr;
   HapticCycle cycle(device.mapped, s.model.get(), MakeSessionCycleConfig(args, s, dynamics, marks.get()));
   InstallStopSignalHandlers();

@@ -600,10 +600,11 @@ Scene ParseScene(const ConfigNode& n) {
   }
   if (many) {
     ParseManyBodies(n, bodies, &scene);
-    // The two-body fields hold the tool and the first body it pairs with, for what reads a scene's
-    // sizes (a cycle's coherence guard takes the tool's radius through the caller).
-    scene.pointshell_body = scene.bodies[std::size_t(scene.tool)];
-    scene.field_body = scene.bodies[std::size_t(scene.tool == 0 ? 1 : 0)];
+    // The two-body fields hold the tool as the haptic body H (field_body, as a session moves it)
+    // and another body, for what reads a scene's poses and sizes (the haptic cycle's start pose
+    // and coherence guard).
+    scene.field_body = scene.bodies[std::size_t(scene.tool)];
+    scene.pointshell_body = scene.bodies[std::size_t(scene.tool == 0 ? 1 : 0)];
     return scene;
   }
   BodySpec a = scene.bodies[0];

@@ -163,7 +163,8 @@ struct Scene {
   std::vector<std::string> models;   // model names to compare (default: pointshell)
   // A scene of many bodies (`tool:` given, or more than two bodies): every body in file order,
   // the one the device or the trajectory moves, and the pairs (default ones included, "none"
-  // ones left out); pointshell_body and field_body hold the tool and another body. A two-body
+  // ones left out); field_body holds the tool (the haptic body H) and pointshell_body another
+  // body. A two-body
   // scene without `tool:` has tool -1 and no BODIES or PAIRS: pointshell_body and field_body
   // are its bodies.
   std::vector<BodySpec> bodies;

@@ -183,8 +183,47 @@ void SceneWorld::FindNearPairs(const Pose& X_W_tool) {
   }
 }
 
+void SceneWorld::EnableDynamics(double dt) {
+  dynamics_.clear();
+  dynamics_.resize(bodies_.size());
+  prepared_.assign(bodies_.size(), nullptr);
+  deformable_bodies_.clear();
+  for (int b = 0; b < body_count(); ++b) {
+    if (!bodies_[std::size_t(b)]->deformable()) continue;
+    // Staggered when a pair presses it against another deformable body (BodyDynamics).
+    bool staggered = false, paired = false;
+    for (const OrderedPair& p : pairs_) {
+      if (p.A != b && p.B != b) continue;
+      paired = true;
+      const int other = p.A == b ? p.B : p.A;
+      staggered = staggered || bodies_[std::size_t(other)]->deformable();
+    }
+    if (!paired) continue;
+    dynamics_[std::size_t(b)] = MakeBodyDynamics(*bodies_[std::size_t(b)], dt, staggered);
+    deformable_bodies_.push_back(b);
+  }
+  pair_deformations_.assign(pairs_.size(), PairDeformation{});
+  for (std::size_t p = 0; p < pairs_.size(); ++p) {
+    const int sides[2] = {pairs_[p].A, pairs_[p].B};
+    for (int s = 0; s < 2; ++s) {
+      BodyDynamics* d = dynamics_[std::size_t(sides[s])].get();
+      if (d == nullptr) continue;
+      PairDeformation& pd = pair_deformations_[p];
+      pd.force[s].setZero(d->r());
+      pd.stiffness[s].setZero(d->r(), d->r());
+      pd.deformation[s] = {&d->state(), &pd.force[s], d->implicit_contact() ? &pd.stiffness[s] : nullptr};
+    }
+  }
+}
+
 const WorldResult& SceneWorld::Evaluate(const Pose& X_W_tool, std::int64_t cycle, std::int64_t node_budget) {
   FindNearPairs(X_W_tool);
+  // Each deformable body's force and stiffness zeroed for this cycle; a diverged one from rest.
+  for (const int b : deformable_bodies_) {
+    BodyDynamics& d = *dynamics_[std::size_t(b)];
+    (void)RestartDiverged({&d});
+    prepared_[std::size_t(b)] = d.Prepare();
+  }
   const std::int64_t budget = node_budget < 0 ? scene_.node_budget : node_budget;
   WorldResult& out = result_;
   out.on_tool = Wrench{};
@@ -207,12 +246,44 @@ const WorldResult& SceneWorld::Evaluate(const Pose& X_W_tool, std::int64_t cycle
       const std::int64_t equal = budget / std::int64_t(near_.size());
       q.node_budget = std::max<std::int64_t>({1, equal, left / std::int64_t(near_.size() - k)});
     }
+    PairDeformation* pd = pair_deformations_.empty() ? nullptr : &pair_deformations_[std::size_t(p)];
+    if (pd != nullptr) {
+      for (int side = 0; side < 2; ++side) {
+        if (pd->deformation[side].force == nullptr) continue;
+        pd->force[side].setZero();
+        pd->stiffness[side].setZero();
+      }
+      if (pd->deformation[0].force != nullptr) q.deformation_A = &pd->deformation[0];
+      if (pd->deformation[1].force != nullptr) q.deformation_B = &pd->deformation[1];
+    }
     PairOutcome& o = outcomes_[std::size_t(p)];
     o.near = true;
     o.budget = q.node_budget;
     o.result = models_[std::size_t(p)]->Evaluate(q);
     const ContactStats& st = o.result.stats;
     if (budget > 0) left = std::max<std::int64_t>(0, left - st.nodes_visited);
+    // The pair's reduced forces onto its deformable bodies.
+    if (pd != nullptr) {
+      const int sides[2] = {pair.A, pair.B};
+      for (int side = 0; side < 2; ++side) {
+        const BodyDeformation* into = prepared_[std::size_t(sides[side])];
+        if (pd->deformation[side].force == nullptr || into == nullptr) continue;
+        *into->force += pd->force[side];
+        if (into->stiffness != nullptr) *into->stiffness += pd->stiffness[side];
+      }
+    }
+    ContactStats& sum = s.sum;
+    sum.points_in_contact += st.points_in_contact;
+    sum.nodes_visited += st.nodes_visited;
+    sum.nodes_skipped_coherence += st.nodes_skipped_coherence;
+    sum.faults += st.faults;
+    sum.contact_area += st.contact_area;
+    sum.patches += st.patches;
+    sum.degraded = std::max(sum.degraded, st.degraded);
+    sum.max_penetration = std::max(sum.max_penetration, st.max_penetration);
+    if (st.points_in_contact > 0 && st.level_rendered >= 0) {
+      sum.level_rendered = sum.level_rendered < 0 ? st.level_rendered : std::min(sum.level_rendered, st.level_rendered);
+    }
     s.points_in_contact += st.points_in_contact;
     s.nodes_visited += st.nodes_visited;
     s.faults += st.faults;
@@ -231,6 +302,17 @@ const WorldResult& SceneWorld::Evaluate(const Pose& X_W_tool, std::int64_t cycle
       out.K_tool += K;
     }
   }
+  // Each deformable body steps once, with the forces of all its pairs.
+  for (const int b : deformable_bodies_) dynamics_[std::size_t(b)]->Step();
+  return out;
+}
+
+ContactResult WorldContactModel::Evaluate(const ContactQuery& query) {
+  const WorldResult& r = world_->Evaluate(query.X_WB, query.cycle, query.node_budget);
+  ContactResult out;
+  out.on_B = r.on_tool;
+  out.K_B = r.K_tool;
+  out.stats = r.stats.sum;
   return out;
 }
 
@@ -240,6 +322,7 @@ void SceneWorld::Reset() {
   for (const int p : near_) is_near_[std::size_t(p)] = 0;
   near_.clear();
   was_near_.clear();
+  for (const int b : deformable_bodies_) dynamics_[std::size_t(b)]->Reset();
 }
 
 }  // namespace contactlab

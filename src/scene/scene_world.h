@@ -10,6 +10,10 @@
 // (model.max_point_speed times model.cycle_seconds), is placed at the tool's pose and queried
 // against it. A pair between two other bodies is near, or not, from load on.
 //
+// Deformable bodies. After EnableDynamics(dt) each deformable body of a pair steps once per
+// cycle (BodyDynamics, its deformable block's integrator and coupling) with the reduced contact
+// forces of all its pairs summed; without it every body stays at rest.
+//
 // Pairs. Each pair has its own model, made at load (the scene's pairs, each in its model's A/B
 // order: OrderPair), so its coherence and model state are its own and the cycle makes nothing.
 // A pair that stops being near forgets its temporal state (ContactModel::Reset), so it starts
@@ -26,10 +30,12 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
 #include "contact/contact_model.h"
+#include "deform/body_dynamics.h"
 #include "geometry/aabb.h"
 #include "geometry/pose.h"
 #include "scene/scene.h"
@@ -45,6 +51,8 @@ struct PairOutcome {
 };
 
 struct WorldStats {
+  ContactStats sum;            // the pairs' stats together: counts summed, depths and levels as
+                               // the deepest / shallowest of the pairs that touched
   int pairs = 0;               // in the scene
   int pairs_near = 0;          // whose boxes overlapped
   int pairs_touching = 0;      // whose model found contact
@@ -94,8 +102,20 @@ class SceneWorld {
   // then each near pair's model under its share of NODE_BUDGET (< 0: the scene's). CYCLE is the
   // haptic cycle index each pair's model is given. Allocation-free, throws nothing.
   const WorldResult& Evaluate(const Pose& X_W_tool, std::int64_t cycle, std::int64_t node_budget = -1);
-  // Forgets every pair's temporal state.
+  // Forgets every pair's temporal state, and puts every deformable body back at rest.
   void Reset();
+
+  // From now on each deformable body of a pair steps once per cycle of DT seconds (after the
+  // queries of Evaluate) with the forces of all its pairs. Throws Error naming the body for a
+  // non-positive DT or a model it cannot build.
+  void EnableDynamics(double dt);
+  // Body I's dynamics, or null (rigid, or dynamics not enabled).
+  BodyDynamics* dynamics(int i) { return dynamics_.empty() ? nullptr : dynamics_[std::size_t(i)].get(); }
+  // Body I's reduced contact force (and stiffness) of the latest cycle, all its pairs summed, the
+  // force its step took; null when it has no dynamics.
+  const BodyDeformation* contact_deformation(int i) const {
+    return prepared_.empty() ? nullptr : prepared_[std::size_t(i)];
+  }
 
  private:
   struct BroadPhase;
@@ -111,6 +131,35 @@ class SceneWorld {
   std::vector<std::uint8_t> is_near_;   // per pair, this cycle
   std::unique_ptr<BroadPhase> broad_phase_;
   WorldResult result_;
+  // With dynamics: per body its dynamics and this cycle's deformation (null when rigid); per
+  // pair its own reduced forces on its A and B, summed into their bodies after the queries.
+  struct PairDeformation {
+    ReducedVector force[2];
+    ReducedMatrix stiffness[2];
+    BodyDeformation deformation[2];
+  };
+  std::vector<std::unique_ptr<BodyDynamics>> dynamics_;
+  std::vector<const BodyDeformation*> prepared_;
+  std::vector<PairDeformation> pair_deformations_;
+  std::vector<int> deformable_bodies_;
+};
+
+// A scene of many bodies as one contact model (docs/scenes.md, "Many bodies"): B is the tool, A
+// the world (the query's X_WA is not read); the wrench on B is the wrench on the tool, K_B its
+// gradient, the stats the pairs' together (WorldStats::sum). What the haptic cycle of a live
+// session closes its loop on: the device moves the tool.
+class WorldContactModel final : public ContactModel {
+ public:
+  WorldContactModel(std::unique_ptr<SceneWorld> world, std::string name)
+      : world_(std::move(world)), name_(std::move(name)) {}
+  std::string_view name() const override { return name_; }
+  ContactResult Evaluate(const ContactQuery& query) override;
+  void Reset() override { world_->Reset(); }
+  SceneWorld& world() { return *world_; }
+
+ private:
+  std::unique_ptr<SceneWorld> world_;
+  std::string name_;
 };
 
 // The wrench on body A of a pair and its gradient with respect to A's pose, from the pair's

@@ -110,7 +110,8 @@ TEST(Cli, ContactPrintsTheForceOnTheFieldBodyAsJson) {
 // --json` gives one entry per pair in its model's A/B order; the wrench on the tool is minus the
 // sum of the forces on the B of its pairs (it is their A), the brackets' pair stays out of it,
 // and the two equal presses push the ball equally up and away from the wall. Under --model fcl
-// no body gets more than its mesh. Commands that take two bodies refuse the scene by name.
+// no body gets more than its mesh. A session runs it live; commands that take two bodies refuse
+// it by name.
 TEST(Cli, ContactQueriesEveryPairOfASceneOfManyBodies) {
   testing::TempDir dir;
   const std::string cache = " --cache " + (dir / "cache").string();
@@ -147,10 +148,24 @@ TEST(Cli, ContactQueriesEveryPairOfASceneOfManyBodies) {
   const Outcome pose_a = RunCli("contact scenes/tool-among-parts.yaml --pose-a 0,0,0,1,0,0,0" + cache);
   EXPECT_NE(pose_a.exit_code, 0);
   EXPECT_NE(pose_a.output.find("--pose-tool"), std::string::npos) << pose_a.output;
-  const Outcome session = RunCli("session scenes/tool-among-parts.yaml --device sim --duration 0.01" + cache);
-  EXPECT_NE(session.exit_code, 0);
-  EXPECT_NE(session.output.find("tool-among-parts.yaml: session takes a scene of two bodies"), std::string::npos)
-      << session.output;
+  // A live session moves the tool among them; --view draws two bodies only.
+  const Outcome session = RunCli("session scenes/tool-among-parts.yaml --device sim:circle:0.005:0.5 --duration 0.3 "
+                                 "--no-realtime --quiet" + cache);
+  EXPECT_EQ(session.exit_code, 0) << session.output;
+  EXPECT_NE(session.output.find("5 bodies, tool ball, 5 pairs, 0 deformable"), std::string::npos) << session.output;
+  const Outcome view = RunCli("session scenes/tool-among-parts.yaml --device sim --duration 0.1 --view" + cache);
+  EXPECT_NE(view.exit_code, 0);
+  EXPECT_NE(view.output.find("tool-among-parts.yaml: a scene of many bodies runs without --touch and --view"),
+            std::string::npos)
+      << view.output;
+  // body-export finds any of its bodies by name: the wall's mesh, 2 x 20 x 8 cm.
+  const Outcome body = RunCli("body-export scenes/tool-among-parts.yaml --body wall --mesh " +
+                              (dir / "wall.obj").string() + cache);
+  ASSERT_EQ(body.exit_code, 0) << body.output;
+  const Outcome missing = RunCli("body-export scenes/tool-among-parts.yaml --body roof --mesh " +
+                                 (dir / "roof.obj").string() + cache);
+  EXPECT_NE(missing.output.find("no body 'roof'"), std::string::npos) << missing.output;
+  EXPECT_NE(missing.output.find("bracket-b)"), std::string::npos) << missing.output;
 }
 
 // `contact --contacts --json`: the pointshell model lists one contact per point in contact,

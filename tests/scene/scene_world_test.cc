@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <random>
 #include <sstream>
 #include <string>
@@ -323,6 +324,72 @@ TEST(SceneWorld, APairThatLeavesStartsAfreshAndNearPairsKeepTheirState) {
   EXPECT_FALSE(world.outcome(0).near);
   world.Evaluate(on_floor, 3);
   EXPECT_EQ(world.outcome(0).result.stats.nodes_skipped_coherence, 0) << "a pair coming near starts afresh";
+}
+
+// The floor made deformable and pressed by two pairs at once: the ball from above (the floor's
+// deformed field) and the wall standing on it (the floor's deformable pointshell). PAIRS: the
+// scene's pairs block.
+std::string DeformableFloorPressedTwice(const std::string& pairs) {
+  std::string text = ToolAmongPlates(0, "{k_C: 1000, L: 0, max_point_speed: 0.5}", pairs);
+  text = Replace(text, "pose: [0.0295, 0, 0.03,", "pose: [0.0295, 0, 0.0395,");
+  text = Replace(text,
+                 "    role: field\n    field: {resolution: 24}\n  - name: wall",
+                 "    role: both\n    field: {resolution: 24}\n    pointshell: {points: 1024, levels: 3, seed: 4}\n"
+                 "    deformable: {model: linear, modes: 6, cells: 10, E: 2.0e5, nu: 0.3, rho: 1100,\n"
+                 "                 anchor: {outside: [-0.035, -0.035, -1, 0.035, 0.035, 1]}, field: {proxies: 20}}\n"
+                 "  - name: wall");
+  return text;
+}
+
+TEST(SceneWorld, ADeformableBodyStepsOnceWithTheForcesOfAllItsPairs) {
+  TempDir cache;
+  const Pose X{Eigen::Quaterniond::Identity(), Eigen::Vector3d(0, 0, 0.0195)};
+  const double dt = 1e-3;
+  // The floor's reduced force in the first cycle from rest, with the given pairs, TOUCHING of them
+  // in contact.
+  auto first_cycle = [&](const std::string& pairs, int touching) {
+    auto world = std::make_unique<SceneWorld>(Parse(DeformableFloorPressedTwice(pairs)), "pointshell", Quiet(cache));
+    world->EnableDynamics(dt);
+    const WorldResult& r = world->Evaluate(X, 0);
+    EXPECT_EQ(r.stats.faults, 0);
+    EXPECT_EQ(r.stats.pairs_touching, touching) << pairs;
+    return world;
+  };
+  const auto w_both = first_cycle("pairs:\n  - {bodies: [floor, wall]}\n", 3);
+  const auto w_ball = first_cycle("", 2);
+  const auto w_wall = first_cycle("pairs:\n  - {bodies: [floor, wall]}\n  - {bodies: [ball, floor], model: none}\n", 2);
+  const BodyDeformation* both = w_both->contact_deformation(1);
+  const BodyDeformation* ball_only = w_ball->contact_deformation(1);
+  const BodyDeformation* wall_only = w_wall->contact_deformation(1);
+  ASSERT_NE(both, nullptr);
+  ASSERT_NE(ball_only, nullptr);
+  ASSERT_NE(wall_only, nullptr);
+  EXPECT_EQ(w_both->dynamics(0), nullptr) << "the rigid ball has no dynamics";
+  EXPECT_EQ(w_both->dynamics(2), nullptr) << "nor the rigid wall";
+  // Superposition: at rest each pair's force is its own, and the floor takes their sum.
+  ASSERT_GT(ball_only->force->norm(), 0.0);
+  ASSERT_GT(wall_only->force->norm(), 0.0);
+  EXPECT_LT((*both->force - (*ball_only->force + *wall_only->force)).norm(), 1e-9 * both->force->norm());
+  if (both->stiffness != nullptr) {
+    EXPECT_LT((*both->stiffness - (*ball_only->stiffness + *wall_only->stiffness)).norm(),
+              1e-9 * both->stiffness->norm() + 1e-12);
+  }
+  // One step with that force, not one per pair: the floor's state is a body of its own stepped
+  // once from rest with it.
+  std::unique_ptr<BodyDynamics> alone = MakeBodyDynamics(w_both->body(1), dt, false);
+  const BodyDeformation* d = alone->Prepare();
+  *d->force = *both->force;
+  if (d->stiffness != nullptr) *d->stiffness = *both->stiffness;
+  alone->Step();
+  const ReducedState& q = w_both->dynamics(1)->state();
+  ASSERT_GT(alone->state().qdot.norm(), 0.0);
+  EXPECT_LT((q.q - alone->state().q).norm(), 1e-12 + 1e-9 * alone->state().q.norm());
+  EXPECT_LT((q.qdot - alone->state().qdot).norm(), 1e-9 * alone->state().qdot.norm());
+  // And the cycles after it, the floor stepping under both, allocate nothing.
+  const long before = testing::AllocationCount();
+  for (int i = 1; i < 50; ++i) w_both->Evaluate(X, i);
+  EXPECT_EQ(testing::AllocationCount() - before, 0);
+  EXPECT_GT(w_both->dynamics(1)->MaxDisplacement(), 0.0);
 }
 
 TEST(SceneWorld, ACycleAmong256BodiesAllocatesNothing) {
