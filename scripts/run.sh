@@ -24,7 +24,7 @@ if [ ${#experiments[@]} -eq 0 ]; then
   experiments=(fig05b-convergence convergence-eq2 fig10-deformed-field fig14b-bumps fig15-asymmetry fig11-degradation
                table1-statistics table1-deformable table1-defo-defo deformable-cantilever continuity-models
                speed-vs-error compare-volume baseline-settings analytic-cases asymmetry-models tessellation hard-cases-medial-axis hard-cases-tube-peg hard-cases-tunnelling
-               scale-points scale-resolution closed-loop-rate)
+               scale-points scale-resolution closed-loop-rate fig03-hoses)
 fi
 
 # One progress line per experiment on stderr: its share of the suite and the time left, both from

@@ -48,7 +48,12 @@ CONVERGENCE = Table("convergence.csv")  # study contact: the fitted order per mo
 FIELD_ERROR = Table("field_error.csv")  # study deformed-field: one row per job
 FIELD_SLICE = Table("field_slice.csv")  # study deformed-field: the slice's grid points
 STABILITY = Table("stability.csv")      # study closed-loop: one row per job, model and motion
-TABLES = {t.file: t for t in (CYCLES, SUMMARY, CONVERGENCE, FIELD_ERROR, FIELD_SLICE, STABILITY)}
+WORLD_CYCLES = Table("world_cycles.csv")    # study many-bodies: the tool's totals per cycle
+WORLD_PAIRS = Table("world_pairs.csv")      # study many-bodies: one row per near pair per cycle
+WORLD_BODIES = Table("world_bodies.csv")    # study many-bodies: one row per deformable body per cycle
+WORLD_SUMMARY = Table("world_summary.csv")  # study many-bodies: one row per model per job
+TABLES = {t.file: t for t in (CYCLES, SUMMARY, CONVERGENCE, FIELD_ERROR, FIELD_SLICE, STABILITY, WORLD_CYCLES,
+                              WORLD_PAIRS, WORLD_BODIES, WORLD_SUMMARY)}
 
 
 def axis(name):

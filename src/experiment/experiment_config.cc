@@ -221,8 +221,10 @@ void ApplyAxis(const SweepAxis& axis, std::size_t v, const std::string& config_f
   }
 }
 
-// The field body's name in a scene document (what the scene parser would name it).
+// The field body's name in a scene document (what the scene parser would name it); a scene of
+// many bodies: its tool.
 std::string FieldBodyName(const YAML::Node& scene) {
+  if (scene["tool"] && scene["tool"].IsScalar()) return scene["tool"].Scalar();
   const YAML::Node bodies = scene["bodies"];
   if (!bodies || !bodies.IsSequence()) return "";
   for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -557,6 +559,11 @@ void CheckModelsAgainstScene(const ExperimentConfig& c, const ConfigNode& root, 
       CheckContactModel(name, s.model, s.model_params, s.pointshell_body.name, false, s.field_body.name, false,
                         ModelLocation(root, job, name));  // throws, naming the known models
     }
+    if (s.many_bodies()) {
+      // Every pair without a model of its own takes it, each in the A/B order its model needs.
+      for (const PairSpec& pair : s.pairs) (void)OrderPair(s, pair, name);
+      continue;
+    }
     CheckContactModel(name, s.model, s.model_params, s.pointshell_body.name, s.pointshell_body.deformable.has_value(),
                       s.field_body.name, s.field_body.deformable.has_value(), where);
   }
@@ -613,13 +620,19 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
   }
   c.scene = ParseScene(ConfigNode(c.scene_document, std::make_shared<const std::string>(c.scene_file),
                                   scene.IsScalar() ? "" : "scene"));
-  c.scene.RequireTwoBodies("an experiment");
+  if (!study.many_bodies) {
+    c.scene.RequireTwoBodies("an experiment of study: " + c.study);
+  } else if (!c.scene.many_bodies()) {
+    scene.Fail("study: " + c.study + " takes a scene of many bodies (tool: NAME, and pairs); " + c.scene.file +
+               " has two bodies and no tool (study: contact compares models on it)");
+  }
   if (auto m = root.Find("models")) {
     for (const ConfigNode& e : m->Elements()) c.models.push_back(e.AsString());
     if (c.models.empty()) m->Fail("lists no model");
   } else {
     c.models = c.scene.models;
   }
+  // The field body of a two-body scene, the tool of one of many (Scene: its field_body).
   c.moving_body = root.String("moving_body", c.scene.field_body.name);
   c.moving_body_is_default = !root.Has("moving_body");
   if (c.moving_body != c.scene.field_body.name && c.moving_body != c.scene.pointshell_body.name) {

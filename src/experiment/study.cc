@@ -22,8 +22,8 @@ const std::vector<ConfigKey>& CommonConfigKeys() {
   static const std::vector<ConfigKey> keys = {
       {"name", "text (default: the file's stem)", "the experiment's name; results go to results/NAME"},
       {"description", "text", "one line saying what the experiment measures"},
-      {"study", "contact, closed-loop, deformed-field (default: contact)", "what each job runs (its sections below)"},
-      {"scene", "a scene file, or a scene mapping inline", "the two bodies and the models' parameters (the scene reference above)"},
+      {"study", "contact, closed-loop, deformed-field, many-bodies (default: contact)", "what each job runs (its sections below)"},
+      {"scene", "a scene file, or a scene mapping inline", "the bodies and the models' parameters (the scene reference above)"},
       {"metrics", "mapping: cutoff_hz (> 0, default 100 Hz), timing (default: the study's)",
        "cutoff_hz: where hf_share's high frequencies begin; timing: per-cycle times matter, so jobs run one at a time"},
       {"sweep", "mapping: axis -> list of values or of {label, value}",

@@ -8,7 +8,8 @@
 // `contactlab_study(SOURCES my_study.cc REGISTER RegisterMyStudy)` line, and its
 // add_subdirectory in src/experiment/CMakeLists.txt. The studies today, under studies/: contact
 // (contact/contact_study.h: models along a trajectory), deformed-field
-// (deformed_field/deformed_field_study.h) and closed-loop (closed_loop/closed_loop_study.h).
+// (deformed_field/deformed_field_study.h), closed-loop (closed_loop/closed_loop_study.h) and
+// many-bodies (many_bodies/many_bodies_study.h: a tool through a scene of many bodies).
 #pragma once
 
 #include <filesystem>
@@ -64,6 +65,7 @@ struct Study {
   };
   std::vector<Derived> derived;
   bool timing = false;      // its numbers are times: jobs run one at a time (metrics.timing may say otherwise)
+  bool many_bodies = false; // its scenes are scenes of many bodies (a tool and pairs); the others' take two
   bool replayable = false;  // its cycles.csv holds trajectories the viewer replays
   // Checks what the study reads of CONFIG (its sections) for JOB, after the scene, the models
   // and the sweep parsed; called for every job of the sweep, one at a time. ROOT is the config

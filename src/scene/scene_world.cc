@@ -316,12 +316,16 @@ ContactResult WorldContactModel::Evaluate(const ContactQuery& query) {
   return out;
 }
 
-void SceneWorld::Reset() {
+void SceneWorld::ForgetTemporalState() {
   for (auto& m : models_) m->Reset();
   for (PairOutcome& o : outcomes_) o = PairOutcome{};
   for (const int p : near_) is_near_[std::size_t(p)] = 0;
   near_.clear();
   was_near_.clear();
+}
+
+void SceneWorld::Reset() {
+  ForgetTemporalState();
   for (const int b : deformable_bodies_) dynamics_[std::size_t(b)]->Reset();
 }
 

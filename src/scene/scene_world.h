@@ -102,7 +102,10 @@ class SceneWorld {
   // then each near pair's model under its share of NODE_BUDGET (< 0: the scene's). CYCLE is the
   // haptic cycle index each pair's model is given. Allocation-free, throws nothing.
   const WorldResult& Evaluate(const Pose& X_W_tool, std::int64_t cycle, std::int64_t node_budget = -1);
-  // Forgets every pair's temporal state, and puts every deformable body back at rest.
+  // Forgets every pair's temporal state (the coherence a model keeps between queries); the
+  // deformable bodies keep theirs. Allocation-free, throws nothing.
+  void ForgetTemporalState();
+  // ForgetTemporalState, and every deformable body back at rest.
   void Reset();
 
   // From now on each deformable body of a pair steps once per cycle of DT seconds (after the
@@ -154,7 +157,9 @@ class WorldContactModel final : public ContactModel {
       : world_(std::move(world)), name_(std::move(name)) {}
   std::string_view name() const override { return name_; }
   ContactResult Evaluate(const ContactQuery& query) override;
-  void Reset() override { world_->Reset(); }
+  // What a coherence guard asks (the tool moved too fast): every pair's coherence forgotten, the
+  // deformable bodies left as they are.
+  void Reset() override { world_->ForgetTemporalState(); }
   SceneWorld& world() { return *world_; }
 
  private:
