@@ -146,14 +146,25 @@ void RunView(const ViewArgs& args) {
     const fs::path scene_file = RequireDataFile(args.input);
     CheckOutputIsNotInput(args.out, scene_file, "--out");
     Scene scene = LoadScene(scene_file);
-    scene.RequireTwoBodies("view");
     if (!args.models.empty()) scene.models = args.models;
-    for (const BodySpec* b : {&scene.field_body, &scene.pointshell_body}) {
+    std::vector<const BodySpec*> bodies = {&scene.field_body, &scene.pointshell_body};
+    if (scene.many_bodies()) {
+      bodies.clear();
+      for (const BodySpec& b : scene.bodies) bodies.push_back(&b);
+    }
+    for (const BodySpec* b : bodies) {
       if (const auto mesh_file = FindDataFile(b->mesh, FolderOf(scene_file))) CheckOutputIsNotInput(args.out, *mesh_file, "--out");
     }
-    SceneAssets assets(scene, assets_options);
-    data = SceneViewData(scene, assets, options);
-    what = "scene " + scene.name;
+    if (scene.many_bodies()) {
+      // Every body's mesh and the pairs; a pair's pointshell and field are not built for the page.
+      data = ManyBodiesViewData(scene, scene.models.front(), assets_options, options);
+      what = "scene " + scene.name + ", " + std::to_string(scene.bodies.size()) + " bodies, tool " +
+             scene.bodies[std::size_t(scene.tool)].name + ", " + std::to_string(scene.pairs.size()) + " pairs";
+    } else {
+      SceneAssets assets(scene, assets_options);
+      data = SceneViewData(scene, assets, options);
+      what = "scene " + scene.name;
+    }
   }
   RequireFiniteViewData(data, args.out);
   const std::string page = ViewerPage(data);

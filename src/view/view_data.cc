@@ -154,6 +154,31 @@ float MaxOf(const std::vector<float>& v) { return v.empty() ? 0.0f : *std::max_e
 
 }  // namespace
 
+nlohmann::json ManyBodiesViewData(const Scene& scene, const std::string& default_model, const AssetOptions& assets,
+                                  const SceneViewOptions& options) {
+  if (!scene.many_bodies()) Fail(scene.file, "is a scene of two bodies (no tool)");
+  AssetOptions beside = assets;
+  if (beside.mesh_dir.empty() && !scene.file.empty()) beside.mesh_dir = FolderOf(scene.file);
+  nlohmann::json j;
+  j["title"] = scene.name;
+  j["scene"] = scene.file;
+  j["tool"] = scene.tool;
+  j["bodies"] = nlohmann::json::array();
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    BodyAssets body(scene.bodies[i], beside);
+    nlohmann::json b = BodyJson(body, scene.bodies[i].pose, DisplayMesh(body, options.max_triangles));
+    b["tool"] = int(i) == scene.tool;
+    j["bodies"].push_back(std::move(b));
+  }
+  j["pairs"] = nlohmann::json::array();
+  for (const PairSpec& pair : scene.pairs) {
+    const OrderedPair o = OrderPair(scene, pair, default_model);
+    j["pairs"].push_back({{"bodies", {scene.bodies[std::size_t(o.A)].name, scene.bodies[std::size_t(o.B)].name}},
+                          {"model", o.model}});
+  }
+  return j;
+}
+
 nlohmann::json SceneViewData(const Scene& scene, SceneAssets& assets, const SceneViewOptions& options,
                              const std::optional<BodyPoses>& poses) {
   std::array<TriangleMesh, 2> meshes;

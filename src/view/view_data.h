@@ -1,5 +1,5 @@
-// The data the viewer page shows, as JSON (base64 arrays, page_encoding.h): the two bodies of a
-// scene (meshes in their body frames and start poses), the pointshell of the pointshell body
+// The data the viewer page shows, as JSON (base64 arrays, page_encoding.h): the bodies of a
+// scene (two, or many: ManyBodiesViewData) (meshes in their body frames and start poses), the pointshell of the pointshell body
 // coloured by level (Barbič & James 2008, sec. 2.2, 2.4), a slice of the field body's signed
 // distance field (sec. 2.3), and for a replay the per-cycle poses and wrenches of each model.
 // The viewer's modules (src/view/web/viewer/) read it; docs/viewer.md describes the page.
@@ -53,6 +53,15 @@ struct BodyPoses {
 // need.
 nlohmann::json SceneViewData(const Scene& scene, SceneAssets& assets, const SceneViewOptions& options,
                              const std::optional<BodyPoses>& poses = std::nullopt);
+
+// A scene of many bodies (Scene::many_bodies): {"title", "scene", "bodies": [every body as
+// SceneViewData gives one, in the scene's order, the tool with "tool": true], "tool": its index,
+// "pairs": [{"bodies": [A's name, B's name] in the pair's model's order, "model"}]}, each pair
+// without a model of its own taking DEFAULT_MODEL. Meshes only (no pointshell, slice or contact
+// surface: those belong to a pair, and a pair's are not built for the page). Builds (or reads)
+// each body's mesh through OPTIONS_ASSETS, its meshes found beside the scene's file.
+nlohmann::json ManyBodiesViewData(const Scene& scene, const std::string& default_model, const AssetOptions& assets,
+                                  const SceneViewOptions& options);
 
 // One model's run in a results folder, thinned to at most the requested number of frames.
 struct ReplayTrack {

@@ -119,6 +119,26 @@ done
 "$python" "$here/check_page.py" --page surface --dom surface.dom --png surface.png --logs surface.dom.log surface.shot.log \
     --expect-text "contact surface of pressure-field" --differs-from pressed.png --min-differing 500 || status=1
 
+# A scene of many bodies: every body drawn, the tool in orange and the others in blues; the
+# legend names the tool and lists the pairs in their models' order.
+cat > many.yaml <<'YAML'
+name: view-many
+tool: ball
+bodies:
+  - {name: ball, mesh: "sphere:0.02,3", pose: [0, 0, 0.0205, 1, 0, 0, 0], role: pointshell,
+     pointshell: {points: 512, levels: 3, seed: 3}, field: {resolution: 24}}
+  - {name: plate, mesh: "box:0.05,0.05,0.01,2", pose: [0, 0, -0.01, 1, 0, 0, 0], role: field, field: {resolution: 24}}
+  - {name: wall, mesh: "box:0.01,0.05,0.03,2", pose: [0.035, 0, 0.03, 1, 0, 0, 0], role: field, field: {resolution: 24}}
+  - {name: post, mesh: "box:0.01,0.01,0.03,2", pose: [-0.03, 0.03, 0.03, 1, 0, 0, 0], field: {resolution: 24}}
+model: {k_C: 1000}
+YAML
+"$cli" view many.yaml --out many.html --cache cache || { echo "FAILED: contactlab view many.yaml"; exit 1; }
+browse --dump-dom "file://$work/many.html" many.dom.log > many.dom
+browse "--screenshot=$work/many.png" "file://$work/many.html" many.shot.log > /dev/null
+"$python" "$here/check_page.py" --page many --dom many.dom --png many.png --logs many.dom.log many.shot.log \
+    --expect-text "3 pairs: ball / plate (pointshell), ball / wall (pointshell), ball / post (pointshell)" || status=1
+grep -q "ball (tool, pointshell" many.dom || { echo "FAILED: the legend does not name the tool"; status=1; }
+
 # The checks must see a broken page: the scene page with a script error added must fail them.
 sed 's|</body>|<script>undefinedViewerFunction();</script></body>|' scene.html > broken.html
 browse --dump-dom "file://$work/broken.html" broken.dom.log > broken.dom

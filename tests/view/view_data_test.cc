@@ -154,6 +154,53 @@ TEST(SceneView, PointsInContactAreThoseInsideTheFieldBody) {
   EXPECT_EQ(j["pointshell"]["in_contact"].get<int>(), flagged);  // every point is drawn here
 }
 
+// A scene of many bodies on the scene page: every body at its scene pose with its own mesh, the
+// tool marked, and each pair in its model's A/B order (a box-only FCL pair between two others).
+TEST(SceneView, AManyBodyPageDrawsEveryBodyAndListsThePairsInTheirModelsOrder) {
+  TempDir dir;
+  std::ofstream(dir / "many.yaml") << "name: many\n"
+                                      "tool: ball\n"
+                                      "bodies:\n"
+                                      "  - {name: plate, mesh: \"box:0.05,0.05,0.01,2\", pose: [0, 0, -0.01, 1, 0, 0, 0], role: field}\n"
+                                      "  - {name: ball, mesh: \"sphere:0.02,2\", pose: [0, 0, 0.03, 1, 0, 0, 0], role: pointshell}\n"
+                                      "  - {name: post, mesh: \"box:0.01,0.01,0.03,1\", pose: [0.04, 0.01, 0.02, 0, 0, 0, 1]}\n"
+                                      "pairs:\n"
+                                      "  - {bodies: [plate, post], model: fcl}\n";
+  const Scene scene = LoadScene(dir / "many.yaml");
+  const nlohmann::json j = ManyBodiesViewData(scene, "pointshell", Options(dir).assets, SceneViewOptions{});
+  ASSERT_EQ(j["bodies"].size(), 3u);
+  EXPECT_EQ(j["tool"].get<int>(), 1);
+  EXPECT_FALSE(j.contains("pointshell")) << "a pair's pointshell is not built for the page";
+  EXPECT_FALSE(j.contains("slice"));
+  const std::vector<int> triangles = {48, 320, 12};  // 6 faces x 2 x n^2 (n = 2, 1); an icosphere of 20 x 4^2
+  for (std::size_t i = 0; i < 3; ++i) {
+    const nlohmann::json& b = j["bodies"][i];
+    EXPECT_EQ(b["name"].get<std::string>(), scene.bodies[i].name);
+    EXPECT_EQ(b["tool"].get<bool>(), i == 1);
+    EXPECT_EQ(b["triangles"].get<int>(), triangles[i]) << b["name"];
+    const auto xyz = DecodeArray<float>(b["positions"].get<std::string>(), "positions");
+    EXPECT_EQ(xyz.size(), 3 * b["vertices"].get<std::size_t>());
+    const std::vector<double> pose = b["pose"].get<std::vector<double>>();
+    EXPECT_NEAR(pose[0], scene.bodies[i].pose.translation.x(), 1e-12);
+    EXPECT_NEAR(pose[2], scene.bodies[i].pose.translation.z(), 1e-12);
+    EXPECT_NEAR(std::abs(pose[3]), std::abs(scene.bodies[i].pose.rotation.w()), 1e-12);
+  }
+  // The ball's pairs: the ball (pointshell) is A; the plate-post pair as FCL takes it.
+  ASSERT_EQ(j["pairs"].size(), 3u);
+  std::set<std::string> pairs;
+  for (const nlohmann::json& p : j["pairs"]) {
+    pairs.insert(p["bodies"][0].get<std::string>() + "/" + p["bodies"][1].get<std::string>() + ":" +
+                 p["model"].get<std::string>());
+  }
+  EXPECT_EQ(pairs, (std::set<std::string>{"ball/plate:pointshell", "ball/post:pointshell", "plate/post:fcl"}));
+  // A two-body scene is not a scene of many bodies.
+  std::ofstream(dir / "two.yaml") << "name: two\nbodies:\n"
+                                     "  - {name: a, mesh: \"sphere:0.02\", role: pointshell}\n"
+                                     "  - {name: b, mesh: \"box:0.05,0.05,0.01\", role: field}\n";
+  const std::string e = ErrorOf([&] { (void)ManyBodiesViewData(LoadScene(dir / "two.yaml"), "pointshell", {}, {}); });
+  EXPECT_NE(e.find("two.yaml"), std::string::npos) << e;
+}
+
 // A contact surface (pressure-field) drawn on the scene page: of the scene's models that keep
 // one, at the start poses, every corner inside both bodies; none for the other models.
 TEST(SceneView, ThePressureFieldsContactSurfaceLiesInsideBothBodies) {

@@ -1,7 +1,7 @@
-// The two bodies: a group per body at its pose holding its mesh (and A's points, B's slice),
+// The bodies (two, or a scene's many): a group per body at its pose holding its mesh (and A's points, B's slice),
 // and the deformation of a deformable body's mesh by a replay's reduced coordinates.
 import { THREE } from './three_global.js';
-import { BODY_COLOURS } from './colours.js';
+import { bodyColour } from './colours.js';
 import { decode, setPose } from './util.js';
 
 // Adds the bodies of SPECS (the page data's "bodies") to SCENE; returns {spec, group, mesh}
@@ -15,7 +15,7 @@ export function addBodies(scene, specs) {
     geometry.setAttribute('position', new THREE.BufferAttribute(decode(b.positions, Float32Array), 3));
     geometry.setIndex(new THREE.BufferAttribute(decode(b.indices, Uint32Array), 1));
     geometry.computeVertexNormals();
-    const material = new THREE.MeshLambertMaterial({color: BODY_COLOURS[i], side: THREE.DoubleSide,
+    const material = new THREE.MeshLambertMaterial({color: bodyColour(specs, i), side: THREE.DoubleSide,
                                                     transparent: true, opacity: 0.55, depthWrite: false});
     const mesh = new THREE.Mesh(geometry, material);
     mesh.renderOrder = 2;

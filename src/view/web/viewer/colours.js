@@ -1,6 +1,17 @@
 // The viewer's colours. Each family keeps clear of the others' hues so a screenshot can tell
 // them apart (tests/view/check_page.py): body A orange, body B blue, levels neither.
 export const BODY_COLOURS = [0xe8862a, 0x2f6fd0];
+// A scene of many bodies: the tool orange, the others in shades of blue (and grey-blue), so a
+// screenshot still tells the tool from the rest.
+const OTHER_BODY_COLOURS = [0x2f6fd0, 0x5b8fe6, 0x1f4a96, 0x7f9fc8, 0x3c5e88, 0x8ab4f0];
+// The colour of body I of SPECS (the page data's "bodies").
+export function bodyColour(specs, i) {
+  if (specs.length <= 2 && !specs.some(function (b) { return b.tool; })) return BODY_COLOURS[i];
+  if (specs[i].tool) return BODY_COLOURS[0];
+  let others = 0;  // the index of body I among the bodies that are not the tool
+  for (let k = 0; k < i; ++k) if (!specs[k].tool) ++others;
+  return OTHER_BODY_COLOURS[others % OTHER_BODY_COLOURS.length];
+}
 // Pointshell levels; red is kept for points in contact.
 export const LEVEL_COLOURS = ['#ffe14d', '#3cc83c', '#d040d0', '#40e0e0', '#a0ff60', '#9060ff',
                               '#f0f0f0', '#ff80c0', '#00a080', '#c0c000', '#b0b0ff', '#808080'];

@@ -1,6 +1,6 @@
 // The panel: title, subtitle, the legend of what is drawn, and the checkboxes that show or
 // hide each part.
-import { BODY_COLOURS, CONTACT_COLOUR, LEVEL_COLOURS, PRESSURE_STOPS } from './colours.js';
+import { CONTACT_COLOUR, LEVEL_COLOURS, PRESSURE_STOPS, bodyColour } from './colours.js';
 import { decode, el, fmt, hex } from './util.js';
 
 // A legend row: a swatch of COLOUR and TEXT, of class CLS ('row' and more).
@@ -11,14 +11,17 @@ function swatchRow(cls, colour, text) {
   return row;
 }
 
-// A row per body: its colour, name, role, how it deforms, its triangles.
+// A row per body: its colour, name, role (the tool of a scene of many bodies), how it deforms,
+// its triangles.
 function bodyLegend(legend, bodies) {
+  const specs = bodies.map(function (b) { return b.spec; });
   bodies.forEach(function (b, i) {
     const how = !b.spec.deformable ? '' : b.basis ? ', deformable: mesh deformed per frame, points at rest'
                                                   : ', deformable, shown at rest';
     const triangles = b.spec.source_triangles > b.spec.triangles
         ? b.spec.source_triangles + ' \u2192 ' + b.spec.triangles + ' triangles for display' : b.spec.triangles + ' triangles';
-    legend.appendChild(swatchRow('row', hex(BODY_COLOURS[i]), b.spec.name + ' (' + b.spec.role + how + ', ' + triangles + ')'));
+    const role = b.spec.tool ? 'tool, ' + b.spec.role : b.spec.role;
+    legend.appendChild(swatchRow('row', hex(bodyColour(specs, i)), b.spec.name + ' (' + role + how + ', ' + triangles + ')'));
   });
 }
 
@@ -66,6 +69,11 @@ export function fillPanel(data, bodies, parts) {
   bodyLegend(legend, bodies);
   if (data.pointshell) pointshellLegend(legend, data.pointshell, parts.contactPoints);
   if (data.slice) sliceLegend(legend, data.slice, bodies);
+  if (data.pairs) {
+    legend.appendChild(el('div', {'class': 'small'}, data.pairs.length + ' pairs: ' + data.pairs.map(function (p) {
+      return p.bodies.join(' / ') + ' (' + p.model + ')';
+    }).join(', ')));
+  }
   parts.surfaces.forEach(function (sf) {
     surfaceLegend(legend, 'contact surface of ' + sf.spec.model + ': ' + sf.spec.triangles + ' triangles' +
                           (sf.spec.triangles >= sf.spec.max_triangles ? ' (the first ' + sf.spec.max_triangles + ')' : '') +
