@@ -105,22 +105,25 @@ void RunView(const ViewArgs& args) {
   std::string what;
   if (fs::is_directory(args.input)) {
     // A results folder: replay one job.
-    CheckOutputIsNotInput(args.out, fs::path(args.input) / "cycles.csv", "--out");
-    CheckOutputIsNotInput(args.out, fs::path(args.input) / "meta.json", "--out");
+    for (const fs::directory_entry& e : fs::directory_iterator(args.input)) {
+      if (e.is_regular_file()) CheckOutputIsNotInput(args.out, e.path(), "--out");
+    }
+    // A job's page: of two bodies, or of a scene of many (study: many-bodies).
+    auto job_view = [&](const Replay& replay) {
+      if (replay.scene.many_bodies()) return WorldReplayViewData(replay, assets_options, options);
+      SceneAssets assets(replay.scene, assets_options);
+      return ReplayViewData(replay, assets, options);
+    };
     if (args.job) {
       const Replay replay = ReadReplay(args.input, args.job, args.max_frames);
-      SceneAssets assets(replay.scene, assets_options);
-      data = ReplayViewData(replay, assets, options);
+      data = job_view(replay);
       what = "replay of " + args.input + ", job " + std::to_string(replay.job) + ", " +
              std::to_string(replay.tracks.size()) + " model(s)";
     } else {
       // Without --job: every job the folder holds, the first shown, a selector for the others.
       const std::vector<Replay> replays = ReadReplays(args.input, args.max_frames);
       std::vector<nlohmann::json> job_data;
-      for (const Replay& replay : replays) {
-        SceneAssets assets(replay.scene, assets_options);
-        job_data.push_back(ReplayViewData(replay, assets, options));
-      }
+      for (const Replay& replay : replays) job_data.push_back(job_view(replay));
       if (replays.size() == 1) {
         data = std::move(job_data.front());
         what = "replay of " + args.input + ", job " + std::to_string(replays.front().job) + ", " +

@@ -3,14 +3,19 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <map>
+#include <memory>
 #include <set>
+#include <sstream>
+#include <tuple>
 
 #ifdef CONTACTLAB_HAVE_CGAL
 #include "baselines/reference/simplify_mesh.h"
 #endif
 #include "contact/model_registry.h"
 #include "deform/embedded_points.h"
+#include "experiment/csv_line.h"
 #include "experiment/experiment_config.h"
 #include "experiment/studies/contact/result_csv.h"
 #include "experiment/study.h"
@@ -154,8 +159,14 @@ float MaxOf(const std::vector<float>& v) { return v.empty() ? 0.0f : *std::max_e
 
 }  // namespace
 
-nlohmann::json ManyBodiesViewData(const Scene& scene, const std::string& default_model, const AssetOptions& assets,
-                                  const SceneViewOptions& options) {
+namespace {
+
+// ManyBodiesViewData with the tool at X_W_TOOL, each body's assets in *BODIES and the mesh drawn
+// in *MESHES.
+nlohmann::json ManyBodiesViewDataAndMeshes(const Scene& scene, const std::string& default_model,
+                                           const AssetOptions& assets, const SceneViewOptions& options,
+                                           const Pose& X_W_tool, std::vector<std::unique_ptr<BodyAssets>>* bodies,
+                                           std::vector<TriangleMesh>* meshes) {
   if (!scene.many_bodies()) Fail(scene.file, "is a scene of two bodies (no tool)");
   AssetOptions beside = assets;
   if (beside.mesh_dir.empty() && !scene.file.empty()) beside.mesh_dir = FolderOf(scene.file);
@@ -165,9 +176,11 @@ nlohmann::json ManyBodiesViewData(const Scene& scene, const std::string& default
   j["tool"] = scene.tool;
   j["bodies"] = nlohmann::json::array();
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    BodyAssets body(scene.bodies[i], beside);
-    nlohmann::json b = BodyJson(body, scene.bodies[i].pose, DisplayMesh(body, options.max_triangles));
-    b["tool"] = int(i) == scene.tool;
+    bodies->push_back(std::make_unique<BodyAssets>(scene.bodies[i], beside));
+    meshes->push_back(DisplayMesh(*bodies->back(), options.max_triangles));
+    const bool tool = int(i) == scene.tool;
+    nlohmann::json b = BodyJson(*bodies->back(), tool ? X_W_tool : scene.bodies[i].pose, meshes->back());
+    b["tool"] = tool;
     j["bodies"].push_back(std::move(b));
   }
   j["pairs"] = nlohmann::json::array();
@@ -177,6 +190,16 @@ nlohmann::json ManyBodiesViewData(const Scene& scene, const std::string& default
                           {"model", o.model}});
   }
   return j;
+}
+
+}  // namespace
+
+nlohmann::json ManyBodiesViewData(const Scene& scene, const std::string& default_model, const AssetOptions& assets,
+                                  const SceneViewOptions& options) {
+  std::vector<std::unique_ptr<BodyAssets>> bodies;
+  std::vector<TriangleMesh> meshes;
+  const Pose X_W_tool = scene.many_bodies() ? scene.bodies[std::size_t(scene.tool)].pose : Pose{};
+  return ManyBodiesViewDataAndMeshes(scene, default_model, assets, options, X_W_tool, &bodies, &meshes);
 }
 
 nlohmann::json SceneViewData(const Scene& scene, SceneAssets& assets, const SceneViewOptions& options,
@@ -249,20 +272,29 @@ namespace {
 // folder or the file that is missing, or the folder when it holds a deformed-field study.
 struct ResultsFiles {
   fs::path cycles, meta;
+  fs::path bodies;  // a many-bodies study's world_bodies.csv (else empty)
 };
 ResultsFiles CheckResultsFolder(const fs::path& dir) {
   if (!fs::is_directory(dir)) {
     Fail(dir.string(), fs::exists(dir) ? "is not a results folder (expected a folder holding cycles.csv and meta.json)"
                                        : "results folder not found");
   }
-  const fs::path cycles_file = dir / "cycles.csv", meta_file = dir / "meta.json";
+  const fs::path meta_file = dir / "meta.json";
   if (!fs::exists(meta_file)) Fail(meta_file.string(), "not found (a results folder holds cycles.csv and meta.json)");
-  // The study that wrote the folder says whether it holds trajectories (experiment/study.h).
-  if (const Study& study = StudyOfResults(dir); !study.replayable) {
+  // The study that wrote the folder says whether it holds trajectories (experiment/study.h),
+  // in its first table.
+  const Study& study = StudyOfResults(dir);
+  if (!study.replayable) {
     Fail(dir.string(), "holds a " + study.name + " study (" + study.description + "), which has no trajectory to replay");
   }
-  if (!fs::exists(cycles_file)) Fail(cycles_file.string(), "not found (a results folder holds cycles.csv and meta.json)");
-  return {cycles_file, meta_file};
+  ResultsFiles files{dir / study.tables.front().file, meta_file, {}};
+  if (study.many_bodies) files.bodies = dir / study.tables.at(2).file;
+  for (const fs::path& f : {files.cycles, files.bodies}) {
+    if (!f.empty() && !fs::exists(f)) {
+      Fail(f.string(), "not found (a results folder of study: " + study.name + " holds it and meta.json)");
+    }
+  }
+  return files;
 }
 
 // What meta.json says of the run: its resolved config (YAML text) and the config file it was
@@ -290,6 +322,7 @@ struct ReplayRow {
   std::string model;
   double v[16];  // t, pose x,y,z,qw,qx,qy,qz, force (3), torque (3), level, contacts
   std::vector<float> q, q_B;  // deformable bodies' reduced coordinates (empty when rigid)
+  std::vector<std::pair<std::string, std::vector<float>>> bodies_q;  // a scene of many bodies: (body, q)
 };
 
 // The rows of cycles.csv kept for the replay: those of JOB (of every job when none is asked
@@ -320,6 +353,80 @@ CycleRows ReadCycleRows(const fs::path& cycles_file, std::optional<int> job) {
     r.q.assign(c.q.begin(), c.q.end());
     r.q_B.assign(c.q_B.begin(), c.q_B.end());
     out.rows.push_back(std::move(r));
+  });
+  return out;
+}
+
+// The cells of the CSV text TEXT (FILE) as {column: cell} per record, calling ROW for each; a
+// column NEEDS names that the header lacks, or a record of another length, is an Error naming
+// the file (and line).
+void ForEachCsvRecord(const std::string& text, const fs::path& file, const std::vector<std::string>& needs,
+                      const std::function<void(const std::map<std::string, std::size_t>&,
+                                               const std::vector<std::string>&, long)>& row) {
+  CsvReader reader(text, file.string());
+  std::vector<std::string> header, cells;
+  if (!reader.Next(&header)) Fail(file.string(), "is empty (no header)");
+  std::map<std::string, std::size_t> column;
+  for (std::size_t i = 0; i < header.size(); ++i) column[header[i]] = i;
+  for (const std::string& c : needs) {
+    if (!column.count(c)) Fail(file.string() + ":1", "has no column '" + c + "'");
+  }
+  while (reader.Next(&cells)) {
+    if (cells.size() != header.size()) {
+      Fail(file.string() + ":" + std::to_string(reader.line()),
+           std::to_string(cells.size()) + " cells, the header has " + std::to_string(header.size()));
+    }
+    row(column, cells, reader.line());
+  }
+}
+
+double CellNumber(const std::string& cell, const fs::path& file, long line, const std::string& column) {
+  char* end = nullptr;
+  const double v = std::strtod(cell.c_str(), &end);
+  if (cell.empty() || end != cell.c_str() + cell.size() || !std::isfinite(v)) {
+    Fail(file.string() + ":" + std::to_string(line), "column " + column + ": '" + cell + "' is not a finite number");
+  }
+  return v;
+}
+
+// The rows of a many-bodies study's world_cycles.csv (FILES.cycles) kept for the replay, as
+// ReadCycleRows keeps cycles.csv's, and each deformable body's q of the same cycle from
+// world_bodies.csv (FILES.bodies).
+CycleRows ReadWorldRows(const ResultsFiles& files, std::optional<int> job) {
+  CycleRows out;
+  const std::vector<std::string> columns = {"experiment", "job", "model", "cycle", "t", "x", "y", "z", "qw", "qx", "qy",
+                                            "qz", "fx", "fy", "fz", "tx", "ty", "tz", "contacts"};
+  std::map<std::tuple<int, std::string, long long>, std::size_t> row_of;  // (job, model, cycle) -> row
+  const std::string cycles_text = ReadWholeFile(files.cycles);
+  ForEachCsvRecord(cycles_text, files.cycles, columns, [&](const auto& col, const auto& cells, long line) {
+    auto number = [&](const char* c) { return CellNumber(cells[col.at(c)], files.cycles, line, c); };
+    const int j = int(number("job"));
+    out.jobs.insert(j);
+    if (job && j != *job) return;
+    out.experiment.try_emplace(j, cells[col.at("experiment")]);
+    ReplayRow r;
+    r.job = j;
+    r.model = cells[col.at("model")];
+    for (std::size_t k = 0; k < 14; ++k) r.v[k] = number(columns[4 + k].c_str());
+    r.v[14] = -1;  // the level: a tree's, not a world's
+    r.v[15] = number("contacts");
+    row_of[{j, r.model, (long long)number("cycle")}] = out.rows.size();
+    out.rows.push_back(std::move(r));
+  });
+  const std::string bodies_text = ReadWholeFile(files.bodies);
+  ForEachCsvRecord(bodies_text, files.bodies, {"job", "model", "cycle", "body", "q"},
+                   [&](const auto& col, const auto& cells, long line) {
+    const int j = int(CellNumber(cells[col.at("job")], files.bodies, line, "job"));
+    const long long cycle = (long long)CellNumber(cells[col.at("cycle")], files.bodies, line, "cycle");
+    const auto it = row_of.find({j, cells[col.at("model")], cycle});
+    if (it == row_of.end()) {
+      if (job && j != *job) return;
+      Fail(files.bodies.string() + ":" + std::to_string(line), "names a cycle that world_cycles.csv does not hold");
+    }
+    std::vector<float> q;
+    std::istringstream in(cells[col.at("q")]);
+    for (std::string v; in >> v;) q.push_back(float(CellNumber(v, files.bodies, line, "q")));
+    out.rows[it->second].bodies_q.emplace_back(cells[col.at("body")], std::move(q));
   });
   return out;
 }
@@ -383,7 +490,23 @@ ReplayTrack MakeTrack(const std::string& name, const std::vector<const ReplayRow
     track.contacts.push_back(std::int32_t(x[15]));
     track.q.insert(track.q.end(), rows[i]->q.begin(), rows[i]->q.end());
     track.q_B.insert(track.q_B.end(), rows[i]->q_B.begin(), rows[i]->q_B.end());
+    // A scene of many bodies: every kept row holds the bodies of the first, as many coordinates
+    // each.
+    for (const auto& [body, q] : rows[i]->bodies_q) {
+      auto b = std::find_if(track.bodies_q.begin(), track.bodies_q.end(),
+                            [&](const ReplayTrack::BodyCoordinates& c) { return c.body == body; });
+      if (b == track.bodies_q.end()) {
+        if (i > 0) continue;  // a body the first frame lacks is not replayed
+        b = track.bodies_q.insert(track.bodies_q.end(), {body, int(q.size()), {}});
+      }
+      if (int(q.size()) == b->r) b->q.insert(b->q.end(), q.begin(), q.end());
+    }
   }
+  // Bodies missing from some frame, or with coordinates of another length, are shown at rest.
+  const std::size_t frames = track.t.size();
+  std::erase_if(track.bodies_q, [&](const ReplayTrack::BodyCoordinates& c) {
+    return c.q.size() != frames * std::size_t(c.r);
+  });
   return track;
 }
 
@@ -434,7 +557,7 @@ Replay ReadReplay(const fs::path& dir, std::optional<int> job, int max_frames) {
   const ResultsFiles files = CheckResultsFolder(dir);
   if (max_frames < 2) Fail("--max-frames", "must be at least 2, got " + std::to_string(max_frames));
   const ResolvedConfig config = ReadResolvedConfig(files.meta);
-  const CycleRows cycles = ReadCycleRows(files.cycles, job);
+  const CycleRows cycles = files.bodies.empty() ? ReadCycleRows(files.cycles, job) : ReadWorldRows(files, job);
   return MakeReplay(dir, files, config, cycles, PickJob(cycles.jobs, job, files.cycles), max_frames);
 }
 
@@ -442,11 +565,112 @@ std::vector<Replay> ReadReplays(const fs::path& dir, int max_frames) {
   const ResultsFiles files = CheckResultsFolder(dir);
   if (max_frames < 2) Fail("--max-frames", "must be at least 2, got " + std::to_string(max_frames));
   const ResolvedConfig config = ReadResolvedConfig(files.meta);
-  const CycleRows cycles = ReadCycleRows(files.cycles, std::nullopt);
+  const CycleRows cycles =
+      files.bodies.empty() ? ReadCycleRows(files.cycles, std::nullopt) : ReadWorldRows(files, std::nullopt);
   if (cycles.jobs.empty()) Fail(files.cycles.string(), "has no rows");
   std::vector<Replay> replays;
   for (int job : cycles.jobs) replays.push_back(MakeReplay(dir, files, config, cycles, job, max_frames));
   return replays;
+}
+
+namespace {
+
+// The reduced basis (r modes) of deformable BODY at the vertices of MESH (the mesh drawn) into
+// its page data *J ("modes", "basis"), or "basis_omitted" beyond 16 million entries.
+void AddBasis(BodyAssets& body, const TriangleMesh& mesh, int r, nlohmann::json* j) {
+  const auto model = body.reduced_model();
+  if (double(mesh.num_vertices()) * 3 * r > 16e6) {
+    (*j)["basis_omitted"] = true;
+    return;
+  }
+  const EmbeddedPoints points(model->mesh, model->basis, mesh.vertices, {}, GradientScheme::kSmooth);
+  std::vector<float> basis;
+  basis.reserve(std::size_t(mesh.num_vertices()) * 3 * r);
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    const Eigen::MatrixXd U = points.Basis(v);  // 3 x r
+    for (int k = 0; k < 3; ++k)
+      for (int m = 0; m < r; ++m) basis.push_back(float(U(k, m)));
+  }
+  (*j)["modes"] = r;
+  (*j)["basis"] = EncodeArray(basis);
+}
+
+// The tool's pose at the first frame of REPLAY's first model (DEFAULT when it has none).
+Pose FirstPose(const Replay& replay, const Pose& fallback) {
+  if (replay.tracks.empty() || replay.tracks.front().t.empty()) return fallback;
+  const float* p = replay.tracks.front().pose.data();
+  return Pose{Eigen::Quaterniond(p[3], p[4], p[5], p[6]).normalized(), Eigen::Vector3d(p[0], p[1], p[2])};
+}
+
+// One track as the page reads it (an entry of replay.models), without the coordinates of
+// deformable bodies.
+nlohmann::json TrackJson(const ReplayTrack& t) {
+  return {{"name", t.model},
+          {"cycles", t.cycles},
+          {"frames", t.t.size()},
+          {"t", EncodeArray(t.t)},
+          {"pose", EncodeArray(t.pose)},
+          {"force", EncodeArray(t.force)},
+          {"torque", EncodeArray(t.torque)},
+          {"level", EncodeArray(t.level)},
+          {"contacts", EncodeArray(t.contacts)}};
+}
+
+nlohmann::json ReplayJson(const Replay& replay, int moving, nlohmann::json models) {
+  return {{"experiment", replay.experiment},
+          {"folder", replay.dir.string()},
+          {"job", replay.job},
+          {"label", replay.job_label},
+          {"moving", moving},
+          {"moving_body", replay.moving_body},
+          {"stride", replay.stride},
+          {"models", std::move(models)}};
+}
+
+}  // namespace
+
+nlohmann::json WorldReplayViewData(const Replay& replay, const AssetOptions& assets, const SceneViewOptions& options) {
+  const Scene& scene = replay.scene;
+  if (!scene.many_bodies()) Fail(replay.dir.string(), "its scene is one of two bodies: a replay of study: contact");
+  std::vector<std::unique_ptr<BodyAssets>> bodies;
+  std::vector<TriangleMesh> meshes;
+  const Pose X_W_tool = FirstPose(replay, scene.bodies[std::size_t(scene.tool)].pose);
+  const std::string default_model = replay.tracks.empty() ? scene.models.front() : replay.tracks.front().model;
+  nlohmann::json j = ManyBodiesViewDataAndMeshes(scene, default_model, assets, options, X_W_tool, &bodies, &meshes);
+  // Each deformable body's coordinates, which must fit its reduced model.
+  auto index_of = [&](const std::string& name) {
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+      if (scene.bodies[i].name == name) return int(i);
+    }
+    return -1;
+  };
+  const std::string bodies_file = (replay.dir / "world_bodies.csv").string();
+  std::vector<int> modes(scene.bodies.size(), 0);
+  nlohmann::json models = nlohmann::json::array();
+  for (const ReplayTrack& t : replay.tracks) {
+    nlohmann::json m = TrackJson(t);
+    m["bodies_q"] = nlohmann::json::array();
+    for (const ReplayTrack::BodyCoordinates& c : t.bodies_q) {
+      const int b = index_of(c.body);
+      if (b < 0) Fail(bodies_file, "model " + t.model + ": no body '" + c.body + "' in the scene");
+      BodyAssets& body = *bodies[std::size_t(b)];
+      const int body_r = body.deformable() ? body.reduced_model()->r() : 0;
+      if (c.r != body_r) {
+        Fail(bodies_file, "model " + t.model + " holds " + std::to_string(c.r) + " reduced coordinates of body '" +
+                              c.body + "', " +
+                              (body.deformable() ? "whose model has r = " + std::to_string(body_r) : "which is rigid"));
+      }
+      modes[std::size_t(b)] = c.r;
+      m["bodies_q"].push_back({{"body", b}, {"r", c.r}, {"q", EncodeArray(c.q)}});
+    }
+    models.push_back(std::move(m));
+  }
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    if (modes[b] > 0) AddBasis(*bodies[b], meshes[b], modes[b], &j["bodies"][b]);
+  }
+  j["title"] = replay.experiment + (replay.job_label.empty() ? "" : " — " + replay.job_label);
+  j["replay"] = ReplayJson(replay, scene.tool, std::move(models));
+  return j;
 }
 
 nlohmann::json ReplayViewData(const Replay& replay, SceneAssets& assets, const SceneViewOptions& options) {
@@ -479,53 +703,22 @@ nlohmann::json ReplayViewData(const Replay& replay, SceneAssets& assets, const S
       }
       r = track_r;
     }
-    if (r == 0) continue;
-    const auto model = body.reduced_model();
-    const TriangleMesh& mesh = meshes[b];  // the basis at the vertices drawn
-    if (double(mesh.num_vertices()) * 3 * r > 16e6) {
-      j["bodies"][b]["basis_omitted"] = true;
-      continue;
-    }
-    const EmbeddedPoints points(model->mesh, model->basis, mesh.vertices, {}, GradientScheme::kSmooth);
-    std::vector<float> basis;
-    basis.reserve(std::size_t(mesh.num_vertices()) * 3 * r);
-    for (int v = 0; v < mesh.num_vertices(); ++v) {
-      const Eigen::MatrixXd U = points.Basis(v);  // 3 x r
-      for (int k = 0; k < 3; ++k)
-        for (int m = 0; m < r; ++m) basis.push_back(float(U(k, m)));
-    }
-    j["bodies"][b]["modes"] = r;
-    j["bodies"][b]["basis"] = EncodeArray(basis);
+    if (r > 0) AddBasis(body, meshes[b], r, &j["bodies"][b]);
   }
 
   j["title"] = replay.experiment + (replay.job_label.empty() ? "" : " — " + replay.job_label);
   nlohmann::json models = nlohmann::json::array();
   for (const ReplayTrack& t : replay.tracks) {
-    models.push_back({{"name", t.model},
-                      {"cycles", t.cycles},
-                      {"frames", t.t.size()},
-                      {"t", EncodeArray(t.t)},
-                      {"pose", EncodeArray(t.pose)},
-                      {"force", EncodeArray(t.force)},
-                      {"torque", EncodeArray(t.torque)},
-                      {"level", EncodeArray(t.level)},
-                      {"contacts", EncodeArray(t.contacts)},
-                      {"r", t.r},
-                      {"q", EncodeArray(t.q)},
-                      {"r_B", t.r_B},
-                      {"q_B", EncodeArray(t.q_B)}});
+    models.push_back(TrackJson(t));
+    models.back()["r"] = t.r;
+    models.back()["q"] = EncodeArray(t.q);
+    models.back()["r_B"] = t.r_B;
+    models.back()["q_B"] = EncodeArray(t.q_B);
     if (nlohmann::json surface = TrackSurface(replay, t, moving_is_B, assets, options); !surface.is_null()) {
       models.back()["surface"] = std::move(surface);
     }
   }
-  j["replay"] = {{"experiment", replay.experiment},
-                 {"folder", replay.dir.string()},
-                 {"job", replay.job},
-                 {"label", replay.job_label},
-                 {"moving", moving_is_B ? 1 : 0},
-                 {"moving_body", replay.moving_body},
-                 {"stride", replay.stride},
-                 {"models", models}};
+  j["replay"] = ReplayJson(replay, moving_is_B ? 1 : 0, std::move(models));
   return j;
 }
 

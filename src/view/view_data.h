@@ -78,6 +78,14 @@ struct ReplayTrack {
   int r = 0, r_B = 0;
   std::vector<float> q;             // (#F x r)
   std::vector<float> q_B;           // (#F x r_B)
+  // A scene of many bodies (study: many-bodies, world_bodies.csv): each deformable body's
+  // reduced coordinates after each kept cycle.
+  struct BodyCoordinates {
+    std::string body;               // its name
+    int r = 0;
+    std::vector<float> q;           // (#F x r)
+  };
+  std::vector<BodyCoordinates> bodies_q;
 };
 
 struct Replay {
@@ -91,7 +99,8 @@ struct Replay {
   int stride = 1;                   // every STRIDE-th cycle kept
 };
 
-// Reads results folder DIR (cycles.csv, meta.json) for job JOB (none: the only job it holds),
+// Reads results folder DIR (cycles.csv, meta.json; of a many-bodies study world_cycles.csv and
+// world_bodies.csv, the tool being the moving body) for job JOB (none: the only job it holds),
 // keeping every k-th cycle so no model has more than MAX_FRAMES frames. The job's scene comes
 // from meta.json's resolved config. Throws Error naming the file and what is wrong: a missing
 // folder or file, a deformed-field study, a cycles.csv that ReadCyclesCsv refuses (result_csv.h;
@@ -114,6 +123,14 @@ std::vector<Replay> ReadReplays(const std::filesystem::path& dir, int max_frames
 // basis at its mesh vertices (u = U q, sec. 4.1), so the page deforms its mesh per frame;
 // bodies with more than 16 million basis entries are shown at rest ("basis_omitted": true).
 nlohmann::json ReplayViewData(const Replay& replay, SceneAssets& assets, const SceneViewOptions& options);
+
+// The replay of a many-bodies study (its scene one of many bodies, the tool moving): the
+// ManyBodiesViewData of its scene with the tool at the first frame, the reduced basis of each
+// deformable body whose coordinates were recorded ("modes", "basis", as ReplayViewData gives
+// them), and "replay" as ReplayViewData gives it with "moving" the tool's index and per model
+// "bodies_q": [{"body": index, "r", "q": f32 (#F x r)}] (no "r", "q", "r_B", "q_B", no surface).
+// Throws Error naming world_bodies.csv for coordinates that do not fit their body.
+nlohmann::json WorldReplayViewData(const Replay& replay, const AssetOptions& assets, const SceneViewOptions& options);
 
 // The page data of several jobs of one results folder, JOB_DATA[i] the ReplayViewData of
 // REPLAYS[i]: {"title": the experiment, "jobs": [{"job", "label", "title"}], "blobs": [text],

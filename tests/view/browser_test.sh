@@ -138,6 +138,20 @@ browse "--screenshot=$work/many.png" "file://$work/many.html" many.shot.log > /d
 "$python" "$here/check_page.py" --page many --dom many.dom --png many.png --logs many.dom.log many.shot.log \
     --expect-text "3 pairs: ball / plate (pointshell), ball / wall (pointshell), ball / post (pointshell)" || status=1
 grep -q "ball (tool, pointshell" many.dom || { echo "FAILED: the legend does not name the tool"; status=1; }
+# Its run (study: many-bodies) replayed: the tool moves, the others stay.
+cat > many-run.yaml <<'YAML'
+name: view-many-run
+study: many-bodies
+scene: many.yaml
+models: [pointshell]
+trajectory: {type: slide, direction: [0, 0, -1], depth: 0.001, tangent: [-1, 0, 0], length: 0.01, duration: 0.2}
+YAML
+"$cli" run many-run.yaml --out results/view-many-run --cache cache > many-run.log 2>&1 || { cat many-run.log; echo "FAILED: contactlab run (many bodies)"; exit 1; }
+"$cli" view results/view-many-run --out many-replay.html --cache cache || { echo "FAILED: contactlab view of a many-bodies run"; exit 1; }
+browse --dump-dom "file://$work/many-replay.html#t=0.1" many-replay.dom.log > many-replay.dom
+browse "--screenshot=$work/many-replay.png" "file://$work/many-replay.html#t=0.1" many-replay.shot.log > /dev/null
+"$python" "$here/check_page.py" --page many-replay --dom many-replay.dom --png many-replay.png \
+    --logs many-replay.dom.log many-replay.shot.log --replay --expect-text "3 pairs: ball / plate (pointshell)" || status=1
 
 # The checks must see a broken page: the scene page with a script error added must fail them.
 sed 's|</body>|<script>undefinedViewerFunction();</script></body>|' scene.html > broken.html

@@ -11,6 +11,8 @@
 #include "contact/register_contact_models.h"
 #include "experiment/studies/contact/contact_study.h"
 #include "experiment/studies/contact/result_csv.h"
+#include "experiment/studies/many_bodies/many_bodies_study.h"
+#include "../experiment/csv_rows.h"
 #include "scene_fixtures.h"
 #include "test_support.h"
 #include "util/atomic_file.h"
@@ -199,6 +201,60 @@ TEST(SceneView, AManyBodyPageDrawsEveryBodyAndListsThePairsInTheirModelsOrder) {
                                      "  - {name: b, mesh: \"box:0.05,0.05,0.01\", role: field}\n";
   const std::string e = ErrorOf([&] { (void)ManyBodiesViewData(LoadScene(dir / "two.yaml"), "pointshell", {}, {}); });
   EXPECT_NE(e.find("two.yaml"), std::string::npos) << e;
+}
+
+// The replay of a many-bodies run: the tool's poses and forces as world_cycles.csv holds them,
+// the deformable floor's coordinates as world_bodies.csv holds them, its basis in the page data.
+TEST(Replay, AManyBodiesRunReplaysTheToolAndEveryDeformableBody) {
+  TempDir dir;
+  std::ofstream(dir / "config.yaml")
+      << "name: world-replay\n"
+         "study: many-bodies\n"
+         "models: [pointshell]\n"
+         "scene:\n"
+         "  tool: ball\n"
+         "  bodies:\n"
+         "    - {name: ball, mesh: \"sphere:0.02,2\", pose: [0, 0, 0.0195, 1, 0, 0, 0], role: pointshell,\n"
+         "       pointshell: {points: 256, levels: 3, seed: 2}}\n"
+         "    - {name: floor, mesh: \"box:0.04,0.04,0.01,2\", pose: [0, 0, -0.01, 1, 0, 0, 0], role: field,\n"
+         "       field: {resolution: 24},\n"
+         "       deformable: {model: linear, modes: 6, cells: 10, E: 2.0e5, nu: 0.3, rho: 1100,\n"
+         "                    anchor: {outside: [-0.035, -0.035, -1, 0.035, 0.035, 1]}, field: {proxies: 20}}}\n"
+         "    - {name: post, mesh: \"box:0.01,0.01,0.01,1\", pose: [0, 0.2, 0, 1, 0, 0, 0], role: field}\n"
+         "  model: {k_C: 1000, L: 0, max_point_speed: 0.5}\n"
+         "trajectory: {type: slide, direction: [0, 0, -1], depth: 0.0005, tangent: [0, 1, 0], length: 0.01,\n"
+         "             duration: 0.05}\n";
+  RunWorldStudy(LoadExperimentConfig(dir / "config.yaml"), Options(dir));
+  const Replay r = ReadReplay(dir / "out", std::nullopt);
+  EXPECT_EQ(r.moving_body, "ball");
+  ASSERT_EQ(r.tracks.size(), 1u);
+  const ReplayTrack& t = r.tracks.front();
+  const auto cycles = testing::ReadCsvRows(dir / "out" / "world_cycles.csv");
+  ASSERT_EQ(t.t.size(), cycles.size());
+  for (std::size_t k = 0; k < cycles.size(); ++k) {
+    EXPECT_NEAR(t.pose[7 * k + 2], std::stod(cycles[k].at("z")), 1e-6) << k;
+    EXPECT_NEAR(t.force[3 * k + 2], std::stod(cycles[k].at("fz")), 1e-4 * (1 + std::abs(std::stod(cycles[k].at("fz")))));
+  }
+  ASSERT_EQ(t.bodies_q.size(), 1u);
+  EXPECT_EQ(t.bodies_q[0].body, "floor");
+  EXPECT_EQ(t.bodies_q[0].r, 6);
+  const auto rows = testing::ReadCsvRows(dir / "out" / "world_bodies.csv");
+  ASSERT_EQ(rows.size(), cycles.size());
+  std::istringstream last(rows.back().at("q"));
+  for (int m = 0; m < 6; ++m) {
+    double q = 0;
+    last >> q;
+    EXPECT_NEAR(t.bodies_q[0].q[6 * (cycles.size() - 1) + std::size_t(m)], q, 1e-6 * (1 + std::abs(q))) << m;
+  }
+  EXPECT_GT(std::abs(t.bodies_q[0].q.back()) + std::abs(t.bodies_q[0].q[t.bodies_q[0].q.size() - 2]), 0.0)
+      << "the pressed floor deforms";
+  const nlohmann::json j = WorldReplayViewData(r, Options(dir).assets, SceneViewOptions{});
+  EXPECT_EQ(j["replay"]["moving"].get<int>(), 0);
+  EXPECT_EQ(j["bodies"][1]["modes"].get<int>(), 6);
+  const auto basis = DecodeArray<float>(j["bodies"][1]["basis"].get<std::string>(), "basis");
+  EXPECT_EQ(basis.size(), j["bodies"][1]["vertices"].get<std::size_t>() * 3 * 6);
+  EXPECT_FALSE(j["bodies"][0].contains("basis")) << "the rigid ball";
+  EXPECT_EQ(j["replay"]["models"][0]["bodies_q"][0]["body"].get<int>(), 1);
 }
 
 // A contact surface (pressure-field) drawn on the scene page: of the scene's models that keep

@@ -121,7 +121,9 @@ void RunModel(const Job& job, const RunOptions& options, const Trajectory& traje
     for (const int b : deformable) {
       BodyDynamics& dyn = *world.dynamics(b);
       const double u = dyn.MaxDisplacement();
-      out->body_rows.push_back({m, k, t, b, u, dyn.PotentialEnergy(), dyn.KineticEnergy()});
+      const auto& q = dyn.state().q;
+      out->body_rows.push_back(
+          {m, k, t, b, u, dyn.PotentialEnergy(), dyn.KineticEnergy(), std::vector<double>(q.data(), q.data() + q.size())});
       sum.max_displacement = std::max(sum.max_displacement, u);
     }
     times.push_back(row.time_us);
@@ -231,6 +233,8 @@ const TableColumn<BodyCell> kBodyColumns[] = {
     {"elastic_energy_J", "J", "its elastic energy (mass-normalised coordinates)",
      [](const BodyCell& c, CsvLine& l) { l.Num("%.6g", c.row.elastic_energy); }},
     {"kinetic_energy_J", "J", "its kinetic energy", [](const BodyCell& c, CsvLine& l) { l.Num("%.6g", c.row.kinetic_energy); }},
+    {"q", "", "its reduced coordinates q_1 .. q_r after the step, space-separated (mass-normalised)",
+     [](const BodyCell& c, CsvLine& l) { l.Numbers("%.9g", c.row.q); }},
 };
 
 using SummaryCell = Bound<WorldSummaryRow>;
@@ -378,6 +382,7 @@ void RegisterManyBodiesStudy() {
   s.required = {"trajectory"};
   s.tables = {CyclesTable(), PairsTable(), BodiesTable(), SummaryTable()};
   s.many_bodies = true;
+  s.replayable = true;  // world_cycles.csv: the tool's poses; world_bodies.csv: the deformable bodies' q
   s.timing = true;  // it measures the cycle's time: one job at a time
   s.check = CheckWorldStudy;
   s.run = RunStudy;

@@ -69,6 +69,7 @@ struct WorldBodyRow {
   int body = 0;                  // index into Scene::bodies
   double max_displacement = 0;   // m, largest |U q| over its simulation mesh's vertices
   double elastic_energy = 0, kinetic_energy = 0;  // J (mass-normalised coordinates)
+  std::vector<double> q;         // its reduced coordinates after the step (the replay deforms it)
 };
 
 // One model's run of one job.

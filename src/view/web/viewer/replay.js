@@ -22,6 +22,7 @@ function decodeTrack(m) {
           contacts: decode(m.contacts, Int32Array), fmag: fmag, fmax: fmax,
           r: m.r || 0, q: m.r ? decode(m.q, Float32Array) : null,
           r_B: m.r_B || 0, q_B: m.r_B ? decode(m.q_B, Float32Array) : null,
+          bodiesQ: (m.bodies_q || []).map(function (c) { return {body: c.body, r: c.r, q: decode(c.q, Float32Array)}; }),
           surface: m.surface ? {frames: decode(m.surface.frames, Int32Array), start: decode(m.surface.start, Uint32Array),
                                 corners: decode(m.surface.corners, Float32Array),
                                 pressure: decode(m.surface.pressure, Float32Array), pmax: m.surface.pmax} : null};
@@ -113,6 +114,11 @@ class Replayer {
     setPose(bodies[this.replay.moving].group, p);
     if (bodies[0].basis && tr.q && tr.r === bodies[0].modes) deform(bodies[0], tr.q, tr.r * frameIndex);
     if (bodies[1].basis && tr.q_B && tr.r_B === bodies[1].modes) deform(bodies[1], tr.q_B, tr.r_B * frameIndex);
+    // A scene of many bodies: each deformable body whose coordinates were recorded.
+    tr.bodiesQ.forEach(function (c) {
+      const b = bodies[c.body];
+      if (b && b.basis && c.r === b.modes) deform(b, c.q, c.r * frameIndex);
+    });
     // The force on the moving body at its origin, scaled so the largest force of the run is
     // 60% of the scene's radius.
     const f = new THREE.Vector3(tr.force[3 * frameIndex], tr.force[3 * frameIndex + 1], tr.force[3 * frameIndex + 2]);
