@@ -154,13 +154,13 @@ Scene LoadSessionScene(const SessionArgs& args) {
 //
 // A scene of many bodies: the model is the scene's world (scene/scene_world.h WorldContactModel,
 // every pair, the tool as the haptic body), its deformable bodies stepped by the world itself at
-// the loop's rate; --touch and --view take two bodies.
+// the loop's rate; --touch takes two bodies, and --view draws every body but marks no points.
 std::unique_ptr<ContactModel> MakeSessionModel(const SessionArgs& args, const Scene& scene, SceneAssets& assets,
                                                const std::string& model_name) {
   if (!scene.many_bodies()) return MakeSceneContactModel(model_name, scene, assets);
-  if (args.touch > 0 || args.view) {
-    Fail(args.scene, "a scene of many bodies runs without --touch and --view (they place and draw two bodies); its "
-                     "tool starts at its scene pose");
+  if (args.touch > 0) {
+    Fail(args.scene, "a scene of many bodies runs without --touch (it places one body touching the other); its tool "
+                     "starts at its scene pose");
   }
   auto world = std::make_unique<SceneWorld>(scene, model_name, SessionAssetOptions(args));
   world->EnableDynamics(scene.model.cycle_seconds);
@@ -285,9 +285,14 @@ constexpr double kSnapshotsPerSecond = 50, kMarksPerSecond = 15;
 
 SessionView StartSessionView(const SessionArgs& args, SessionScene& s, int port, ContactPointMarks* marks,
                              double cycle_rate_hz) {
-  nlohmann::json data = SceneViewData(s.scene, s.assets, SceneViewOptions{}, BodyPoses{s.scene.pointshell_body.pose, s.X_WB_start});
+  // A scene of many bodies: every body, the tool (the haptic body) at its start pose.
+  nlohmann::json data =
+      s.scene.many_bodies()
+          ? ManyBodiesViewData(s.scene, s.model_name, SessionAssetOptions(args), SceneViewOptions{})
+          : SceneViewData(s.scene, s.assets, SceneViewOptions{}, BodyPoses{s.scene.pointshell_body.pose, s.X_WB_start});
   data["title"] = s.scene.name + " (live)";
-  data["live"] = {{"stream", "stream"}, {"haptic", 1}, {"model", s.model_name}, {"device", args.device}};
+  const int haptic = s.scene.many_bodies() ? s.scene.tool : 1;
+  data["live"] = {{"stream", "stream"}, {"haptic", haptic}, {"model", s.model_name}, {"device", args.device}};
   const auto snapshot_every = std::max<std::int64_t>(1, std::llround(cycle_rate_hz / kSnapshotsPerSecond));
   const auto marks_every = std::max<std::int64_t>(1, std::int64_t(std::ceil(cycle_rate_hz / kMarksPerSecond)));
   SessionView view;
@@ -418,7 +423,8 @@ void RunSession(const SessionArgs& args) {
   SessionDevice device(args.device, DeviceOptions{args.device_peers}, s.X_WB_start);
   // A scene of many bodies steps its deformable bodies in its world (MakeSessionModel).
   SceneDynamics dynamics = s.scene.many_bodies() ? SceneDynamics{} : MakeSceneDynamics(s.assets, s.scene.model.cycle_seconds);
-  std::unique_ptr<ContactPointMarks> marks = args.view ? MakeViewPointMarks(s) : nullptr;
+  // The view's marks are of the one pointshell of two bodies; a scene of many bodies has a pair's each.
+  std::unique_ptr<ContactPointMarks> marks = args.view && !s.scene.many_bodies() ? MakeViewPointMarks(s) : nullptr;
   HapticCycle cycle(device.mapped, s.model.get(), MakeSessionCycleConfig(args, s, dynamics, marks.get()));
   InstallStopSignalHandlers();
   const HapticLoopOptions loop_options = SessionLoopOptions(args, s.scene, checked.cpu);

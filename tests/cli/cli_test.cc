@@ -148,16 +148,15 @@ TEST(Cli, ContactQueriesEveryPairOfASceneOfManyBodies) {
   const Outcome pose_a = RunCli("contact scenes/tool-among-parts.yaml --pose-a 0,0,0,1,0,0,0" + cache);
   EXPECT_NE(pose_a.exit_code, 0);
   EXPECT_NE(pose_a.output.find("--pose-tool"), std::string::npos) << pose_a.output;
-  // A live session moves the tool among them; --view draws two bodies only.
+  // A live session moves the tool among them; --touch places one of two bodies.
   const Outcome session = RunCli("session scenes/tool-among-parts.yaml --device sim:circle:0.005:0.5 --duration 0.3 "
                                  "--no-realtime --quiet" + cache);
   EXPECT_EQ(session.exit_code, 0) << session.output;
   EXPECT_NE(session.output.find("5 bodies, tool ball, 5 pairs, 0 deformable"), std::string::npos) << session.output;
-  const Outcome view = RunCli("session scenes/tool-among-parts.yaml --device sim --duration 0.1 --view" + cache);
-  EXPECT_NE(view.exit_code, 0);
-  EXPECT_NE(view.output.find("tool-among-parts.yaml: a scene of many bodies runs without --touch and --view"),
-            std::string::npos)
-      << view.output;
+  const Outcome touch = RunCli("session scenes/tool-among-parts.yaml --device sim --duration 0.1 --touch 0.001" + cache);
+  EXPECT_NE(touch.exit_code, 0);
+  EXPECT_NE(touch.output.find("tool-among-parts.yaml: a scene of many bodies runs without --touch"), std::string::npos)
+      << touch.output;
   // body-export finds any of its bodies by name: the wall's mesh, 2 x 20 x 8 cm.
   const Outcome body = RunCli("body-export scenes/tool-among-parts.yaml --body wall --mesh " +
                               (dir / "wall.obj").string() + cache);

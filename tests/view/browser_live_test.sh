@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The live view in a real browser: runs `contactlab session --device sim:circle --view` on a
-# small procedural scene, loads its page from 127.0.0.1 in headless Chromium, and checks that the
+# small procedural scene (and on a scene of many bodies), loads its page from 127.0.0.1 in headless Chromium, and checks that the
 # page drew its first frame, received snapshots and contact marks from the event stream
 # (data-snapshots, data-marks, data-marks-contact on <html>), drew some points in contact, and
 # logged no JavaScript error.
@@ -41,8 +41,8 @@ YAML
 
 # The session, in the background, waiting for its viewers (--view-wait): it starts once each
 # browser below has opened the page's stream, however long Chromium takes to start (a loaded
-# 2-core machine was seen taking 13 s), and streams for 8 s from there. Its address is read
-# from its output through a FIFO as it is printed. timeout(1) is only a hang guard, for a
+# 2-core machine was seen taking 13 s), and streams for its duration from there. Its address is
+# read from its output through a FIFO as it is printed. timeout(1) is only a hang guard, for a
 # browser that never opens the stream: it stops the session cleanly before ctest's limit.
 viewers=1
 if "$python" -c 'import numpy, matplotlib.image' 2>/dev/null; then
@@ -50,40 +50,45 @@ if "$python" -c 'import numpy, matplotlib.image' 2>/dev/null; then
 else
   echo "note: $python lacks numpy or matplotlib: no screenshot check"
 fi
-rm -f session.fifo session.out && mkfifo session.fifo || exit 1
-timeout 100 "$cli" session scene.yaml --cache cache --device sim:circle:0.004:1 --touch 0.003 --duration 8 \
-  --no-realtime --quiet --view --view-wait "$viewers" > session.fifo 2>&1 &
-session=$!
-exec 3< session.fifo
-url=""
-while IFS= read -r line <&3; do
-  printf '%s\n' "$line" >> session.out
-  case $line in "view: http://127.0.0.1:"*/) url=${line#view: }; break ;; esac
-done
-cat <&3 >> session.out &  # the rest of its output
-drain=$!
-exec 3<&-
-if [ -z "$url" ]; then wait "$session"; wait "$drain"; cat session.out; echo "FAILED: the session printed no view address"; exit 1; fi
+# live NAME SESSION-ARGS...: runs the session with the view and its browsers; NAME.dom the
+# page's DOM, NAME.png its screenshot (shot=1 when taken), NAME.out the session's output,
+# session_status its exit status.
+live() {
+  local name=$1; shift
+  rm -f "$name.fifo" "$name.out" && mkfifo "$name.fifo" || exit 1
+  timeout 100 "$cli" session "$@" --no-realtime --quiet --view --view-wait "$viewers" > "$name.fifo" 2>&1 &
+  local session=$!
+  exec 3< "$name.fifo"
+  local url="" line
+  while IFS= read -r line <&3; do
+    printf '%s\n' "$line" >> "$name.out"
+    case $line in "view: http://127.0.0.1:"*/) url=${line#view: }; break ;; esac
+  done
+  cat <&3 >> "$name.out" &  # the rest of its output
+  local drain=$!
+  exec 3<&-
+  if [ -z "$url" ]; then wait "$session"; wait "$drain"; cat "$name.out"; echo "FAILED: the session printed no view address"; exit 1; fi
+  # The DOM and, from a second browser at the same time, a screenshot. Pending stream data
+  # holds virtual time, so both finish when the session ends its stream.
+  shot="" ; local shooter=""
+  if [ "$viewers" -eq 2 ]; then
+    PROFILE="$work/profile-shot" chromium_run --virtual-time-budget=3000 "--screenshot=$work/$name.png" "$url" \
+      "$name.shot.log" > /dev/null &
+    shooter=$!
+  fi
+  browse "$url" "$name.log" > "$name.dom"
+  [ -z "$shooter" ] || { wait "$shooter" && shot=1; }
+  wait "$session"; session_status=$?
+  wait "$drain"
+  [ -n "$shot" ] || [ -z "$shooter" ] || { echo "FAILED: no screenshot of the $name page"; status=1; }
+  [ "$session_status" -ne 124 ] || { cat "$name.out"; echo "FAILED: the session still waited for its $viewers viewer(s) or ran after 100 s"; status=1; }
+  [ "$session_status" -eq 0 ] || [ "$session_status" -eq 124 ] || { cat "$name.out"; echo "FAILED: the session exited with $session_status"; status=1; }
+}
 
-# The DOM and, from a second browser at the same time, a screenshot (the points in contact
-# drawn red, both bodies, not blank). Pending stream data holds virtual time, so both finish
-# when the session ends its stream.
-shot="" shooter=""
-if [ "$viewers" -eq 2 ]; then
-  PROFILE="$work/profile-shot" chromium_run --virtual-time-budget=3000 "--screenshot=$work/live.png" "$url" \
-    live.shot.log > /dev/null &
-  shooter=$!
-fi
-browse "$url" live.log > live.dom
-[ -z "$shooter" ] || { wait "$shooter" && shot=1; }
-wait "$session"; session_status=$?
-wait "$drain"
+status=0
+live live scene.yaml --cache cache --device sim:circle:0.004:1 --touch 0.003 --duration 8
 tag=$(grep -o '<html[^>]*>' live.dom | head -1)
 echo "live page: $tag"
-status=0
-[ -n "$shot" ] || [ -z "$shooter" ] || { echo "FAILED: no screenshot of the live page"; status=1; }
-[ "$session_status" -ne 124 ] || { cat session.out; echo "FAILED: the session still waited for its $viewers viewer(s) or ran after 100 s"; status=1; }
-[ "$session_status" -eq 0 ] || [ "$session_status" -eq 124 ] || { cat session.out; echo "FAILED: the session exited with $session_status"; status=1; }
 echo "$tag" | grep -q 'data-ready="1"' || { echo "FAILED: the live page never drew its first frame"; status=1; }
 echo "$tag" | grep -q 'data-errors="0"' || { grep -o '<pre id="errors"[^<]*' live.dom; echo "FAILED: JavaScript errors"; status=1; }
 snapshots=$(echo "$tag" | sed -n 's/.*data-snapshots="\([0-9]*\)".*/\1/p')
@@ -100,4 +105,32 @@ if [ -n "$shot" ]; then
   "$python" "$here/check_page.py" --page live --dom live.dom --png live.png --logs live.log live.shot.log --min-red 20 || status=1
 fi
 if grep -q "CONSOLE.*Uncaught" live.log; then grep "CONSOLE.*Uncaught" live.log; echo "FAILED: uncaught errors"; status=1; fi
+
+# A scene of many bodies: the ball among a plate, a wall and a post; the page draws every body
+# (the tool orange, the others blue), follows the tool and lists its pairs.
+cat > many.yaml <<'YAML'
+name: view-live-many
+tool: ball
+bodies:
+  - {name: ball, mesh: "sphere:0.02,3", pose: [0, 0, 0.0195, 1, 0, 0, 0], role: pointshell,
+     pointshell: {points: 512, levels: 3, seed: 3}, field: {resolution: 24}}
+  - {name: plate, mesh: "box:0.05,0.05,0.01,2", pose: [0, 0, -0.01, 1, 0, 0, 0], role: field, field: {resolution: 24}}
+  - {name: wall, mesh: "box:0.01,0.05,0.03,2", pose: [0.04, 0, 0.03, 1, 0, 0, 0], role: field, field: {resolution: 24}}
+  - {name: post, mesh: "box:0.01,0.01,0.03,2", pose: [-0.035, 0.035, 0.03, 1, 0, 0, 0], role: field, field: {resolution: 24}}
+model: {k_C: 1000}
+YAML
+live many many.yaml --cache cache --device sim:circle:0.004:1 --duration 4
+tag=$(grep -o '<html[^>]*>' many.dom | head -1)
+echo "live page of many bodies: $tag"
+echo "$tag" | grep -q 'data-ready="1"' || { echo "FAILED: the many-bodies live page never drew its first frame"; status=1; }
+echo "$tag" | grep -q 'data-errors="0"' || { grep -o '<pre id="errors"[^<]*' many.dom; echo "FAILED: JavaScript errors"; status=1; }
+snapshots=$(echo "$tag" | sed -n 's/.*data-snapshots="\([0-9]*\)".*/\1/p')
+if [ -z "$snapshots" ] || [ "$snapshots" -lt 10 ]; then
+  echo "FAILED: the many-bodies page received ${snapshots:-no} snapshots"; status=1
+fi
+grep -q "4 bodies, tool ball, 3 pairs" many.out || { cat many.out; echo "FAILED: the session did not say its bodies and pairs"; status=1; }
+grep -q "3 pairs: ball / plate (pointshell)" many.dom || { echo "FAILED: the live page does not list the pairs"; status=1; }
+if [ -n "$shot" ]; then
+  "$python" "$here/check_page.py" --page many --dom many.dom --png many.png --logs many.log many.shot.log || status=1
+fi
 exit $status
