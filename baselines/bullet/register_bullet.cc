@@ -19,6 +19,8 @@ void RegisterBulletContactModels() {
             in.A.mesh(), in.B.mesh(),
             BulletContactParams{.penalty = in.params.penalty, .own = in.Params(BulletOwnParamTable())});
       },
+      .allocates = true,  // GImpact's triangle-pair list, per query
+      .mesh_pair_contacts = true,
       .pair_params = ParamBlock(BulletOwnParamTable()),
   });
 }

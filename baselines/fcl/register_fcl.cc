@@ -18,6 +18,7 @@ void RegisterFclContactModels() {
         return std::make_unique<FclContactModel>(
             in.A.mesh(), in.B.mesh(), FclContactParams{.penalty = in.params.penalty, .own = in.Params(FclOwnParamTable())});
       },
+      .mesh_pair_contacts = true,
       .pair_params = ParamBlock(FclOwnParamTable()),
   });
 }

@@ -24,6 +24,7 @@ void RegisterReferenceContactModels() {
         if (p.penalty.L <= 0) p.penalty.L = PenaltyParams::kDefaultManyPointThreshold;
         return std::make_unique<QuadratureReference>(in.A.mesh(), in.B.mesh(), p);
       },
+      .allocates = true,  // CGAL's distance queries
   });
   RegisterContactModel({
       .name = "volume",

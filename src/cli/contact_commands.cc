@@ -356,8 +356,8 @@ void ListModels() {
     add(e.needs.mesh_A, "A mesh");
     add(e.needs.field_B, "B field");
     add(e.needs.mesh_B, e.needs.closed_mesh_B ? "B closed mesh" : "B mesh");
-    std::printf("%-18s needs %-28s %s%s\n", name.c_str(), needs.c_str(), e.description.c_str(),
-                e.reference_only ? " [reference only]" : "");
+    std::printf("%-18s needs %-28s %s%s%s\n", name.c_str(), needs.c_str(), e.description.c_str(),
+                e.reference_only ? " [reference only]" : "", e.allocates ? " [allocates in its queries]" : "");
   }
 }
 

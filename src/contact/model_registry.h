@@ -120,6 +120,13 @@ struct ContactModelEntry {
   // Its contact is a surface it keeps for display (ContactModel::KeepContactSurface): the viewer
   // draws it, and makes no other model to ask.
   bool contact_surface = false;
+  // Its Evaluate may allocate after its first call (a library's own containers: Bullet's
+  // triangle-pair list, CGAL's traversals), so the haptic cycle's promise of no allocation does
+  // not hold with it; `contactlab models` says so, and the allocation tests leave it out.
+  bool allocates = false;
+  // Its contacts come from the two meshes (a mesh-pair library), not from a distance field's
+  // voxels: they begin within the library's own margin of the surfaces, not within a voxel.
+  bool mesh_pair_contacts = false;
   // Its own keys under the scene's `model:` section (ParamBlock(ITS_TABLE)); none when it has
   // none. Entries of one folder may carry the same table: its keys are read once.
   std::optional<ModelParamBlock> pair_params;
@@ -135,6 +142,9 @@ struct ContactModelEntry {
   // (scene/stiffness_match.h): true on the one entry whose force at the reference press the
   // others are scaled to (the paper's model).
   bool stiffness_reference = false;
+  // Its own keys (in OWN, every model's) set for its most detailed evaluation, what it is run at
+  // as an experiment's reference (the paper's model: its deepest level). Null: as the scene says.
+  std::function<void(ParamValues& own)> at_full_detail;
   // What the model refuses of the scene's parameters given which bodies deform, checked before
   // any body data is built: throws Error naming WHERE. Null: nothing beyond `needs`.
   std::function<void(const ContactParams& params, const ParamValues& model_params, bool deformable_A,

@@ -60,6 +60,7 @@ ContactModelEntry PaperModel(PointshellVariant variant) {
       .pair_params = ParamBlock(PointshellOwnParamTable()),
       .make_depth_probe = linear ? ContactModelFactory(MakeDepthProbe) : nullptr,
       .stiffness_reference = !linear,
+      .at_full_detail = [](ParamValues& own) { own.Mutable(PointshellOwnParamTable()).level = -1; },
       .check = [variant](const ContactParams& params, const ParamValues& own, bool, bool deformable_B,
                          std::string_view where) {
         CheckPointshellCoherence(PointshellParamsOf(params, own.Get(PointshellOwnParamTable())), variant,

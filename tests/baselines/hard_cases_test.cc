@@ -169,8 +169,11 @@ std::string SceneText(const HardCase& c, int order) {
   return s.str();
 }
 
-bool IsFieldModel(const std::string& m) { return m != "fcl" && m != "bullet"; }
-bool PromisesNoAllocation(const std::string& m) { return m != "bullet" && m != "reference"; }
+// The registry's traits of model M (contact/model_registry.h): whether its contacts begin
+// within a voxel of a field (else a mesh-pair library's margin), and whether its queries
+// promise no allocation.
+bool IsFieldModel(const std::string& m) { return !FindContactModel(m)->mesh_pair_contacts; }
+bool PromisesNoAllocation(const std::string& m) { return !FindContactModel(m)->allocates; }
 // The penalty laws' bounds (|F| <= k_C L D and the like) hold for models whose force is k_C
 // times depths; the volumetric models follow laws of their own: pressure-field's force is at
 // most its largest modulus times the contact area (checked instead), inner-spheres' is k_V

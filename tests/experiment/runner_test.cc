@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -101,6 +102,28 @@ TEST(Runner, ForceOnTheMovingBallPointsUpAtTheDeepestCycle) {
   EXPECT_LT(deepest.force.head<2>().norm(), 0.05 * deepest.force.z());
   EXPECT_GT(deepest.contacts, 0);
   EXPECT_EQ(r.cycles.front().contacts, 0);  // starts 2 mm above the contact
+}
+
+// The reference runs at its most detail as its registry entry declares it (the paper's model:
+// its deepest level), whatever level the scene gives the models compared: the reference force is
+// the force of the same model run at its deepest level, not the coarse one compared.
+TEST(Runner, TheReferenceRunsAtItsDeepestLevelWhateverTheSceneSays) {
+  TempDir dir;
+  const std::vector<std::string> common = {"sweep.points=[256]", "models=[pointshell-linear]", "reference_every=1"};
+  std::vector<std::string> coarse = common;
+  coarse.push_back("scene.model.level=0");
+  const ExperimentConfig shallow = Load(dir, kConfig, coarse);
+  const JobResult r = RunJob(shallow, ExpandJobs(shallow).front(), Options(dir, "out"));
+  const ExperimentConfig deep = Load(dir, kConfig, common);
+  const JobResult d = RunJob(deep, ExpandJobs(deep).front(), Options(dir, "deep"));
+  ASSERT_EQ(r.cycles.size(), d.cycles.size());
+  double apart = 0;  // how far the coarse level's force is from the deepest one's
+  for (std::size_t k = 0; k < r.cycles.size(); ++k) {
+    ASSERT_TRUE(r.cycles[k].has_reference) << k;
+    EXPECT_LT((r.cycles[k].reference_force - d.cycles[k].force).norm(), 1e-9 * (1 + d.cycles[k].force.norm())) << k;
+    apart = std::max(apart, (r.cycles[k].force - d.cycles[k].force).norm());
+  }
+  EXPECT_GT(apart, 0.01) << "level 0 renders another force than the deepest level";
 }
 
 TEST(Runner, SingleJobsMergeIntoTheFullRun) {

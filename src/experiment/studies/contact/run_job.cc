@@ -14,7 +14,7 @@
 #include "scene/scene_query.h"
 #include "experiment/studies/contact/contact_study.h"
 #include "experiment/studies/contact/metrics.h"
-#include "pointshell_contact/pointshell_contact_params.h"
+#include "contact/model_registry.h"
 #include "haptics/contact_cycle.h"
 #include "util/error.h"
 
@@ -41,7 +41,10 @@ std::unique_ptr<ContactModel> MakeReference(const ExperimentConfig& config, cons
   if (config.reference_points > 0) ref_scene.pointshell_body.pointshell.points = config.reference_points;
   if (config.reference_levels > 0) ref_scene.pointshell_body.pointshell.levels = config.reference_levels;
   if (config.reference_resolution > 0) ref_scene.field_body.field.resolution = config.reference_resolution;
-  ref_scene.model_params.Mutable(PointshellOwnParamTable()).level = -1;  // the paper's model at its deepest level
+  // The reference at its most detail, as its registry entry says (the paper's model: its deepest level).
+  if (const ContactModelEntry* e = FindContactModel(config.reference_model); e != nullptr && e->at_full_detail) {
+    e->at_full_detail(ref_scene.model_params);
+  }
   ref_scene.node_budget = 0;
   *assets = std::make_unique<SceneAssets>(ref_scene, options.assets);
   return MakeSceneContactModel(config.reference_model, ref_scene, **assets);
