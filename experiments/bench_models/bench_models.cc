@@ -331,7 +331,7 @@ void BM_Clutter(benchmark::State& state, int bodies, std::string model_name) {
     times[std::size_t(cycles) % kKept] = std::chrono::duration<double, std::micro>(t1 - t0).count();
     near += r.stats.pairs_near;
     touching += r.stats.pairs_touching;
-    contacts += r.stats.points_in_contact;
+    contacts += r.stats.sum.points_in_contact;
     ++cycles;
   }
   SetCycleTimeCounters(state, &times, cycles);

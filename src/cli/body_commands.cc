@@ -110,19 +110,17 @@ SceneBody LoadSceneBody(const std::string& scene_arg, const std::string& body_na
   for (const auto& in : other_inputs) CheckOutputIsNotInput(out, in, out_option);
   SceneBody sb;
   sb.scene = LoadScene(scene_file);
-  std::vector<BodySpec> bodies = {sb.scene.field_body, sb.scene.pointshell_body};
   if (sb.scene.many_bodies()) {
     // A scene of many bodies: the named body, held as the two-body fields' pointshell body.
-    bodies = sb.scene.bodies;
     std::string names;
-    for (const BodySpec& b : bodies) {
-      names += (names.empty() ? "" : ", ") + b.name;
-      if (b.name == body_name) sb.scene.pointshell_body = b;
+    for (const BodySpec* b : sb.scene.AllBodies()) {
+      names += (names.empty() ? "" : ", ") + b->name;
+      if (b->name == body_name) sb.scene.pointshell_body = *b;
     }
     if (sb.scene.pointshell_body.name != body_name) Fail("--body", "no body '" + body_name + "' in " + scene_arg + " (bodies: " + names + ")");
   }
-  for (const BodySpec& b : bodies) {
-    if (const auto mesh_file = FindDataFile(b.mesh, FolderOf(scene_file))) CheckOutputIsNotInput(out, *mesh_file, out_option);
+  for (const BodySpec* b : sb.scene.AllBodies()) {
+    if (const auto mesh_file = FindDataFile(b->mesh, FolderOf(scene_file))) CheckOutputIsNotInput(out, *mesh_file, out_option);
   }
   AssetOptions options;
   options.cache_dir = cache;

@@ -139,7 +139,7 @@ void RunWorldContact(const ContactArgs& args, const Scene& scene, const AssetOpt
   const auto t0 = std::chrono::steady_clock::now();
   const WorldResult r = world.Evaluate(X_tool, 0, args.budget);
   const double micros = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
-  if (r.stats.faults > 0) Fail(where, "a pair's model refused the query; no wrench");
+  if (r.stats.sum.faults > 0) Fail(where, "a pair's model refused the query; no wrench");
   if (!r.on_tool.force.allFinite() || !r.on_tool.torque.allFinite() || !r.K_tool.allFinite()) {
     Fail(where, "a pair's model gave a non-finite wrench or stiffness at these poses; nothing printed");
   }
@@ -158,8 +158,8 @@ void RunWorldContact(const ContactArgs& args, const Scene& scene, const AssetOpt
     j["pairs_near"] = r.stats.pairs_near;
     j["pairs_touching"] = r.stats.pairs_touching;
     j["pairs_degraded"] = r.stats.pairs_degraded;
-    j["points_in_contact"] = r.stats.points_in_contact;
-    j["nodes_visited"] = r.stats.nodes_visited;
+    j["points_in_contact"] = r.stats.sum.points_in_contact;
+    j["nodes_visited"] = r.stats.sum.nodes_visited;
     j["evaluate_microseconds"] = micros;
     nlohmann::json pairs = nlohmann::json::array();
     for (int p = 0; p < world.pair_count(); ++p) {
@@ -195,8 +195,8 @@ void RunWorldContact(const ContactArgs& args, const Scene& scene, const AssetOpt
   std::printf("torque on %s [N m]: %+.6g %+.6g %+.6g (about its origin, world frame)\n", tool.name.c_str(),
               r.on_tool.torque.x(), r.on_tool.torque.y(), r.on_tool.torque.z());
   std::printf("pairs near %d, touching %d, degraded %d; points in contact %d, nodes visited %lld, %.1f us\n",
-              r.stats.pairs_near, r.stats.pairs_touching, r.stats.pairs_degraded, r.stats.points_in_contact,
-              static_cast<long long>(r.stats.nodes_visited), micros);
+              r.stats.pairs_near, r.stats.pairs_touching, r.stats.pairs_degraded, r.stats.sum.points_in_contact,
+              static_cast<long long>(r.stats.sum.nodes_visited), micros);
   for (int p = 0; p < world.pair_count(); ++p) {
     const OrderedPair& pair = world.pair(p);
     const PairOutcome& o = world.outcome(p);

@@ -154,9 +154,10 @@ Scene LoadSessionScene(const SessionArgs& args) {
 //
 // A scene of many bodies: the model is the scene's world (scene/scene_world.h WorldContactModel,
 // every pair, the tool as the haptic body), its deformable bodies stepped by the world itself at
-// the loop's rate; --touch takes two bodies, and --view draws every body but marks no points.
+// the loop's rate (*WORLD_OUT: the world, which the model owns); --touch takes two bodies, and
+// --view draws every body but marks no points.
 std::unique_ptr<ContactModel> MakeSessionModel(const SessionArgs& args, const Scene& scene, SceneAssets& assets,
-                                               const std::string& model_name) {
+                                               const std::string& model_name, SceneWorld** world_out) {
   if (!scene.many_bodies()) return MakeSceneContactModel(model_name, scene, assets);
   if (args.touch > 0) {
     Fail(args.scene, "a scene of many bodies runs without --touch (it places one body touching the other); its tool "
@@ -164,6 +165,7 @@ std::unique_ptr<ContactModel> MakeSessionModel(const SessionArgs& args, const Sc
   }
   auto world = std::make_unique<SceneWorld>(scene, model_name, SessionAssetOptions(args));
   world->EnableDynamics(scene.model.cycle_seconds);
+  *world_out = world.get();
   return std::make_unique<WorldContactModel>(std::move(world), model_name);
 }
 
@@ -172,7 +174,7 @@ struct SessionScene {
       : scene(LoadSessionScene(args)),
         assets(scene, SessionAssetOptions(args)),
         model_name(args.model.empty() ? scene.models.front() : args.model),
-        model(MakeSessionModel(args, scene, assets, model_name)),
+        model(MakeSessionModel(args, scene, assets, model_name, &world_)),
         X_WB_start(scene.field_body.pose) {
     if (args.touch > 0) {
       const Eigen::Vector3d toward = scene.pointshell_body.pose.translation - X_WB_start.translation;
@@ -181,9 +183,12 @@ struct SessionScene {
     }
   }
 
+  SceneWorld* world() const { return world_; }
+
   Scene scene;
   SceneAssets assets;
   std::string model_name;
+  SceneWorld* world_ = nullptr;  // a scene of many bodies: the world MODEL closes the loop on
   std::unique_ptr<ContactModel> model;
   Pose X_WB_start;  // the haptic body's (the field body's) pose at the start
 };
@@ -285,11 +290,16 @@ constexpr double kSnapshotsPerSecond = 50, kMarksPerSecond = 15;
 
 SessionView StartSessionView(const SessionArgs& args, SessionScene& s, int port, ContactPointMarks* marks,
                              double cycle_rate_hz) {
-  // A scene of many bodies: every body, the tool (the haptic body) at its start pose.
-  nlohmann::json data =
-      s.scene.many_bodies()
-          ? ManyBodiesViewData(s.scene, s.model_name, SessionAssetOptions(args), SceneViewOptions{})
-          : SceneViewData(s.scene, s.assets, SceneViewOptions{}, BodyPoses{s.scene.pointshell_body.pose, s.X_WB_start});
+  // A scene of many bodies: every body from the world's assets, the tool (the haptic body) at
+  // its start pose.
+  nlohmann::json data;
+  if (SceneWorld* world = s.world()) {
+    std::vector<BodyAssets*> bodies;
+    for (int b = 0; b < world->body_count(); ++b) bodies.push_back(&world->body(b));
+    data = ManyBodiesViewData(s.scene, s.model_name, bodies, SceneViewOptions{});
+  } else {
+    data = SceneViewData(s.scene, s.assets, SceneViewOptions{}, BodyPoses{s.scene.pointshell_body.pose, s.X_WB_start});
+  }
   data["title"] = s.scene.name + " (live)";
   const int haptic = s.scene.many_bodies() ? s.scene.tool : 1;
   data["live"] = {{"stream", "stream"}, {"haptic", haptic}, {"model", s.model_name}, {"device", args.device}};
@@ -310,12 +320,11 @@ void PrintSessionStart(const SessionArgs& args, const SessionScene& s, const Sce
   std::string deformable;
   if (dynamics.A) deformable += ", " + s.scene.pointshell_body.name + " deformable, r = " + std::to_string(dynamics.A->r());
   if (dynamics.B) deformable += ", " + s.scene.field_body.name + " deformable, r = " + std::to_string(dynamics.B->r());
-  if (s.scene.many_bodies()) {
-    auto& world = static_cast<WorldContactModel&>(*s.model).world();
+  if (SceneWorld* world = s.world()) {
     int deforming = 0;
-    for (int b = 0; b < world.body_count(); ++b) deforming += world.dynamics(b) != nullptr;
-    deformable = ", " + std::to_string(world.body_count()) + " bodies, tool " + s.scene.field_body.name + ", " +
-                 std::to_string(world.pair_count()) + " pairs, " + std::to_string(deforming) + " deformable";
+    for (int b = 0; b < world->body_count(); ++b) deforming += world->dynamics(b) != nullptr;
+    deformable = ", " + std::to_string(world->body_count()) + " bodies, tool " + s.scene.field_body.name + ", " +
+                 std::to_string(world->pair_count()) + " pairs, " + std::to_string(deforming) + " deformable";
   }
   std::printf("session: scene %s, model %s, device %s, %.1f s at %g Hz (Ctrl-C stops)%s\n", s.scene.name.c_str(),
               s.model_name.c_str(), args.device.c_str(), args.duration, rate_hz, deformable.c_str());

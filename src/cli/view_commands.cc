@@ -150,12 +150,7 @@ void RunView(const ViewArgs& args) {
     CheckOutputIsNotInput(args.out, scene_file, "--out");
     Scene scene = LoadScene(scene_file);
     if (!args.models.empty()) scene.models = args.models;
-    std::vector<const BodySpec*> bodies = {&scene.field_body, &scene.pointshell_body};
-    if (scene.many_bodies()) {
-      bodies.clear();
-      for (const BodySpec& b : scene.bodies) bodies.push_back(&b);
-    }
-    for (const BodySpec* b : bodies) {
+    for (const BodySpec* b : scene.AllBodies()) {
       if (const auto mesh_file = FindDataFile(b->mesh, FolderOf(scene_file))) CheckOutputIsNotInput(args.out, *mesh_file, "--out");
     }
     if (scene.many_bodies()) {

@@ -629,6 +629,13 @@ Scene LoadScene(const std::filesystem::path& file) { return ParseScene(ConfigNod
 
 Scene WithModelSection(Scene scene, const ConfigNode& node) { return ModelSectionParams().Parse(node, std::move(scene)); }
 
+std::vector<const BodySpec*> Scene::AllBodies() const {
+  if (!many_bodies()) return {&pointshell_body, &field_body};
+  std::vector<const BodySpec*> all;
+  for (const BodySpec& b : bodies) all.push_back(&b);
+  return all;
+}
+
 void Scene::RequireTwoBodies(std::string_view what) const {
   if (!many_bodies()) return;
   Fail(file.empty() ? std::string("scene") : file,

@@ -172,6 +172,8 @@ struct Scene {
   std::vector<PairSpec> pairs;
   std::vector<std::string> warnings;  // what the scene holds that nothing uses (a body in no pair)
   bool many_bodies() const { return tool >= 0; }
+  // Every body: BODIES in a scene of many, else the two (pointshell_body, field_body).
+  std::vector<const BodySpec*> AllBodies() const;
   // Throws Error("FILE: WHAT ...") when this is a scene of many bodies, for the commands that
   // read two bodies only.
   void RequireTwoBodies(std::string_view what) const;

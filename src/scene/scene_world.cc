@@ -284,9 +284,6 @@ const WorldResult& SceneWorld::Evaluate(const Pose& X_W_tool, std::int64_t cycle
     if (st.points_in_contact > 0 && st.level_rendered >= 0) {
       sum.level_rendered = sum.level_rendered < 0 ? st.level_rendered : std::min(sum.level_rendered, st.level_rendered);
     }
-    s.points_in_contact += st.points_in_contact;
-    s.nodes_visited += st.nodes_visited;
-    s.faults += st.faults;
     if (st.points_in_contact > 0) ++s.pairs_touching;
     if (st.degraded > 0) ++s.pairs_degraded;
     if (pair.B == scene_.tool) {

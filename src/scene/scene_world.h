@@ -51,15 +51,13 @@ struct PairOutcome {
 };
 
 struct WorldStats {
-  ContactStats sum;            // the pairs' stats together: counts summed, depths and levels as
-                               // the deepest / shallowest of the pairs that touched
+  // The pairs' stats together: counts (points in contact, nodes visited, faults, ...) summed,
+  // depths and degradation as the largest, the level as the shallowest of the pairs that touched.
+  ContactStats sum;
   int pairs = 0;               // in the scene
   int pairs_near = 0;          // whose boxes overlapped
   int pairs_touching = 0;      // whose model found contact
   int pairs_degraded = 0;      // whose model the budget made degrade
-  int faults = 0;              // queries a model refused
-  std::int32_t points_in_contact = 0;  // summed over the pairs
-  std::int64_t nodes_visited = 0;      // summed over the pairs
 };
 
 // The tool's share of a cycle: the wrench on it summed over its pairs (torque about its origin,

@@ -22,6 +22,7 @@
 #include "util/atomic_file.h"
 #include "util/config_node.h"
 #include "util/error.h"
+#include "util/parse_number.h"
 #include "view/display_points.h"
 #include "view/field_slice.h"
 #include "view/page_encoding.h"
@@ -161,25 +162,41 @@ float MaxOf(const std::vector<float>& v) { return v.empty() ? 0.0f : *std::max_e
 
 namespace {
 
-// ManyBodiesViewData with the tool at X_W_TOOL, each body's assets in *BODIES and the mesh drawn
-// in *MESHES.
-nlohmann::json ManyBodiesViewDataAndMeshes(const Scene& scene, const std::string& default_model,
-                                           const AssetOptions& assets, const SceneViewOptions& options,
-                                           const Pose& X_W_tool, std::vector<std::unique_ptr<BodyAssets>>* bodies,
-                                           std::vector<TriangleMesh>* meshes) {
+// Each body of SCENE (a scene of many bodies) as assets of its own, its meshes found beside the
+// scene's file.
+std::vector<std::unique_ptr<BodyAssets>> OwnBodies(const Scene& scene, const AssetOptions& assets) {
   if (!scene.many_bodies()) Fail(scene.file, "is a scene of two bodies (no tool)");
   AssetOptions beside = assets;
   if (beside.mesh_dir.empty() && !scene.file.empty()) beside.mesh_dir = FolderOf(scene.file);
+  std::vector<std::unique_ptr<BodyAssets>> bodies;
+  for (const BodySpec& b : scene.bodies) bodies.push_back(std::make_unique<BodyAssets>(b, beside));
+  return bodies;
+}
+
+std::vector<BodyAssets*> Pointers(const std::vector<std::unique_ptr<BodyAssets>>& owned) {
+  std::vector<BodyAssets*> p;
+  for (const auto& b : owned) p.push_back(b.get());
+  return p;
+}
+
+// ManyBodiesViewData with the tool at X_W_TOOL and the mesh drawn of each body in *MESHES.
+nlohmann::json ManyBodiesViewDataAndMeshes(const Scene& scene, const std::string& default_model,
+                                           const std::vector<BodyAssets*>& bodies, const SceneViewOptions& options,
+                                           const Pose& X_W_tool, std::vector<TriangleMesh>* meshes) {
+  if (!scene.many_bodies()) Fail(scene.file, "is a scene of two bodies (no tool)");
+  if (bodies.size() != scene.bodies.size()) {
+    Fail(scene.file, "view: " + std::to_string(bodies.size()) + " bodies' assets for " +
+                         std::to_string(scene.bodies.size()) + " bodies");
+  }
   nlohmann::json j;
   j["title"] = scene.name;
   j["scene"] = scene.file;
   j["tool"] = scene.tool;
   j["bodies"] = nlohmann::json::array();
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    bodies->push_back(std::make_unique<BodyAssets>(scene.bodies[i], beside));
-    meshes->push_back(DisplayMesh(*bodies->back(), options.max_triangles));
+    meshes->push_back(DisplayMesh(*bodies[i], options.max_triangles));
     const bool tool = int(i) == scene.tool;
-    nlohmann::json b = BodyJson(*bodies->back(), tool ? X_W_tool : scene.bodies[i].pose, meshes->back());
+    nlohmann::json b = BodyJson(*bodies[i], tool ? X_W_tool : scene.bodies[i].pose, meshes->back());
     b["tool"] = tool;
     j["bodies"].push_back(std::move(b));
   }
@@ -194,12 +211,17 @@ nlohmann::json ManyBodiesViewDataAndMeshes(const Scene& scene, const std::string
 
 }  // namespace
 
-nlohmann::json ManyBodiesViewData(const Scene& scene, const std::string& default_model, const AssetOptions& assets,
-                                  const SceneViewOptions& options) {
-  std::vector<std::unique_ptr<BodyAssets>> bodies;
+nlohmann::json ManyBodiesViewData(const Scene& scene, const std::string& default_model,
+                                  const std::vector<BodyAssets*>& bodies, const SceneViewOptions& options) {
   std::vector<TriangleMesh> meshes;
   const Pose X_W_tool = scene.many_bodies() ? scene.bodies[std::size_t(scene.tool)].pose : Pose{};
-  return ManyBodiesViewDataAndMeshes(scene, default_model, assets, options, X_W_tool, &bodies, &meshes);
+  return ManyBodiesViewDataAndMeshes(scene, default_model, bodies, options, X_W_tool, &meshes);
+}
+
+nlohmann::json ManyBodiesViewData(const Scene& scene, const std::string& default_model, const AssetOptions& assets,
+                                  const SceneViewOptions& options) {
+  const std::vector<std::unique_ptr<BodyAssets>> bodies = OwnBodies(scene, assets);
+  return ManyBodiesViewData(scene, default_model, Pointers(bodies), options);
 }
 
 nlohmann::json SceneViewData(const Scene& scene, SceneAssets& assets, const SceneViewOptions& options,
@@ -369,24 +391,21 @@ void ForEachCsvRecord(const std::string& text, const fs::path& file, const std::
   std::map<std::string, std::size_t> column;
   for (std::size_t i = 0; i < header.size(); ++i) column[header[i]] = i;
   for (const std::string& c : needs) {
-    if (!column.count(c)) Fail(file.string() + ":1", "has no column '" + c + "'");
+    if (!column.count(c)) FailAtLine(file.string(), 1, "has no column '" + c + "'");
   }
   while (reader.Next(&cells)) {
     if (cells.size() != header.size()) {
-      Fail(file.string() + ":" + std::to_string(reader.line()),
-           std::to_string(cells.size()) + " cells, the header has " + std::to_string(header.size()));
+      FailAtLine(file.string(), reader.line(),
+                 std::to_string(cells.size()) + " cells, the header has " + std::to_string(header.size()));
     }
     row(column, cells, reader.line());
   }
 }
 
 double CellNumber(const std::string& cell, const fs::path& file, long line, const std::string& column) {
-  char* end = nullptr;
-  const double v = std::strtod(cell.c_str(), &end);
-  if (cell.empty() || end != cell.c_str() + cell.size() || !std::isfinite(v)) {
-    Fail(file.string() + ":" + std::to_string(line), "column " + column + ": '" + cell + "' is not a finite number");
-  }
-  return v;
+  const std::optional<double> v = ParseDouble(cell);
+  if (!v) FailAtLine(file.string(), line, "column " + column + ": '" + cell + "' is not a finite number");
+  return *v;
 }
 
 // The rows of a many-bodies study's world_cycles.csv (FILES.cycles) kept for the replay, as
@@ -421,7 +440,7 @@ CycleRows ReadWorldRows(const ResultsFiles& files, std::optional<int> job) {
     const auto it = row_of.find({j, cells[col.at("model")], cycle});
     if (it == row_of.end()) {
       if (job && j != *job) return;
-      Fail(files.bodies.string() + ":" + std::to_string(line), "names a cycle that world_cycles.csv does not hold");
+      FailAtLine(files.bodies.string(), line, "names a cycle that world_cycles.csv does not hold");
     }
     std::vector<float> q;
     std::istringstream in(cells[col.at("q")]);
@@ -632,11 +651,11 @@ nlohmann::json ReplayJson(const Replay& replay, int moving, nlohmann::json model
 nlohmann::json WorldReplayViewData(const Replay& replay, const AssetOptions& assets, const SceneViewOptions& options) {
   const Scene& scene = replay.scene;
   if (!scene.many_bodies()) Fail(replay.dir.string(), "its scene is one of two bodies: a replay of study: contact");
-  std::vector<std::unique_ptr<BodyAssets>> bodies;
+  const std::vector<std::unique_ptr<BodyAssets>> bodies = OwnBodies(scene, assets);
   std::vector<TriangleMesh> meshes;
   const Pose X_W_tool = FirstPose(replay, scene.bodies[std::size_t(scene.tool)].pose);
   const std::string default_model = replay.tracks.empty() ? scene.models.front() : replay.tracks.front().model;
-  nlohmann::json j = ManyBodiesViewDataAndMeshes(scene, default_model, assets, options, X_W_tool, &bodies, &meshes);
+  nlohmann::json j = ManyBodiesViewDataAndMeshes(scene, default_model, Pointers(bodies), options, X_W_tool, &meshes);
   // Each deformable body's coordinates, which must fit its reduced model.
   auto index_of = [&](const std::string& name) {
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {

@@ -62,6 +62,10 @@ nlohmann::json SceneViewData(const Scene& scene, SceneAssets& assets, const Scen
 // each body's mesh through OPTIONS_ASSETS, its meshes found beside the scene's file.
 nlohmann::json ManyBodiesViewData(const Scene& scene, const std::string& default_model, const AssetOptions& assets,
                                   const SceneViewOptions& options);
+// The same from the bodies' assets BODIES (one per body of the scene, in its order: a
+// SceneWorld's, so a live session loads no mesh again). Throws Error for another count.
+nlohmann::json ManyBodiesViewData(const Scene& scene, const std::string& default_model,
+                                  const std::vector<BodyAssets*>& bodies, const SceneViewOptions& options);
 
 // One model's run in a results folder, thinned to at most the requested number of frames.
 struct ReplayTrack {

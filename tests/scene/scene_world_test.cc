@@ -303,7 +303,7 @@ TEST(SceneWorld, OneBudgetIsSharedSoNoContactSiteStarves) {
   const WorldResult all = world.Evaluate(X, 0, 0);
   EXPECT_EQ(all.stats.pairs_touching, 2);
   EXPECT_EQ(all.stats.pairs_degraded, 0);
-  EXPECT_GT(all.stats.nodes_visited, r.stats.nodes_visited);
+  EXPECT_GT(all.stats.sum.nodes_visited, r.stats.sum.nodes_visited);
 }
 
 TEST(SceneWorld, APairThatLeavesStartsAfreshAndNearPairsKeepTheirState) {
@@ -351,7 +351,7 @@ TEST(SceneWorld, ADeformableBodyStepsOnceWithTheForcesOfAllItsPairs) {
     auto world = std::make_unique<SceneWorld>(Parse(DeformableFloorPressedTwice(pairs)), "pointshell", Quiet(cache));
     world->EnableDynamics(dt);
     const WorldResult& r = world->Evaluate(X, 0);
-    EXPECT_EQ(r.stats.faults, 0);
+    EXPECT_EQ(r.stats.sum.faults, 0);
     EXPECT_EQ(r.stats.pairs_touching, touching) << pairs;
     return world;
   };

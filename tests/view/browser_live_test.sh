@@ -85,16 +85,23 @@ live() {
   [ "$session_status" -eq 0 ] || [ "$session_status" -eq 124 ] || { cat "$name.out"; echo "FAILED: the session exited with $session_status"; status=1; }
 }
 
+# check_drawn NAME: the page of NAME.dom drew its first frame, logged no JavaScript error and
+# received snapshots from the stream; sets tag to its <html> tag.
+check_drawn() {
+  tag=$(grep -o '<html[^>]*>' "$1.dom" | head -1)
+  echo "$1 page: $tag"
+  echo "$tag" | grep -q 'data-ready="1"' || { echo "FAILED: the $1 page never drew its first frame"; status=1; }
+  echo "$tag" | grep -q 'data-errors="0"' || { grep -o '<pre id="errors"[^<]*' "$1.dom"; echo "FAILED: JavaScript errors"; status=1; }
+  local snapshots
+  snapshots=$(echo "$tag" | sed -n 's/.*data-snapshots="\([0-9]*\)".*/\1/p')
+  if [ -z "$snapshots" ] || [ "$snapshots" -lt 10 ]; then
+    echo "FAILED: the $1 page received ${snapshots:-no} snapshots from the stream"; status=1
+  fi
+}
+
 status=0
 live live scene.yaml --cache cache --device sim:circle:0.004:1 --touch 0.003 --duration 8
-tag=$(grep -o '<html[^>]*>' live.dom | head -1)
-echo "live page: $tag"
-echo "$tag" | grep -q 'data-ready="1"' || { echo "FAILED: the live page never drew its first frame"; status=1; }
-echo "$tag" | grep -q 'data-errors="0"' || { grep -o '<pre id="errors"[^<]*' live.dom; echo "FAILED: JavaScript errors"; status=1; }
-snapshots=$(echo "$tag" | sed -n 's/.*data-snapshots="\([0-9]*\)".*/\1/p')
-if [ -z "$snapshots" ] || [ "$snapshots" -lt 10 ]; then
-  echo "FAILED: the page received ${snapshots:-no} snapshots from the stream"; status=1
-fi
+check_drawn live
 # Contact marks of the drawn points: received, and some points drawn red (in contact).
 marks=$(echo "$tag" | sed -n 's/.*data-marks="\([0-9]*\)".*/\1/p')
 red=$(echo "$tag" | sed -n 's/.*data-marks-contact="\([0-9]*\)".*/\1/p')
@@ -120,14 +127,7 @@ bodies:
 model: {k_C: 1000}
 YAML
 live many many.yaml --cache cache --device sim:circle:0.004:1 --duration 4
-tag=$(grep -o '<html[^>]*>' many.dom | head -1)
-echo "live page of many bodies: $tag"
-echo "$tag" | grep -q 'data-ready="1"' || { echo "FAILED: the many-bodies live page never drew its first frame"; status=1; }
-echo "$tag" | grep -q 'data-errors="0"' || { grep -o '<pre id="errors"[^<]*' many.dom; echo "FAILED: JavaScript errors"; status=1; }
-snapshots=$(echo "$tag" | sed -n 's/.*data-snapshots="\([0-9]*\)".*/\1/p')
-if [ -z "$snapshots" ] || [ "$snapshots" -lt 10 ]; then
-  echo "FAILED: the many-bodies page received ${snapshots:-no} snapshots"; status=1
-fi
+check_drawn many
 grep -q "4 bodies, tool ball, 3 pairs" many.out || { cat many.out; echo "FAILED: the session did not say its bodies and pairs"; status=1; }
 grep -q "3 pairs: ball / plate (pointshell)" many.dom || { echo "FAILED: the live page does not list the pairs"; status=1; }
 if [ -n "$shot" ]; then

@@ -199,7 +199,7 @@ TEST(SceneView, AManyBodyPageDrawsEveryBodyAndListsThePairsInTheirModelsOrder) {
   std::ofstream(dir / "two.yaml") << "name: two\nbodies:\n"
                                      "  - {name: a, mesh: \"sphere:0.02\", role: pointshell}\n"
                                      "  - {name: b, mesh: \"box:0.05,0.05,0.01\", role: field}\n";
-  const std::string e = ErrorOf([&] { (void)ManyBodiesViewData(LoadScene(dir / "two.yaml"), "pointshell", {}, {}); });
+  const std::string e = ErrorOf([&] { (void)ManyBodiesViewData(LoadScene(dir / "two.yaml"), "pointshell", AssetOptions{}, SceneViewOptions{}); });
   EXPECT_NE(e.find("two.yaml"), std::string::npos) << e;
 }
 

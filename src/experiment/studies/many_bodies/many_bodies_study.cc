@@ -22,12 +22,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-std::string Where(const ExperimentConfig& config, const Job& job) {
-  return config.file + (config.sweep.empty() ? std::string() : " (job " + job.Label() + ")");
-}
-
 // The job's trajectory, checked for what a scene of many bodies can give it.
-TrajectorySpec WorldTrajectory(const ExperimentConfig& config, const Job& job) {
+TrajectorySpec WorldTrajectory(const Job& job) {
   const TrajectorySpec spec = ParseTrajectorySpec(job.trajectory_node);
   if (spec.toward) {
     job.trajectory_node.Get("direction").Fail(
@@ -38,7 +34,6 @@ TrajectorySpec WorldTrajectory(const ExperimentConfig& config, const Job& job) {
         "places the moving body touching the other of two bodies; a scene of many bodies starts the tool at its "
         "scene pose");
   }
-  (void)config;
   return spec;
 }
 
@@ -60,7 +55,6 @@ void RunModel(const Job& job, const RunOptions& options, const Trajectory& traje
     const OrderedPair& pair = world.pair(p);
     out->pairs.push_back({scene.bodies[std::size_t(pair.A)].name, scene.bodies[std::size_t(pair.B)].name, pair.model});
   }
-  const int pair_base = m * world.pair_count();
   const BodySpec& tool = scene.bodies[std::size_t(scene.tool)];
   const double dt = scene.model.cycle_seconds;
   if (!(trajectory.duration() / dt <= kMaxTrajectorySamples)) {
@@ -106,15 +100,15 @@ void RunModel(const Job& job, const RunOptions& options, const Trajectory& traje
     row.pairs_near = r.stats.pairs_near;
     row.pairs_touching = r.stats.pairs_touching;
     row.pairs_degraded = r.stats.pairs_degraded;
-    row.faults = r.stats.faults;
-    row.contacts = r.stats.points_in_contact;
-    row.nodes = r.stats.nodes_visited;
+    row.faults = r.stats.sum.faults;
+    row.contacts = r.stats.sum.points_in_contact;
+    row.nodes = r.stats.sum.nodes_visited;
     row.max_penetration = r.stats.sum.max_penetration;
     out->cycles.push_back(row);
     for (const int p : world.near_pairs()) {
       const PairOutcome& o = world.outcome(p);
       const ContactStats& st = o.result.stats;
-      out->pair_rows.push_back({m, k, t, pair_base + p, o.budget, st.points_in_contact, st.nodes_visited,
+      out->pair_rows.push_back({m, k, t, p, o.budget, st.points_in_contact, st.nodes_visited,
                                 st.level_rendered, st.degraded, st.max_penetration, o.result.on_B.force,
                                 o.result.on_B.torque});
     }
@@ -192,14 +186,16 @@ const TableColumn<CycleCell> kCycleColumns[] = {
 };
 
 using PairCell = Bound<WorldPairRow>;
-const WorldPairName& NameOf(const PairCell& c) { return c.job.pairs[std::size_t(c.row.pair)]; }
+const WorldPairName& NameOf(const PairCell& c) {
+  return c.job.pairs[std::size_t(c.row.model) * c.job.job.scene.pairs.size() + std::size_t(c.row.pair)];
+}
 const TableColumn<PairCell> kPairColumns[] = {
     {"model", "", "the model of the pairs without their own",
      [](const PairCell& c, CsvLine& l) { l.Text(c.job.models[std::size_t(c.row.model)]); }},
     {"cycle", "", "haptic cycle index", [](const PairCell& c, CsvLine& l) { l.Int(c.row.cycle); }},
     {"t", "s", "time along the trajectory", [](const PairCell& c, CsvLine& l) { l.Num("%.6f", c.row.t); }},
     {"pair", "", "the pair's index among the scene's pairs",
-     [](const PairCell& c, CsvLine& l) { l.Int(c.row.pair % std::max(1, c.job.pairs_per_model)); }},
+     [](const PairCell& c, CsvLine& l) { l.Int(c.row.pair); }},
     {"body_a", "", "the pair's body A (its model's order)", [](const PairCell& c, CsvLine& l) { l.Text(NameOf(c).body_A); }},
     {"body_b", "", "the pair's body B", [](const PairCell& c, CsvLine& l) { l.Text(NameOf(c).body_B); }},
     {"pair_model", "", "the pair's model", [](const PairCell& c, CsvLine& l) { l.Text(NameOf(c).model); }},
@@ -301,10 +297,11 @@ std::string Csv(const ExperimentConfig& config, const std::vector<WorldJobResult
   return out;
 }
 
-// The scene is one of many bodies, the tool moves, the trajectory fits it and every model
-// takes every pair.
+// The job's scene is one of many bodies (a scene axis may change it), the tool moves and the
+// trajectory fits it; that every model takes every pair the parser checks for every study
+// (CheckModelsAgainstScene).
 void CheckWorldStudy(const ExperimentConfig& config, const ConfigNode& root, const Job& job) {
-  const std::string where = Where(config, job);
+  const std::string where = config.file + (config.sweep.empty() ? std::string() : " (job " + job.Label() + ")");
   if (!job.scene.many_bodies()) {
     Fail(where, "study: many-bodies takes a scene of many bodies (tool: NAME, and pairs), but " + job.scene.file +
                     " has two bodies and no tool; study: contact compares models on it");
@@ -316,10 +313,7 @@ void CheckWorldStudy(const ExperimentConfig& config, const ConfigNode& root, con
   for (const auto& [axis, value] : job.axis_values) {
     if (axis == "roles") root.Get("sweep").Get("roles").Fail("exchanges two bodies' roles; a pair's roles follow from its model");
   }
-  (void)WorldTrajectory(config, job);
-  for (const std::string& model : job.models) {
-    for (const PairSpec& pair : job.scene.pairs) (void)OrderPair(job.scene, pair, model);
-  }
+  (void)WorldTrajectory(job);
 }
 
 void PrintSummary(const std::vector<WorldJobResult>& results) {
@@ -343,13 +337,11 @@ void RunStudy(const ExperimentConfig& config, const RunOptions& options, const s
 
 }  // namespace
 
-WorldJobResult RunWorldJob(const ExperimentConfig& config, const Job& job, const RunOptions& options) {
-  CheckWorldStudy(config, job.config, job);
-  const Trajectory trajectory = MakeTrajectory(WorldTrajectory(config, job));
+WorldJobResult RunWorldJob(const Job& job, const RunOptions& options) {
+  const Trajectory trajectory = MakeTrajectory(WorldTrajectory(job));
   WorldJobResult result;
   result.job = job;
   result.models = job.models;
-  result.pairs_per_model = int(job.scene.pairs.size());
   for (int m = 0; m < int(job.models.size()); ++m) RunModel(job, options, trajectory, m, &result);
   return result;
 }
@@ -358,7 +350,7 @@ std::vector<WorldJobResult> RunWorldStudy(const ExperimentConfig& config, const 
                                           const std::vector<int>& job_indices) {
   std::vector<WorldJobResult> results(job_indices.empty() ? JobCount(config) : job_indices.size());
   const JobsRun jobs = RunJobs(config, job_indices, options, [&](std::size_t i, const Job& job) {
-    results[i] = RunWorldJob(config, job, options);
+    results[i] = RunWorldJob(job, options);
   });
   WriteStudyResults(StudyOf(config), options.out_dir,
                     {Csv(config, results, CyclesTable(), kCycleColumns, &WorldJobResult::cycles),

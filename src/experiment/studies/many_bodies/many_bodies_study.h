@@ -50,7 +50,7 @@ struct WorldPairRow {
   int model = 0;
   std::int64_t cycle = 0;
   double t = 0;
-  int pair = 0;                  // index into WorldJobResult::pairs
+  int pair = 0;                  // index into the scene's pairs
   std::int64_t budget = 0;       // the node budget it was handed (0: unlimited)
   int contacts = 0;
   std::int64_t nodes = 0;
@@ -95,18 +95,16 @@ struct WorldPairName {
 struct WorldJobResult {
   Job job;
   std::vector<std::string> models;     // the job's models, the default of each run
-  std::vector<WorldPairName> pairs;    // per model run, the scene's pairs (models.size() x pairs)
-  int pairs_per_model = 0;
+  std::vector<WorldPairName> pairs;    // per model run, the scene's pairs: models.size() x pairs
   std::vector<WorldCycleRow> cycles;
   std::vector<WorldPairRow> pair_rows;
   std::vector<WorldBodyRow> body_rows;
   std::vector<WorldSummaryRow> summary;
 };
 
-// Runs JOB of a many-bodies CONFIG (assets built or reused through OPTIONS.assets). Throws
-// Error naming the config for a scene that is not one of many bodies or a trajectory that needs
-// two bodies.
-WorldJobResult RunWorldJob(const ExperimentConfig& config, const Job& job, const RunOptions& options);
+// Runs JOB of a many-bodies config (assets built or reused through OPTIONS.assets); the config's
+// parse has checked the job (a scene of many bodies, a trajectory from the tool's pose).
+WorldJobResult RunWorldJob(const Job& job, const RunOptions& options);
 
 // Runs JOBS (all when empty), one at a time unless OPTIONS says otherwise (the study measures
 // cycle times), and writes its tables and meta.json into OPTIONS.out_dir. Returns each job's
