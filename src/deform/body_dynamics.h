@@ -39,6 +39,10 @@ class BodyDynamics {
         implicit_(implicit_contact),
         staggered_(staggered) {
     u_.setZero(model_->basis.rows());
+    // |U_v q| <= ||U_v||_F ||q|| for each vertex's 3 x r block U_v of the basis.
+    for (Eigen::Index v = 0; v + 2 < model_->basis.rows(); v += 3) {
+      displacement_per_q_ = std::max(displacement_per_q_, model_->basis.middleRows(v, 3).norm());
+    }
     ZeroForce();
   }
   BodyDynamics(const BodyDynamics&) = delete;
@@ -82,6 +86,9 @@ class BodyDynamics {
   double PotentialEnergy() { return integrator_->PotentialEnergy(); }
   double KineticEnergy() const { return integrator_->KineticEnergy(); }
   // Largest displacement |U_v q| of a simulation-mesh vertex at the current state, metres.
+  // An upper bound on MaxDisplacement() from ||q|| alone (no pass over the mesh).
+  double MaxDisplacementBound() const { return displacement_per_q_ * integrator_->state().q.norm(); }
+
   double MaxDisplacement() {
     u_.noalias() = model_->basis * integrator_->state().q;
     double max2 = 0;
@@ -90,6 +97,7 @@ class BodyDynamics {
   }
 
  private:
+  double displacement_per_q_ = 0;
   void ZeroForce() {
     f_.setZero(integrator_->r());
     K_.setZero(integrator_->r(), integrator_->r());

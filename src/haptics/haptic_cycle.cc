@@ -107,6 +107,7 @@ CycleRecord HapticCycle::Step(std::int64_t now_ns) {
     if (config_.dynamics_B != nullptr) rec.q_norm_B = config_.dynamics_B->state().q.norm();
     rec.step_ns = steps.step_A_ns + steps.step_B_ns;
   }
+  rec.step_ns += contact.stats.step_ns;
   ++cycle_;
   return rec;
 }

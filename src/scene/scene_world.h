@@ -58,6 +58,9 @@ struct WorldStats {
   int pairs_near = 0;          // whose boxes overlapped
   int pairs_touching = 0;      // whose model found contact
   int pairs_degraded = 0;      // whose model the budget made degrade
+  // Deformable bodies displaced past their deformation bound after the cycle's step: the broad
+  // phase grew their boxes by that bound, so a pair of theirs may have been missed.
+  int bodies_beyond_bound = 0;
 };
 
 // The tool's share of a cycle: the wrench on it summed over its pairs (torque about its origin,
@@ -123,6 +126,7 @@ class SceneWorld {
   Scene scene_;
   std::vector<std::unique_ptr<BodyAssets>> bodies_;
   std::vector<Aabb> boxes_;
+  std::vector<double> deformation_bounds_;  // per body, what its box was grown by for deformation
   std::vector<OrderedPair> pairs_;
   std::vector<std::unique_ptr<ContactModel>> models_;
   std::vector<PairOutcome> outcomes_;

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <random>
 #include <sstream>
@@ -390,6 +391,42 @@ TEST(SceneWorld, ADeformableBodyStepsOnceWithTheForcesOfAllItsPairs) {
   for (int i = 1; i < 50; ++i) w_both->Evaluate(X, i);
   EXPECT_EQ(testing::AllocationCount() - before, 0);
   EXPECT_GT(w_both->dynamics(1)->MaxDisplacement(), 0.0);
+}
+
+TEST(SceneWorld, CountsTheBodiesDisplacedPastTheirDeformationBound) {
+  TempDir cache;
+  const Pose X{Eigen::Quaterniond::Identity(), Eigen::Vector3d(0, 0, 0.0195)};
+  // The floor pressed by the ball and the wall, with BOUND (m) as its deformation bound: each
+  // cycle counts it exactly when its largest vertex displacement is past the bound.
+  auto beyond = [&](double bound) {
+    char row[64];
+    std::snprintf(row, sizeof row, "    role: both\n    deformation_bound: %.3g\n", bound);
+    const std::string text = Replace(DeformableFloorPressedTwice("pairs:\n  - {bodies: [floor, wall]}\n"), "    role: both\n", row);
+    SceneWorld world(Parse(text), "pointshell", Quiet(cache));
+    world.EnableDynamics(1e-3);
+    int counted = 0, past = 0;
+    for (int i = 0; i < 40; ++i) {
+      const WorldStats& st = world.Evaluate(X, i).stats;
+      const int n = st.bodies_beyond_bound;
+      EXPECT_GT(st.sum.step_ns, 0) << "the floor's step is timed inside the cycle";
+      const BodyDynamics& d = *world.dynamics(1);
+      // The reference: every vertex's displacement U_v q, from the basis.
+      const Eigen::VectorXd u = world.body(1).reduced_model()->basis * d.state().q;
+      double largest = 0;
+      for (Eigen::Index v = 0; v + 2 < u.size(); v += 3) largest = std::max(largest, u.segment<3>(v).norm());
+      EXPECT_LE(n, 1);
+      EXPECT_EQ(n == 1, largest > bound) << "cycle " << i << ": " << largest << " m against " << bound << " m";
+      counted += n;
+      past += largest > bound;
+    }
+    return std::pair{counted, past};
+  };
+  const auto [tight_counted, tight_past] = beyond(1e-9);
+  EXPECT_GT(tight_past, 30) << "pressed, the floor moves more than a nanometre";
+  EXPECT_EQ(tight_counted, tight_past);
+  const auto [loose_counted, loose_past] = beyond(0.01);
+  EXPECT_EQ(loose_past, 0);
+  EXPECT_EQ(loose_counted, 0);
 }
 
 TEST(SceneWorld, ACycleAmong256BodiesAllocatesNothing) {

@@ -101,6 +101,7 @@ void RunModel(const Job& job, const RunOptions& options, const Trajectory& traje
     row.pairs_touching = r.stats.pairs_touching;
     row.pairs_degraded = r.stats.pairs_degraded;
     row.faults = r.stats.sum.faults;
+    row.beyond_bound = r.stats.bodies_beyond_bound;
     row.contacts = r.stats.sum.points_in_contact;
     row.nodes = r.stats.sum.nodes_visited;
     row.max_penetration = r.stats.sum.max_penetration;
@@ -128,6 +129,7 @@ void RunModel(const Job& job, const RunOptions& options, const Trajectory& traje
     sum.max_force = std::max(sum.max_force, row.force.norm());
     sum.faults += row.faults;
     sum.coherence_resets += row.coherence_reset;
+    sum.beyond_bound_cycles += row.beyond_bound > 0;
   }
   sum.mean_pairs_near = near_total / double(cycles);
   sum.touching_share = double(touching_cycles) / double(cycles);
@@ -183,6 +185,8 @@ const TableColumn<CycleCell> kCycleColumns[] = {
      [](const CycleCell& c, CsvLine& l) { l.Num("%.2f", c.row.time_us); }},
     {"coherence_reset", "", "1 when the tool outran max_point_speed and every pair's coherence was forgotten",
      [](const CycleCell& c, CsvLine& l) { l.Int(c.row.coherence_reset); }},
+    {"beyond_bound", "", "deformable bodies displaced past their deformation_bound (a pair of theirs may have been missed)",
+     [](const CycleCell& c, CsvLine& l) { l.Int(c.row.beyond_bound); }},
 };
 
 using PairCell = Bound<WorldPairRow>;
@@ -258,6 +262,8 @@ const TableColumn<SummaryCell> kSummaryColumns[] = {
      [](const SummaryCell& c, CsvLine& l) { l.Int(c.row.coherence_resets); }},
     {"max_displacement", "m", "largest displacement of any deformable body",
      [](const SummaryCell& c, CsvLine& l) { l.Num("%.6g", c.row.max_displacement); }},
+    {"beyond_bound_cycles", "", "cycles some deformable body was past its deformation_bound",
+     [](const SummaryCell& c, CsvLine& l) { l.Int(c.row.beyond_bound_cycles); }},
 };
 
 const ResultTable& CyclesTable() {

@@ -38,6 +38,7 @@ struct WorldCycleRow {
   Eigen::Vector3d force = Eigen::Vector3d::Zero();   // on the tool, world, N
   Eigen::Vector3d torque = Eigen::Vector3d::Zero();  // on the tool about its origin, N m
   int pairs_near = 0, pairs_touching = 0, pairs_degraded = 0, faults = 0;
+  int beyond_bound = 0;  // deformable bodies displaced past their deformation bound
   int contacts = 0;
   std::int64_t nodes = 0;
   double max_penetration = 0;    // m, over the pairs
@@ -84,6 +85,7 @@ struct WorldSummaryRow {
   double degraded_share = 0;     // of the cycles, those in which some pair degraded
   double max_force = 0;          // N, |force on the tool|
   std::int64_t faults = 0, coherence_resets = 0;
+  std::int64_t beyond_bound_cycles = 0;  // cycles some deformable body was past its deformation bound
   double max_displacement = 0;   // m, over the deformable bodies and the cycles
 };
 
