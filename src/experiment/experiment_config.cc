@@ -276,7 +276,6 @@ ExperimentConfig ParseExperimentConfig(const ConfigNode& root, std::string resol
   }
   root.ExpectKeys(keys);
   for (const std::string& key : study.required) (void)root.Get(key);
-  if (auto t = root.Find("trajectory")) c.trajectory_node = *t;
   c.timing = study.timing;
   c.file = root.file();
   c.resolved_yaml = std::move(resolved_yaml);

@@ -87,7 +87,6 @@ struct ExperimentConfig {
   std::vector<std::string> models;
   std::string moving_body;     // body name
   bool moving_body_is_default = true;  // not given: each job's field body
-  ConfigNode trajectory_node;  // parsed per job (recorded files are read once per job)
   std::string reference_model;
   int reference_points = 0;      // > 0: the reference scene's pointshell points
   int reference_levels = 0;      // > 0: ... and levels
@@ -105,7 +104,9 @@ struct Job {
   std::vector<std::string> models;
   std::string moving_body;
   bool roles_swapped = false;  // the roles axis exchanged the bodies' roles
-  ConfigNode trajectory_node;  // the job's trajectory section (contact studies)
+  ConfigNode trajectory_node;  // the job's trajectory section (contact studies), for errors
+  // That section parsed, once per job (ParseTrajectorySpec); empty when the config has none.
+  std::optional<TrajectorySpec> trajectory;
   ConfigNode config;           // the job's whole config document, sweep values applied
   std::string Label() const;  // "points=1024 model=vps"
 };

@@ -160,7 +160,10 @@ Job BuildJob(const ExperimentConfig& config, int index, const std::vector<std::s
     Fail(config.file, "moving_body '" + job.moving_body + "' is not a body of the scene of job " +
                           std::to_string(index));
   }
-  if (auto t = root.Find("trajectory")) job.trajectory_node = *t;
+  if (auto t = root.Find("trajectory")) {
+    job.trajectory_node = *t;
+    job.trajectory = ParseTrajectorySpec(*t);
+  }
   job.config = root;
   return job;
 }

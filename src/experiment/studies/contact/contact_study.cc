@@ -41,10 +41,10 @@ std::vector<SummaryRow> RunExperiment(const ExperimentConfig& config, const RunO
 
 namespace {
 
-// The job's trajectory parses (a mapping with a known type and its keys), so errors come
-// before any work.
-void CheckContactStudy(const ExperimentConfig&, const ConfigNode&, const Job& job) {
-  (void)ParseTrajectory(job.trajectory_node);
+// The job has a trajectory (parsed with the job: a mapping with a known type and its keys), so
+// errors come before any work.
+void CheckContactStudy(const ExperimentConfig& config, const ConfigNode&, const Job& job) {
+  if (!job.trajectory) Fail(config.file, "study contact: no trajectory (a mapping with its type)");
 }
 
 // Runs the jobs and prints one line per job and model.

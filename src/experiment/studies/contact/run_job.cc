@@ -21,17 +21,6 @@
 namespace contactlab {
 namespace {
 
-// The trajectory of a job with a scalar "direction: toward" resolved to the unit vector from the
-// moving body's start to the other body's origin.
-ConfigNode ResolvedTrajectoryNode(const ConfigNode& trajectory, const Pose& X_moving0, const Pose& X_other0) {
-  YAML::Node tyaml = YAML::Clone(trajectory.yaml());
-  if (tyaml["direction"] && tyaml["direction"].IsScalar()) {
-    const Eigen::Vector3d toward = (X_other0.translation - X_moving0.translation).normalized();
-    tyaml["direction"] = std::vector<double>{toward.x(), toward.y(), toward.z()};
-  }
-  return ConfigNode(tyaml, std::make_shared<const std::string>(trajectory.file()), trajectory.path());
-}
-
 // The reference model of the job: the config's reference model on the same scene, or on a
 // denser version of it (more points, levels or field resolution), always at full depth.
 std::unique_ptr<ContactModel> MakeReference(const ExperimentConfig& config, const Scene& scene,
@@ -103,7 +92,9 @@ JobMotion PlanMotion(const ExperimentConfig& config, const Job& job, SceneAssets
   const bool moving_is_B = scene.field_body.name == job.moving_body;
   const Pose& X_moving0 = moving_is_B ? scene.field_body.pose : scene.pointshell_body.pose;
   const Pose& X_other0 = moving_is_B ? scene.pointshell_body.pose : scene.field_body.pose;
-  const TrajectorySpec spec = ParseTrajectorySpec(ResolvedTrajectoryNode(job.trajectory_node, X_moving0, X_other0));
+  TrajectorySpec spec = *job.trajectory;
+  // direction: toward, the unit vector from the moving body's start to the other body's origin.
+  if (spec.toward) spec.shape.direction = (X_other0.translation - X_moving0.translation).normalized();
   JobMotion m(MakeTrajectory(spec));
   m.moving_is_B = moving_is_B;
   m.X_WA0 = scene.pointshell_body.pose;

@@ -24,7 +24,8 @@ using Clock = std::chrono::steady_clock;
 
 // The job's trajectory, checked for what a scene of many bodies can give it.
 TrajectorySpec WorldTrajectory(const Job& job) {
-  const TrajectorySpec spec = ParseTrajectorySpec(job.trajectory_node);
+  if (!job.trajectory) Fail(job.config.file(), "study many-bodies: no trajectory (a mapping with its type)");
+  const TrajectorySpec& spec = *job.trajectory;
   if (spec.toward) {
     job.trajectory_node.Get("direction").Fail(
         "toward points at the other of two bodies; in a scene of many bodies give the direction as a vector");
