@@ -279,36 +279,46 @@ class SessionLog {
 // --view: the live view's snapshots (a history, and the publisher that fills it in session
 // time) and its server (page and stream, loopback only).
 struct SessionView {
+  // A scene of many bodies: the contacts of its pairs the world copies every few cycles.
+  std::unique_ptr<PairContactMarks> pair_contacts;
+  std::unique_ptr<LiveMarks> marks;  // what the stream sends beside the snapshots, or null
   std::unique_ptr<LiveSnapshotHistory> snapshots;
   std::unique_ptr<LiveSnapshotPublisher> publisher;
   std::unique_ptr<LiveViewServer> server;
 };
 
 // Snapshots and marks are taken by session time, counted in cycles of the loop: 50 snapshots
-// and at most 15 marks a second.
+// and at most 15 marks a second; a frame of pair contacts holds at most 4,096 of them.
 constexpr double kSnapshotsPerSecond = 50, kMarksPerSecond = 15;
+constexpr int kMaxViewPairContacts = 4096;
 
 SessionView StartSessionView(const SessionArgs& args, SessionScene& s, int port, ContactPointMarks* marks,
                              double cycle_rate_hz) {
+  const auto snapshot_every = std::max<std::int64_t>(1, std::llround(cycle_rate_hz / kSnapshotsPerSecond));
+  const auto marks_every = std::max<std::int64_t>(1, std::int64_t(std::ceil(cycle_rate_hz / kMarksPerSecond)));
   // A scene of many bodies: every body from the world's assets, the tool (the haptic body) at
-  // its start pose.
+  // its start pose, and every pair's contacts from the world's cycles (set before the loop
+  // starts); two bodies: the scene's page and its pointshell's marks.
   nlohmann::json data;
+  SessionView view;
   if (SceneWorld* world = s.world()) {
     std::vector<BodyAssets*> bodies;
     for (int b = 0; b < world->body_count(); ++b) bodies.push_back(&world->body(b));
     data = ManyBodiesViewData(s.scene, s.model_name, bodies, SceneViewOptions{});
+    view.pair_contacts = std::make_unique<PairContactMarks>(kMaxViewPairContacts, marks_every);
+    world->SetPairContactMarks(view.pair_contacts.get());
+    view.marks = std::make_unique<PairContactsFeed>(*view.pair_contacts);
   } else {
     data = SceneViewData(s.scene, s.assets, SceneViewOptions{}, BodyPoses{s.scene.pointshell_body.pose, s.X_WB_start});
+    if (marks != nullptr) view.marks = std::make_unique<PointMarksFeed>(*marks);
   }
   data["title"] = s.scene.name + " (live)";
   const int haptic = s.scene.many_bodies() ? s.scene.tool : 1;
   data["live"] = {{"stream", "stream"}, {"haptic", haptic}, {"model", s.model_name}, {"device", args.device}};
-  const auto snapshot_every = std::max<std::int64_t>(1, std::llround(cycle_rate_hz / kSnapshotsPerSecond));
-  const auto marks_every = std::max<std::int64_t>(1, std::int64_t(std::ceil(cycle_rate_hz / kMarksPerSecond)));
-  SessionView view;
   view.snapshots = std::make_unique<LiveSnapshotHistory>();
   view.publisher = std::make_unique<LiveSnapshotPublisher>(*view.snapshots, snapshot_every);
-  view.server = std::make_unique<LiveViewServer>(ServedViewerPage(data), *view.snapshots, port, marks, marks_every);
+  view.server = std::make_unique<LiveViewServer>(ServedViewerPage(data), *view.snapshots, port, view.marks.get(),
+                                                 marks_every);
   return view;
 }
 

@@ -315,6 +315,7 @@ const WorldResult& SceneWorld::Evaluate(const Pose& X_W_tool, std::int64_t cycle
     const double bound = deformation_bounds_[std::size_t(b)];
     if (d.MaxDisplacementBound() > bound && d.MaxDisplacement() > bound) ++s.bodies_beyond_bound;
   }
+  if (pair_marks_ != nullptr) pair_marks_->Update(*this, cycle);
   return out;
 }
 
@@ -325,6 +326,12 @@ ContactResult WorldContactModel::Evaluate(const ContactQuery& query) {
   out.K_B = r.K_tool;
   out.stats = r.stats.sum;
   return out;
+}
+
+void SceneWorld::SetPairContactMarks(PairContactMarks* marks) {
+  pair_marks_ = marks;
+  if (marks == nullptr) return;
+  for (auto& m : models_) (void)m->KeepContacts(marks->max_contacts());
 }
 
 void SceneWorld::ForgetTemporalState() {

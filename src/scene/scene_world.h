@@ -38,6 +38,7 @@
 #include "deform/body_dynamics.h"
 #include "geometry/aabb.h"
 #include "geometry/pose.h"
+#include "scene/pair_contact_marks.h"
 #include "scene/scene.h"
 #include "scene/scene_assets.h"
 
@@ -92,6 +93,7 @@ class SceneWorld {
   int pair_count() const { return int(pairs_.size()); }
   const OrderedPair& pair(int i) const { return pairs_[std::size_t(i)]; }
   ContactModel& model(int i) { return *models_[std::size_t(i)]; }
+  const ContactModel& model_const(int i) const { return *models_[std::size_t(i)]; }
   const PairOutcome& outcome(int i) const { return outcomes_[std::size_t(i)]; }
   // The pairs near in the latest cycle, in the order their models were asked.
   std::span<const int> near_pairs() const { return {near_.data(), near_.size()}; }
@@ -103,6 +105,10 @@ class SceneWorld {
   // then each near pair's model under its share of NODE_BUDGET (< 0: the scene's). CYCLE is the
   // haptic cycle index each pair's model is given. Allocation-free, throws nothing.
   const WorldResult& Evaluate(const Pose& X_W_tool, std::int64_t cycle, std::int64_t node_budget = -1);
+  // From now on each Evaluate ends with MARKS.Update (the live view's contacts of every pair);
+  // every pair's model keeps up to MARKS.max_contacts() contacts (KeepContacts). Call it outside
+  // the cycle: it reserves the memory. MARKS (null: none) must outlive the world's cycles.
+  void SetPairContactMarks(PairContactMarks* marks);
   // Forgets every pair's temporal state (the coherence a model keeps between queries); the
   // deformable bodies keep theirs. Allocation-free, throws nothing.
   void ForgetTemporalState();
@@ -135,6 +141,7 @@ class SceneWorld {
   std::vector<int> near_, was_near_;    // this cycle's near pairs, and the last cycle's
   std::vector<std::uint8_t> is_near_;   // per pair, this cycle
   std::unique_ptr<BroadPhase> broad_phase_;
+  PairContactMarks* pair_marks_ = nullptr;
   WorldResult result_;
   // With dynamics: per body its dynamics and this cycle's deformation (null when rigid); per
   // pair its own reduced forces on its A and B, summed into their bodies after the queries.

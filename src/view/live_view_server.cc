@@ -75,6 +75,30 @@ std::string MarksJson(const PointMarkSweep& s) {
   return head + Base64Encode(PackPointStates(s.states)) + "\"}";
 }
 
+std::string PairContactsJson(const PairContactFrame& f) {
+  char head[256];
+  std::snprintf(head, sizeof head,
+                "{\"sequence\":%llu,\"cycle\":%lld,\"pairs_touching\":%d,\"contacts\":%d,\"not_kept\":%lld,"
+                "\"points\":\"",
+                static_cast<unsigned long long>(f.sequence), static_cast<long long>(f.cycle), f.pairs_touching,
+                f.size(), static_cast<long long>(f.not_kept));
+  return head + EncodeArray(f.points) + "\",\"normals\":\"" +
+         EncodeArray(f.normals) + "\",\"pair\":\"" +
+         EncodeArray(f.pair) + "\"}";
+}
+
+bool PointMarksFeed::TakeLatest(LiveMarksFrame* frame) {
+  if (!marks_.TakeLatest(&sweep_)) return false;
+  *frame = {sweep_.sequence, sweep_.last_cycle, MarksJson(sweep_)};
+  return true;
+}
+
+bool PairContactsFeed::TakeLatest(LiveMarksFrame* frame) {
+  if (!marks_.TakeLatest(&frame_)) return false;
+  *frame = {frame_.sequence, frame_.cycle, PairContactsJson(frame_)};
+  return true;
+}
+
 namespace {
 
 // How often an idle stream looks for new snapshots and marks. Latency only: which snapshots a
@@ -101,13 +125,13 @@ LiveSnapshotPublisher::LiveSnapshotPublisher(LiveSnapshotHistory& history, std::
   if (every_cycles_ <= 0) Fail("live view", "snapshots must be taken every N > 0 cycles");
 }
 
-LiveViewServer::Marks LiveViewServer::LatestMarks() {
+LiveMarksFrame LiveViewServer::LatestMarks() {
   std::lock_guard<std::mutex> lock(marks_mutex_);
-  if (marks_->TakeLatest(&marks_sweep_)) marks_json_ = MarksJson(marks_sweep_);
-  return {marks_sweep_.sequence, marks_sweep_.last_cycle, marks_json_};
+  (void)marks_->TakeLatest(&marks_frame_);
+  return marks_frame_;
 }
 
-LiveViewServer::LiveViewServer(ServedPage page, const LiveSnapshotHistory& source, int port, ContactPointMarks* marks,
+LiveViewServer::LiveViewServer(ServedPage page, const LiveSnapshotHistory& source, int port, LiveMarks* marks,
                                std::int64_t marks_every_cycles)
     : page_(std::move(page)),
       source_(source),
@@ -156,7 +180,7 @@ void LiveViewServer::RoutePage() {
   }
 }
 
-// The newest snapshot and marks at "/snapshot" and "/marks" (204 before the first).
+// The newest snapshot and marks at "/snapshot" and "/" + the marks' event (204 before the first).
 void LiveViewServer::RouteLatest() {
   server_->Get("/snapshot", [this](const httplib::Request&, httplib::Response& res) {
     LiveSnapshot s;
@@ -166,8 +190,8 @@ void LiveViewServer::RouteLatest() {
     }
     res.set_content(SnapshotJson(s), "application/json");
   });
-  server_->Get("/marks", [this](const httplib::Request&, httplib::Response& res) {
-    const Marks m = marks_ ? LatestMarks() : Marks{};
+  server_->Get(std::string("/") + (marks_ ? marks_->event() : "marks"), [this](const httplib::Request&, httplib::Response& res) {
+    const LiveMarksFrame m = marks_ ? LatestMarks() : LiveMarksFrame{};
     if (m.sequence == 0) {
       res.status = 204;
       return;
@@ -244,12 +268,12 @@ bool LiveViewServer::SendStreamEvents(StreamState& stream, httplib::DataSink& si
     // copied and encoded only when it may be due.
     const auto send_marks_when_due = [&](bool look) {
       if (!marks_ || !look) return true;
-      const Marks m = LatestMarks();
+      const LiveMarksFrame m = LatestMarks();
       if (m.sequence == 0 || m.sequence == stream.marks_sequence) return true;
       if (stream.marks_sequence != 0 && m.last_cycle - stream.marks_cycle < marks_every_cycles_) return true;
       stream.marks_sequence = m.sequence;
       stream.marks_cycle = m.last_cycle;
-      const std::string event = "event: marks\ndata: " + m.json + "\n\n";
+      const std::string event = std::string("event: ") + marks_->event() + "\ndata: " + m.json + "\n\n";
       wrote = true;
       return sink.write(event.data(), event.size());
     };

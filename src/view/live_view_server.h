@@ -21,6 +21,7 @@
 #include <thread>
 
 #include "haptics/contact_point_marks.h"
+#include "scene/pair_contact_marks.h"
 #include "haptics/haptic_cycle.h"
 #include "view/snapshot_history.h"
 #include "view/viewer_page.h"
@@ -94,6 +95,52 @@ std::string PackPointStates(const std::vector<PointState>& states);
 // base64 of PackPointStates}.
 std::string MarksJson(const PointMarkSweep& sweep);
 
+// {"sequence", "cycle", "pairs_touching", "contacts", "not_kept", "points": base64 of float32
+// x,y,z (world, m), "normals": base64 of float32 unit x,y,z, "pair": base64 of int32 pair
+// indices}.
+std::string PairContactsJson(const PairContactFrame& frame);
+
+// A series a live view streams beside the snapshots, as "event: EVENT" events, its newest at
+// "/EVENT": the contact marks of a pointshell (PointMarksFeed) or the contacts of every pair of a
+// scene of many bodies (PairContactsFeed), published lock-free by the haptic thread.
+struct LiveMarksFrame {
+  std::uint64_t sequence = 0;  // 0: none yet
+  std::int64_t last_cycle = 0;
+  std::string json;
+};
+class LiveMarks {
+ public:
+  virtual ~LiveMarks() = default;
+  virtual const char* event() const = 0;
+  // Reader (one thread at a time): the newest frame, as JSON, into *FRAME when newer than its
+  // sequence; false when there is none newer.
+  virtual bool TakeLatest(LiveMarksFrame* frame) = 0;
+};
+
+// ContactPointMarks as "marks" events (MarksJson). MARKS must outlive the feed.
+class PointMarksFeed final : public LiveMarks {
+ public:
+  explicit PointMarksFeed(ContactPointMarks& marks) : marks_(marks) {}
+  const char* event() const override { return "marks"; }
+  bool TakeLatest(LiveMarksFrame* frame) override;
+
+ private:
+  ContactPointMarks& marks_;
+  PointMarkSweep sweep_;
+};
+
+// PairContactMarks as "pair-contacts" events (PairContactsJson). MARKS must outlive the feed.
+class PairContactsFeed final : public LiveMarks {
+ public:
+  explicit PairContactsFeed(PairContactMarks& marks) : marks_(marks) {}
+  const char* event() const override { return "pair-contacts"; }
+  bool TakeLatest(LiveMarksFrame* frame) override;
+
+ private:
+  PairContactMarks& marks_;
+  PairContactFrame frame_;
+};
+
 // Event streams a live view serves at once; one more is answered 503. The server answers
 // complete requests with a thread per open stream and kLiveViewSpareThreads more, so the page,
 // /snapshot and /marks are always answered however many streams are open. A connection holds
@@ -117,11 +164,12 @@ class LiveViewServer {
   // free port). At most kLiveViewStreamLimit streams at once (503 past it); methods other than GET
   // and HEAD get 405 without their body being read; a request head must arrive within
   // kLiveViewHeadSeconds, each read and write of an answer within 2 s, and a whole answer other
-  // than a stream within 10 s, else the connection is cut. With MARKS, the stream also sends "event: marks" + "data: MarksJson"
-  // when a newer sweep completed at least MARKS_EVERY_CYCLES haptic cycles after the last one it
-  // sent, and "/marks" returns the newest (204 before the first). SOURCE and MARKS must outlive the
-  // server. Throws Error naming the address when it cannot bind.
-  LiveViewServer(ServedPage page, const LiveSnapshotHistory& source, int port, ContactPointMarks* marks = nullptr,
+  // than a stream within 10 s, else the connection is cut. With MARKS, the stream also sends
+  // "event: " + MARKS.event() + "data: " its frame's JSON when a newer frame completed at least
+  // MARKS_EVERY_CYCLES haptic cycles after the last one it sent, and "/" + MARKS.event() returns
+  // the newest (204 before the first). SOURCE and MARKS must outlive the server. Throws Error
+  // naming the address when it cannot bind.
+  LiveViewServer(ServedPage page, const LiveSnapshotHistory& source, int port, LiveMarks* marks = nullptr,
                  std::int64_t marks_every_cycles = 67);
   ~LiveViewServer();
   LiveViewServer(const LiveViewServer&) = delete;
@@ -141,14 +189,9 @@ class LiveViewServer {
   void Stop();
 
  private:
-  struct Marks {
-    std::uint64_t sequence = 0;  // 0: none yet
-    std::int64_t last_cycle = 0;
-    std::string json;
-  };
-  // The newest sweep of marks and its JSON, shared by the stream threads (TakeLatest has one
-  // reader at a time).
-  Marks LatestMarks();
+  // The newest frame of marks, shared by the stream threads (TakeLatest has one reader at a
+  // time).
+  LiveMarksFrame LatestMarks();
   struct StreamState;
 
   // The constructor's steps (live_view_server.cc says what each does).
@@ -164,11 +207,10 @@ class LiveViewServer {
 
   ServedPage page_;
   const LiveSnapshotHistory& source_;
-  ContactPointMarks* marks_;
+  LiveMarks* marks_;
   std::int64_t marks_every_cycles_;
   std::mutex marks_mutex_;
-  PointMarkSweep marks_sweep_;
-  std::string marks_json_;
+  LiveMarksFrame marks_frame_;
   int port_ = 0;
   std::unique_ptr<GatedHttpServer> server_;
   std::thread thread_;

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "allocation_counter.h"
+#include "scene/pair_contact_marks.h"
 #include "scene/scene.h"
 #include "scene/scene_assets.h"
 #include "scene/scene_query.h"
@@ -427,6 +428,56 @@ TEST(SceneWorld, CountsTheBodiesDisplacedPastTheirDeformationBound) {
   const auto [loose_counted, loose_past] = beyond(0.01);
   EXPECT_EQ(loose_past, 0);
   EXPECT_EQ(loose_counted, 0);
+}
+
+TEST(SceneWorld, PairContactMarksCarryEveryTouchingPairsContactsWithoutAllocating) {
+  TempDir cache;
+  SceneWorld world(Parse(ToolAmongPlates(6)), "pointshell", Quiet(cache));
+  PairContactMarks marks(4096, 3);
+  world.SetPairContactMarks(&marks);
+  const Pose X{Eigen::Quaterniond::Identity(), Eigen::Vector3d(0, 0, 0.0195)};  // 0.5 mm into floor and wall
+  world.Evaluate(X, 0);
+  PairContactFrame frame;
+  ASSERT_TRUE(marks.TakeLatest(&frame));
+  EXPECT_EQ(frame.cycle, 0);
+  EXPECT_EQ(frame.pairs_touching, 2);
+  EXPECT_EQ(frame.not_kept, 0);
+  // One entry per point in contact, per pair (the paper's model: a contact is a point with d < 0).
+  int floor_contacts = 0, wall_contacts = 0;
+  for (int i = 0; i < frame.size(); ++i) {
+    const OrderedPair& pair = world.pair(frame.pair[std::size_t(i)]);
+    const std::string& other = world.scene().bodies[std::size_t(pair.A == world.tool() ? pair.B : pair.A)].name;
+    const Eigen::Vector3d p(frame.points[3 * std::size_t(i)], frame.points[3 * std::size_t(i) + 1],
+                            frame.points[3 * std::size_t(i) + 2]);
+    // Each contact lies inside the body it touches, below the floor's top (z = 0) or past the
+    // wall's face (x = 0.0195), no deeper than its pair's deepest penetration.
+    const double deepest = world.outcome(frame.pair[std::size_t(i)]).result.stats.max_penetration;
+    if (other == "floor") {
+      ++floor_contacts;
+      EXPECT_LE(p.z(), 1e-4) << i;
+      EXPECT_GE(p.z(), -deepest - 1e-4) << i;
+    } else {
+      ASSERT_EQ(other, "wall");
+      ++wall_contacts;
+      EXPECT_GE(p.x(), 0.0195 - 1e-4) << i;
+      EXPECT_LE(p.x(), 0.0195 + deepest + 1e-4) << i;
+    }
+  }
+  for (const int p : world.near_pairs()) {
+    const std::string& other = world.scene().bodies[std::size_t(world.pair(p).B)].name;
+    const int in_contact = world.outcome(p).result.stats.points_in_contact;
+    if (other == "floor") EXPECT_EQ(floor_contacts, in_contact);
+    if (other == "wall") EXPECT_EQ(wall_contacts, in_contact);
+  }
+  EXPECT_GT(floor_contacts, 0);
+  EXPECT_GT(wall_contacts, 0);
+  // Frames every third cycle only, and the cycles that take them allocate nothing.
+  const long before = testing::AllocationCount();
+  for (int i = 1; i <= 7; ++i) world.Evaluate(X, i);
+  EXPECT_EQ(testing::AllocationCount() - before, 0);
+  ASSERT_TRUE(marks.TakeLatest(&frame));
+  EXPECT_EQ(frame.cycle, 6);
+  EXPECT_FALSE(marks.TakeLatest(&frame)) << "nothing newer";
 }
 
 TEST(SceneWorld, ACycleAmong256BodiesAllocatesNothing) {

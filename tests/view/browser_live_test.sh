@@ -130,6 +130,14 @@ live many many.yaml --cache cache --device sim:circle:0.004:1 --duration 4
 check_drawn many
 grep -q "4 bodies, tool ball, 3 pairs" many.out || { cat many.out; echo "FAILED: the session did not say its bodies and pairs"; status=1; }
 grep -q "3 pairs: ball / plate (pointshell)" many.dom || { echo "FAILED: the live page does not list the pairs"; status=1; }
+# Every pair's contacts: frames received, and the ball's contacts with the plate drawn.
+tag=$(grep -o '<html[^>]*>' many.dom | head -1)
+frames=$(echo "$tag" | sed -n 's/.*data-pair-contacts="\([0-9]*\)".*/\1/p')
+drawn=$(echo "$tag" | sed -n 's/.*data-pair-contacts-count="\([0-9]*\)".*/\1/p')
+echo "pair contact frames received: ${frames:-none}, contacts drawn in the last: ${drawn:-none}"
+if [ -z "$frames" ] || [ "$frames" -lt 2 ]; then echo "FAILED: the page received ${frames:-no} pair contact frames"; status=1; fi
+if [ -z "$drawn" ] || [ "$drawn" -lt 1 ]; then echo "FAILED: no pair contact drawn"; status=1; fi
+grep -q "ball / plate: [0-9]" many.dom || { echo "FAILED: the legend does not count the ball's contacts with the plate"; status=1; }
 if [ -n "$shot" ]; then
   "$python" "$here/check_page.py" --page many --dom many.dom --png many.png --logs many.log many.shot.log || status=1
 fi

@@ -539,9 +539,10 @@ class CycleParityModel final : public ContactModel {
 TEST(LiveView, StreamSendsMarksAtMostOncePerMarksCycles) {
   auto source = std::make_unique<LiveSnapshotHistory>();
   ContactPointMarks marks({0, 1, 2}, 3);
+  PointMarksFeed feed(marks);
   CycleParityModel model;
   constexpr std::int64_t kMarksEvery = 10;
-  LiveViewServer server(ServedPage{"<html></html>"}, *source, 0, &marks, kMarksEvery);
+  LiveViewServer server(ServedPage{"<html></html>"}, *source, 0, &feed, kMarksEvery);
   httplib::Client client("127.0.0.1", server.port());
   client.set_read_timeout(60, 0);  // a hang guard only
   std::int64_t cycle = 0;

@@ -3,6 +3,7 @@
 // wireframe ghost; a model's proxy of the haptic body a cyan one; the plot shows the last 10 s.
 import { THREE } from './three_global.js';
 import { followContactMarks } from './contact_marks.js';
+import { followPairContacts } from './pair_contacts.js';
 import { aimArrow } from './force_arrow.js';
 import { fmt, setPose } from './util.js';
 
@@ -31,7 +32,7 @@ function readout(s, fm) {
 }
 
 // Follows the session of LIVE (the page data's "live") in VIEW ({scene, bodies, arrow,
-// bounds, plot, points}); sets data-snapshots on <html> to the snapshots received.
+// bounds, plot, points, pairs: a scene of many bodies' pairs}); sets data-snapshots on <html> to the snapshots received.
 export function startLive(live, view) {
   showLiveBar(live);
   const haptic = view.bodies[live.haptic], arrow = view.arrow;
@@ -67,7 +68,8 @@ export function startLive(live, view) {
     for (let i = 0; i < history.length; ++i) { t[i] = history[i][0]; fmag[i] = history[i][1]; fmax = Math.max(fmax, fmag[i]); }
     view.plot.draw([{name: live.model, t: t, fmag: fmag, fmax: fmax}], 0, history.length - 1);
   };
-  if (view.points) followContactMarks(stream, view.points);
+  if (view.pairs) followPairContacts(stream, view.scene, view.pairs);
+  else if (view.points) followContactMarks(stream, view.points);
   stream.onerror = function () {
     // The session ended (or the server went away): keep the last pose.
     stream.close();

@@ -39,7 +39,8 @@ const controls = addOrbitControls(view, bounds.center);
 fillPanel(data, bodies, {contactPoints: shell.contactPoints, surfaces: surfaces});
 addPanelToggles(bodies, {points: shell.points, contactPoints: shell.contactPoints, slice: slice, surfaces: surfaces});
 const plot = new ForcePlot(document.getElementById('plot'));
-const parts = {scene: view.scene, bodies: bodies, arrow: arrow, bounds: bounds, plot: plot, points: shell.points};
+const parts = {scene: view.scene, bodies: bodies, arrow: arrow, bounds: bounds, plot: plot, points: shell.points,
+               pairs: data.pairs};
 const replayer = data.replay ? startReplay(data.replay, parts, options) : null;
 if (data.live) startLive(data.live, parts);
 
