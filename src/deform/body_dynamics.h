@@ -85,10 +85,9 @@ class BodyDynamics {
   // Elastic and kinetic energy of the current state, J (mass-normalised coordinates).
   double PotentialEnergy() { return integrator_->PotentialEnergy(); }
   double KineticEnergy() const { return integrator_->KineticEnergy(); }
-  // Largest displacement |U_v q| of a simulation-mesh vertex at the current state, metres.
   // An upper bound on MaxDisplacement() from ||q|| alone (no pass over the mesh).
   double MaxDisplacementBound() const { return displacement_per_q_ * integrator_->state().q.norm(); }
-
+  // Largest displacement |U_v q| of a simulation-mesh vertex at the current state, metres.
   double MaxDisplacement() {
     u_.noalias() = model_->basis * integrator_->state().q;
     double max2 = 0;
@@ -97,7 +96,6 @@ class BodyDynamics {
   }
 
  private:
-  double displacement_per_q_ = 0;
   void ZeroForce() {
     f_.setZero(integrator_->r());
     K_.setZero(integrator_->r(), integrator_->r());
@@ -110,6 +108,7 @@ class BodyDynamics {
   ReducedVector f_;
   ReducedMatrix K_;
   Eigen::VectorXd u_;  // 3#V scratch: U q
+  double displacement_per_q_ = 0;  // max over vertices of ||U_v||_F
   BodyDeformation deformation_;
 };
 

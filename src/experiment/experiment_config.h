@@ -105,7 +105,8 @@ struct Job {
   std::string moving_body;
   bool roles_swapped = false;  // the roles axis exchanged the bodies' roles
   ConfigNode trajectory_node;  // the job's trajectory section (contact studies), for errors
-  // That section parsed, once per job (ParseTrajectorySpec); empty when the config has none.
+  // That section parsed, once per job (ParseTrajectorySpec); empty when the config has none
+  // (a study that moves a body requires it: Study::required).
   std::optional<TrajectorySpec> trajectory;
   ConfigNode config;           // the job's whole config document, sweep values applied
   std::string Label() const;  // "points=1024 model=vps"

@@ -12,12 +12,12 @@ ContactPointMarks::ContactPointMarks(std::vector<std::int32_t> points, int chunk
     : points_(std::move(points)), chunk_(chunk) {
   if (points_.empty()) Fail("contact point marks", "no points to mark");
   if (chunk_ <= 0) Fail("contact point marks", "the chunk must be positive, got " + std::to_string(chunk_));
-  for (PointMarkSweep& b : buffers_) b.states.assign(points_.size(), PointState::kNotEvaluated);
+  for (PointMarkSweep& b : sweeps_.all()) b.states.assign(points_.size(), PointState::kNotEvaluated);
 }
 
 void ContactPointMarks::Update(ContactModel& model, const ContactQuery& query, std::int64_t cycle) noexcept {
   if (!supported_.load(std::memory_order_relaxed)) return;
-  PointMarkSweep& sweep = buffers_[back_];
+  PointMarkSweep& sweep = sweeps_.back();
   if (cursor_ == 0) {
     sweep.first_cycle = cycle;
     sweep.in_contact = sweep.evaluated = 0;
@@ -39,14 +39,13 @@ void ContactPointMarks::Update(ContactModel& model, const ContactQuery& query, s
   // Complete: publish it as the middle buffer and take the old middle to write the next.
   cursor_ = 0;
   sweep.sequence = ++sequence_;
-  back_ = middle_.exchange(back_ | kFresh, std::memory_order_acq_rel) & ~kFresh;
+  sweeps_.Publish();
 }
 
 bool ContactPointMarks::TakeLatest(PointMarkSweep* out) {
-  if (!(middle_.load(std::memory_order_acquire) & kFresh)) return false;
-  front_ = middle_.exchange(front_, std::memory_order_acq_rel) & ~kFresh;
-  const PointMarkSweep& sweep = buffers_[front_];
-  if (sweep.sequence <= out->sequence) return false;
+  const PointMarkSweep* newest = sweeps_.TakeNewest();
+  if (newest == nullptr || newest->sequence <= out->sequence) return false;
+  const PointMarkSweep& sweep = *newest;
   out->sequence = sweep.sequence;
   out->first_cycle = sweep.first_cycle;
   out->last_cycle = sweep.last_cycle;

@@ -4,12 +4,12 @@
 // a reader thread through a lock-free triple buffer. A sweep thus spans a few consecutive cycles.
 #pragma once
 
-#include <array>
 #include <atomic>
 #include <cstdint>
 #include <vector>
 
 #include "contact/contact_model.h"
+#include "haptics/triple_buffer.h"
 
 namespace contactlab {
 
@@ -50,14 +50,9 @@ class ContactPointMarks {
   bool TakeLatest(PointMarkSweep* out);
 
  private:
-  static constexpr int kFresh = 4;  // in middle_: the middle buffer holds an unread sweep
-
   std::vector<std::int32_t> points_;
   int chunk_;
-  std::array<PointMarkSweep, 3> buffers_;
-  int back_ = 0;                    // writer's buffer
-  int front_ = 2;                   // reader's buffer
-  std::atomic<int> middle_{1};      // the buffer between them, | kFresh when unread
+  TripleBuffer<PointMarkSweep> sweeps_;
   std::atomic<bool> supported_{true};
   int cursor_ = 0;                  // next point of the sweep being marked
   std::uint64_t sequence_ = 0;

@@ -13,7 +13,7 @@ PairContactMarks::PairContactMarks(int max_contacts, std::int64_t every_cycles)
     : max_contacts_(max_contacts), every_(every_cycles) {
   if (max_contacts_ <= 0) Fail("pair contact marks", "room for " + std::to_string(max_contacts_) + " contacts");
   if (every_ <= 0) Fail("pair contact marks", "frames must be at least 1 cycle apart");
-  for (PairContactFrame& f : buffers_) {
+  for (PairContactFrame& f : frames_.all()) {
     f.points.reserve(3 * std::size_t(max_contacts_));
     f.normals.reserve(3 * std::size_t(max_contacts_));
     f.pair.reserve(std::size_t(max_contacts_));
@@ -27,7 +27,7 @@ PairContactMarks::PairContactMarks(int max_contacts, std::int64_t every_cycles)
 
 void PairContactMarks::Update(const SceneWorld& world, std::int64_t cycle) noexcept {
   if (cycle % every_ != 0) return;
-  PairContactFrame& f = buffers_[back_];
+  PairContactFrame& f = frames_.back();
   f.cycle = cycle;
   f.pairs_touching = 0;
   f.not_kept = 0;
@@ -49,14 +49,13 @@ void PairContactMarks::Update(const SceneWorld& world, std::int64_t cycle) noexc
     }
   }
   f.sequence = ++sequence_;
-  back_ = middle_.exchange(back_ | kFresh, std::memory_order_acq_rel) & ~kFresh;
+  frames_.Publish();
 }
 
 bool PairContactMarks::TakeLatest(PairContactFrame* out) {
-  if (!(middle_.load(std::memory_order_acquire) & kFresh)) return false;
-  front_ = middle_.exchange(front_, std::memory_order_acq_rel) & ~kFresh;
-  const PairContactFrame& f = buffers_[front_];
-  if (f.sequence <= out->sequence) return false;
+  const PairContactFrame* newest = frames_.TakeNewest();
+  if (newest == nullptr || newest->sequence <= out->sequence) return false;
+  const PairContactFrame& f = *newest;
   out->sequence = f.sequence;
   out->cycle = f.cycle;
   out->pairs_touching = f.pairs_touching;

@@ -4,12 +4,11 @@
 // through a lock-free triple buffer (as ContactPointMarks does the points of one pointshell).
 #pragma once
 
-#include <array>
-#include <atomic>
 #include <cstdint>
 #include <vector>
 
 #include "contact/contact_model.h"
+#include "haptics/triple_buffer.h"
 
 namespace contactlab {
 
@@ -48,14 +47,9 @@ class PairContactMarks {
   bool TakeLatest(PairContactFrame* out);
 
  private:
-  static constexpr int kFresh = 4;  // in middle_: the middle buffer holds an unread frame
-
   int max_contacts_;
   std::int64_t every_;
-  std::array<PairContactFrame, 3> buffers_;
-  int back_ = 0;
-  int front_ = 2;
-  std::atomic<int> middle_{1};
+  TripleBuffer<PairContactFrame> frames_;
   std::uint64_t sequence_ = 0;
   ContactList scratch_;  // one pair's contacts, its room reserved
 };

@@ -41,12 +41,6 @@ std::vector<SummaryRow> RunExperiment(const ExperimentConfig& config, const RunO
 
 namespace {
 
-// The job has a trajectory (parsed with the job: a mapping with a known type and its keys), so
-// errors come before any work.
-void CheckContactStudy(const ExperimentConfig& config, const ConfigNode&, const Job& job) {
-  if (!job.trajectory) Fail(config.file, "study contact: no trajectory (a mapping with its type)");
-}
-
 // Runs the jobs and prints one line per job and model.
 void RunContactStudy(const ExperimentConfig& config, const RunOptions& options, const std::vector<int>& only) {
   const std::size_t total = JobCount(config);
@@ -92,7 +86,6 @@ void RegisterContactStudy() {
   s.tables = {CyclesTable(), SummaryTable()};
   s.derived = {{ConvergenceTable(), [](const std::vector<std::string>& tables) { return ConvergenceCsv(tables[1]); }}};
   s.replayable = true;
-  s.check = CheckContactStudy;
   s.run = RunContactStudy;
   s.reference = TrajectoryReference;
   RegisterStudy(std::move(s));

@@ -22,9 +22,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// The job's trajectory, checked for what a scene of many bodies can give it.
-TrajectorySpec WorldTrajectory(const Job& job) {
-  if (!job.trajectory) Fail(job.config.file(), "study many-bodies: no trajectory (a mapping with its type)");
+// The job's trajectory (the study requires one; parsed with the job), checked for what a scene
+// of many bodies can give it.
+const TrajectorySpec& WorldTrajectory(const Job& job) {
   const TrajectorySpec& spec = *job.trajectory;
   if (spec.toward) {
     job.trajectory_node.Get("direction").Fail(

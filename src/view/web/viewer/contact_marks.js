@@ -5,17 +5,23 @@ import { THREE } from './three_global.js';
 import { CONTACT_COLOUR, EVALUATED_COLOUR, UNEVALUATED_COLOUR } from './colours.js';
 import { decode, el } from './util.js';
 
-// The points in contact again, larger and through everything, as on a scene page: they usually
-// lie inside the other body. Added to POINTS (same frame; hidden with them), none drawn yet.
-function touchingPoints(points) {
-  const touchingGeometry = new THREE.BufferGeometry();
-  touchingGeometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(points.geometry.attributes.position.array.length), 3));
-  touchingGeometry.setDrawRange(0, 0);
+// Room for N points in contact, drawn larger and through everything, as on a scene page: they
+// usually lie inside the other body. None drawn yet.
+export function contactPointCloud(n) {
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(3 * n), 3));
+  geometry.setDrawRange(0, 0);
   // Transparent, so that it is drawn with (after, by renderOrder) the translucent bodies.
-  const touching = new THREE.Points(touchingGeometry, new THREE.PointsMaterial(
+  const cloud = new THREE.Points(geometry, new THREE.PointsMaterial(
       {size: 5, sizeAttenuation: false, color: CONTACT_COLOUR, depthTest: false, transparent: true, depthWrite: false}));
-  touching.renderOrder = 5;
-  touching.frustumCulled = false;
+  cloud.renderOrder = 5;
+  cloud.frustumCulled = false;
+  return cloud;
+}
+
+// The points in contact again, added to POINTS (same frame; hidden with them).
+function touchingPoints(points) {
+  const touching = contactPointCloud(points.geometry.attributes.position.count);
   points.add(touching);
   return touching;
 }

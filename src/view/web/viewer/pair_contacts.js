@@ -1,19 +1,13 @@
 // The live view's contacts of a scene of many bodies (docs/viewer.md): every touching pair's
 // contacts of one cycle (its model's contact list, world frame), as "pair-contacts" events of the
 // session's stream, drawn as red points through everything and counted per pair in the legend.
-import { THREE } from './three_global.js';
 import { CONTACT_COLOUR } from './colours.js';
+import { contactPointCloud } from './contact_marks.js';
 import { decode, el } from './util.js';
 
-// Room for MAX contacts at first; grown when a frame has more.
+// Room for MAX contacts in SCENE (a frame with more makes a larger one).
 function contactPoints(scene, max) {
-  const geometry = new THREE.BufferGeometry();
-  geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(3 * max), 3));
-  geometry.setDrawRange(0, 0);
-  const points = new THREE.Points(geometry, new THREE.PointsMaterial(
-      {size: 5, sizeAttenuation: false, color: CONTACT_COLOUR, depthTest: false, transparent: true, depthWrite: false}));
-  points.renderOrder = 5;
-  points.frustumCulled = false;
+  const points = contactPointCloud(max);
   scene.add(points);
   return points;
 }
