@@ -272,6 +272,10 @@ void HapticLoop::ThreadMain() {
     }
   }
 
+  // The loop has ended: the watchdog disarms (heartbeat 0), since the clean stop below zeroes the
+  // device itself and what follows it (munlockall of a large process takes tens of ms) is no
+  // stall of a cycle.
+  heartbeat_ns_.store(0);
   r.run_ns = clock_.NowNs() - start_ns;
   r.loop_cpu_ns = clock_.ThreadCpuNs() - start_cpu_ns;
   // Clean stop: zero wrench, then let the watchdog go.

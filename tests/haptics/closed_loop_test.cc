@@ -5,6 +5,7 @@
 // SIGINT and the watchdog on a stalled loop, in simulated time (simulated_loop_clock.h).
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -390,6 +391,52 @@ TEST(HapticLoop, WatchdogZeroesDeviceWhenTheLoopStalls) {
   EXPECT_EQ(report.cycles, 299 - 40);            // releases at 1..299 ms, less the skipped
   EXPECT_EQ(report.safety.loop_stalls, 1);       // and the cycle itself saw the gap
   EXPECT_EQ(sim.held_wrench().force, Eigen::Vector3d::Zero());  // clean stop at the end
+}
+
+// The loop's clean stop may take long (munlockall of a large process takes tens of ms): here
+// the stop's zero write holds the simulated time 40 ms, four times the watchdog's limit, until
+// the watchdog has polled twice. The loop has ended and the device is being zeroed by the stop
+// itself, so the watchdog counts no zero.
+TEST(HapticLoop, WatchdogStaysQuietThroughTheCleanStop) {
+  HalfspaceContactModel model(MakeBoxSamplePoints(Eigen::Vector3d(0.02, 0.02, 0.01), 3), 1000.0);
+  SimDevice sim(SimDeviceParams{}, [](double) { return Pose::FromTranslation(Eigen::Vector3d(0, 0, 0.005)); });
+  testing::SimulatedLoopClock clock;
+  const std::int64_t end_ns = clock.NowNs() + 50 * kMs;
+  struct SlowStopDevice final : HapticDevice {
+    HapticDevice& inner;
+    testing::SimulatedLoopClock& clock;
+    std::int64_t end_ns;
+    bool polled = false;
+    SlowStopDevice(HapticDevice& i, testing::SimulatedLoopClock& c, std::int64_t e) : inner(i), clock(c), end_ns(e) {}
+    std::string_view name() const override { return inner.name(); }
+    DeviceCapabilities capabilities() const override { return inner.capabilities(); }
+    bool Read(std::int64_t now_ns, DeviceState* out) override { return inner.Read(now_ns, out); }
+    void Write(const Wrench& wrench, std::int64_t now_ns, std::uint32_t flags) override {
+      inner.Write(wrench, now_ns, flags);
+      if (now_ns < end_ns || polled) return;
+      const std::int64_t polls = clock.polls();
+      clock.Advance(40 * kMs);
+      polled = clock.WaitForPolls(polls + 2);
+    }
+    void EmergencyZero() noexcept override {
+      inner.EmergencyZero();
+      ++zeroes;
+    }
+    DeviceInputStats input_stats() const override { return inner.input_stats(); }
+    std::atomic<int> zeroes{0};
+  } device(sim, clock, end_ns);
+  HapticCycle cycle(device, &model, HapticCycleConfig{});
+  HapticLoopOptions opt;
+  opt.try_realtime = false;
+  opt.duration_seconds = 0.05;
+  opt.watchdog_seconds = 0.01;
+  HapticLoop loop(cycle, opt, clock);
+  const HapticLoopReport report = loop.Run();
+  ASSERT_TRUE(device.polled) << "the stop's zero write was not reached, or the watchdog never polled";
+  EXPECT_EQ(report.watchdog_zeroes, 0);
+  EXPECT_EQ(device.zeroes.load(), 0);
+  EXPECT_EQ(report.deadline_misses, 0);
+  EXPECT_EQ(sim.held_wrench().force, Eigen::Vector3d::Zero());
 }
 
 }  // namespace

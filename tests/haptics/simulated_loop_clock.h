@@ -53,6 +53,19 @@ class SimulatedLoopClock final : public LoopClock {
     std::unique_lock lock(mutex_);
     const std::int64_t until = now_.load() + duration_ns;
     changed_.wait_for(lock, std::chrono::milliseconds(1), [&] { return now_.load() >= until; });
+    ++polls_;
+    polled_.notify_all();
+  }
+
+  // How many times Sleep has returned (the watchdog's polls).
+  std::int64_t polls() {
+    std::lock_guard lock(mutex_);
+    return polls_;
+  }
+  // Blocks until Sleep has returned COUNT times in all; false after kHangGuard of real time.
+  bool WaitForPolls(std::int64_t count) {
+    std::unique_lock lock(mutex_);
+    return polled_.wait_for(lock, kHangGuard, [&] { return polls_ >= count; });
   }
 
   // Moves the time on by DURATION_NS at once: a cycle that stalls calls this from its model.
@@ -88,6 +101,8 @@ class SimulatedLoopClock final : public LoopClock {
  private:
   std::mutex mutex_;
   std::condition_variable changed_;
+  std::condition_variable polled_;
+  std::int64_t polls_ = 0;
   std::atomic<std::int64_t> now_;  // written under mutex_, read without it
   std::atomic<std::int64_t> cpu_ns_{0};
   std::int64_t pause_at_ns_ = -1;
