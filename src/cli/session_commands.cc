@@ -145,6 +145,13 @@ Scene LoadSessionScene(const SessionArgs& args) {
   if (args.rate > 0) scene.model.cycle_seconds = 1.0 / args.rate;
   if (args.budget >= 0) scene.node_budget = args.budget;
   (void)LoopRateOfCycle(scene.model.cycle_seconds, args.scene + ": model.cycle_seconds");
+  // A session shorter than its first cycle would run none and report on nothing.
+  if (args.duration > 0 && args.duration < scene.model.cycle_seconds) {
+    char text[160];
+    std::snprintf(text, sizeof text, "%g s is shorter than one haptic cycle (%s: model.cycle_seconds %g s): no cycle would run",
+                  args.duration, args.scene.c_str(), scene.model.cycle_seconds);
+    Fail("--duration", text);
+  }
   return scene;
 }
 
@@ -481,9 +488,9 @@ const CommandRegistration kSessionCommands([](CLI::App& app) {
       ->check(CLI::PositiveNumber)
       ->check(CLI::Range(0.0, kMaxLoopSeconds));
   cmd->add_option("--rate", args->rate,
-                  "the haptic loop's rate, Hz, up to 100000: sets the scene's model.cycle_seconds to 1 / HZ "
+                  "the haptic loop's rate, Hz, 10 to 100000: sets the scene's model.cycle_seconds to 1 / HZ "
                   "(default: the scene's, 1 kHz unless it sets another)")
-      ->check(CLI::Range(1.0, 100000.0));
+      ->check(CLI::Range(kMinLoopRateHz, kMaxLoopRateHz));
   cmd->add_option("--budget", args->budget,
                   "node budget per cycle (the paper's graceful degradation, sec. 3.3; 0: none); overrides the "
                   "scene's node_budget")

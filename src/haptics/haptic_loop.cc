@@ -73,11 +73,11 @@ std::int64_t LoopPeriodNs(double rate_hz) { return std::max<std::int64_t>(1, std
 double LoopSpinSeconds(double rate_hz) { return std::min(50e-6, 0.5 / rate_hz); }
 
 double LoopRateOfCycle(double cycle_seconds, const std::string& where) {
-  if (!(std::isfinite(cycle_seconds) && cycle_seconds >= 1e-5)) {
+  if (!(std::isfinite(cycle_seconds) && cycle_seconds >= kMinCycleSeconds && cycle_seconds <= kMaxCycleSeconds)) {
     char text[64];
     std::snprintf(text, sizeof text, "%g", cycle_seconds);
     Fail(where, std::string("a haptic cycle of ") + text +
-                    " s gives no loop rate in (0, 100 kHz]: cycle_seconds must be at least 1e-5 s");
+                    " s gives no loop rate in [10 Hz, 100 kHz]: cycle_seconds must lie in [1e-5, 0.1] s");
   }
   return 1.0 / cycle_seconds;
 }
@@ -102,7 +102,8 @@ void ClearStopSignal() { g_stop_signal.store(false, std::memory_order_relaxed); 
 
 HapticLoop::HapticLoop(HapticCycle& cycle, const HapticLoopOptions& options, LoopClock& clock)
     : cycle_(cycle), options_(options), clock_(clock) {
-  if (!(options_.rate_hz > 0 && options_.rate_hz <= 100000)) Fail("haptic loop", "rate_hz must lie in (0, 100000]");
+  if (!(options_.rate_hz >= kMinLoopRateHz && options_.rate_hz <= kMaxLoopRateHz))
+    Fail("haptic loop", "rate_hz must lie in [10, 100000]");
   if (!(options_.spin_seconds >= 0 && options_.spin_seconds < 1.0 / options_.rate_hz))
     Fail("haptic loop", "spin_seconds must lie in [0, 1/rate_hz)");
   // NaN compares false with everything: without this check it would run forever ("<= 0"
@@ -218,13 +219,25 @@ void HapticLoop::ThreadMain() {
   std::int64_t prev_start = -1;
 
   // The loop: no allocation, no lock, no exception below.
-  for (;;) {
-    if (stop_.load(std::memory_order_relaxed)) break;
+  const auto stop_asked = [&] {
+    if (stop_.load(std::memory_order_relaxed)) return true;
     if (options_.honour_sigint && StopSignalRequested()) {
       r.stopped_by_signal = true;
-      break;
+      return true;
     }
-    clock_.WaitUntil(release, spin_ns);
+    return false;
+  };
+  for (;;) {
+    if (stop_asked()) break;
+    // The wait for the release, never past the end time, in slices that look at the stop.
+    const std::int64_t until = std::min(release, end_ns);
+    bool stopped = false;
+    for (std::int64_t now = clock_.NowNs(); until - now > kLoopWaitSliceNs && !stopped; now = clock_.NowNs()) {
+      clock_.WaitUntil(now + kLoopWaitSliceNs, 0);
+      stopped = stop_asked();
+    }
+    if (stopped) break;
+    clock_.WaitUntil(until, spin_ns);
     const std::int64_t t0 = clock_.NowNs();
     if (t0 >= end_ns) break;
     heartbeat_ns_.store(t0);

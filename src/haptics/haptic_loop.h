@@ -25,8 +25,19 @@ namespace contactlab {
 // three years, far inside the int64 nanoseconds of the loop's clock (292 years).
 inline constexpr double kMaxLoopSeconds = 1e8;
 
+// The rates a loop runs at: 10 Hz to 100 kHz, i.e. a haptic cycle (a scene's
+// model.cycle_seconds) of 1e-5 s to 0.1 s.
+inline constexpr double kMinLoopRateHz = 10;
+inline constexpr double kMaxLoopRateHz = 100000;
+inline constexpr double kMinCycleSeconds = 1.0 / kMaxLoopRateHz;
+inline constexpr double kMaxCycleSeconds = 1.0 / kMinLoopRateHz;
+
+// The longest the loop waits without looking at its stop flag, the stop signals and its end
+// time: a wait for a release further off is taken in slices of this length.
+inline constexpr std::int64_t kLoopWaitSliceNs = 5'000'000;
+
 struct HapticLoopOptions {
-  double rate_hz = 1000;              // cycle rate
+  double rate_hz = 1000;              // cycle rate, in [kMinLoopRateHz, kMaxLoopRateHz]
   double duration_seconds = 0;        // run time, at most kMaxLoopSeconds; <= 0 runs until RequestStop or SIGINT
   bool try_realtime = true;           // try SCHED_FIFO + mlockall (warn on stderr if refused)
   int fifo_priority = 80;             // SCHED_FIFO priority when granted
@@ -144,7 +155,7 @@ std::int64_t LoopPeriodNs(double rate_hz);
 double LoopSpinSeconds(double rate_hz);
 
 // The loop rate of a haptic cycle of CYCLE_SECONDS (a scene's model.cycle_seconds): 1 /
-// CYCLE_SECONDS. Throws Error naming WHERE when it does not lie in (0, 100 kHz].
+// CYCLE_SECONDS. Throws Error naming WHERE when the rate does not lie in [10 Hz, 100 kHz].
 double LoopRateOfCycle(double cycle_seconds, const std::string& where);
 
 // Monotonic clock (CLOCK_MONOTONIC), nanoseconds.

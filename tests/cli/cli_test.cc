@@ -406,7 +406,7 @@ TEST(CliInputs, NanDurationCouplingOrTouchIsRefusedBeforeTheSessionStarts) {
 }
 
 // The session loop runs at the scene's rate, 1 / model.cycle_seconds, and --rate sets both;
-// a cycle that gives no rate in (0, 100 kHz] is refused naming the scene file and the key, a
+// a cycle that gives no rate in [10 Hz, 100 kHz] is refused naming the scene file and the key, a
 // --rate outside it naming the option, before the session starts.
 TEST(CliSession, TheLoopRunsAtTheScenesCycleOrAtTheRateAsked) {
   testing::TempDir dir;
@@ -432,8 +432,24 @@ TEST(CliSession, TheLoopRunsAtTheScenesCycleOrAtTheRateAsked) {
   std::ofstream(dir / "tiny.yaml") << tiny;
   const Outcome refused = RunCli("session " + (dir / "tiny.yaml").string() + " --duration 0.1 --no-realtime --quiet");
   EXPECT_NE(refused.exit_code, 0) << refused.output;
-  EXPECT_NE(refused.output.find("tiny.yaml: model.cycle_seconds"), std::string::npos) << refused.output;
+  EXPECT_NE(refused.output.find("tiny.yaml:"), std::string::npos) << refused.output;
+  EXPECT_NE(refused.output.find("model.cycle_seconds"), std::string::npos) << refused.output;
   EXPECT_EQ(refused.output.find("session: scene"), std::string::npos) << refused.output;
+  // A cycle slower than 10 Hz (10 s once ran a session of no cycles) is refused at its key, and
+  // a --duration shorter than one cycle naming the option.
+  std::string slow = kScene;
+  slow.replace(slow.find(model), model.size(), "model: {k_C: 1000, cycle_seconds: 10}");
+  std::ofstream(dir / "slow.yaml") << slow;
+  const Outcome too_slow = RunCli("session " + (dir / "slow.yaml").string() + " --duration 1 --no-realtime --quiet");
+  EXPECT_NE(too_slow.exit_code, 0) << too_slow.output;
+  EXPECT_NE(too_slow.output.find("slow.yaml"), std::string::npos) << too_slow.output;
+  EXPECT_NE(too_slow.output.find("cycle_seconds"), std::string::npos) << too_slow.output;
+  EXPECT_EQ(too_slow.output.find("session: scene"), std::string::npos) << too_slow.output;
+  const Outcome too_short =
+      RunCli("session " + (dir / "scene.yaml").string() + " --device sim --rate 10 --duration 0.05 --no-realtime --quiet");
+  EXPECT_NE(too_short.exit_code, 0) << too_short.output;
+  EXPECT_NE(too_short.output.find("--duration: 0.05 s is shorter than one haptic cycle"), std::string::npos)
+      << too_short.output;
   const Outcome budgeted = RunCli(session + " --rate 5000 --budget 64");
   EXPECT_EQ(budgeted.exit_code, 0) << budgeted.output;
   const Outcome negative = RunCli(session + " --budget -1");

@@ -108,6 +108,10 @@ TEST(Study, ASectionOnlyAnotherStudyReadsIsRefusedNamingThatStudy) {
   expect_error(LoopConfig("{motions: [push, wiggle]}"), {"wiggle", "push, slide, corner"});
   expect_error(LoopConfig("{k_vc: 1000}", "sweep: {k_vc: [1000, 0]}\n"), {"job k_vc=0", "loop.k_vc", "got 0"});
   expect_error("name: x\n" + scene, {"trajectory"});
+  // A cycle of 10 s once gave rows of 0 cycles judged stable: a cycle too slow for the study's
+  // 200 ms windows (10 cycles each at least) is refused naming the job and the key.
+  expect_error(LoopConfig("{k_vc: 1000}", "sweep: {cycle_seconds: [0.001, 0.05]}\n"),
+               {"cycle_seconds=0.05", "model.cycle_seconds", "too slow for the closed-loop study"});
   // The closed-loop study's alias is not an alias of a contact config.
   expect_error("name: x\n" + scene + "trajectory: {type: approach-press}\nsweep: {k_vc: [1, 2]}\n",
                {"unknown sweep axis"});

@@ -157,8 +157,8 @@ TEST(HapticLoop, MissesAreSplitIntoOverrunAndPreemptedByTheCyclesCpuTime) {
   EXPECT_NE(FormatLoopReport(report).find("deadline misses 3 (overrun 1, preempted 2)"), std::string::npos);
 }
 
-// A scene's cycle is the loop's rate: 1 / cycle_seconds, refused outside (0, 100 kHz] with the
-// place named; the spin before each release is 50 us, at most half the period.
+// A scene's cycle is the loop's rate: 1 / cycle_seconds, refused outside [10 Hz, 100 kHz] with
+// the place named; the spin before each release is 50 us, at most half the period.
 TEST(HapticLoop, TheRateIsTheInverseOfTheCycleAndTheSpinFitsInThePeriod) {
   EXPECT_DOUBLE_EQ(LoopRateOfCycle(1e-3, "scene"), 1000.0);
   EXPECT_DOUBLE_EQ(LoopRateOfCycle(1e-4, "scene"), 10000.0);
@@ -166,7 +166,8 @@ TEST(HapticLoop, TheRateIsTheInverseOfTheCycleAndTheSpinFitsInThePeriod) {
   EXPECT_EQ(LoopPeriodNs(1000), kMs);
   EXPECT_EQ(LoopPeriodNs(10000), 100'000);
   EXPECT_EQ(LoopPeriodNs(3000), 333'333);  // to the nearest nanosecond
-  for (const double bad : {1e-6, 0.0, -1e-3, std::nan(""), HUGE_VAL}) {
+  EXPECT_DOUBLE_EQ(LoopRateOfCycle(0.1, "scene"), 10.0);
+  for (const double bad : {1e-6, 0.0, -1e-3, std::nan(""), HUGE_VAL, 0.1001, 10.0, 1e5, 1e300}) {
     try {
       (void)LoopRateOfCycle(bad, "s.yaml: model.cycle_seconds");
       ADD_FAILURE() << bad << " was accepted";
@@ -174,7 +175,7 @@ TEST(HapticLoop, TheRateIsTheInverseOfTheCycleAndTheSpinFitsInThePeriod) {
       EXPECT_NE(std::string(e.what()).find("s.yaml: model.cycle_seconds"), std::string::npos) << e.what();
     }
   }
-  for (const double hz : {1.0, 500.0, 1000.0, 10000.0, 20000.0, 100000.0}) {
+  for (const double hz : {10.0, 500.0, 1000.0, 10000.0, 20000.0, 100000.0}) {
     const double spin = LoopSpinSeconds(hz);
     EXPECT_LE(spin, 50e-6) << hz;
     EXPECT_LE(spin, 0.5 / hz) << hz;
@@ -182,6 +183,58 @@ TEST(HapticLoop, TheRateIsTheInverseOfTheCycleAndTheSpinFitsInThePeriod) {
   }
   EXPECT_DOUBLE_EQ(LoopSpinSeconds(1000), 50e-6);
   EXPECT_DOUBLE_EQ(LoopSpinSeconds(20000), 25e-6);
+}
+
+// model.cycle_seconds: 10 once made `session --duration 1` wait 10 s for its first release
+// and end with no cycle: the loop's wait never runs past the end time. At 10 Hz (the slowest
+// rate) a 50 ms run ends at 50 ms, with no cycle, instead of at the 100 ms release.
+TEST(HapticLoop, TheWaitForASlowReleaseEndsAtTheEndTime) {
+  HalfspaceContactModel model(MakeBoxSamplePoints(Eigen::Vector3d(0.02, 0.02, 0.01), 3), 1000.0);
+  testing::SimulatedLoopClock clock;
+  SimDevice device(SimDeviceParams{}, [](double) { return Pose::FromTranslation(Eigen::Vector3d(0, 0, 0.005)); });
+  HapticCycleConfig config;
+  config.cycle_seconds = 0.1;
+  HapticCycle cycle(device, &model, config);
+  HapticLoopOptions opt;
+  opt.rate_hz = kMinLoopRateHz;
+  opt.spin_seconds = LoopSpinSeconds(opt.rate_hz);
+  opt.try_realtime = false;
+  opt.duration_seconds = 0.05;
+  opt.watchdog_seconds = 0;
+  HapticLoop loop(cycle, opt, clock);
+  const HapticLoopReport report = loop.Run();
+  EXPECT_EQ(report.cycles, 0);
+  EXPECT_EQ(report.run_ns, 50 * kMs);
+}
+
+// SIGINT was honoured 8 s late and SIGTERM not at all while the loop waited for a far release
+// (the wait looped on EINTR without looking at the stop): the loop now waits in slices of
+// kLoopWaitSliceNs and looks at its stop flag after each. Paused inside the first slice of a
+// 10 Hz loop's wait, a stop ends the loop at that slice's end, before the release and its cycle.
+TEST(HapticLoop, AStopDuringASlowWaitEndsTheLoopWithinASlice) {
+  HalfspaceContactModel model(MakeBoxSamplePoints(Eigen::Vector3d(0.02, 0.02, 0.01), 3), 1000.0);
+  testing::SimulatedLoopClock clock;
+  const std::int64_t start = clock.NowNs();
+  SimDevice device(SimDeviceParams{}, [](double) { return Pose::FromTranslation(Eigen::Vector3d(0, 0, 0.005)); });
+  HapticCycleConfig config;
+  config.cycle_seconds = 0.1;
+  HapticCycle cycle(device, &model, config);
+  HapticLoopOptions opt;
+  opt.rate_hz = kMinLoopRateHz;
+  opt.spin_seconds = LoopSpinSeconds(opt.rate_hz);
+  opt.try_realtime = false;
+  opt.duration_seconds = 10;
+  opt.watchdog_seconds = 0;
+  HapticLoop loop(cycle, opt, clock);
+  clock.PauseAt(start + 1);  // the first wait's first slice
+  loop.Start();
+  ASSERT_TRUE(clock.WaitUntilPaused());
+  loop.RequestStop();
+  clock.Resume();
+  const HapticLoopReport report = loop.Join();
+  EXPECT_EQ(report.cycles, 0);
+  EXPECT_EQ(report.run_ns, kLoopWaitSliceNs);
+  EXPECT_EQ(device.held_wrench().force, Eigen::Vector3d::Zero());
 }
 
 // At 10 kHz in simulated time the loop runs a cycle every 100 us: 0.2 s is 2,000 cycles with

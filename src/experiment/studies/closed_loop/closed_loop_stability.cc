@@ -24,6 +24,7 @@ constexpr double kPushBegin = 0.1, kPushEnd = 0.5;   // s
 constexpr double kSlideBegin = 0.6, kSlideEnd = 1.4; // s
 constexpr double kHold = 0.6;                        // s the target stays still in contact
 constexpr double kWindow = 0.2;                      // s, oscillation windows
+static_assert(kWindow / kClosedLoopMaxCycleSeconds >= 10 - 1e-9, "each window holds at least 10 cycles");
 constexpr double kLift = 0.3, kRest = 0.3;           // s
 
 double Smooth(double t, double t0, double t1) {

@@ -95,6 +95,10 @@ struct ClosedLoopMetrics {
 // "oscillates", "active+oscillates"), or "ok".
 std::string StabilityVerdict(const ClosedLoopMetrics& m);
 
+// The slowest cycle the study judges: each of its 200 ms windows (the motions' oscillation
+// windows) must hold at least 10 cycles, so model.cycle_seconds is at most 0.02 s.
+inline constexpr double kClosedLoopMaxCycleSeconds = 0.02;
+
 // Runs one closed-loop case: MODEL's body B is H. The model is reset at the start. DYNAMICS
 // (MakeSceneDynamics of the scene at where.cycle.cycle_seconds; null or empty: both bodies rigid)
 // steps the deformable bodies at the end of each cycle; they start at rest.

@@ -163,10 +163,16 @@ const ResultTable& StabilityTable() {
   return table;
 }
 
-// Every job's loop section parses (an error names the job's sweep values).
+// Every job's loop section parses and its cycle is one the study can judge (an error names
+// the job's sweep values).
 void CheckClosedLoopStudy(const ExperimentConfig& config, const ConfigNode&, const Job& job) {
   try {
     (void)ParseLoopSpec(job.config);
+    if (job.scene.model.cycle_seconds > kClosedLoopMaxCycleSeconds) {
+      char text[128];
+      std::snprintf(text, sizeof text, "model.cycle_seconds: %g s is too slow for the closed-loop study", job.scene.model.cycle_seconds);
+      Fail(config.file, std::string(text) + ", whose 200 ms windows need at least 10 cycles each: at most 0.02 s");
+    }
   } catch (const Error& e) {
     if (config.sweep.empty()) throw;
     Fail(config.file + " (job " + job.Label() + ")", e.what());
