@@ -1,6 +1,8 @@
 #include "scene/contact_placement.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "contact/model_registry.h"
 #include "util/error.h"
@@ -22,21 +24,41 @@ Placement PlaceAtDepth(ContactModel& model, const Pose& X_WA_start, const Pose& 
     return model.Evaluate(q).stats.max_penetration;
   };
   Placement out;
-  const double step = depth / 4;
+  // 1. A coarse march, kPlacementCoarseSteps over the travel, to the first step at DEPTH.
+  const double coarse = max_travel / kPlacementCoarseSteps;
+  double coarse_lo = -1, coarse_hi = -1;
+  for (int j = 0; j <= kPlacementCoarseSteps; ++j) {
+    const double s = std::min(max_travel, j * coarse);
+    if (penetration(s) >= depth) {
+      coarse_hi = s;
+      break;
+    }
+    coarse_lo = s;
+  }
+  if (coarse_hi < 0) {
+    out.X_WA = X_WA_start;
+    return out;
+  }
+  // 2. The fine march from 0 in steps of DEPTH / 4 (at most kPlacementFineSteps of them
+  // between two coarse steps), probing only from the last coarse step short of DEPTH on.
+  const double step = std::max(depth / 4, coarse / kPlacementFineSteps);
   double lo = 0, hi = -1;
   for (double s = 0; s <= max_travel; s += step) {
-    if (penetration(s) >= depth) {
+    if (s >= coarse_lo && penetration(s) >= depth) {
       hi = s;
       break;
     }
     lo = s;
+    if (s >= coarse_hi) break;
   }
-  if (hi < 0) {
-    out.X_WA = X_WA_start;
-    return out;
+  if (hi < 0) {  // no fine step up to the coarse one reached DEPTH: between the coarse ones
+    lo = std::max(0.0, coarse_lo);
+    hi = coarse_hi;
   }
-  while (hi - lo > 0.01 * depth) {
+  // Bisection to 1 % of DEPTH, or until no number lies between the ends.
+  for (int i = 0; i < kPlacementMaxBisections && hi - lo > 0.01 * depth; ++i) {
     const double mid = 0.5 * (lo + hi);
+    if (!(mid > lo && mid < hi)) break;
     (penetration(mid) >= depth ? hi : lo) = mid;
   }
   out.X_WA = X_WA_start;

@@ -112,6 +112,11 @@ TEST(Study, ASectionOnlyAnotherStudyReadsIsRefusedNamingThatStudy) {
   // 200 ms windows (10 cycles each at least) is refused naming the job and the key.
   expect_error(LoopConfig("{k_vc: 1000}", "sweep: {cycle_seconds: [0.001, 0.05]}\n"),
                {"cycle_seconds=0.05", "model.cycle_seconds", "too slow for the closed-loop study"});
+  // Both bodies at one position gave PlaceAtDepth's message, naming neither file nor key.
+  testing::BallOnPlate coincident;
+  coincident.ball_z = -0.01;
+  expect_error("name: x\nstudy: closed-loop\nmodels: [pointshell]\nscene:\n" + coincident.Yaml(2) + "loop: {k_vc: 1000}\n",
+               {"bodies' pose", "'plate'", "'ball'", "one position"});
   // The closed-loop study's alias is not an alias of a contact config.
   expect_error("name: x\n" + scene + "trajectory: {type: approach-press}\nsweep: {k_vc: [1, 2]}\n",
                {"unknown sweep axis"});

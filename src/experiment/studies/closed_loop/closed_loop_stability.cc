@@ -67,7 +67,17 @@ const char* LoopMotionName(LoopMotion motion) {
   return "?";
 }
 
+void CheckClosedLoopApproach(const Scene& scene, const std::string& where) {
+  const Eigen::Vector3d gap = scene.pointshell_body.pose.translation - scene.field_body.pose.translation;
+  if (!(gap.norm() > 0) || !gap.allFinite()) {
+    Fail(where, "bodies' pose: the closed-loop study moves the field body '" + scene.field_body.name +
+                    "' toward the origin of the pointshell body '" + scene.pointshell_body.name +
+                    "', and the two lie at one position: place them apart along the approach");
+  }
+}
+
 ClosedLoopScene MakeClosedLoopScene(const Scene& scene, SceneAssets& assets) {
+  CheckClosedLoopApproach(scene, scene.file.empty() ? scene.name : scene.file);
   ClosedLoopScene w;
   w.cycle = SceneCycleConfig(scene, assets, nullptr);
   const Pose& X_WA = w.cycle.X_WA;

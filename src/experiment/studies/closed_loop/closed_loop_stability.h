@@ -99,6 +99,10 @@ std::string StabilityVerdict(const ClosedLoopMetrics& m);
 // windows) must hold at least 10 cycles, so model.cycle_seconds is at most 0.02 s.
 inline constexpr double kClosedLoopMaxCycleSeconds = 0.02;
 
+// Throws Error naming WHERE and the bodies' poses when SCENE gives the study no approach: H (the
+// field body) moves toward A's origin, so the two must lie at different positions.
+void CheckClosedLoopApproach(const Scene& scene, const std::string& where);
+
 // Runs one closed-loop case: MODEL's body B is H. The model is reset at the start. DYNAMICS
 // (MakeSceneDynamics of the scene at where.cycle.cycle_seconds; null or empty: both bodies rigid)
 // steps the deformable bodies at the end of each cycle; they start at rest.

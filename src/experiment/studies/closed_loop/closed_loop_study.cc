@@ -168,6 +168,7 @@ const ResultTable& StabilityTable() {
 void CheckClosedLoopStudy(const ExperimentConfig& config, const ConfigNode&, const Job& job) {
   try {
     (void)ParseLoopSpec(job.config);
+    CheckClosedLoopApproach(job.scene, config.file);
     if (job.scene.model.cycle_seconds > kClosedLoopMaxCycleSeconds) {
       char text[128];
       std::snprintf(text, sizeof text, "model.cycle_seconds: %g s is too slow for the closed-loop study", job.scene.model.cycle_seconds);
