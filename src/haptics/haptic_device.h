@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -57,6 +58,22 @@ struct DeviceState {
   std::uint32_t buttons = 0;         // bit i = button i pressed
   std::uint64_t sequence = 0;        // increases with each new sample
 };
+
+// Whether a device may act on a sampled pose (POSITION x, y, z; QUATERNION w, x, y, z, not
+// necessarily unit): every number finite, and the quaternion's squared norm finite and above
+// 1e-12, so that it normalises to a unit quaternion (a squared norm that overflows, components
+// beyond about 1e154, would normalise to zero). Every device that takes poses from outside the
+// process (UDP packets, plugins) refuses the others.
+inline bool IsUsableDevicePose(const double* position, const double* quaternion) {
+  bool finite = true;
+  for (int i = 0; i < 3; ++i) finite = finite && std::isfinite(position[i]);
+  double squared_norm = 0;
+  for (int i = 0; i < 4; ++i) {
+    finite = finite && std::isfinite(quaternion[i]);
+    squared_norm += quaternion[i] * quaternion[i];
+  }
+  return finite && squared_norm > 1e-12 && std::isfinite(squared_norm);
+}
 
 class HapticDevice {
  public:

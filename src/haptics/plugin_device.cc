@@ -77,10 +77,9 @@ bool PluginDevice::Read(std::int64_t now_ns, DeviceState* out) {
   const int r = api_->read(handle_, now_ns, &s);
   if (r < 0) ++read_errors_;
   if (r == 1) {
-    Eigen::Quaterniond q(s.quaternion[0], s.quaternion[1], s.quaternion[2], s.quaternion[3]);
-    const Eigen::Vector3d p(s.position[0], s.position[1], s.position[2]);
-    if (p.allFinite() && q.coeffs().allFinite() && q.norm() > 1e-12) {
-      last_.X_WD = Pose{q.normalized(), p};
+    if (IsUsableDevicePose(s.position, s.quaternion)) {
+      const Eigen::Quaterniond q(s.quaternion[0], s.quaternion[1], s.quaternion[2], s.quaternion[3]);
+      last_.X_WD = Pose{q.normalized(), Eigen::Vector3d(s.position[0], s.position[1], s.position[2])};
       last_.timestamp_ns = s.timestamp_ns;
       last_.buttons = s.buttons;
       last_.sequence = s.sequence;

@@ -1,6 +1,8 @@
 // Binary UDP packets for networked haptic devices (see UDP_PROTOCOL.md).
 #include "haptics/udp_protocol.h"
 
+#include "haptics/haptic_device.h"
+
 #include <zlib.h>
 
 #include <bit>
@@ -106,17 +108,10 @@ DecodeStatus DecodePose(const std::uint8_t* d, std::size_t size, PosePacket* out
   std::size_t at = 8;
   p.sequence = Get<std::uint64_t>(d, &at);
   p.timestamp_ns = Get<std::int64_t>(d, &at);
-  bool finite = true;
-  for (double& v : p.position) finite = finite && std::isfinite(v = Get<double>(d, &at));
-  double qn = 0;
-  for (double& v : p.quaternion) {
-    finite = finite && std::isfinite(v = Get<double>(d, &at));
-    qn += v * v;
-  }
+  for (double& v : p.position) v = Get<double>(d, &at);
+  for (double& v : p.quaternion) v = Get<double>(d, &at);
   p.buttons = Get<std::uint32_t>(d, &at);
-  // A squared norm that overflows (components beyond ~1e154) would normalise to a zero
-  // quaternion on receipt: rejected like a zero one.
-  if (!finite || !(qn > 1e-12) || !std::isfinite(qn)) return DecodeStatus::kNonFinite;
+  if (!IsUsableDevicePose(p.position, p.quaternion)) return DecodeStatus::kNonFinite;
   *out = p;
   return DecodeStatus::kOk;
 }

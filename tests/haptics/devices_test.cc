@@ -180,6 +180,29 @@ TEST(PluginDevice, ExamplePluginLoadsReadsWritesAndZeroes) {
   EXPECT_EQ(dev.write_errors(), 0);
 }
 
+// A plugin sample with quaternion (1e200, 0, 0, 0) was accepted (its norm is inf, which passed
+// "> 1e-12") and normalised to (0, 0, 0, 0), so the session's own log would not replay. Such a
+// sample, a zero or near-zero one and a non-finite one are now not acted on and counted, as
+// the UDP device refuses them; a quaternion that is not unit but usable is normalised.
+TEST(PluginDevice, ASampleWhoseQuaternionOverflowsOrVanishesIsNotActedOn) {
+  for (const char* bad : {"1e200,0,0,0", "0,1e160,0,0", "0,0,0,0", "1e-7,0,0,0", "nan,0,0,0", "inf,0,0,0"}) {
+    SCOPED_TRACE(bad);
+    PluginDevice dev(CONTACTLAB_FIXED_SAMPLE_PLUGIN_PATH, bad);
+    DeviceState s;
+    EXPECT_FALSE(dev.Read(0, &s));
+    EXPECT_EQ(dev.read_errors(), 1);
+    EXPECT_EQ(s.X_WD.rotation.coeffs(), Eigen::Quaterniond::Identity().coeffs());  // the last good pose
+  }
+  for (const char* good : {"2,0,0,0", "1e150,0,0,0", "0,0.001,0,0"}) {
+    SCOPED_TRACE(good);
+    PluginDevice dev(CONTACTLAB_FIXED_SAMPLE_PLUGIN_PATH, good);
+    DeviceState s;
+    ASSERT_TRUE(dev.Read(0, &s));
+    EXPECT_NEAR(s.X_WD.rotation.norm(), 1.0, 1e-15);
+    EXPECT_EQ(dev.read_errors(), 0);
+  }
+}
+
 TEST(PluginDevice, LoadFailuresNameTheLibraryAndTheCause) {
   ExpectErrorMentions([] { PluginDevice d("/nonexistent/libnothing.so", ""); }, {"libnothing.so", "not found"});
   ExpectErrorMentions([] { PluginDevice d(CONTACTLAB_EXAMPLE_PLUGIN_PATH, "radius=oops"); },
