@@ -43,7 +43,7 @@ TemporaryFolder::TemporaryFolder(fs::path path, std::function<bool(const std::st
   path_ = fs::absolute(path, ec).lexically_normal();
   if (!path_.has_filename()) path_ = path_.parent_path();  // a trailing slash
   if (fs::is_symlink(fs::symlink_status(path_, ec)) && fs::is_directory(path_, ec)) {
-    path_ = fs::canonical(path_, ec);
+    path_ = fs::canonical(path_, ec);  // a link to a folder is followed (CheckOutputFolder refused one to nothing)
     if (ec) Fail(path.string(), "cannot follow the symlink: " + ec.message());
   }
   if (path_.empty() || path_ == path_.root_path()) Fail(path.string(), "cannot be a results folder");

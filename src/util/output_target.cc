@@ -88,6 +88,11 @@ void CheckOutputFolder(const fs::path& path, std::string_view what) {
   if (path.empty()) Fail(what, "the output folder is empty");
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
+  if (status.type() == fs::file_type::not_found && fs::is_symlink(fs::symlink_status(path, ec))) {
+    // A link to nothing: committing the results would replace the link by the new folder.
+    Fail(path.string(), std::string(what) + " is a symlink to " + fs::read_symlink(path, ec).string() +
+                            ", which does not exist: create that folder, or name a folder that is no link");
+  }
   if (status.type() == fs::file_type::not_found || status.type() == fs::file_type::directory) return;
   if (ec) Fail(path.string(), std::string(what) + ": cannot inspect the output folder: " + ec.message());
   const std::string kind = status.type() == fs::file_type::regular ? "a file" : KindOf(status.type());

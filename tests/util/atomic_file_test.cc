@@ -263,6 +263,33 @@ TEST(AtomicFolder, FailureBetweenFilesLeavesTheOldFolderWhole) {
 }
 
 // An old result file that is an input of the command is never removed by the commit.
+// `run --out LINK`, LINK a dangling symlink, replaced the link by a folder: it is refused naming
+// the link and its target, before anything is staged, and the link stays; a link to a folder
+// is followed, and the results land in the folder it names.
+TEST(AtomicFolder, ADanglingSymlinkIsRefusedAndALinkToAFolderFollowed) {
+  testing::TempDir dir;
+  std::filesystem::create_symlink(dir / "missing", dir / "link");
+  try {
+    TemporaryFolder folder(dir / "link", nullptr);
+    ADD_FAILURE() << "a dangling symlink was taken as the results folder";
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("link"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("missing, which does not exist"), std::string::npos) << msg;
+  }
+  EXPECT_TRUE(std::filesystem::is_symlink(std::filesystem::symlink_status(dir / "link")));
+  EXPECT_EQ(CountFiles(dir.path()), 1);  // the link alone: nothing staged
+  std::filesystem::create_directory(dir / "real");
+  std::filesystem::create_symlink(dir / "real", dir / "good");
+  {
+    TemporaryFolder folder(dir / "good", nullptr);
+    folder.Write("meta.json", "new meta");
+    folder.Commit();
+  }
+  EXPECT_TRUE(std::filesystem::is_symlink(std::filesystem::symlink_status(dir / "good")));
+  EXPECT_EQ(ReadWholeFile(dir / "real" / "meta.json"), "new meta");
+}
+
 TEST(AtomicFolder, ReplacingAFileTheCommandReadIsRefused) {
   testing::TempDir dir;
   const auto out = dir / "results";
