@@ -212,8 +212,12 @@ struct LiveViewServer::StreamState {
 // the stream joined, and the newest marks when due; the stream ends when the server stops
 // (after sending what was published before) or the client goes away.
 void LiveViewServer::RouteStream() {
-  server_->Get("/stream", [this](const httplib::Request&, httplib::Response& res) {
+  server_->Get("/stream", [this](const httplib::Request& req, httplib::Response& res) {
     res.set_header("Cache-Control", "no-cache");
+    if (req.method == "HEAD") {  // what a GET would get, with no stream opened or counted
+      res.set_header("Content-Type", "text/event-stream");
+      return;
+    }
     if (!OpenStream()) {
       res.status = 503;
       res.set_content("the live view serves at most " + std::to_string(kLiveViewStreamLimit) +

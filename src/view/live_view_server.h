@@ -177,6 +177,11 @@ class LiveViewServer {
 
   int port() const { return port_; }
   std::string url() const { return "http://127.0.0.1:" + std::to_string(port_) + "/"; }
+  // Streams opened so far (GET /stream answered with a stream; HEAD opens none).
+  int streams_opened() {
+    std::lock_guard<std::mutex> lock(streams_mutex_);
+    return streams_opened_;
+  }
 
   // Blocks until COUNT streams were opened (since the server started), or GIVE_UP returns
   // true (asked a few times a second, e.g. a stop signal); returns whether they were. A

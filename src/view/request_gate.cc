@@ -53,6 +53,13 @@ std::string_view RequestTarget(std::string_view head) {
   return head.substr(start + 1, end == std::string_view::npos ? std::string_view::npos : end - start - 1);
 }
 
+int HexDigit(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
 void AddressOf(const sockaddr_storage& address, std::string& ip, int& port) {
   char text[INET6_ADDRSTRLEN] = "";
   if (address.ss_family == AF_INET) {
@@ -141,6 +148,21 @@ class RunAtOnce final : public httplib::TaskQueue {
 };
 
 }  // namespace
+
+std::string RequestPath(std::string_view head) {
+  const std::string_view target = RequestTarget(head);
+  std::string path;
+  path.reserve(target.size());
+  for (std::size_t i = 0; i < target.size(); ++i) {
+    if (target[i] == '%' && i + 2 < target.size() && HexDigit(target[i + 1]) >= 0 && HexDigit(target[i + 2]) >= 0) {
+      path += char(HexDigit(target[i + 1]) * 16 + HexDigit(target[i + 2]));
+      i += 2;
+    } else {
+      path += target[i];
+    }
+  }
+  return path;
+}
 
 GatedHttpServer::GatedHttpServer(const RequestGateLimits& limits, std::function<bool(std::string_view)> long_lived)
     : limits_(limits), long_lived_(std::move(long_lived)) {
@@ -299,7 +321,7 @@ void GatedHttpServer::WorkerMain() {
 // Answers the request at the start of C's head (httplib parses, routes and writes it); a
 // kept-alive connection then waits at the gate for its next request.
 void GatedHttpServer::Answer(Connection c) {
-  const bool long_lived = long_lived_ && long_lived_(RequestTarget(c.head));
+  const bool long_lived = long_lived_ && long_lived_(RequestPath(c.head));
   GateStream stream(c.fd, std::move(c.head), limits_.io_timeout,
                     long_lived ? std::nullopt : std::optional(Clock::now() + limits_.response_timeout));
   ++c.requests;

@@ -26,6 +26,11 @@
 
 namespace contactlab {
 
+// The target of the request line HEAD starts with, without its query and percent-decoded as
+// httplib decodes a path before routing it ("GET /%73tream HTTP/1.1" gives "/stream"), so that
+// what the gate takes for a long-lived target is what the router will answer.
+std::string RequestPath(std::string_view head);
+
 struct RequestGateLimits {
   int workers = 20;                // threads answering complete requests
   int max_waiting = 256;           // connections waiting for a request head; past it the oldest is closed

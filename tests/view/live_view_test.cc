@@ -37,6 +37,7 @@
 #include "view/page_encoding.h"
 #include "view/latest_value.h"
 #include "view/live_view_server.h"
+#include "view/request_gate.h"
 #include "view/snapshot_history.h"
 
 // After every header that includes Eigen: httplib.h brings <resolv.h>, whose macro _res breaks
@@ -417,6 +418,30 @@ TEST(LiveView, StreamsPastTheLimitCannotStarveThePage) {
   server.Stop();
   for (std::thread& t : watchers) t.join();
   for (int i = 0; i < kLiveViewStreamLimit; ++i) EXPECT_EQ(status[i], 200) << "stream " << i;
+}
+
+// HEAD /stream counted as a viewer (a `--view-wait` session started for it), and the gate took
+// "/%73tream", which httplib routes to the stream, for a short-lived request and cut it after
+// 10 s. HEAD is answered with the stream's headers and opens none; the gate decodes the target
+// as the router does.
+TEST(LiveView, HeadOpensNoStreamAndTheGateDecodesTheTargetAsTheRouterDoes) {
+  auto source = std::make_unique<LiveSnapshotHistory>();
+  LiveViewServer server(ServedPage{"<html>live</html>"}, *source, 0);
+  httplib::Client client("127.0.0.1", server.port());
+  client.set_read_timeout(20, 0);  // a hang guard only
+  const auto head = client.Head("/stream");
+  ASSERT_TRUE(head);
+  EXPECT_EQ(head->status, 200);
+  EXPECT_EQ(head->get_header_value("Content-Type"), "text/event-stream");
+  EXPECT_EQ(server.streams_opened(), 0);
+  server.Stop();
+
+  EXPECT_EQ(RequestPath("GET /stream HTTP/1.1\r\n"), "/stream");
+  EXPECT_EQ(RequestPath("GET /%73tream HTTP/1.1\r\n"), "/stream");
+  EXPECT_EQ(RequestPath("GET /%73%74%72%65%61%6D?x=1 HTTP/1.1\r\n"), "/stream");
+  EXPECT_EQ(RequestPath("GET /a%2 HTTP/1.1\r\n"), "/a%2");    // not an escape: kept
+  EXPECT_EQ(RequestPath("GET /%zz HTTP/1.1\r\n"), "/%zz");
+  EXPECT_EQ(RequestPath("GARBAGE"), "");
 }
 
 // Waits up to TIMEOUT_MS for EVENTS on FD; true when they came.
