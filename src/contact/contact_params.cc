@@ -8,8 +8,10 @@ const ParamTable<ContactParams>& ContactParamTable() {
       "model", "The parameters every contact model shares: the paper's penalty law (Barbič & James 2008), the "
       "coherence bound and the haptic cycle.",
       {
-          P::Number("k_C", PARAM_MEMBER(penalty.k_C), Above(0), NoUpperBound(),
-                    "contact stiffness of one point, N/m (sec. 2.1)")
+          P::Number("k_C", PARAM_MEMBER(penalty.k_C), Above(0), AtMost(1e9),
+                    "contact stiffness of one point, N/m (sec. 2.1); at most 1e9, some 10^5 times what a haptic "
+                    "device renders stably, so that no force reaches magnitudes no report can state (9.2e18 gave "
+                    "2e17 N)")
               .Unit("N/m").Sweepable().Example("3000"),
           P::Integer("L", PARAM_MEMBER(penalty.L), 0, 1000000,
                      "contacts at which the stiffness is scaled by L / l (0: no scaling; sec. 2.1)")

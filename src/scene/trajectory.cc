@@ -153,14 +153,21 @@ P::Row Direction(std::string doc) {
           return;
         }
         s->shape.direction = Vec3(v);
-        if (s->shape.direction.norm() == 0) v.Fail("must be non-zero");
+        const double length = s->shape.direction.norm();
+        if (length == 0) v.Fail("must be non-zero");
+        // A length that overflows (components near 1e308) would normalise to zero: nothing moves.
+        if (!std::isfinite(length)) v.Fail("its length overflows; give the direction with smaller numbers");
       },
       nullptr, [](const TrajectorySpec& s) { return ShowVector(s.shape.direction); });
 }
 P::Row Tangent(std::string doc) {
   return P::Custom(
       "tangent", "vector", "[x, y, z]", std::move(doc),
-      [](const ConfigNode& v, TrajectorySpec* s) { s->shape.tangent = Vec3(v); }, nullptr,
+      [](const ConfigNode& v, TrajectorySpec* s) {
+        s->shape.tangent = Vec3(v);
+        if (!std::isfinite(s->shape.tangent.norm())) v.Fail("its length overflows; give the tangent with smaller numbers");
+      },
+      nullptr,
       [](const TrajectorySpec& s) { return ShowVector(s.shape.tangent); });
 }
 P::Row Approach() {
@@ -231,8 +238,10 @@ const std::vector<TrajectoryType>& TrajectoryTypes() {
                                           "Press to depth in the first fifth of the duration, rotate by angle about "
                                           "the direction and back in the middle three fifths, release in the last.",
                                           {Approach(), Depth(),
-                                           P::Number("angle", PARAM_MEMBER(shape.angle), NoLowerBound(),
-                                                     NoUpperBound(), "the largest rotation about the direction")
+                                           P::Number("angle", PARAM_MEMBER(shape.angle), AtLeast(-1000),
+                                                     AtMost(1000),
+                                                     "the largest rotation about the direction, at most 1,000 rad "
+                                                     "(159 turns) either way")
                                                .Unit("rad")})});
     t.push_back({"scan", ProceduralTable("scan",
                                          "Press to depth in the first fifth of the duration, sweep length along the "

@@ -273,6 +273,14 @@ TEST(Trajectory, BadKeysAreErrorsNamingTheFileLineAndKey) {
   EXPECT_NE(e.find("t.yaml:2: touch: expected true or false, got 'maybe'"), std::string::npos) << e;
   e = error("type: approach-press\ntouch_depth: 0\n");
   EXPECT_NE(e.find("t.yaml:2: touch_depth: must be positive, got 0"), std::string::npos) << e;
+  // A direction whose length overflows normalised to zero and nothing moved; a twist of 1e300
+  // rad was refused only after the run.
+  e = error("type: circle\ndirection: [1e308, 1e308, 0]\n");
+  EXPECT_NE(e.find("t.yaml:2: direction: its length overflows"), std::string::npos) << e;
+  e = error("type: slide\ntangent: [1e308, 0, 1e308]\n");
+  EXPECT_NE(e.find("t.yaml:2: tangent: its length overflows"), std::string::npos) << e;
+  e = error("type: twist\nangle: 1e300\n");
+  EXPECT_NE(e.find("t.yaml:2: angle: must be in [-1000, 1000], got 1e300"), std::string::npos) << e;
   e = error("type: twist\nangle: wide\n");
   EXPECT_NE(e.find("t.yaml:2: angle: expected a finite number, got 'wide'"), std::string::npos) << e;
 }
