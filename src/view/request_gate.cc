@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <optional>
@@ -58,6 +59,19 @@ int HexDigit(char c) {
   if (c >= 'a' && c <= 'f') return c - 'a' + 10;
   if (c >= 'A' && c <= 'F') return c - 'A' + 10;
   return -1;
+}
+
+void AddressOf(const sockaddr_storage& address, std::string& ip, int& port);
+
+// The local port of the connection FD (the server's), 0 when it cannot be read.
+int LocalPort(int fd) {
+  sockaddr_storage address{};
+  socklen_t length = sizeof address;
+  if (::getsockname(fd, reinterpret_cast<sockaddr*>(&address), &length) != 0) return 0;
+  std::string ip;
+  int port = 0;
+  AddressOf(address, ip, port);
+  return port;
 }
 
 void AddressOf(const sockaddr_storage& address, std::string& ip, int& port) {
@@ -148,6 +162,50 @@ class RunAtOnce final : public httplib::TaskQueue {
 };
 
 }  // namespace
+
+std::string_view RequestHeader(std::string_view head, std::string_view name) {
+  const std::size_t end = HeadEnd(head);
+  if (end != std::string_view::npos) head = head.substr(0, end);
+  std::size_t at = head.find('\n');  // past the request line
+  while (at != std::string_view::npos && at + 1 < head.size()) {
+    const std::size_t start = at + 1;
+    at = head.find('\n', start);
+    std::string_view line = head.substr(start, at == std::string_view::npos ? std::string_view::npos : at - start);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    const std::size_t colon = line.find(':');
+    if (colon != name.size()) continue;
+    bool same = true;
+    for (std::size_t k = 0; k < colon && same; ++k) {
+      same = std::tolower(static_cast<unsigned char>(line[k])) == std::tolower(static_cast<unsigned char>(name[k]));
+    }
+    if (!same) continue;
+    std::string_view value = line.substr(colon + 1);
+    while (!value.empty() && (value.front() == ' ' || value.front() == '\t')) value.remove_prefix(1);
+    while (!value.empty() && (value.back() == ' ' || value.back() == '\t')) value.remove_suffix(1);
+    return value;
+  }
+  return {};
+}
+
+const char* ScreenRequest(std::string_view head, int port) {
+  static constexpr const char* kMisdirected =
+      "HTTP/1.1 421 Misdirected Request\r\nConnection: close\r\nContent-Type: text/plain\r\nContent-Length: "
+      "53\r\n\r\nthe live view answers requests for its loopback host\n";
+  static constexpr const char* kOneRange =
+      "HTTP/1.1 416 Range Not Satisfiable\r\nConnection: close\r\nContent-Type: text/plain\r\nContent-Length: "
+      "44\r\n\r\nthe live view answers one range per request\n";
+  const std::string_view host = RequestHeader(head, "Host");
+  if (!host.empty()) {
+    const std::string with_port = ":" + std::to_string(port);
+    bool ours = false;
+    for (const std::string_view name : {"127.0.0.1", "localhost", "[::1]"}) {
+      ours = ours || host == name || host == std::string(name) + with_port;
+    }
+    if (!ours) return kMisdirected;
+  }
+  if (RequestHeader(head, "Range").find(',') != std::string_view::npos) return kOneRange;
+  return nullptr;
+}
 
 std::string RequestPath(std::string_view head) {
   const std::string_view target = RequestTarget(head);
@@ -321,6 +379,11 @@ void GatedHttpServer::WorkerMain() {
 // Answers the request at the start of C's head (httplib parses, routes and writes it); a
 // kept-alive connection then waits at the gate for its next request.
 void GatedHttpServer::Answer(Connection c) {
+  if (const char* refusal = ScreenRequest(c.head, LocalPort(c.fd))) {
+    [[maybe_unused]] const ssize_t n = ::send(c.fd, refusal, std::strlen(refusal), MSG_DONTWAIT | MSG_NOSIGNAL);
+    Close(c.fd);
+    return;
+  }
   const bool long_lived = long_lived_ && long_lived_(RequestPath(c.head));
   GateStream stream(c.fd, std::move(c.head), limits_.io_timeout,
                     long_lived ? std::nullopt : std::optional(Clock::now() + limits_.response_timeout));

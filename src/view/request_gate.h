@@ -31,6 +31,17 @@ namespace contactlab {
 // what the gate takes for a long-lived target is what the router will answer.
 std::string RequestPath(std::string_view head);
 
+// The value of header NAME (case-insensitive) in the request head HEAD, without surrounding
+// blanks; empty when absent.
+std::string_view RequestHeader(std::string_view head, std::string_view name);
+
+// What the gate answers itself, before httplib sees a request, or nullptr to let it through:
+// a Host that is not this loopback server (127.0.0.1, localhost or [::1], with PORT when it names
+// one) gets 421, so a web page cannot reach the server through DNS rebinding; a Range of more
+// than one part gets 416, since httplib would build the whole multipart answer in memory
+// (2,000 parts of an 8 KB header made a 1 GB answer). A request without Host (HTTP/1.0) passes.
+const char* ScreenRequest(std::string_view head, int port);
+
 struct RequestGateLimits {
   int workers = 20;                // threads answering complete requests
   int max_waiting = 256;           // connections waiting for a request head; past it the oldest is closed
