@@ -82,8 +82,8 @@ const CommandRegistration kSdfCommands([](CLI::App& app) {
       ->check(CLI::PositiveNumber);
   build->add_option("--offset", sdf->offset, "soup iso-offset in metres (default: 1.5 voxel spacings)")
       ->check(CLI::PositiveNumber);
-  build->add_option("--padding", sdf->padding, "box margin per side, fraction of the largest extent")
-      ->check(CLI::NonNegativeNumber);
+  build->add_option("--padding", sdf->padding, "box margin per side, fraction of the largest extent, 0 to 4")
+      ->check(CLI::Range(0.0, kMaxFieldPadding));
   build->add_option("--storage", sdf->storage,
                     "dense (every sample) | sparse (fine samples in a band around the surface over a "
                     "1/8-resolution field; closed meshes, resolution a multiple of 8, at least 64)");

@@ -13,6 +13,7 @@
 
 #include "contact/model_registry.h"
 #include "contact/register_contact_models.h"
+#include "sdf/build_distance_field.h"
 #include "sdf/sparse_field.h"
 #include "util/error.h"
 #include "util/hasher.h"
@@ -200,8 +201,9 @@ const ParamTable<FieldSpec>& FieldParams() {
           P::Choice("mode", PARAM_MEMBER(mode), {"auto", "closed", "soup"},
                     "closed (inside/outside by winding), soup (an iso-offset of the unsigned distance), or auto")
               .Shapes(kAll).Example("soup"),
-          P::Number("padding", PARAM_MEMBER(padding), AtLeast(0), NoUpperBound(),
-                    "margin around the bounding box, a fraction of its largest extent")
+          P::Number("padding", PARAM_MEMBER(padding), AtLeast(0), AtMost(kMaxFieldPadding),
+                    "margin around the bounding box, a fraction of its largest extent (at most 4, so that the "
+                    "body spans at least a ninth of the cells)")
               .Shapes(kAll).Example("0.2"),
           P::Number("offset", PARAM_MEMBER(offset), Above(0), NoUpperBound(), "soup iso-offset")
               .Unit("m").Shapes(kAll).Default("the builder's").Example("0.002"),

@@ -30,8 +30,8 @@ void CheckInputs(const TriangleMesh& mesh, const DistanceFieldOptions& options) 
   if (options.resolution < 8 || options.resolution > 1024) {
     Fail(where, "distance-field resolution " + std::to_string(options.resolution) + " is outside [8, 1024]");
   }
-  if (!(options.padding >= 0) || !std::isfinite(options.padding)) {
-    Fail(where, "distance-field padding must be finite and >= 0");
+  if (!(options.padding >= 0 && options.padding <= kMaxFieldPadding)) {
+    Fail(where, "distance-field padding must lie in [0, 4] (a fraction of the largest extent per side)");
   }
   if (!std::isfinite(options.soup_offset)) Fail(where, "soup offset must be finite");
   for (const auto& t : mesh.triangles) {

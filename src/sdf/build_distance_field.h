@@ -34,6 +34,11 @@ enum class FieldMode { kAuto, kClosed, kSoup };
 // field at 1/8 the resolution (sdf/sparse_field.h), for resolutions a dense grid cannot hold.
 enum class FieldStorage { kDense, kSparse };
 
+// The largest padding: a margin of 4 largest extents on each side, so that the body still spans
+// a ninth of the field's cells (a padding of 1e308 overflowed the grid and crashed the build, and
+// one of 100 left contact finer than a cell, silently giving no force).
+inline constexpr double kMaxFieldPadding = 4;
+
 struct DistanceFieldOptions {
   int resolution = 128;        // grid cells along the longest side of the padded box
   FieldMode mode = FieldMode::kAuto;  // auto: closed when the mesh validates as watertight
@@ -47,7 +52,7 @@ struct DistanceFieldOptions {
 // Builds the field of MESH (metres). Throws Error naming MESH.name for an empty mesh, a
 // resolution outside [8, 1024], or (forced closed mode) a mesh that is not watertight
 // (ValidateMesh, geometry/mesh_validation.h; auto mode uses it to pick the pipeline), a
-// negative or non-finite padding, invalid triangle indices or non-finite vertices. A sparse
+// padding outside [0, kMaxFieldPadding], invalid triangle indices or non-finite vertices. A sparse
 // field needs a closed mesh (mode auto or closed), a resolution that is a multiple of 8 and at
 // least 64, and a band of 1 to 16 voxels.
 // Parallel (TBB, all cores); show_progress draws stage progress on a terminal.

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <string>
 
+#include "geometry/procedural_shapes.h"
+#include "sdf/build_distance_field.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -159,6 +161,23 @@ TEST(Scene, ErrorsNeverEchoLongTokensOrControlBytes) {
   e = ErrorOf(Replace(kScene, "k_C: 1500", "k_C: 9.2e18"));
   EXPECT_NE(e.find("model.k_C:"), std::string::npos) << e;
   EXPECT_NE(e.find("must be in (0, 1e+09], got 9.2e18"), std::string::npos) << e;
+}
+
+// bodies[0].field.padding: 1e308 crashed the field build (a segmentation fault), and 1e30 to
+// 1e300 ended in "a sample is not finite": the padding is bounded at its key, at 4.
+TEST(Scene, AFieldPaddingOf1e308IsRefusedAtItsKey) {
+  for (const char* padding : {"1e308", "1e30", "4.5"}) {
+    const std::string e =
+        ErrorOf(Replace(kScene, "field: {resolution: 48}", std::string("field: {resolution: 48, padding: ") + padding + "}"));
+    EXPECT_NE(e.find(".field.padding: must be in [0, 4], got " + std::string(padding)), std::string::npos) << e;
+  }
+  EXPECT_EQ(Parse(Replace(kScene, "field: {resolution: 48}", "field: {resolution: 48, padding: 4}")).field_body.field.padding, 4);
+  const TriangleMesh box = MakeBox(Eigen::Vector3d(0.01, 0.01, 0.01), 1);
+  DistanceFieldOptions options;
+  options.resolution = 8;
+  options.show_progress = false;
+  options.padding = 1e308;
+  EXPECT_THROW(BuildDistanceField(box, options), Error);
 }
 
 TEST(Scene, MissingMeshKeyAndBadRolesAreRejected) {
