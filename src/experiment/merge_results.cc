@@ -6,6 +6,8 @@
 // commits as the first folder, no job twice, and every job of the sweep present unless the
 // merge is partial. Each output goes to a temporary name and is renamed at the end.
 #include <algorithm>
+#include <cstdlib>
+#include <cstdint>
 #include <set>
 
 #include <nlohmann/json.hpp>
@@ -24,13 +26,18 @@ namespace {
 // line break and that every row has as many cells as the header (cells read as the tables are
 // written, experiment/csv_line.h). Sets *BODY to the offset where the rows begin. Throws Error
 // naming the file (and the line) otherwise.
-long CheckTableRows(const fs::path& file, const std::string& text, std::size_t* body) {
+// Checks FILE's TEXT: complete rows, each of the header's shape, and, when the table has a
+// `job` column, each row's job one of JOBS (its folder's meta.json). Returns the rows; BODY is
+// where they start.
+long CheckTableRows(const fs::path& file, const std::string& text, const std::set<int>& jobs, std::size_t* body) {
   if (text.empty()) Fail(file.string(), "is empty (an unfinished job?)");
   if (text.back() != '\n') Fail(file.string(), "does not end with a line break: it was cut short (an unfinished job?)");
   CsvReader reader(text, file.string());
   std::vector<std::string> header, cells;
   reader.Next(&header);
   *body = reader.end();
+  const auto job_column = std::find(header.begin(), header.end(), "job");
+  const std::size_t job_at = std::size_t(job_column - header.begin());
   long rows = 0;
   while (reader.Next(&cells)) {
     if (cells.size() != header.size()) {
@@ -38,9 +45,30 @@ long CheckTableRows(const fs::path& file, const std::string& text, std::size_t* 
                  std::to_string(cells.size()) + " cells, the header has " + std::to_string(header.size()) +
                      " (an unfinished job?)");
     }
+    if (job_column != header.end()) {
+      const std::string& cell = cells[job_at];
+      char* end = nullptr;
+      const long job = std::strtol(cell.c_str(), &end, 10);
+      if (cell.empty() || *end != '\0' || job < 0 || job > long(kMaxSweepJobs) || jobs.count(int(job)) == 0) {
+        FailAtLine(file.string(), reader.line(),
+                   "job '" + cell + "' is none of the jobs its meta.json lists: the table and meta.json disagree");
+      }
+    }
     ++rows;
   }
   return rows;
+}
+
+// A job index or count in META_FILE's meta.json: an integer in [0, kMaxSweepJobs] (a larger one
+// would wrap in an int: 2^32 read as job 0).
+int JobNumber(const nlohmann::json& value, const fs::path& meta_file, const std::string& what) {
+  if (!value.is_number_integer() || (value.is_number_unsigned() ? value.get<std::uint64_t>() > kMaxSweepJobs
+                                                                : value.get<std::int64_t>() < 0 ||
+                                                                      value.get<std::int64_t>() > std::int64_t(kMaxSweepJobs))) {
+    Fail(meta_file.string(), what + " holds " + value.dump() + ", not a job number in [0, " +
+                                 std::to_string(kMaxSweepJobs) + "]");
+  }
+  return int(value.get<std::int64_t>());
 }
 
 // META's value of KEY as text (empty when absent), for comparing folders.
@@ -95,9 +123,10 @@ void MergeResults(const std::vector<fs::path>& job_dirs, const fs::path& out_dir
     }
     // Its jobs, none already merged.
     if (!m.contains("jobs") || !m["jobs"].is_array()) Fail(meta_file.string(), "has no list of jobs");
+    std::set<int> own;
     for (const auto& j : m["jobs"]) {
-      if (!j.is_number_integer()) Fail(meta_file.string(), "jobs holds " + j.dump() + ", not a job index");
-      const int job = j.get<int>();
+      const int job = JobNumber(j, meta_file, "jobs");
+      own.insert(job);
       if (!seen.insert(job).second) {
         Fail(meta_file.string(), "holds job " + std::to_string(job) + ", which an earlier folder holds too");
       }
@@ -110,7 +139,7 @@ void MergeResults(const std::vector<fs::path>& job_dirs, const fs::path& out_dir
       const fs::path file = dir / tables[t];
       const std::string text = ReadWholeFile(file);
       std::size_t body = 0;
-      const long n = CheckTableRows(file, text, &body);
+      const long n = CheckTableRows(file, text, own, &body);
       if (counted.contains(tables[t]) && counted[tables[t]] != n) {
         Fail(file.string(), std::to_string(n) + " rows, its meta.json counted " + counted[tables[t]].dump() +
                                 " (an unfinished or altered job?)");
@@ -129,7 +158,7 @@ void MergeResults(const std::vector<fs::path>& job_dirs, const fs::path& out_dir
   // Every sweep point present, unless the merge is partial (runs recorded before meta.json
   // counted the sweep's jobs are not checked).
   if (!options.partial && meta.contains("sweep_jobs") && meta["sweep_jobs"].is_number_integer()) {
-    const int total = meta["sweep_jobs"].get<int>();
+    const int total = JobNumber(meta["sweep_jobs"], job_dirs.front() / "meta.json", "sweep_jobs");
     std::string missing;
     int count = 0;
     for (int j = 0; j < total; ++j) {

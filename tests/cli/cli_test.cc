@@ -799,6 +799,40 @@ TEST(CliMerge, ACutShortTableIsRefusedNamingItsFile) {
   EXPECT_TRUE(std::filesystem::exists(dir / "x.html"));
 }
 
+// The merge trusted meta.json's integers: a job index of 2^32 read as 0 (the merged meta.json
+// said jobs [0, 1] while every row was job 1), sweep_jobs of 2^32 + 5 as 5, and a cycles.csv
+// whose job column disagreed with its meta.json merged silently. Each is refused naming the
+// file, and nothing is written.
+TEST(CliMerge, JobNumbersPastTheSweepBoundOrDisagreeingWithTheTablesAreRefused) {
+  TwoJobRuns runs;
+  const std::filesystem::path& dir = runs.dir.path();
+  auto edit_meta = [&](const std::string& folder, const std::string& from, const std::string& to) {
+    std::string meta = ReadWholeFile(dir / folder / "meta.json");
+    const std::size_t at = meta.find(from);
+    ASSERT_NE(at, std::string::npos) << from << " not in " << meta;
+    std::ofstream(dir / folder / "meta.json", std::ios::binary | std::ios::trunc) << meta.replace(at, from.size(), to);
+  };
+  runs.CopyFolder("f0", "big");
+  edit_meta("big", "\"jobs\": [\n    0\n  ]", "\"jobs\": [\n    4294967296\n  ]");
+  Outcome o = RunCli(runs.Merge("big f1", "m1"));
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find((dir / "big" / "meta.json").string() + ": jobs holds 4294967296, not a job number"),
+            std::string::npos) << o.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "m1"));
+  runs.CopyFolder("f0", "total");
+  edit_meta("total", "\"sweep_jobs\": 2", "\"sweep_jobs\": 4294967301");
+  o = RunCli(runs.Merge("total f1", "m2"));
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find("sweep_jobs holds 4294967301"), std::string::npos) << o.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "m2"));
+  runs.CopyFolder("f0", "other");
+  edit_meta("other", "\"jobs\": [\n    0\n  ]", "\"jobs\": [\n    1\n  ]");
+  o = RunCli(runs.Merge("other", "m3", " --partial"));
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find("is none of the jobs its meta.json lists"), std::string::npos) << o.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "m3"));
+}
+
 // A negative --job is named as such, not taken for "no --job" (which replays every job, with a
 // job selector in the page).
 TEST(CliMerge, ANegativeJobIsNotAJobIndex) {
