@@ -9,7 +9,7 @@ namespace contactlab {
 // Icosphere: 20 * 4^SUBDIVISIONS triangles, vertices exactly on the sphere of RADIUS.
 TriangleMesh MakeSphere(double radius, int subdivisions = 4);
 
-// Axis-aligned box with half extents HALF (12 triangles, or 12 * 2 * N^2 with N cuts per edge).
+// Axis-aligned box with half extents HALF: 12 N^2 triangles with N cuts per edge (12 with one).
 TriangleMesh MakeBox(const Eigen::Vector3d& half, int cuts_per_edge = 1);
 
 // Torus around the z axis: MAJOR radius of the tube centre line, MINOR tube radius.

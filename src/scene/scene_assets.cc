@@ -1,6 +1,7 @@
 #include "scene/scene_assets.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <cstdio>
 #include <iostream>
@@ -37,13 +38,26 @@ TriangleMesh MakeShape(const std::string& spec, const std::string& where) {
                       " numbers, got " + std::to_string(a.size()));
     }
   };
+  // Number I, a count of the shape's: a whole number in [LO, HI] (bounded so that no shape
+  // passes about 5 million triangles), FALLBACK when absent. 2.9 cuts were once taken for 2, and
+  // 20,000 hung the build.
+  auto count = [&](std::size_t i, int fallback, int lo, int hi, const char* what) {
+    if (i >= a.size()) return fallback;
+    if (!(a[i] >= lo && a[i] <= hi && a[i] == std::floor(a[i]))) {
+      char text[200];
+      std::snprintf(text, sizeof text, "shape '%s': %s must be a whole number in [%d, %d], got %.10g", kind.c_str(), what,
+                    lo, hi, a[i]);
+      Fail(where, text);
+    }
+    return int(a[i]);
+  };
   TriangleMesh m;
   if (kind == "sphere") {
     need(1, 2);
-    m = MakeSphere(a[0], a.size() > 1 ? int(a[1]) : 5);
+    m = MakeSphere(a[0], count(1, 5, 0, 9, "its subdivisions (20 * 4^n triangles)"));
   } else if (kind == "box") {
     need(3, 4);
-    m = MakeBox(Eigen::Vector3d(a[0], a[1], a[2]), a.size() > 3 ? int(a[3]) : 8);
+    m = MakeBox(Eigen::Vector3d(a[0], a[1], a[2]), count(3, 8, 1, 512, "its cuts per edge (12 n^2 triangles)"));
   } else if (kind == "torus") {
     need(2, 2);
     m = MakeTorus(a[0], a[1], 128, 64);
@@ -52,10 +66,12 @@ TriangleMesh MakeShape(const std::string& spec, const std::string& where) {
     m = MakeCapsule(a[0], a[1], 64, 16);
   } else if (kind == "tube") {
     need(3, 4);
-    m = MakeTube(a[0], a[1], a[2], a.size() > 3 ? int(a[3]) : 96);
+    m = MakeTube(a[0], a[1], a[2], count(3, 96, 3, 1 << 19, "its segments around (8 n triangles)"));
   } else if (kind == "bumpy-plate") {
     need(4, 5);
-    m = MakeBumpyPlate(a[0], a[1], int(a[2]), a[3], a.size() > 4 ? int(a[4]) : 128);
+    const int resolution = count(4, 128, 2, 1024, "its resolution (quads per side)");
+    m = MakeBumpyPlate(a[0], a[1], count(2, 0, 0, resolution, "its bumps per side (at most the resolution)"), a[3],
+                       resolution);
   } else {
     Fail(where, "unknown procedural shape '" + kind + "' (sphere, box, torus, capsule, tube, bumpy-plate)");
   }

@@ -227,6 +227,34 @@ TEST(SceneAssets, AnInMemoryMeshIsScaledAndCentredAsAFileIs) {
                 std::to_string(box.num_vertices()) + ")");
 }
 
+// box:...,2.9 was built with 2 cuts, box:...,20000 hung building 9.6e9 triangles, and tube:...,1e8
+// and a bumpy plate of resolution 1e5 ran out of memory: every count of a shape must be a whole
+// number within its bound, refused naming the body and the count before anything is built.
+TEST(SceneAssets, AProceduralShapesCountsAreWholeNumbersWithinTheirBounds) {
+  BodySpec b = Ball(64);
+  b.mesh_where = "s.yaml:3: bodies[0].mesh";
+  const std::pair<const char*, const char*> refused[] = {
+      {"box:0.01,0.01,0.01,2.9", "its cuts per edge (12 n^2 triangles) must be a whole number in [1, 512], got 2.9"},
+      {"box:0.01,0.01,0.01,20000", "got 20000"},
+      {"box:0.01,0.01,0.01,0", "got 0"},
+      {"sphere:0.01,10", "its subdivisions (20 * 4^n triangles) must be a whole number in [0, 9], got 10"},
+      {"tube:0.006,0.005,0.01,1e8", "its segments around (8 n triangles) must be a whole number in [3, 524288]"},
+      {"bumpy-plate:0.1,0.01,4,0.001,100000", "its resolution (quads per side) must be a whole number in [2, 1024]"},
+      {"bumpy-plate:0.1,0.01,200,0.001,128", "its bumps per side (at most the resolution) must be a whole number in [0, 128]"},
+      {"bumpy-plate:0.1,0.01,2.5,0.001", "got 2.5"},
+  };
+  for (const auto& [spec, message] : refused) {
+    b.mesh = spec;
+    const std::string e = testing::ErrorOf([&] { LoadBodyMesh(b); });
+    EXPECT_NE(e.find("s.yaml:3: bodies[0].mesh"), std::string::npos) << spec << ": " << e;
+    EXPECT_NE(e.find(message), std::string::npos) << spec << ": " << e;
+  }
+  b.mesh = "box:0.01,0.01,0.01,3";
+  EXPECT_EQ(LoadBodyMesh(b).num_triangles(), 12 * 3 * 3);  // MakeBox: 12 N^2
+  b.mesh = "sphere:0.01,2";
+  EXPECT_EQ(LoadBodyMesh(b).num_triangles(), 20 * 16);
+}
+
 TEST(SceneAssets, ProceduralShapeSpecsAreCheckedAndScaled) {
   BodySpec b = Ball(64);
   b.mesh = "sphere:0.5";
