@@ -46,7 +46,8 @@ def with_entry(array, index, value):
 
 
 def cache_files(folder):
-    return sorted(p.name for p in folder.iterdir()) if folder.exists() else []
+    """The cache entries in FOLDER, without the records they are kept with (NAME.key)."""
+    return sorted(p.name for p in folder.iterdir() if p.suffix != ".key") if folder.exists() else []
 
 
 @pytest.fixture

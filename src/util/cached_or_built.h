@@ -9,22 +9,25 @@
 #include <string>
 #include <system_error>
 
+#include "util/cache_record.h"
 #include "util/error.h"
 #include "util/input_files.h"
 
 namespace contactlab {
 
 // Reads T from CACHED with LOAD when CACHED is not empty and names a good entry; otherwise
-// BUILDs it and, when CACHED is not empty, SAVEs it there (its folder made first; a save that
-// fails with Error is reported on stderr and the built value returned all the same). A bad entry
-// (truncated, corrupt, from another version: LOAD throws Error) is reported on stderr and
-// rebuilt. VERBOSE: says on stderr which it did, naming WHAT.
+// BUILDs it and, when CACHED is not empty, SAVEs it there with its record (util/cache_record.h;
+// its folder made first; a save that fails with Error is reported on stderr and the built value
+// returned all the same). A bad entry (truncated, corrupt, from another version: LOAD throws
+// Error; or its record missing or not its own) is reported on stderr and rebuilt. VERBOSE: says
+// on stderr which it did, naming WHAT.
 template <typename T, typename Load, typename Save, typename Build>
 std::shared_ptr<const T> CachedOrBuilt(const std::filesystem::path& cached, bool verbose, const std::string& what,
                                        Load load, Save save, Build build) {
   std::error_code ec;
   if (!cached.empty() && std::filesystem::exists(cached, ec)) {
     try {
+      if (const std::string why = CacheRecordMismatch(cached); !why.empty()) Fail(cached.string(), why);
       auto value = std::make_shared<const T>(load(cached));
       if (verbose) std::cerr << "reusing " << what << " from " << cached.string() << "\n";
       return value;
@@ -41,6 +44,7 @@ std::shared_ptr<const T> CachedOrBuilt(const std::filesystem::path& cached, bool
       std::filesystem::create_directories(cached.parent_path(), ec);
       const CacheEntryWrite cache_entry;  // another job may have read the entry another job saved
       save(*value, cached);
+      WriteCacheRecord(cached);
     } catch (const Error& e) {
       std::cerr << "warning: not cached (" << e.what() << "); going on without the cache\n";
     }

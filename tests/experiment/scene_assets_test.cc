@@ -1,4 +1,6 @@
 #include "scene/scene_assets.h"
+#include "util/atomic_file.h"
+#include "util/cache_record.h"
 
 #include <gtest/gtest.h>
 
@@ -26,9 +28,13 @@ BodySpec Ball(int points, std::uint64_t seed = 1) {
   return b;
 }
 
+// Cache entries whose name starts with PREFIX (not their records, util/cache_record.h).
 int CountFiles(const std::filesystem::path& dir, const std::string& prefix) {
   int n = 0;
-  for (const auto& e : std::filesystem::directory_iterator(dir)) n += e.path().filename().string().rfind(prefix, 0) == 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    n += name.rfind(prefix, 0) == 0 && e.path().extension() != ".key";
+  }
   return n;
 }
 
@@ -39,22 +45,55 @@ TEST(SceneAssets, ASecondRunReadsFieldsAndPointshellsFromTheCache) {
   const auto shell = first.pointshell();
   EXPECT_EQ(CountFiles(dir / "cache", "field-"), 1);
   EXPECT_EQ(CountFiles(dir / "cache", "pointshell-"), 1);
-  // Swap the cached pointshell for one of another seed: a second run must return the file's
-  // content, proving it read the cache instead of rebuilding.
-  BodyAssets other(Ball(256, 7), AssetOptions{.cache_dir = dir / "other", .use_cache = true, .verbose = false});
-  std::filesystem::path cached;
-  for (const auto& e : std::filesystem::directory_iterator(dir / "cache")) {
-    if (e.path().filename().string().rfind("pointshell-", 0) == 0) cached = e.path();
-  }
-  SavePointshell(*other.pointshell(), cached);
-  BodyAssets second(Ball(256), options);
-  EXPECT_EQ(second.pointshell()->x, other.pointshell()->x);
-  EXPECT_NE(second.pointshell()->x, shell->x);
+  // A second run reads both from the cache (it says so), with the same points.
+  AssetOptions verbose = options;
+  verbose.verbose = true;
+  ::testing::internal::CaptureStderr();
+  BodyAssets second(Ball(256), verbose);
+  EXPECT_EQ(second.pointshell()->x, shell->x);
+  const std::string said = ::testing::internal::GetCapturedStderr();
+  EXPECT_NE(said.find("reusing the 256-point pointshell of ball"), std::string::npos) << said;
+  EXPECT_NE(said.find("reusing the"), said.rfind("reusing the")) << said;  // the field too
+  EXPECT_EQ(said.find("building"), std::string::npos) << said;
   // Another size is another key.
   BodyAssets bigger(Ball(512), options);
   bigger.pointshell();
   EXPECT_EQ(CountFiles(dir / "cache", "pointshell-"), 2);
   EXPECT_EQ(CountFiles(dir / "cache", "field-"), 1);  // same mesh, same field
+}
+
+// A valid pointshell of another seed saved under this entry's name was read as this entry's: the
+// cache entries did not record their key. Each entry now has a record of its name, size and
+// hash (util/cache_record.h): the foreign file is reported and this body's pointshell rebuilt,
+// and so is an entry whose record is missing.
+TEST(SceneAssets, AValidEntryOfAnotherKeyUnderThisEntrysNameIsNotUsed) {
+  testing::TempDir dir;
+  AssetOptions options{.cache_dir = dir / "cache", .use_cache = true, .verbose = false};
+  BodyAssets first(Ball(256), options);
+  const auto shell = first.pointshell();
+  BodyAssets other(Ball(256, 7), AssetOptions{.cache_dir = dir / "other", .use_cache = true, .verbose = false});
+  ASSERT_NE(other.pointshell()->x, shell->x);
+  std::filesystem::path cached;
+  for (const auto& e : std::filesystem::directory_iterator(dir / "cache")) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind("pointshell-", 0) == 0 && name.find(".key") == std::string::npos) cached = e.path();
+  }
+  ASSERT_FALSE(cached.empty());
+  EXPECT_TRUE(std::filesystem::exists(CacheRecordPath(cached)));
+  SavePointshell(*other.pointshell(), cached);
+  ::testing::internal::CaptureStderr();
+  BodyAssets second(Ball(256), options);
+  EXPECT_EQ(second.pointshell()->x, shell->x);
+  std::string said = ::testing::internal::GetCapturedStderr();
+  EXPECT_NE(said.find("differ from its record"), std::string::npos) << said;
+  // Rebuilt and saved with a new record: read back from the cache the next time.
+  EXPECT_EQ(CacheRecordMismatch(cached), "");
+  std::filesystem::remove(CacheRecordPath(cached));
+  ::testing::internal::CaptureStderr();
+  BodyAssets third(Ball(256), options);
+  EXPECT_EQ(third.pointshell()->x, shell->x);
+  said = ::testing::internal::GetCapturedStderr();
+  EXPECT_NE(said.find("no record of its key"), std::string::npos) << said;
 }
 
 // A unit cube of side 2 cm, its top face (two triangles) left out when HOLED.
