@@ -188,20 +188,27 @@ TEST(HapticLoop, TheRateIsTheInverseOfTheCycleAndTheSpinFitsInThePeriod) {
 // model.cycle_seconds: 10 once made `session --duration 1` wait 10 s for its first release
 // and end with no cycle: the loop's wait never runs past the end time. At 10 Hz (the slowest
 // rate) a 50 ms run ends at 50 ms, with no cycle, instead of at the 100 ms release.
-TEST(HapticLoop, TheWaitForASlowReleaseEndsAtTheEndTime) {
-  HalfspaceContactModel model(MakeBoxSamplePoints(Eigen::Vector3d(0.02, 0.02, 0.01), 3), 1000.0);
+// A box pressed into a halfspace at the slowest rate, 10 Hz, for DURATION_SECONDS of simulated time.
+struct SlowLoop {
+  explicit SlowLoop(double duration_seconds) {
+    config.cycle_seconds = 1.0 / kMinLoopRateHz;
+    opt.rate_hz = kMinLoopRateHz;
+    opt.spin_seconds = LoopSpinSeconds(opt.rate_hz);
+    opt.try_realtime = false;
+    opt.duration_seconds = duration_seconds;
+    opt.watchdog_seconds = 0;
+  }
+  HalfspaceContactModel model{MakeBoxSamplePoints(Eigen::Vector3d(0.02, 0.02, 0.01), 3), 1000.0};
   testing::SimulatedLoopClock clock;
-  SimDevice device(SimDeviceParams{}, [](double) { return Pose::FromTranslation(Eigen::Vector3d(0, 0, 0.005)); });
+  SimDevice device{SimDeviceParams{}, [](double) { return Pose::FromTranslation(Eigen::Vector3d(0, 0, 0.005)); }};
   HapticCycleConfig config;
-  config.cycle_seconds = 0.1;
-  HapticCycle cycle(device, &model, config);
   HapticLoopOptions opt;
-  opt.rate_hz = kMinLoopRateHz;
-  opt.spin_seconds = LoopSpinSeconds(opt.rate_hz);
-  opt.try_realtime = false;
-  opt.duration_seconds = 0.05;
-  opt.watchdog_seconds = 0;
-  HapticLoop loop(cycle, opt, clock);
+};
+
+TEST(HapticLoop, TheWaitForASlowReleaseEndsAtTheEndTime) {
+  SlowLoop s(0.05);
+  HapticCycle cycle(s.device, &s.model, s.config);
+  HapticLoop loop(cycle, s.opt, s.clock);
   const HapticLoopReport report = loop.Run();
   EXPECT_EQ(report.cycles, 0);
   EXPECT_EQ(report.run_ns, 50 * kMs);
@@ -212,29 +219,19 @@ TEST(HapticLoop, TheWaitForASlowReleaseEndsAtTheEndTime) {
 // kLoopWaitSliceNs and looks at its stop flag after each. Paused inside the first slice of a
 // 10 Hz loop's wait, a stop ends the loop at that slice's end, before the release and its cycle.
 TEST(HapticLoop, AStopDuringASlowWaitEndsTheLoopWithinASlice) {
-  HalfspaceContactModel model(MakeBoxSamplePoints(Eigen::Vector3d(0.02, 0.02, 0.01), 3), 1000.0);
-  testing::SimulatedLoopClock clock;
-  const std::int64_t start = clock.NowNs();
-  SimDevice device(SimDeviceParams{}, [](double) { return Pose::FromTranslation(Eigen::Vector3d(0, 0, 0.005)); });
-  HapticCycleConfig config;
-  config.cycle_seconds = 0.1;
-  HapticCycle cycle(device, &model, config);
-  HapticLoopOptions opt;
-  opt.rate_hz = kMinLoopRateHz;
-  opt.spin_seconds = LoopSpinSeconds(opt.rate_hz);
-  opt.try_realtime = false;
-  opt.duration_seconds = 10;
-  opt.watchdog_seconds = 0;
-  HapticLoop loop(cycle, opt, clock);
-  clock.PauseAt(start + 1);  // the first wait's first slice
+  SlowLoop s(10);
+  const std::int64_t start = s.clock.NowNs();
+  HapticCycle cycle(s.device, &s.model, s.config);
+  HapticLoop loop(cycle, s.opt, s.clock);
+  s.clock.PauseAt(start + 1);  // the first wait's first slice
   loop.Start();
-  ASSERT_TRUE(clock.WaitUntilPaused());
+  ASSERT_TRUE(s.clock.WaitUntilPaused());
   loop.RequestStop();
-  clock.Resume();
+  s.clock.Resume();
   const HapticLoopReport report = loop.Join();
   EXPECT_EQ(report.cycles, 0);
   EXPECT_EQ(report.run_ns, kLoopWaitSliceNs);
-  EXPECT_EQ(device.held_wrench().force, Eigen::Vector3d::Zero());
+  EXPECT_EQ(s.device.held_wrench().force, Eigen::Vector3d::Zero());
 }
 
 // At 10 kHz in simulated time the loop runs a cycle every 100 us: 0.2 s is 2,000 cycles with
