@@ -23,7 +23,7 @@ const ParamTable<ContactParams>& ContactParamTable() {
           P::Number("max_point_speed", PARAM_MEMBER(max_point_speed), Above(0), NoUpperBound(),
                     "largest speed of any pointshell point relative to B, which coherence assumes")
               .Unit("m/s").Sweepable().Example("0.5"),
-          P::Number("cycle_seconds", PARAM_MEMBER(cycle_seconds), AtLeast(1e-5), AtMost(0.1),
+          P::Number("cycle_seconds", PARAM_MEMBER(cycle_seconds), AtLeast(kMinCycleSeconds), AtMost(kMaxCycleSeconds),
                     "one haptic cycle (a loop of 10 Hz to 100 kHz)")
               .Unit("s").Sweepable().Example("0.002"),
           P::Number("lipschitz", PARAM_MEMBER(lipschitz), AtLeast(1), NoUpperBound(),

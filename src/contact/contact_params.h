@@ -15,6 +15,11 @@ enum class StiffnessRule {
   kMatched,  // every model's wrench scaled so a reference press gives the paper's model's force
 };
 
+// The haptic cycles a scene may ask for (model.cycle_seconds): 1e-5 s to 0.1 s, a loop of
+// 100 kHz down to 10 Hz (haptics/haptic_loop.h derives its rates from these).
+inline constexpr double kMinCycleSeconds = 1e-5;
+inline constexpr double kMaxCycleSeconds = 0.1;
+
 struct ContactParams {
   PenaltyParams penalty;         // k_C and L (sec. 2.1)
   bool coherence = false;        // temporal coherence (sec. 3), in the models that keep it

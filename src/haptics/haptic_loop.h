@@ -14,6 +14,7 @@
 #include <string>
 #include <thread>
 
+#include "contact/contact_params.h"
 #include "haptics/deadline_miss.h"
 #include "haptics/haptic_cycle.h"
 #include "haptics/spsc_ring.h"
@@ -25,12 +26,10 @@ namespace contactlab {
 // three years, far inside the int64 nanoseconds of the loop's clock (292 years).
 inline constexpr double kMaxLoopSeconds = 1e8;
 
-// The rates a loop runs at: 10 Hz to 100 kHz, i.e. a haptic cycle (a scene's
-// model.cycle_seconds) of 1e-5 s to 0.1 s.
-inline constexpr double kMinLoopRateHz = 10;
-inline constexpr double kMaxLoopRateHz = 100000;
-inline constexpr double kMinCycleSeconds = 1.0 / kMaxLoopRateHz;
-inline constexpr double kMaxCycleSeconds = 1.0 / kMinLoopRateHz;
+// The rates a loop runs at: those of the cycles a scene may ask for (contact/contact_params.h),
+// 10 Hz to 100 kHz.
+inline constexpr double kMinLoopRateHz = 1.0 / kMaxCycleSeconds;
+inline constexpr double kMaxLoopRateHz = 1.0 / kMinCycleSeconds;
 
 // The longest the loop waits without looking at its stop flag, the stop signals and its end
 // time: a wait for a release further off is taken in slices of this length.

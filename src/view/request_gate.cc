@@ -54,11 +54,11 @@ std::string_view RequestTarget(std::string_view head) {
   return head.substr(start + 1, end == std::string_view::npos ? std::string_view::npos : end - start - 1);
 }
 
-int HexDigit(char c) {
-  if (c >= '0' && c <= '9') return c - '0';
-  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-  return -1;
+// A whole answer the gate sends itself, closing the connection: STATUS ("416 Range Not
+// Satisfiable") and a plain-text BODY, its length counted.
+std::string GateAnswer(const char* status, const std::string& body) {
+  return std::string("HTTP/1.1 ") + status + "\r\nConnection: close\r\nContent-Type: text/plain\r\nContent-Length: " +
+         std::to_string(body.size()) + "\r\n\r\n" + body;
 }
 
 void AddressOf(const sockaddr_storage& address, std::string& ip, int& port);
@@ -188,12 +188,9 @@ std::string_view RequestHeader(std::string_view head, std::string_view name) {
 }
 
 const char* ScreenRequest(std::string_view head, int port) {
-  static constexpr const char* kMisdirected =
-      "HTTP/1.1 421 Misdirected Request\r\nConnection: close\r\nContent-Type: text/plain\r\nContent-Length: "
-      "53\r\n\r\nthe live view answers requests for its loopback host\n";
-  static constexpr const char* kOneRange =
-      "HTTP/1.1 416 Range Not Satisfiable\r\nConnection: close\r\nContent-Type: text/plain\r\nContent-Length: "
-      "44\r\n\r\nthe live view answers one range per request\n";
+  static const std::string kMisdirected =
+      GateAnswer("421 Misdirected Request", "the live view answers requests for its loopback host\n");
+  static const std::string kOneRange = GateAnswer("416 Range Not Satisfiable", "the live view answers one range per request\n");
   const std::string_view host = RequestHeader(head, "Host");
   if (!host.empty()) {
     const std::string with_port = ":" + std::to_string(port);
@@ -201,25 +198,14 @@ const char* ScreenRequest(std::string_view head, int port) {
     for (const std::string_view name : {"127.0.0.1", "localhost", "[::1]"}) {
       ours = ours || host == name || host == std::string(name) + with_port;
     }
-    if (!ours) return kMisdirected;
+    if (!ours) return kMisdirected.c_str();
   }
-  if (RequestHeader(head, "Range").find(',') != std::string_view::npos) return kOneRange;
+  if (RequestHeader(head, "Range").find(',') != std::string_view::npos) return kOneRange.c_str();
   return nullptr;
 }
 
 std::string RequestPath(std::string_view head) {
-  const std::string_view target = RequestTarget(head);
-  std::string path;
-  path.reserve(target.size());
-  for (std::size_t i = 0; i < target.size(); ++i) {
-    if (target[i] == '%' && i + 2 < target.size() && HexDigit(target[i + 1]) >= 0 && HexDigit(target[i + 2]) >= 0) {
-      path += char(HexDigit(target[i + 1]) * 16 + HexDigit(target[i + 2]));
-      i += 2;
-    } else {
-      path += target[i];
-    }
-  }
-  return path;
+  return httplib::detail::decode_url(std::string(RequestTarget(head)), false);  // as the router decodes it
 }
 
 GatedHttpServer::GatedHttpServer(const RequestGateLimits& limits, std::function<bool(std::string_view)> long_lived)
@@ -299,8 +285,8 @@ bool GatedHttpServer::ReadHead(Connection& c) {
     }
     return n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR);  // 0: the peer left
   }
-  const char* too_large = "HTTP/1.1 431 Request Header Fields Too Large\r\nConnection: close\r\nContent-Length: 0\r\n\r\n";
-  [[maybe_unused]] const ssize_t n = ::send(c.fd, too_large, std::strlen(too_large), MSG_DONTWAIT | MSG_NOSIGNAL);
+  static const std::string too_large = GateAnswer("431 Request Header Fields Too Large", "");
+  [[maybe_unused]] const ssize_t n = ::send(c.fd, too_large.data(), too_large.size(), MSG_DONTWAIT | MSG_NOSIGNAL);
   return false;
 }
 

@@ -170,9 +170,12 @@ void CheckClosedLoopStudy(const ExperimentConfig& config, const ConfigNode&, con
     (void)ParseLoopSpec(job.config);
     CheckClosedLoopApproach(job.scene, config.file);
     if (job.scene.model.cycle_seconds > kClosedLoopMaxCycleSeconds) {
-      char text[128];
-      std::snprintf(text, sizeof text, "model.cycle_seconds: %g s is too slow for the closed-loop study", job.scene.model.cycle_seconds);
-      Fail(config.file, std::string(text) + ", whose 200 ms windows need at least 10 cycles each: at most 0.02 s");
+      char text[200];
+      std::snprintf(text, sizeof text,
+                    "model.cycle_seconds: %g s is too slow for the closed-loop study, whose 200 ms windows need at "
+                    "least 10 cycles each: at most %g s",
+                    job.scene.model.cycle_seconds, kClosedLoopMaxCycleSeconds);
+      Fail(config.file, text);
     }
   } catch (const Error& e) {
     if (config.sweep.empty()) throw;
