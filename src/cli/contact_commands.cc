@@ -10,7 +10,9 @@
 // `contactlab models`: the registered contact models, what each needs and what it is.
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -28,6 +30,7 @@
 #include "scene/scene_world.h"
 #include "util/data_path.h"
 #include "util/error.h"
+#include "util/parse_number.h"
 
 namespace contactlab::cli {
 namespace {
@@ -44,6 +47,7 @@ struct ContactArgs {
   bool contacts = false;  // --contacts: list the model's contacts
   long long budget = -1;
   double touch = -1;  // --touch: penetration depth to move the field body to, metres (<= 0: not given)
+  std::string slide;  // --slide dx,dy,dz: the field body's slide before the query, metres
 };
 
 // --contacts as text: one row per contact, world frame.
@@ -54,22 +58,29 @@ void PrintContacts(const std::string& model_name, bool has_contacts, const Conta
     return;
   }
   const bool surface = !contacts.areas.empty();
+  const bool friction = !contacts.tangential.empty();
   std::printf("contacts: %d (world frame; normal: direction of the force on the field body)\n", contacts.size());
   if (contacts.not_kept > 0) std::printf("  (%lld more not listed)\n", static_cast<long long>(contacts.not_kept));
   if (contacts.size() == 0) return;
-  std::printf("%14s %14s %14s %10s %10s %10s %14s%s\n", "x [m]", "y [m]", "z [m]", "nx", "ny", "nz", "depth [m]",
-              surface ? "      area [m^2]  pressure [Pa]" : "");
+  std::printf("%14s %14s %14s %10s %10s %10s %14s%s%s\n", "x [m]", "y [m]", "z [m]", "nx", "ny", "nz", "depth [m]",
+              surface ? "      area [m^2]  pressure [Pa]" : "",
+              friction ? "      ft_x [N]       ft_y [N]       ft_z [N] friction" : "");
   for (int i = 0; i < contacts.size(); ++i) {
     const Eigen::Vector3d& p = contacts.points[std::size_t(i)];
     const Eigen::Vector3d& n = contacts.normals[std::size_t(i)];
     std::printf("%+14.7e %+14.7e %+14.7e %+10.6f %+10.6f %+10.6f %14.7e", p.x(), p.y(), p.z(), n.x(), n.y(), n.z(),
                 contacts.depths[std::size_t(i)]);
     if (surface) std::printf(" %15.7e %14.7e", contacts.areas[std::size_t(i)], contacts.pressures[std::size_t(i)]);
+    if (friction) {
+      const Eigen::Vector3d& t = contacts.tangential[std::size_t(i)];
+      std::printf(" %+14.7e %+14.7e %+14.7e %8s", t.x(), t.y(), t.z(), contacts.sticking[std::size_t(i)] ? "sticks" : "slides");
+    }
     std::printf("\n");
   }
 }
 
-// --contacts --json: the contacts as {points, normals, depths[, areas, pressures], not_kept}.
+// --contacts --json: the contacts as {points, normals, depths[, areas, pressures][, tangential,
+// sticking], not_kept}.
 nlohmann::json ContactsJson(const ContactList& contacts) {
   auto rows = [](const std::vector<Eigen::Vector3d>& v) {
     nlohmann::json a = nlohmann::json::array();
@@ -83,6 +94,12 @@ nlohmann::json ContactsJson(const ContactList& contacts) {
   if (!contacts.areas.empty()) {
     c["areas"] = contacts.areas;
     c["pressures"] = contacts.pressures;
+  }
+  if (!contacts.tangential.empty()) {
+    c["tangential"] = rows(contacts.tangential);
+    nlohmann::json sticking = nlohmann::json::array();
+    for (const std::uint8_t s : contacts.sticking) sticking.push_back(s != 0);
+    c["sticking"] = sticking;
   }
   c["not_kept"] = contacts.not_kept;
   return c;
@@ -120,9 +137,10 @@ std::string Joined(const std::vector<std::string>& parts) {
 // A scene of many bodies: one cycle over every pair, the tool at its scene pose or --pose-tool.
 void RunWorldContact(const ContactArgs& args, const Scene& scene, const AssetOptions& options) {
   const std::string where = args.scene;
-  if (!args.pose_a.empty() || !args.pose_b.empty() || args.touch > 0 || !args.q_a.empty() || !args.q_b.empty()) {
+  if (!args.pose_a.empty() || !args.pose_b.empty() || args.touch > 0 || !args.q_a.empty() || !args.q_b.empty() ||
+      !args.slide.empty()) {
     Fail(where, "a scene of many bodies takes --pose-tool (the tool's pose; the other bodies stay at theirs), not "
-                "--pose-a, --pose-b, --touch, --q-a or --q-b");
+                "--pose-a, --pose-b, --touch, --slide, --q-a or --q-b");
   }
   if (!args.json) {
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
@@ -256,6 +274,24 @@ void RunContact(const ContactArgs& args) {
   // --contacts: room for every contact a query of these scenes makes (more are counted).
   constexpr int kMaxContacts = 1 << 20;
   const bool has_contacts = args.contacts && model->KeepContacts(kMaxContacts);
+  // --slide: the field body moved by the slide from where it is, a query per step of at most
+  // kSlideStep, so that the models' friction anchors follow it; the query reported is the last.
+  if (!args.slide.empty()) {
+    const std::vector<double> v = ParseNumberList(args.slide, "--slide");
+    if (v.size() != 3) Fail("--slide", "needs 3 numbers dx,dy,dz (metres); got " + std::to_string(v.size()));
+    const Eigen::Vector3d slide(v[0], v[1], v[2]);
+    constexpr double kSlideStep = 1e-6, kMaxSlide = 0.1;
+    if (!(slide.norm() <= kMaxSlide)) Fail("--slide", "must be at most 0.1 m long (a query per micrometre)");
+    const int steps = std::max(1, int(std::ceil(slide.norm() / kSlideStep)));
+    const Eigen::Vector3d start = q.X_WB.translation;
+    for (int i = 0; i < steps; ++i) {
+      q.X_WB.translation = start + slide * (double(i) / steps);
+      q.cycle = i;
+      model->Evaluate(q);
+    }
+    q.X_WB.translation = start + slide;
+    q.cycle = steps;
+  }
   const auto t0 = std::chrono::steady_clock::now();
   const ContactResult r = model->Evaluate(q);
   const double micros = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
@@ -328,6 +364,10 @@ const CommandRegistration kContactCommands([](CLI::App& app) {
                   "first move the field body toward the pointshell body until this deep, metres (from --pose-b or "
                   "the scene's pose)")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--slide", args->slide,
+                  "then slide the field body by dx,dy,dz (metres, world frame, at most 0.1 m) in steps of 1 um, a "
+                  "query each, and report the last: the friction a scene's `friction:` block asks for loads and "
+                  "slips along the way");
   cmd->add_option("--q-a", args->q_a, "deformation of body A held fixed: q1,...,qr or @FILE (default: rest)");
   cmd->add_option("--q-b", args->q_b, "deformation of body B: q1,...,qr or @FILE");
   cmd->add_option("--budget", args->budget, "node budget (warm threshold, >= 0); overrides the scene's")
@@ -356,8 +396,9 @@ void ListModels() {
     add(e.needs.mesh_A, "A mesh");
     add(e.needs.field_B, "B field");
     add(e.needs.mesh_B, e.needs.closed_mesh_B ? "B closed mesh" : "B mesh");
-    std::printf("%-18s needs %-28s %s%s%s\n", name.c_str(), needs.c_str(), e.description.c_str(),
-                e.reference_only ? " [reference only]" : "", e.allocates ? " [allocates in its queries]" : "");
+    const char* friction = e.friction == FrictionSupport::kRigidBodies ? " [friction: rigid bodies]" : " [frictionless]";
+    std::printf("%-18s needs %-28s %s%s%s%s\n", name.c_str(), needs.c_str(), e.description.c_str(),
+                e.reference_only ? " [reference only]" : "", e.allocates ? " [allocates in its queries]" : "", friction);
   }
 }
 

@@ -55,6 +55,9 @@ struct ContactStats {
   // Wall time within the query spent stepping deformable bodies the model advances itself (a
   // world of many bodies steps each of its deformable bodies once per cycle), ns; 0 otherwise.
   std::int64_t step_ns = 0;
+  // Friction (contact/friction.h): contacts whose anchor slid in this query; 0 when friction
+  // is off. Those in contact less these stick.
+  std::int32_t contacts_sliding = 0;
 };
 
 struct ContactQuery {
@@ -86,19 +89,24 @@ struct ContactSurface {
 // (ContactModel::KeepContacts / LatestContacts). Entry i: POINTS[i] (metres), NORMALS[i] the
 // unit direction of the force on B at that contact, DEPTHS[i] its penetration depth (metres,
 // >= 0). A model whose contacts are pieces of a surface (pressure-field) also fills AREAS[i]
-// (m^2) and PRESSURES[i] (mean pressure over the piece, Pa); the others leave both empty. What
-// a model's contacts are is documented beside the model and in docs/models.md.
+// (m^2) and PRESSURES[i] (mean pressure over the piece, Pa); the others leave both empty. With
+// friction on (contact/friction.h), TANGENTIAL[i] is the contact's friction force on B (N) and
+// STICKING[i] 1 while it sticks, 0 when it slid; both empty with friction off. What a model's
+// contacts are is documented beside the model and in docs/models.md.
 struct ContactList {
   std::vector<Eigen::Vector3d> points;   // (N) world frame, metres
   std::vector<Eigen::Vector3d> normals;  // (N) world frame, unit: direction of the force on B
   std::vector<double> depths;            // (N) metres, >= 0
   std::vector<double> areas;             // (N) m^2, or empty
   std::vector<double> pressures;         // (N) Pa, or empty
+  std::vector<Eigen::Vector3d> tangential;  // (N) world frame, newtons, or empty: friction force on B
+  std::vector<std::uint8_t> sticking;       // (N) 1: sticks, 0: slid, or empty
   // Contacts the model used that did not fit the room KeepContacts reserved (not listed).
   std::int64_t not_kept = 0;
   int size() const { return int(points.size()); }
   void Clear() {
     points.clear(), normals.clear(), depths.clear(), areas.clear(), pressures.clear();
+    tangential.clear(), sticking.clear();
     not_kept = 0;
   }
 };

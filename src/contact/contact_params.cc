@@ -41,6 +41,8 @@ const ParamTable<ContactParams>& ContactParamTable() {
           P::Number("match_depth", PARAM_MEMBER(match_depth), Above(0), AtMost(1),
                     "stiffness: matched: how far past the meshes' first touch the reference press goes")
               .Unit("m").Sweepable().Example("0.002"),
+          P::Block("friction", PARAM_MEMBER(friction), FrictionParamTable(),
+                   "Coulomb friction {static, dynamic, stiffness} in the models that carry it (off by default)"),
       });
   return table;
 }

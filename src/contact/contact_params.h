@@ -1,9 +1,10 @@
 // The parameters every contact model shares, read from a scene's "model:" section: the penalty
-// law (Barbič & James 2008, sec. 2.1), the coherence bound (sec. 3) and the haptic cycle. A
+// law (Barbič & James 2008, sec. 2.1), the coherence bound (sec. 3), the haptic cycle and friction. A
 // model's own keys live in its own folder, in the table its registry entry carries
 // (model_registry.h, ContactModelEntry::pair_params).
 #pragma once
 
+#include "contact/friction.h"
 #include "contact/penalty_params.h"
 #include "util/param_table.h"
 
@@ -28,6 +29,7 @@ struct ContactParams {
   double lipschitz = 1.0;        // bound on |grad d| assumed by culling and coherence (paper: 1)
   StiffnessRule stiffness = StiffnessRule::kOwn;
   double match_depth = 1e-3;     // metres past first touch of the reference press (kMatched)
+  FrictionParams friction;       // off unless friction.static > 0 (contact/friction.h)
 };
 
 // The parameters above as a table (util/param_table.h): the scene's model section reads them

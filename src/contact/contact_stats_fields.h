@@ -16,7 +16,7 @@ struct ContactStatField {
   bool count;                            // an integer
 };
 
-inline constexpr std::array<ContactStatField, 10> kContactStatFields{{
+inline constexpr std::array<ContactStatField, 11> kContactStatFields{{
     {"points_in_contact", [](const ContactStats& s) { return double(s.points_in_contact); }, true},
     {"nodes_visited", [](const ContactStats& s) { return double(s.nodes_visited); }, true},
     {"level_rendered", [](const ContactStats& s) { return double(s.level_rendered); }, true},
@@ -27,6 +27,7 @@ inline constexpr std::array<ContactStatField, 10> kContactStatFields{{
     {"patches", [](const ContactStats& s) { return double(s.patches); }, true},
     {"faults", [](const ContactStats& s) { return double(s.faults); }, true},
     {"degraded", [](const ContactStats& s) { return double(s.degraded); }, true},
+    {"contacts_sliding", [](const ContactStats& s) { return double(s.contacts_sliding); }, true},
 }};
 
 }  // namespace contactlab

@@ -85,6 +85,21 @@ void CheckContactModel(std::string_view name, const ContactParams& params, const
     Fail(where, "contact model '" + std::string(name) + "' treats body B as rigid, but '" + std::string(body_B) +
                     "' is deformable (models that deform it: " + ModelsThatDeform(&ContactModelNeeds::deformable_B) + ")");
   }
+  if (params.friction.on()) {
+    if (entry->friction == FrictionSupport::kNone) {
+      std::string carry;
+      for (const std::string& n : ContactModelNames()) {
+        if (FindContactModel(n)->friction != FrictionSupport::kNone) carry += (carry.empty() ? "" : ", ") + n;
+      }
+      Fail(where, "contact model '" + std::string(name) + "' carries no friction, but friction.static is " +
+                      param_detail::Number(params.friction.mu_static) + " (models that carry it: " + carry +
+                      "; `contactlab models` lists them)");
+    }
+    if (entry->friction == FrictionSupport::kRigidBodies && (deformable_A || deformable_B)) {
+      Fail(where, "contact model '" + std::string(name) + "' carries friction between rigid bodies only, but '" +
+                      std::string(deformable_A ? body_A : body_B) + "' is deformable (set friction.static: 0 for this pair)");
+    }
+  }
   if (entry->check) entry->check(params, model_params, deformable_A, deformable_B, where);
 }
 

@@ -127,6 +127,10 @@ struct ContactModelEntry {
   // Its contacts come from the two meshes (a mesh-pair library), not from a distance field's
   // voxels: they begin within the library's own margin of the surfaces, not within a voxel.
   bool mesh_pair_contacts = false;
+  // Which bodies it carries friction between (ContactParams::friction, contact/friction.h): a
+  // scene that asks for friction is refused by a model with kNone, and by one with
+  // kRigidBodies when a body deforms.
+  FrictionSupport friction = FrictionSupport::kNone;
   // Its own keys under the scene's `model:` section (ParamBlock(ITS_TABLE)); none when it has
   // none. Entries of one folder may carry the same table: its keys are read once.
   std::optional<ModelParamBlock> pair_params;
@@ -167,7 +171,8 @@ const ContactModelEntry& SoleContactModelWith(const std::function<bool(const Con
 // Checks that model NAME can render bodies BODY_A and BODY_B (names, for messages) that deform
 // as DEFORMABLE_A and DEFORMABLE_B with PARAMS, without building anything: throws
 // Error("WHERE: unknown contact model 'x' (known: ...)") when NAME is unknown, Error when a body
-// deforms and the model does not render it, and the entry's check's errors.
+// deforms and the model does not render it, Error when PARAMS ask for friction the model does
+// not carry for these bodies, and the entry's check's errors.
 void CheckContactModel(std::string_view name, const ContactParams& params, const ParamValues& model_params,
                        std::string_view body_A, bool deformable_A, std::string_view body_B, bool deformable_B,
                        std::string_view where);

@@ -10,7 +10,8 @@ PointshellContactParams PointshellParamsOf(const ContactParams& shared, const Po
           .cycle_seconds = shared.cycle_seconds,
           .lipschitz = shared.lipschitz,
           .cold_fraction = own.cold_fraction,
-          .gradient = own.gradient};
+          .gradient = own.gradient,
+          .friction = shared.friction};
 }
 
 const ParamTable<PointshellOwnParams>& PointshellOwnParamTable() {

@@ -27,6 +27,7 @@ struct PointshellContactParams {
   double lipschitz = 1.0;        // bound on |grad d| assumed by culling and coherence (paper: 1)
   double cold_fraction = 0.8;    // V_C = cold_fraction * V_W (sec. 3, graceful degradation)
   ContactGradient gradient = ContactGradient::kHalfspace;  // sec. 5 halfspace rule, or the field's gradient
+  FrictionParams friction;       // off by default (contact/friction.h)
 };
 
 // The shared keys SHARED with the paper's own OWN.

@@ -31,6 +31,14 @@
 // and its depth -d (metres) in B's field as the query looked it up. The force on B is the sum
 // over them of k depth normal, k = k_C * stats.stiffness_scale (sec. 2.1, eq. (1)).
 //
+// Friction (contact/friction.h; rigid bodies: a scene asking for it with a deformable side is
+// refused): each point in contact holds an anchor in B's frame from its first touch until it
+// leaves contact (its index is the anchor's); its tangential force adds to the wrench with the
+// same stiffness k as its normal force. Under graceful degradation a point that the previous
+// cycle's level left out, and so has no anchor, takes over the displacement of its parent
+// node's point when the level deepens (its anchor passes to its children); the points of the
+// levels kept keep theirs. Contacts list each point's friction force and whether it sticks.
+//
 // Forces: every point in contact is added through the vectorised halfspace sums
 // (contact/halfspace_contacts.h), a buffer at a time; for a deformable side the same runs of
 // points also enter its reduced force (and its halfspace stiffness). ContactGradient::kField
@@ -49,10 +57,12 @@
 #include "contact/contact_model.h"
 #include "contact/contact_recorder.h"
 #include "contact/float_transform.h"
+#include "contact/friction.h"
 #include "contact/halfspace_contacts.h"
 #include "pointshell_contact/pointshell_contact_params.h"
 #include "pointshell_contact/pointshell_traversal.h"
 #include "pointshell_contact/reduced_force_sum.h"
+#include "util/error.h"
 
 namespace contactlab {
 
@@ -93,6 +103,19 @@ class PointshellFieldModel final : public ContactModel {
       for (auto* v : {&x_, &y_, &z_, &nx_, &ny_, &nz_}) v->assign(std::size_t(s.num_points()), 0.f);
     }
     if constexpr (Field::kDeforms) nearest_.assign(std::size_t(s.num_points()), -1);
+    if (params_.friction.on()) {
+      if constexpr (kDeforms) {
+        Fail(where, "friction is carried between rigid bodies only (set friction.static: 0)");
+      } else {
+        anchors_ = FrictionAnchors(s.num_points());
+        parent_point_.assign(std::size_t(s.num_points()), -1);
+        for (int n = 0; n < s.num_nodes(); ++n) {
+          for (std::int32_t c = s.child_begin[n] + 1; c < s.child_begin[n + 1]; ++c) {
+            parent_point_[std::size_t(s.node_point[c])] = s.node_point[n];
+          }
+        }
+      }
+    }
   }
 
   std::string_view name() const override { return variant_ == Variant::kLinear ? "pointshell-linear" : "pointshell"; }
@@ -101,6 +124,11 @@ class PointshellFieldModel final : public ContactModel {
   // body gives no force and stats.faults = 1.
   ContactResult Evaluate(const ContactQuery& query) override;
   void Reset() override {
+    ResetCoherence();
+    anchors_.Reset();
+  }
+  // Coherence and the level hysteresis; friction anchors are no such shortcut and stay.
+  void ResetCoherence() override {
     std::fill(wake_.begin(), wake_.end(), -std::numeric_limits<double>::infinity());
     traversal_.Reset();
   }
@@ -110,7 +138,7 @@ class PointshellFieldModel final : public ContactModel {
   int PointStates(const ContactQuery& query, std::span<const std::int32_t> points, PointState* out) override;
   // The points in contact (see the top of this file), recorded during Evaluate.
   bool KeepContacts(int max_contacts) override {
-    contacts_.Keep(max_contacts);
+    contacts_.Keep(max_contacts, false, params_.friction.on());
     return true;
   }
   void LatestContacts(ContactList* out) const override { contacts_.Fill(X_WB_contacts_, 1.0, out); }
@@ -137,6 +165,10 @@ class PointshellFieldModel final : public ContactModel {
   // (A's frame), written at the point's index (#P each).
   std::vector<float> x_, y_, z_, nx_, ny_, nz_;
   std::vector<std::int32_t> nearest_;  // (#P) a deformed field's proxy slot of each point in contact
+  // Friction on: each point's anchor, and the point of its node's parent (-1: a root's point, or
+  // the same point one level up).
+  FrictionAnchors anchors_;
+  std::vector<std::int32_t> parent_point_;  // (#P)
   // The contacts of the latest Evaluate, in B's frame, when kept, and B's pose then.
   ContactRecorder contacts_;
   Pose X_WB_contacts_;
@@ -154,6 +186,12 @@ struct PointshellFieldModel<Shell, Field>::Pass {
   ReducedForceSum* sum_A;            // A's reduced force, or null
   ReducedForceSum* sum_B;            // B's, or null
   double clock;  // the coherence clock of this query, metres
+  FrictionSums* friction = nullptr;  // friction on: the query's friction sums
+  // Friction on: points from this index on were left out by the previous cycle's level, and take
+  // over their parent's displacement at first touch.
+  int inherit_begin = std::numeric_limits<int>::max();
+  Eigen::Vector3d last_u = Eigen::Vector3d::Zero();  // the latest Rub's displacement and state
+  bool last_sliding = false;
 
   // Where the points in contact are found: the shell's own arrays, or the deformed ones.
   ContactPointArrays Points() const {
@@ -168,9 +206,12 @@ struct PointshellFieldModel<Shell, Field>::Pass {
     if constexpr (!kDeforms) {  // the rigid loop: one batch of lookups, then the contacts
       const int offset = index ? 0 : begin;
       m.field_.Distances(X_BA, s.x.data() + offset, s.y.data() + offset, s.z.data() + offset, index, n, d, nullptr);
-      if (m.contacts_.keeping()) [[unlikely]] {
+      if (m.contacts_.keeping() || friction != nullptr) [[unlikely]] {
         for (int k = 0; k < n; ++k) {
-          if (d[k] < 0.f) Record(index ? index[k] : begin + k, d[k]);
+          if (!(d[k] < 0.f)) continue;
+          const int i = index ? index[k] : begin + k;
+          if (friction != nullptr) Rub(i, d[k]);
+          if (m.contacts_.keeping()) Record(i, d[k]);
         }
       }
       if (contacts != nullptr) {
@@ -235,6 +276,33 @@ struct PointshellFieldModel<Shell, Field>::Pass {
     X_BA.Rotate(P.nx[i], P.ny[i], P.nz[i], n_B);
     const Eigen::Vector3d N_B(n_B[0], n_B[1], n_B[2]);
     m.contacts_.Add(Eigen::Vector3d(p_B[0], p_B[1], p_B[2]), -N_B.normalized(), -double(d));
+    if (friction != nullptr) m.contacts_.AddFriction(-double(d) * last_u, !last_sliding);
+  }
+  // Point I's position and unit inward normal in B's frame.
+  Eigen::Vector3d PointInB(const ContactPointArrays& P, int i) const {
+    float p_B[3];
+    X_BA.Apply(P.x[i], P.y[i], P.z[i], p_B);
+    return {p_B[0], p_B[1], p_B[2]};
+  }
+  // Rigid point I in contact at depth D < 0 with friction on: its anchor's update and its
+  // friction terms (contact/friction.h), in the gradient the query's rule asks for.
+  void Rub(int i, float d) {
+    const ContactPointArrays P = Points();
+    float n_B[3];
+    X_BA.Rotate(P.nx[i], P.ny[i], P.nz[i], n_B);
+    const Eigen::Vector3d p = PointInB(P, i);
+    const Eigen::Vector3d N(n_B[0], n_B[1], n_B[2]);  // unit: the shell's normals rotated
+    FrictionAnchors& anchors = m.anchors_;
+    Eigen::Vector3d inherit = Eigen::Vector3d::Zero();
+    if (i >= inherit_begin && !anchors.Alive(i)) {
+      const std::int32_t parent = m.parent_point_[std::size_t(i)];
+      if (parent >= 0 && anchors.Alive(parent)) inherit = PointInB(P, parent) - anchors.anchor(parent);
+    }
+    Eigen::Vector3d g = N;
+    if constexpr (!kDeforms) {
+      if (params().gradient == ContactGradient::kField) g = m.field_.Gradient(p);
+    }
+    last_sliding = AddFrictionContact(&anchors, friction, params().friction, i, p, N, -double(d), g, &last_u, inherit);
   }
   // Point I in contact at depth D under kField: its force, gradient and reduced forces.
   void AddOnItsOwn(int i, float d) {
@@ -325,8 +393,19 @@ ContactResult PointshellFieldModel<Shell, Field>::Evaluate(const ContactQuery& q
   }
 
   ContactAccumulator acc;
+  FrictionSums friction;
   const Pointshell& s = shell_.shell();
   Pass pass{*this, s, FloatTransform(query.X_WB.Inverse() * query.X_WA), &acc, nullptr, want_A, want_B, clock};
+  if constexpr (!kDeforms) {
+    if (params_.friction.on()) {
+      anchors_.BeginQuery();
+      pass.friction = &friction;
+      const int previous = traversal_.last_level_rendered();
+      if (variant_ == Variant::kTree && previous >= 0 && previous < max_level_) {
+        pass.inherit_begin = s.level_point_end[previous];
+      }
+    }
+  }
   const bool halfspace = params_.gradient == ContactGradient::kHalfspace;
   HalfspaceContactBuffer contacts(pass.Points(), pass.X_BA, &acc,
                                   (want_A != nullptr || want_B != nullptr) ? &Pass::OnFlush : nullptr, &pass);
@@ -338,6 +417,9 @@ ContactResult PointshellFieldModel<Shell, Field>::Evaluate(const ContactQuery& q
   }
   contacts.Flush();
   acc.Finish(params_.penalty, query.X_WB, &result);
+  if (pass.friction != nullptr) {
+    FinishFriction(friction, params_.penalty, acc.count(), params_.friction, query.X_WB, &contacts_, &result);
+  }
 
   // Force on A at a point: -k d N_A; on B: +k d N_B.
   if (want_A != nullptr || want_B != nullptr) {

@@ -38,6 +38,7 @@ std::unique_ptr<ContactModel> MakePaperModelFor(PointshellVariant variant, const
 std::unique_ptr<ContactModel> MakeDepthProbe(const ContactModelInputs& in) {
   PointshellContactParams params = PointshellParamsOf(in.params, in.Params(PointshellOwnParamTable()));
   params.level = -1;
+  params.friction = {};  // depths only
   return std::make_unique<PointshellContactModel>(PointshellContactModel::Variant::kLinear, in.A.pointshell(),
                                                   in.B.field(), params);
 }
@@ -57,6 +58,7 @@ ContactModelEntry PaperModel(PointshellVariant variant) {
         return in.A.deformable() ? MakePaperModelFor<DeformableShell>(variant, in)
                                  : MakePaperModelFor<RigidShell>(variant, in);
       },
+      .friction = FrictionSupport::kRigidBodies,
       .pair_params = ParamBlock(PointshellOwnParamTable()),
       .make_depth_probe = linear ? ContactModelFactory(MakeDepthProbe) : nullptr,
       .stiffness_reference = !linear,

@@ -713,6 +713,10 @@ const std::vector<SceneBlock>& SceneBlocks() {
     b.push_back(
       {"scene.model.", "", ModelSectionParams().SweepKeys(), ModelSectionParams().Reference("model"),
        [](const Scene& s, const std::string& k) { return ShowKey(ModelSectionParams(), s, k); }});
+    b.push_back({"scene.model.friction.", "friction_", FrictionParamTable().SweepKeys(),
+                 FrictionParamTable().Reference("model.friction", {}, "friction_"), [](const Scene& s, const std::string& k) {
+                   return ShowKey(FrictionParamTable(), s.model.friction, k);
+                 }});
     return b;
   });
 }

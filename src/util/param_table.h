@@ -150,14 +150,15 @@ class ParamTable {
     }
   }
 
-  // The block's section of the scene reference (Markdown), defaults from DEFAULTS.
-  std::string Reference(const std::string& path, const Spec& defaults = Spec()) const {
+  // The block's section of the scene reference (Markdown), defaults from DEFAULTS; a sweep names
+  // a key as ALIAS_PREFIX + key.
+  std::string Reference(const std::string& path, const Spec& defaults = Spec(), const std::string& alias_prefix = "") const {
     std::string s = "### `" + path + "`\n\n" + doc_ + "\n\n| key | type | range | default | unit | cached in | sweep axis | meaning |\n|---|---|---|---|---|---|---|---|\n";
     for (const auto& r : rows_) {
       const std::string cached = ArtefactNames(r.shapes);
       const std::string value = r.default_text.empty() ? r.show(defaults) : r.default_text;
       s += "| `" + r.key + "` | " + Cell(r.type) + " | " + Cell(r.range) + " | " + Cell(value) + " | " + r.unit +
-           " | " + cached + " | " + (r.sweep ? "`" + r.key + "`" : "") + " | " + Cell(r.doc) + " |\n";
+           " | " + cached + " | " + (r.sweep ? "`" + alias_prefix + r.key + "`" : "") + " | " + Cell(r.doc) + " |\n";
     }
     return s + "\n";
   }

@@ -84,6 +84,13 @@ TEST(ParamTable, EverySweepableSceneKeyIsASweepAxis) {
       << "bodies:\n"
          "  - {name: a, mesh: \"box:0.01,0.01,0.01\", role: pointshell, deformable: {modes: 4}}\n"
          "  - {name: b, mesh: \"box:0.03,0.03,0.01\", role: field, deformable: {field: {proxies: 20}}}\n";
+  // Friction is carried between rigid bodies only: its keys sweep over the same bodies, rigid,
+  // with friction on (a dynamic coefficient may not exceed the static one).
+  std::ofstream(dir / "rigid.yaml")
+      << "bodies:\n"
+         "  - {name: a, mesh: \"box:0.01,0.01,0.01\", role: pointshell}\n"
+         "  - {name: b, mesh: \"box:0.03,0.03,0.01\", role: field}\n"
+         "model: {friction: {static: 0.9}}\n";
   int checked = 0;
   for (const SceneBlock& block : SceneBlocks()) {
     for (const std::string& key : block.sweep_keys) {
@@ -91,6 +98,8 @@ TEST(ParamTable, EverySweepableSceneKeyIsASweepAxis) {
       const auto find = [&](const auto& table) {
         if (const auto* row = table.Find(key); row != nullptr && example.empty()) example = row->example;
       };
+      const bool friction = block.alias_prefix == "friction_";
+      if (friction) find(FrictionParamTable());  // its keys share names with the model section's
       find(FieldParams());
       find(PointshellParams());
       find(DeformableParams());
@@ -103,7 +112,8 @@ TEST(ParamTable, EverySweepableSceneKeyIsASweepAxis) {
       if (key == "node_budget") example = "500";
       ASSERT_FALSE(example.empty()) << key << " has no example value";
       const std::string axis = block.alias_prefix + key;
-      std::ofstream(dir / "run.yaml") << "name: t\nscene: scene.yaml\nmodels: [pointshell-linear]\n"
+      std::ofstream(dir / "run.yaml") << "name: t\nscene: " << (friction ? "rigid.yaml" : "scene.yaml")
+                                      << "\nmodels: [pointshell-linear]\n"
                                          "trajectory: {type: slide, duration: 0.01}\n"
                                          "sweep: {" << axis << ": [" << example << "]}\n";
       const ExperimentConfig config = LoadExperimentConfig(dir / "run.yaml");
