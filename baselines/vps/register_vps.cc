@@ -25,6 +25,7 @@ VpsContactParams VpsParams(const ContactModelInputs& in) {
   p.coherence = m.coherence;
   p.max_point_speed = m.max_point_speed;
   p.cycle_seconds = m.cycle_seconds;
+  p.friction = m.friction;
   return p;
 }
 
@@ -49,6 +50,7 @@ void RegisterVpsContactModels() {
       .description = "Voxmap-PointShell (McNeely et al. 1999/2006, distance layers after DLR): voxel-centre pointshell",
       .needs = {.field_A = true, .field_B = true, .depth_in_field_voxels = true},
       .make = MakeVps,
+      .friction = FrictionSupport::kRigidBodies,
       .pair_params = ParamBlock(VpsOwnParamTable()),
   });
   RegisterContactModel({
@@ -58,6 +60,7 @@ void RegisterVpsContactModels() {
       .make = [](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
         return std::make_unique<VpsContactModel>("vps-repulsion", in.A.pointshell(), in.B.field(), VpsParams(in));
       },
+      .friction = FrictionSupport::kRigidBodies,
       .pair_params = ParamBlock(VpsOwnParamTable()),
   });
 }

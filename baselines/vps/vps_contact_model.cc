@@ -52,6 +52,7 @@ VpsContactModel::VpsContactModel(std::string name, std::shared_ptr<const Pointsh
   interior_depth_ = params.interior_depth >= 0 ? params.interior_depth : 0.5 * std::sqrt(3.0) * v;
   for (int a = 0; a < 3; ++a) box_hi_[a] = float(voxmap_.origin()[a] + v * voxmap_.dims()[a]);
   next_check_.assign(std::size_t(shell_->num_points()), std::numeric_limits<std::int64_t>::min());
+  if (params.friction.on()) anchors_ = FrictionAnchors(shell_->num_points());
   // The order a budget visits the points in: their indices in bit-reversed order.
   const int n = shell_->num_points();
   int bits = 0;
@@ -63,7 +64,19 @@ VpsContactModel::VpsContactModel(std::string name, std::shared_ptr<const Pointsh
   }
 }
 
+void VpsContactModel::AddFriction(int i, const Eigen::Vector3d& p_B, const Eigen::Vector3d& N_B, double depth,
+                                  FrictionSums* sums) {
+  Eigen::Vector3d u;
+  const bool slid = AddFrictionContact(&anchors_, sums, params_.friction, i, p_B, N_B, depth, N_B, &u);
+  if (contacts_.keeping()) contacts_.AddFriction(depth * u, !slid);
+}
+
 void VpsContactModel::Reset() {
+  ResetCoherence();
+  anchors_.Reset();
+}
+
+void VpsContactModel::ResetCoherence() {
   std::fill(next_check_.begin(), next_check_.end(), std::numeric_limits<std::int64_t>::min());
 }
 
@@ -101,6 +114,9 @@ ContactResult VpsContactModel::Evaluate(const ContactQuery& query) {
   contacts_.Clear();
   X_WB_contacts_ = query.X_WB;
   const bool keep = contacts_.keeping();
+  const bool friction_on = params_.friction.on();
+  FrictionSums friction;
+  if (friction_on) anchors_.BeginQuery();
 
   // With a time budget, points in the bit-reversed order of their index (vps_contact_model.h).
   const std::int64_t budget = query.node_budget;
@@ -184,12 +200,17 @@ ContactResult VpsContactModel::Evaluate(const ContactQuery& query) {
     if (depth > 0) {
       acc.Add(p_B, N_B, -depth, N_B);
       if (keep) contacts_.Add(p_B, -N_B.normalized(), depth);
+      if (friction_on) AddFriction(i, p_B, N_B.normalized(), depth, &friction);
     }
   }
 
   ContactResult result;
-  if (looked_at < n) acc.Scale(double(n) / double(looked_at));
+  if (looked_at < n) {
+    acc.Scale(double(n) / double(looked_at));
+    friction.Scale(double(n) / double(looked_at));
+  }
   acc.Finish(params_.penalty, query.X_WB, &result);
+  if (friction_on) FinishFriction(friction, params_.penalty, acc.count(), params_.friction, query.X_WB, &contacts_, &result);
   result.stats.degraded = looked_at < n ? int(std::ceil(std::log2(double(n) / double(looked_at)))) : 0;
   result.stats.nodes_visited = visited;
   result.stats.nodes_skipped_coherence = skipped;

@@ -53,6 +53,11 @@
 // stats.points_in_contact: the point's world position, the direction of its force on B, -N in
 // the world, and its depth as the force model above takes it (metres).
 //
+// Friction (contact/friction.h; params.friction): each point with depth > 0 holds an anchor in
+// B's frame from its first touch until its depth is 0 again, indexed by the point, with depth
+// weight `depth` and gradient N (the halfspace rule, as the force). Under a budget the points
+// the loop does not reach lose their anchors and start afresh when it reaches them again.
+//
 // Temporal coherence (optional, McNeely 2006): a point found in a free voxel n >= 2 layers
 // from the nearest contact voxel cannot touch before it has moved (n - 1) v, so it is not
 // looked at again for ceil((n - 1) v / (max_point_speed * cycle_seconds)) cycles (a point
@@ -72,6 +77,7 @@
 #include "baselines/vps/wide_voxmap.h"
 #include "contact/contact_model.h"
 #include "contact/contact_recorder.h"
+#include "contact/friction.h"
 #include "contact/penalty_params.h"
 #include "pointshell/pointshell.h"
 #include "sdf/distance_field.h"
@@ -86,6 +92,7 @@ struct VpsContactParams {
   bool coherence = false;        // temporal coherence through the 8-bit voxmap
   double max_point_speed = 1.0;  // m/s, largest speed of any pointshell point relative to B
   double cycle_seconds = 1e-3;   // duration of one haptic cycle, seconds
+  FrictionParams friction;       // off by default
 };
 
 // What the model holds, for reports and experiments.
@@ -117,9 +124,11 @@ class VpsContactModel final : public ContactModel {
   // points looked at (see the top of this file).
   ContactResult Evaluate(const ContactQuery& query) override;
   void Reset() override;
+  // Coherence only: friction anchors are no such shortcut and stay.
+  void ResetCoherence() override;
   // The points with depth > 0 (see the top of this file), recorded during Evaluate.
   bool KeepContacts(int max_contacts) override {
-    contacts_.Keep(max_contacts);
+    contacts_.Keep(max_contacts, false, params_.friction.on());
     return true;
   }
   void LatestContacts(ContactList* out) const override { contacts_.Fill(X_WB_contacts_, 1.0, out); }
@@ -132,6 +141,10 @@ class VpsContactModel final : public ContactModel {
   VpsModelInfo info() const;
 
  private:
+  // Point I in contact at P_B with unit normal N_B and DEPTH > 0 (B's frame), friction on: its
+  // anchor and terms, into SUMS and the contacts kept.
+  void AddFriction(int i, const Eigen::Vector3d& p_B, const Eigen::Vector3d& N_B, double depth, FrictionSums* sums);
+
   std::string name_;
   std::shared_ptr<const Pointshell> shell_;
   VpsContactParams params_;
@@ -144,6 +157,7 @@ class VpsContactModel final : public ContactModel {
   // Scratch sized once at construction.
   std::vector<std::int64_t> next_check_;  // (#P) temporal coherence: first cycle to look again
   std::vector<std::int32_t> budget_order_;  // (#P) the points' indices in bit-reversed order (a budget's)
+  FrictionAnchors anchors_;   // (#P) friction on: each point's anchor
   ContactRecorder contacts_;  // the latest Evaluate's contacts, B's frame, when kept
   Pose X_WB_contacts_;        // and B's pose then
 };
