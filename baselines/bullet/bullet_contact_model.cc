@@ -12,10 +12,15 @@
 
 #include "contact/contact_accumulator.h"
 #include "contact/contact_recorder.h"
+#include "contact/friction_matching.h"
 #include "util/error.h"
 
 namespace contactlab {
 namespace {
+
+// Room for the manifold points of one query that carry friction (more are counted, none lost
+// from the normal force): GImpact reports up to 16 per overlapping triangle pair.
+constexpr int kMaxFrictionContacts = 1 << 16;
 
 btTransform ToBullet(const Pose& X) {
   const Eigen::Matrix3d R = X.R();
@@ -86,6 +91,12 @@ struct Collector final : btCollisionWorld::ContactResultCallback {
   ContactAccumulator acc;
   std::int64_t reported = 0;
   ContactRecorder contacts;  // the manifold points used (world frame), when kept
+  // Friction on: the points matched between queries, this query's sums, A's pose, B's rotation.
+  MatchedFrictionAnchors* anchors = nullptr;
+  const FrictionParams* friction = nullptr;
+  FrictionSums sums;
+  Pose X_AW;
+  Eigen::Matrix3d R_WB;
 
   btScalar addSingleResult(btManifoldPoint& cp, const btCollisionObjectWrapper* wrap0, int, int,
                            const btCollisionObjectWrapper* wrap1, int, int) override {
@@ -97,8 +108,15 @@ struct Collector final : btCollisionWorld::ContactResultCallback {
     if (!(depth > 0) || !n_W.allFinite()) return 0;
     const Eigen::Vector3d p_W = 0.5 * (FromBullet(cp.m_positionWorldOnA) + FromBullet(cp.m_positionWorldOnB));
     const Eigen::Vector3d N_B = R_BW * n_W;
-    acc.Add(R_BW * (p_W - p_WB), N_B, -depth, N_B);
+    const Eigen::Vector3d p_B = R_BW * (p_W - p_WB);
+    acc.Add(p_B, N_B, -depth, N_B);
     if (contacts.keeping()) contacts.Add(p_W, -n_W.normalized(), depth);
+    if (anchors != nullptr) {
+      const Eigen::Vector3d n_B = N_B.normalized();
+      Eigen::Vector3d u;
+      const bool slid = anchors->Add(X_AW * p_W, p_B, n_B, depth, n_B, *friction, &sums, &u);
+      if (contacts.keeping()) contacts.AddFriction(R_WB * (depth * u), !slid);
+    }
     return 0;
   }
 };
@@ -114,6 +132,7 @@ struct BulletContactModel::Impl {
   btGImpactCollisionAlgorithm::CreateFunc closest_points_func;
   BulletBody A, B;
   Collector collector;
+  MatchedFrictionAnchors anchors;  // friction on
 };
 
 BulletContactModel::BulletContactModel(std::shared_ptr<const TriangleMesh> mesh_A,
@@ -137,12 +156,19 @@ BulletContactModel::BulletContactModel(std::shared_ptr<const TriangleMesh> mesh_
   m.B.Build(*m.mesh_B, own.margin, own.shape, where + " (body B)");
   m.collector.object_B = &m.B.object;
   m.collector.margin_sum = own.subtract_margins ? 2 * own.margin : 0.0;
+  if (params.friction.on()) {
+    m.anchors = MatchedFrictionAnchors(kMaxFrictionContacts, params.friction.match_radius);
+    m.collector.anchors = &m.anchors;
+    m.collector.friction = &params_.friction;
+  }
 }
+
+void BulletContactModel::Reset() { impl_->anchors.Reset(); }
 
 BulletContactModel::~BulletContactModel() = default;
 
 bool BulletContactModel::KeepContacts(int max_contacts) {
-  impl_->collector.contacts.Keep(max_contacts);
+  impl_->collector.contacts.Keep(max_contacts, false, params_.friction.on());
   return true;
 }
 
@@ -159,10 +185,19 @@ ContactResult BulletContactModel::Evaluate(const ContactQuery& query) {
   c.acc = ContactAccumulator();
   c.reported = 0;
   c.contacts.Clear();
+  if (c.anchors != nullptr) {
+    c.anchors->BeginQuery(query.X_WB.Inverse() * query.X_WA);
+    c.sums.Clear();
+    c.X_AW = query.X_WA.Inverse();
+    c.R_WB = query.X_WB.R();
+  }
   // Manifold points of A (object 0) against B (object 1).
   m.world.contactPairTest(&m.A.object, &m.B.object, c);
   ContactResult out;
   c.acc.Finish(params_.penalty, query.X_WB, &out);
+  if (c.anchors != nullptr) {
+    FinishFriction(c.sums, params_.penalty, c.acc.count(), params_.friction, query.X_WB, &c.contacts, &out);
+  }
   out.stats.nodes_visited = c.reported;
   return out;
 }

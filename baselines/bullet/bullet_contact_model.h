@@ -40,14 +40,20 @@
 
 #include "baselines/bullet/bullet_params.h"
 #include "contact/contact_model.h"
+#include "contact/friction.h"
 #include "contact/penalty_params.h"
 #include "geometry/triangle_mesh.h"
 
 namespace contactlab {
 
+// Friction (contact/friction.h, params.friction): contactPairTest keeps no persistent manifold
+// between calls, so the manifold points are matched to the previous query's by their position
+// on A (contact/friction_matching.h, Bullet's own getCacheEntry rule: the nearest point within a
+// radius); each point's load weight is its δ, its gradient the halfspace rule's N.
 struct BulletContactParams {
   PenaltyParams penalty;  // k_C per contact and the L / l scaling, as the paper's model
   BulletOwnParams own;    // margin, its subtraction and each mesh's shape (bullet_params.h)
+  FrictionParams friction;  // off by default
 };
 
 class BulletContactModel final : public ContactModel {
@@ -67,7 +73,7 @@ class BulletContactModel final : public ContactModel {
   // btGImpactCollisionAlgorithm::gimpact_vs_gimpact) on every query. The convex-hull shape's
   // query allocates nothing beyond the pools; the convex decomposition's allocates like GImpact's.
   ContactResult Evaluate(const ContactQuery& query) override;
-  void Reset() override {}
+  void Reset() override;
   // The manifold points with δ > 0 (see the top of this file), recorded during Evaluate.
   bool KeepContacts(int max_contacts) override;
   void LatestContacts(ContactList* out) const override;

@@ -17,10 +17,12 @@ void RegisterBulletContactModels() {
       .make = [](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
         return std::make_unique<BulletContactModel>(
             in.A.mesh(), in.B.mesh(),
-            BulletContactParams{.penalty = in.params.penalty, .own = in.Params(BulletOwnParamTable())});
+            BulletContactParams{
+                .penalty = in.params.penalty, .own = in.Params(BulletOwnParamTable()), .friction = in.params.friction});
       },
       .allocates = true,  // GImpact's triangle-pair list, per query
       .mesh_pair_contacts = true,
+      .friction = FrictionSupport::kRigidBodies,
       .pair_params = ParamBlock(BulletOwnParamTable()),
   });
 }

@@ -7,6 +7,7 @@
 
 #include "contact/contact_accumulator.h"
 #include "contact/contact_recorder.h"
+#include "contact/friction_matching.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -66,6 +67,7 @@ struct FclContactModel::Impl {
   fcl::CollisionRequestd request;
   fcl::CollisionResultd result;  // reused: clear() keeps the contact vector's capacity
   ContactRecorder contacts;      // the latest query's contacts (world frame), when kept
+  MatchedFrictionAnchors anchors;  // friction on: the contacts matched between queries
 };
 
 FclContactModel::FclContactModel(std::shared_ptr<const TriangleMesh> mesh_A, std::shared_ptr<const TriangleMesh> mesh_B,
@@ -82,12 +84,15 @@ FclContactModel::FclContactModel(std::shared_ptr<const TriangleMesh> mesh_A, std
   impl_->object_A = std::make_unique<fcl::CollisionObjectd>(impl_->geometry_A);
   impl_->object_B = std::make_unique<fcl::CollisionObjectd>(impl_->geometry_B);
   impl_->request = fcl::CollisionRequestd(std::size_t(params.own.max_contacts), /*enable_contact=*/true);
+  if (params.friction.on()) impl_->anchors = MatchedFrictionAnchors(params.own.max_contacts, params.friction.match_radius);
 }
+
+void FclContactModel::Reset() { impl_->anchors.Reset(); }
 
 FclContactModel::~FclContactModel() = default;
 
 bool FclContactModel::KeepContacts(int max_contacts) {
-  impl_->contacts.Keep(max_contacts);
+  impl_->contacts.Keep(max_contacts, false, params_.friction.on());
   return true;
 }
 
@@ -110,6 +115,10 @@ ContactResult FclContactModel::Evaluate(const ContactQuery& query) {
   ContactAccumulator acc;
   m.contacts.Clear();
   const bool keep = m.contacts.keeping();
+  const bool friction_on = params_.friction.on();
+  FrictionSums friction;
+  const Pose X_AW = query.X_WA.Inverse();
+  if (friction_on) m.anchors.BeginQuery(query.X_WB.Inverse() * query.X_WA);
   const std::size_t num = m.result.numContacts();
   for (std::size_t i = 0; i < num; ++i) {
     const fcl::Contactd& c = m.result.getContact(i);
@@ -119,9 +128,16 @@ ContactResult FclContactModel::Evaluate(const ContactQuery& query) {
     const Eigen::Vector3d N_B = -(R_BW * c.normal);
     acc.Add(p_B, N_B, -depth, N_B);
     if (keep) m.contacts.Add(c.pos, c.normal.normalized(), depth);
+    if (friction_on) {
+      const Eigen::Vector3d n_B = N_B.normalized();
+      Eigen::Vector3d u;
+      const bool slid = m.anchors.Add(X_AW * c.pos, p_B, n_B, depth, n_B, params_.friction, &friction, &u);
+      if (keep) m.contacts.AddFriction(query.X_WB.R() * (depth * u), !slid);
+    }
   }
   ContactResult out;
   acc.Finish(params_.penalty, query.X_WB, &out);
+  if (friction_on) FinishFriction(friction, params_.penalty, acc.count(), params_.friction, query.X_WB, &m.contacts, &out);
   out.stats.nodes_visited = std::int64_t(num);
   return out;
 }

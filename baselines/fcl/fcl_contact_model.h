@@ -33,14 +33,19 @@
 
 #include "baselines/fcl/fcl_params.h"
 #include "contact/contact_model.h"
+#include "contact/friction.h"
 #include "contact/penalty_params.h"
 #include "geometry/triangle_mesh.h"
 
 namespace contactlab {
 
+// Friction (contact/friction.h, params.friction): FCL's contacts are new every query, so they are
+// matched to the previous query's by their position on A (contact/friction_matching.h); each
+// contact's load weight is its δ, its gradient the halfspace rule's N, as its normal force.
 struct FclContactParams {
   PenaltyParams penalty;  // k_C per contact and the L / l scaling, as the paper's model
   FclOwnParams own;       // bounding volume, contact cap and each body's shape (fcl_params.h)
+  FrictionParams friction;  // off by default
 };
 
 class FclContactModel final : public ContactModel {
@@ -59,7 +64,7 @@ class FclContactModel final : public ContactModel {
   // offered, fcl_params.h). With fcl_shape: convex, libccd's support function allocates a
   // visited-vertex list per call (Convex::findExtremeVertex).
   ContactResult Evaluate(const ContactQuery& query) override;
-  void Reset() override {}
+  void Reset() override;
   // FCL's contacts with δ > 0 (see the top of this file), recorded during Evaluate.
   bool KeepContacts(int max_contacts) override;
   void LatestContacts(ContactList* out) const override;

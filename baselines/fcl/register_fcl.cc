@@ -16,9 +16,11 @@ void RegisterFclContactModels() {
       .needs = {.mesh_A = true, .mesh_B = true},
       .make = [](const ContactModelInputs& in) -> std::unique_ptr<ContactModel> {
         return std::make_unique<FclContactModel>(
-            in.A.mesh(), in.B.mesh(), FclContactParams{.penalty = in.params.penalty, .own = in.Params(FclOwnParamTable())});
+            in.A.mesh(), in.B.mesh(), FclContactParams{
+                .penalty = in.params.penalty, .own = in.Params(FclOwnParamTable()), .friction = in.params.friction});
       },
       .mesh_pair_contacts = true,
+      .friction = FrictionSupport::kRigidBodies,
       .pair_params = ParamBlock(FclOwnParamTable()),
   });
 }
