@@ -114,6 +114,9 @@ Prepared& Prepare(const std::string& scene_file) {
   return p;
 }
 
+// The friction of the "+friction" rows (contact/friction.h): what moving/ costs with it on.
+constexpr const char* kFriction = "{friction: {static: 0.5, dynamic: 0.4, stiffness: 2000}}";
+
 ContactModel* GetModel(Prepared& p, const std::string& name, std::string* error) {
   auto it = p.models.find(name);
   if (it != p.models.end()) return it->second.get();
@@ -124,10 +127,13 @@ ContactModel* GetModel(Prepared& p, const std::string& name, std::string* error)
   }
   try {
     // "MODEL@KEY=VALUE": the model with that key of the scene's model section (e.g. its own
-    // pressure_lattice), read as a scene file reads it.
+    // pressure_lattice), read as a scene file reads it; "MODEL+friction": with kFriction.
     Scene scene = p.scene;
     std::string model = name;
-    if (const auto at = name.find('@'); at != std::string::npos) {
+    if (const auto plus = name.find("+friction"); plus != std::string::npos) {
+      model = name.substr(0, plus);
+      scene = WithModelSection(scene, ConfigNode::LoadString(kFriction, name));
+    } else if (const auto at = name.find('@'); at != std::string::npos) {
       model = name.substr(0, at);
       std::string key_value = name.substr(at + 1);
       key_value.replace(key_value.find('='), 1, ": ");
@@ -426,7 +432,7 @@ void RegisterAll() {
     }
     for (const std::string& model :
          {"pointshell", "pointshell-ccd", "pressure-field", "pressure-field@pressure_lattice=2",
-          "pressure-field@pressure_lattice=4", "inner-spheres", "fcl", "bullet"}) {
+          "pressure-field@pressure_lattice=4", "inner-spheres", "vps", "fcl", "bullet"}) {
       const bool proxy_pair = model == "pointshell" || model == "pointshell-ccd";
       for (const double speed : {1.0, 20.0}) {
         if (speed > 1 && !proxy_pair) continue;
@@ -434,6 +440,13 @@ void RegisterAll() {
                                  (speed == 1.0 ? "1m_s" : "20m_s");
         benchmark::RegisterBenchmark(name.c_str(), BM_ModelAtSpeed, scene, model, speed)->Unit(benchmark::kMicrosecond);
       }
+    }
+    // The same moving contact with friction on, for the models that carry it: friction's cost
+    // as a ratio to the row above in one run.
+    for (const char* model : {"pointshell", "vps", "fcl", "bullet"}) {
+      const std::string name = "moving/" + std::filesystem::path(scene).stem().string() + "/" + model + "+friction/1m_s";
+      benchmark::RegisterBenchmark(name.c_str(), BM_ModelAtSpeed, scene, std::string(model) + "+friction", 1.0)
+          ->Unit(benchmark::kMicrosecond);
     }
     // Deep press, unbudgeted and with each model's budget; FCL and Bullet have none.
     const std::string stem = std::filesystem::path(scene).stem().string();
