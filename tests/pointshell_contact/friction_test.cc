@@ -11,6 +11,7 @@
 
 #include "allocation_counter.h"
 #include "contact/test_shells.h"
+#include "pointshell_contact/wrench_finite_differences.h"
 #include "pointshell_contact/pointshell_contact_model.h"
 
 namespace contactlab {
@@ -172,24 +173,7 @@ TEST(Friction, TheTorqueOfASlidingPatchIsItsForceAtTheContactPoints) {
                                                                    << expected.transpose();
 }
 
-// Central differences of the wrench on B with respect to B's pose (dx, dθ), world coordinates.
-Matrix6d FiniteDifferenceGradient(PointshellContactModel& model, ContactQuery q, double eps) {
-  Matrix6d K;
-  for (int c = 0; c < 6; ++c) {
-    ContactQuery plus = q, minus = q;
-    if (c < 3) {
-      plus.X_WB.translation[c] += eps;
-      minus.X_WB.translation[c] -= eps;
-    } else {
-      Eigen::Vector3d w = Eigen::Vector3d::Zero();
-      w[c - 3] = eps;
-      plus.X_WB.rotation = (RotationFromVector(w) * q.X_WB.rotation).normalized();
-      minus.X_WB.rotation = (RotationFromVector(-w) * q.X_WB.rotation).normalized();
-    }
-    K.col(c) = (model.Evaluate(plus).on_B.AsVector() - model.Evaluate(minus).on_B.AsVector()) / (2 * eps);
-  }
-  return K;
-}
+using testing::FiniteDifferenceGradient;
 
 // Loads MODEL's anchors: A pressed at X_WA0 (B at X_WB), then moved by SHIFT while it sticks.
 ContactQuery StickAndShift(PointshellContactModel& model, const Pose& X_WB, const Pose& X_WA0,

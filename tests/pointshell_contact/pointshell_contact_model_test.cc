@@ -14,6 +14,7 @@
 #include "sdf/build_distance_field.h"
 #include "sdf/signed_distance_grid.h"
 #include "contact/test_shells.h"
+#include "pointshell_contact/wrench_finite_differences.h"
 #include "util/error.h"
 
 namespace contactlab {
@@ -296,24 +297,7 @@ TEST(PointshellContactModel, RoleReversalOnTwoSpheresAgreesAsResolutionGrows) {
   EXPECT_LT(diffs.back(), diffs.front() + 1e-3);
 }
 
-// Central differences of the wrench on B with respect to B's pose (dx, dθ) in world coordinates.
-Matrix6d FiniteDifferenceGradient(PointshellContactModel& model, ContactQuery q, double eps) {
-  Matrix6d K;
-  for (int c = 0; c < 6; ++c) {
-    ContactQuery plus = q, minus = q;
-    if (c < 3) {
-      plus.X_WB.translation[c] += eps;
-      minus.X_WB.translation[c] -= eps;
-    } else {
-      Eigen::Vector3d w = Eigen::Vector3d::Zero();
-      w[c - 3] = eps;
-      plus.X_WB.rotation = (RotationFromVector(w) * q.X_WB.rotation).normalized();
-      minus.X_WB.rotation = (RotationFromVector(-w) * q.X_WB.rotation).normalized();
-    }
-    K.col(c) = (model.Evaluate(plus).on_B.AsVector() - model.Evaluate(minus).on_B.AsVector()) / (2 * eps);
-  }
-  return K;
-}
+using testing::FiniteDifferenceGradient;
 
 TEST(PointshellContactModel, FieldGradientMatchesFiniteDifferences) {
   auto shell = SphereShell(0.05, 200, 1);
