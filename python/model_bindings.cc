@@ -155,7 +155,8 @@ ReducedState ReducedFrom(py::handle values, BodyAssets& body, const std::string&
 }
 
 // The contacts LIST as a dict of NumPy arrays: points, normals (N, 3), depths (N,), areas and
-// pressures (N,) when the model has them, not_kept (int).
+// pressures (N,) when the model has them, tangential (N, 3) and sticking (N,) with friction on,
+// not_kept (int).
 py::dict ContactsDict(const ContactList& list) {
   const py::ssize_t n = list.size();
   auto rows = [n](const std::vector<Eigen::Vector3d>& v) {
@@ -173,6 +174,12 @@ py::dict ContactsDict(const ContactList& list) {
   if (!list.areas.empty()) {
     d["areas"] = Vector(list.areas.data(), n);
     d["pressures"] = Vector(list.pressures.data(), n);
+  }
+  if (!list.tangential.empty()) {
+    d["tangential"] = rows(list.tangential);
+    py::array_t<bool> sticking(n);
+    for (py::ssize_t i = 0; i < n; ++i) sticking.mutable_data()[i] = list.sticking[std::size_t(i)] != 0;
+    d["sticking"] = sticking;
   }
   d["not_kept"] = list.not_kept;
   return d;
@@ -315,7 +322,9 @@ void BindModel(py::module_& m) {
            "_B for deformable bodies, and contacts: None unless CONTACTS is True and the model has a contact "
            "list, else a dict of the query's contacts, world frame: points (N, 3) float64 metres, normals "
            "(N, 3) unit (direction of the force on B), depths (N,) metres, areas (N,) m^2 and pressures (N,) "
-           "Pa for a surface model (pressure-field), not_kept (int: contacts past the room kept, 2^20). "
+           "Pa for a surface model (pressure-field), tangential (N, 3) newtons (each contact's friction "
+           "force on B) and sticking (N,) bool with the scene's friction on, not_kept (int: contacts past "
+           "the room kept, 2^20). "
            "Raises contactlab.ArgumentError (a ValueError) naming the argument when a "
            "pose or Q has the wrong shape or a value that is not finite, TypeError when it is not real "
            "numbers (complex, strings, None); contactlab.Error when the model refuses the query or gives a "

@@ -74,3 +74,33 @@ def test_contacts_equal_the_command_line(plate, plate_scene_file, cli_json, name
     assert sorted(expected) == sorted(c)
     for key, value in expected.items():
         assert np.asarray(c[key]).tolist() == value, key
+
+
+@pytest.mark.parametrize("name", ["pointshell", "fcl"])
+def test_friction_forces_are_returned_per_contact(data_dir, name):
+    # data/scenes/block-on-plate.yaml (friction static 0.5, dynamic 0.4, stiffness 2000): the plate
+    # slid under the block one cycle a micrometre (reset=False: the anchors carry over). After
+    # 0.1 mm every contact sticks; after 1 mm they slide, holding 0.4 of the normal force.
+    block = contactlab.Scene.load(str(data_dir / "scenes" / "block-on-plate.yaml"))
+    model = block.model(name)
+    pose_a = np.array([0.0, 0.0, 0.0095, 1.0, 0.0, 0.0, 0.0])
+    for steps, sticks in [(100, True), (1000, False)]:
+        for i in range(steps + 1):
+            pose_b = np.array([1e-6 * i, 0.0, -0.02, 1.0, 0.0, 0.0, 0.0])
+            r = model.query(pose_a, pose_b, reset=(i == 0), contacts=True)
+        c = r["contacts"]
+        n = len(c["depths"])
+        assert n > 0
+        assert c["tangential"].shape == (n, 3) and c["tangential"].dtype == np.float64
+        assert c["sticking"].shape == (n,) and c["sticking"].dtype == np.bool_
+        sliding = r["stats"]["contacts_sliding"]
+        assert int(np.count_nonzero(~c["sticking"])) == sliding
+        if sticks:
+            assert sliding == 0
+        else:  # all but the few that touch anew as the block's edge points graze the plate
+            assert sliding >= 0.95 * n
+        friction = c["tangential"].sum(axis=0)
+        assert friction[0] < 0, "the plate moved +x: friction on it points -x"
+        normal = -r["force"][2]
+        if not sticks:
+            np.testing.assert_allclose(-friction[0], 0.4 * normal, rtol=0.03)

@@ -41,6 +41,33 @@ TEST(FrictionScenes, TheBlockReadsItsCoefficientsAndTheDynamicOneDefaultsToTheSt
   EXPECT_DOUBLE_EQ(both.model.friction.mu_dynamic, 0.2);
 }
 
+TEST(FrictionScenes, APairTakesItsOwnFriction) {
+  // A tool among three bodies: friction on against the floor only, from the pair's own section.
+  const Scene scene = ParseScene(ConfigNode::LoadString(
+      "name: pairs\n"
+      "tool: ball\n"
+      "bodies:\n"
+      "  - {name: ball, mesh: \"sphere:0.02,2\", role: pointshell}\n"
+      "  - {name: floor, mesh: \"box:0.1,0.1,0.01\", pose: [0, 0, -0.01, 1, 0, 0, 0], role: field}\n"
+      "  - {name: wall, mesh: \"box:0.01,0.1,0.04\", pose: [0.03, 0, 0.04, 1, 0, 0, 0], role: field}\n"
+      "pairs:\n"
+      "  - {bodies: [ball, floor], params: {k_C: 1000, friction: {static: 0.5, dynamic: 0.4}}}\n"
+      "model: {k_C: 1000}\n",
+      "pairs.yaml"));
+  int with_friction = 0;
+  for (const PairSpec& pair : scene.pairs) {
+    const ContactParams& p = pair.has_params ? pair.params : scene.model;
+    const bool floor = scene.bodies[std::size_t(pair.bodies[1])].name == "floor" ||
+                       scene.bodies[std::size_t(pair.bodies[0])].name == "floor";
+    EXPECT_EQ(p.friction.on(), floor) << pair.where;
+    if (p.friction.on()) {
+      EXPECT_DOUBLE_EQ(p.friction.mu_dynamic, 0.4);
+      ++with_friction;
+    }
+  }
+  EXPECT_EQ(with_friction, 1);
+}
+
 TEST(FrictionScenes, BadCoefficientsAreRefusedNamingTheFileAndTheKey) {
   const struct {
     const char* model;
