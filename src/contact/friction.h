@@ -94,14 +94,13 @@ class FrictionAnchors {
  public:
   FrictionAnchors() = default;
   // Room for N contacts, all without anchor. Allocates; call when the model is built.
-  explicit FrictionAnchors(int n)
-      : anchor_(std::size_t(n), Eigen::Vector3d::Zero()), stamp_(std::size_t(n), 0u), sliding_(std::size_t(n), 0) {}
+  explicit FrictionAnchors(int n) : slots_(std::size_t(n)) {}
 
-  int size() const { return int(stamp_.size()); }
+  int size() const { return int(slots_.size()); }
   // At the start of each query: the anchors of contacts the previous query saw stay alive.
   void BeginQuery() {
     if (++epoch_ == ~0u) {  // the stamp would wrap: start over, every anchor gone
-      std::fill(stamp_.begin(), stamp_.end(), 0u);
+      for (Slot& s : slots_) s.stamp = 0;
       epoch_ = 2;
     }
   }
@@ -111,11 +110,11 @@ class FrictionAnchors {
     BeginQuery();
   }
   // True when contact I has an anchor carried over from the previous query or set in this one.
-  bool Alive(int i) const { return stamp_[std::size_t(i)] + 1 >= epoch_; }
+  bool Alive(int i) const { return slots_[std::size_t(i)].stamp + 1 >= epoch_; }
   // Contact I's anchor (B's frame), for a contact whose anchor is alive.
-  const Eigen::Vector3d& anchor(int i) const { return anchor_[std::size_t(i)]; }
+  const Eigen::Vector3d& anchor(int i) const { return slots_[std::size_t(i)].anchor; }
   // True when contact I slid in the query that last saw it.
-  bool sliding(int i) const { return sliding_[std::size_t(i)] != 0; }
+  bool sliding(int i) const { return slots_[std::size_t(i)].sliding != 0; }
 
   // Contact I at point P (B's frame) with unit normal N, this query: sets its anchor at first
   // touch (at P - INHERIT, INHERIT a displacement it takes over from a coarser contact; zero for
@@ -123,21 +122,26 @@ class FrictionAnchors {
   // u after that, with *SLIDING set when the anchor was dragged.
   Eigen::Vector3d Update(int i, const Eigen::Vector3d& p, const Eigen::Vector3d& n, const Eigen::Vector3d& inherit,
                          const FrictionParams& f, bool* sliding) {
-    const std::size_t k = std::size_t(i);
-    if (!Alive(i)) {
-      anchor_[k] = p - inherit;
-      sliding_[k] = 0;
+    Slot& s = slots_[std::size_t(i)];
+    if (s.stamp + 1 < epoch_) {  // no anchor alive
+      s.anchor = p - inherit;
+      s.sliding = 0;
     }
-    stamp_[k] = epoch_;
-    const Eigen::Vector3d u = ApplyCoulomb(p, n, f, sliding_[k] != 0, &anchor_[k], sliding);
-    sliding_[k] = *sliding ? 1 : 0;
+    s.stamp = epoch_;
+    const Eigen::Vector3d u = ApplyCoulomb(p, n, f, s.sliding != 0, &s.anchor, sliding);
+    s.sliding = *sliding ? 1 : 0;
     return u;
   }
 
  private:
-  std::vector<Eigen::Vector3d> anchor_;  // (#contacts) B's frame, metres
-  std::vector<std::uint32_t> stamp_;     // (#contacts) epoch_ of the query that last saw it; 0: never
-  std::vector<std::uint8_t> sliding_;    // (#contacts) 1: slid in that query
+  // One contact's anchor (B's frame, metres), the epoch_ of the query that last saw it (0:
+  // never) and whether it slid then: one cache line's half, read and written together.
+  struct Slot {
+    Eigen::Vector3d anchor = Eigen::Vector3d::Zero();
+    std::uint32_t stamp = 0;
+    std::uint8_t sliding = 0;
+  };
+  std::vector<Slot> slots_;  // (#contacts)
   std::uint32_t epoch_ = 2;
 };
 
@@ -167,13 +171,15 @@ class FrictionSums {
  public:
   // A contact at point Q (B's frame, relative to B's origin) with unit normal N, depth weight W
   // = |d| (its normal force is k W), depth gradient G, anchor R, tangential displacement U and
-  // SLIDING as FrictionAnchors::Update returned.
+  // SLIDING as FrictionAnchors::Update returned, under law F (a sliding contact's |u| is its
+  // rim's, mu_d / kappa).
   void Add(const Eigen::Vector3d& q, const Eigen::Vector3d& n, double w, const Eigen::Vector3d& g,
-           const Eigen::Vector3d& r, const Eigen::Vector3d& u, bool sliding) {
+           const Eigen::Vector3d& r, const Eigen::Vector3d& u, bool sliding, const FrictionParams& f) {
     const int k = count_;
     batch_.w[k] = float(w);
-    const double uu = u.squaredNorm();
-    batch_.z[k] = sliding && uu > 0 ? float(w / uu) : 0.f;
+    // w / |u|^2 for a sliding contact, without a division: |u| is the rim's.
+    const double inverse_rim2 = f.mu_dynamic > 0 ? (f.tangential_stiffness / f.mu_dynamic) * (f.tangential_stiffness / f.mu_dynamic) : 0.0;
+    batch_.z[k] = sliding ? float(w * inverse_rim2) : 0.f;
     for (int a = 0; a < 3; ++a) {
       batch_.u[a][k] = float(u[a]), batch_.N[a][k] = float(n[a]), batch_.g[a][k] = float(g[a]);
       batch_.q[a][k] = float(q[a]), batch_.r[a][k] = float(r[a]);
@@ -257,7 +263,7 @@ inline bool AddFrictionContact(FrictionAnchors* anchors, FrictionSums* sums, con
                                Eigen::Vector3d* u, const Eigen::Vector3d& inherit = Eigen::Vector3d::Zero()) {
   bool sliding = false;
   *u = anchors->Update(i, p, n, inherit, f, &sliding);
-  sums->Add(p, n, w, g, anchors->anchor(i), *u, sliding);
+  sums->Add(p, n, w, g, anchors->anchor(i), *u, sliding, f);
   return sliding;
 }
 

@@ -96,7 +96,7 @@ bool MatchedFrictionAnchors::Add(const Eigen::Vector3d& p_A, const Eigen::Vector
     ++matched_;
   }
   *u = ApplyCoulomb(p_B, n_B, f, slid_before, &c.anchor_B, &c.sliding);
-  sums->Add(p_B, n_B, w, g_B, c.anchor_B, *u, c.sliding);
+  sums->Add(p_B, n_B, w, g_B, c.anchor_B, *u, c.sliding, f);
   (a_is_current_ ? a_ : b_)[std::size_t(current_++)] = c;
   return c.sliding;
 }

@@ -561,6 +561,31 @@ class ClosedLoop(unittest.TestCase):
             self.assertEqual(by_rule["matched"][-1], "1000")
             self.assertIn("active (slide)", by_rule["matched"][header.index("2000 N/m")])
 
+    # Swept over the friction block (closed-loop-friction), a model is one line per friction label,
+    # each with its own largest stable k_VC.
+    def test_each_friction_is_its_own_line(self):
+        from figures import closed_loop
+        L = common.STABILITY
+        rows = []
+        for friction, unstable_from in (("none", 2000.0), ("0.5 / 0.4", None)):
+            for k in (1000.0, 2000.0, 5000.0):
+                bad = unstable_from is not None and k >= unstable_from
+                rows.append({"scene": "data/scenes/block-joint.yaml", "scene.model.friction": friction,
+                             L.model: "fcl", L.motion: "corner", L.k_vc: k, L.wrench_scale: 1.0,
+                             L.stable: 0 if bad else 1, L.verdict: "oscillates" if bad else "ok"})
+        with tempfile.TemporaryDirectory() as root:
+            write_table(root, "closed-loop-friction", L, ["scene", "scene.model.friction"], rows)
+            results = common.Results(root)
+            results.save = lambda fig, name, **kw: None
+            self.assertTrue(closed_loop.closed_loop_friction(results))
+            with open(os.path.join(results.out, "closed_loop_friction.md")) as f:
+                table = [line.strip("|\n ").split(" | ") for line in f if line.startswith("| ")]
+            header, body = table[0], table[1:]
+            self.assertEqual(header[:3], ["scene", "model", "friction"])
+            by_friction = {line[2]: line for line in body}
+            self.assertEqual(by_friction["none"][-1], "1000")
+            self.assertEqual(by_friction["0.5 / 0.4"][-1], "5000")
+
 
 class Reading(unittest.TestCase):
     """figures.common.read_csv reads the tables as the program writes them (RFC 4180 quoting)."""
