@@ -52,12 +52,20 @@ namespace contactlab {
 
 struct FrictionParams {
   static constexpr double kDefaultTangentialStiffness = 1000;  // kappa, 1/m
+  // A sliding contact's travel mu_d / kappa below this (metres) slides without friction: a rim
+  // of less than a picometre is no rim, and its inverse square would overflow the gradient's sums.
+  static constexpr double kSmallestRim = 1e-12;
 
   double mu_static = 0;   // mu_s; 0: no friction (the default)
   double mu_dynamic = 0;  // mu_d <= mu_s
   double tangential_stiffness = kDefaultTangentialStiffness;  // kappa: N/m of tangential stiffness per N of load
   double match_radius = 1e-3;  // m: models whose contacts are new each query match them this far (friction_matching.h)
   bool on() const { return mu_static > 0; }
+  // mu_d / kappa, the travel of a sliding contact; 0 below kSmallestRim.
+  double rim() const {
+    const double r = mu_dynamic / tangential_stiffness;
+    return r >= kSmallestRim ? r : 0.0;
+  }
 };
 
 // The `friction:` block of a scene's model section (and of a pair's).
@@ -82,7 +90,7 @@ inline Eigen::Vector3d ApplyCoulomb(const Eigen::Vector3d& p, const Eigen::Vecto
   const double limit = (slid_before ? f.mu_dynamic : f.mu_static) / f.tangential_stiffness;
   *sliding = travel2 > limit * limit;
   if (*sliding) {
-    u *= (f.mu_dynamic / f.tangential_stiffness) / std::sqrt(travel2);
+    u *= f.rim() / std::sqrt(travel2);
     *anchor = p - u - along_n * n;
   }
   return u;
@@ -177,9 +185,10 @@ class FrictionSums {
            const Eigen::Vector3d& r, const Eigen::Vector3d& u, bool sliding, const FrictionParams& f) {
     const int k = count_;
     batch_.w[k] = float(w);
-    // w / |u|^2 for a sliding contact, without a division: |u| is the rim's.
-    const double inverse_rim2 = f.mu_dynamic > 0 ? (f.tangential_stiffness / f.mu_dynamic) * (f.tangential_stiffness / f.mu_dynamic) : 0.0;
-    batch_.z[k] = sliding ? float(w * inverse_rim2) : 0.f;
+    // w / |u|^2 for a sliding contact: |u| is the rim's (0 for a rim below kSmallestRim, whose u
+    // is 0).
+    const double rim = sliding ? f.rim() : 0.0;
+    batch_.z[k] = rim > 0 ? float(w / (rim * rim)) : 0.f;
     for (int a = 0; a < 3; ++a) {
       batch_.u[a][k] = float(u[a]), batch_.N[a][k] = float(n[a]), batch_.g[a][k] = float(g[a]);
       batch_.q[a][k] = float(q[a]), batch_.r[a][k] = float(r[a]);

@@ -366,6 +366,32 @@ TEST(Friction, ContactsListTheirFrictionAndWhetherTheyStick) {
   }
 }
 
+TEST(Friction, ExtremeCoefficientsKeepTheWrenchFinite) {
+  // The block's bounds: coefficients up to 10, stiffness up to 1e9, a dynamic coefficient as
+  // small as a double allows. Sticking and sliding, the wrench and K_B stay finite, and a rim
+  // below a picometre slides without friction.
+  auto shell = FlatPatch();
+  auto field = HalfspaceField();
+  for (const double mu_d : {1e-300, 1e-20, 1e-9, 10.0}) {
+    for (const double kappa : {1e-300, 1.0, 1e9}) {
+      PointshellContactParams params = WithFriction(10, mu_d);
+      params.friction.tangential_stiffness = kappa;
+      PointshellContactModel model(Variant::kLinear, shell, field, params);
+      ContactResult r;
+      for (int i = 0; i <= 20; ++i) {
+        ContactQuery q;
+        q.X_WA = Pose::FromTranslation(Eigen::Vector3d(1e-5 * i, 0, -5e-4));
+        r = model.Evaluate(q);
+        ASSERT_TRUE(r.on_B.force.allFinite() && r.on_B.torque.allFinite() && r.K_B.allFinite())
+            << "mu_d " << mu_d << " kappa " << kappa << " step " << i;
+      }
+      if (mu_d / kappa < FrictionParams::kSmallestRim && r.stats.contacts_sliding > 0) {
+        EXPECT_NEAR(r.on_B.force.x(), 0, 1e-9) << "mu_d " << mu_d << " kappa " << kappa;
+      }
+    }
+  }
+}
+
 TEST(Friction, EvaluateAllocatesNothingWithFriction) {
   auto shell = testing::SphereShell(0.05, 48, 4);
   auto field = HalfspaceField();
