@@ -18,8 +18,8 @@
 namespace contactlab {
 namespace {
 
-// Room for the manifold points of one query that carry friction (more are counted, none lost
-// from the normal force): GImpact reports up to 16 per overlapping triangle pair.
+// Room for the manifold points of one query that carry friction (those past it carry none; their
+// normal force is kept): GImpact reports up to 16 per overlapping triangle pair.
 constexpr int kMaxFrictionContacts = 1 << 16;
 
 btTransform ToBullet(const Pose& X) {

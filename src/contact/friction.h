@@ -42,6 +42,7 @@
 #include <string_view>
 #include <vector>
 
+#include "contact/contact_accumulator.h"
 #include "contact/contact_model.h"
 #include "contact/contact_recorder.h"
 #include "contact/penalty_params.h"
@@ -104,7 +105,6 @@ class FrictionAnchors {
   // Room for N contacts, all without anchor. Allocates; call when the model is built.
   explicit FrictionAnchors(int n) : slots_(std::size_t(n)) {}
 
-  int size() const { return int(slots_.size()); }
   // At the start of each query: the anchors of contacts the previous query saw stay alive.
   void BeginQuery() {
     if (++epoch_ == ~0u) {  // the stamp would wrap: start over, every anchor gone
@@ -121,8 +121,6 @@ class FrictionAnchors {
   bool Alive(int i) const { return slots_[std::size_t(i)].stamp + 1 >= epoch_; }
   // Contact I's anchor (B's frame), for a contact whose anchor is alive.
   const Eigen::Vector3d& anchor(int i) const { return slots_[std::size_t(i)].anchor; }
-  // True when contact I slid in the query that last saw it.
-  bool sliding(int i) const { return slots_[std::size_t(i)].sliding != 0; }
 
   // Contact I at point P (B's frame) with unit normal N, this query: sets its anchor at first
   // touch (at P - INHERIT, INHERIT a displacement it takes over from a coarser contact; zero for
@@ -193,7 +191,7 @@ class FrictionSums {
       batch_.u[a][k] = float(u[a]), batch_.N[a][k] = float(n[a]), batch_.g[a][k] = float(g[a]);
       batch_.q[a][k] = float(q[a]), batch_.r[a][k] = float(r[a]);
     }
-    if (sliding) ++sliding_; else ++sticking_;
+    if (sliding) ++sliding_;
     if (++count_ == FrictionBatch::kSize) Flush();
   }
 
@@ -201,18 +199,16 @@ class FrictionSums {
   // for the whole, as ContactAccumulator::Scale).
   void Scale(double f) {
     scale_ *= f;
-    sticking_ = int(std::lround(sticking_ * f));
     sliding_ = int(std::lround(sliding_ * f));
   }
 
-  int sticking() const { return sticking_; }
   int sliding() const { return sliding_; }
   // Forgets every contact added (for sums reused from query to query).
   void Clear() {
     count_ = 0;
     totals_ = {};
     scale_ = 1;
-    sticking_ = sliding_ = 0;
+    sliding_ = 0;
   }
 
   // Adds the friction wrench and its gradient to OUT (world frame, torque about B's origin) for
@@ -231,12 +227,12 @@ class FrictionSums {
     const double c = k * kappa * scale_;
     Matrix6d K;
     K.block<3, 3>(0, 0) = M(t.pass1 + 6) - sw * I + wNN + M(t.pass2);
-    K.block<3, 3>(0, 3) = M(t.pass2 + 13) + Skew(V(t.pass1 + 22)) - M(t.pass3) - M(t.pass3 + 9);
-    K.block<3, 3>(3, 0) = M(t.pass3 + 18) - Skew(V(t.pass2 + 9)) + M(t.pass4) + M(t.pass4 + 9);
+    K.block<3, 3>(0, 3) = M(t.pass2 + 13) + ContactAccumulator::Skew(V(t.pass1 + 22)) - M(t.pass3) - M(t.pass3 + 9);
+    K.block<3, 3>(3, 0) = M(t.pass3 + 18) - ContactAccumulator::Skew(V(t.pass2 + 9)) + M(t.pass4) + M(t.pass4 + 9);
     K.block<3, 3>(3, 3) = M(t.pass4 + 18) + M(t.pass5) - swqr * I - M(t.pass5 + 9) - M(t.pass5 + 18);
     const Eigen::Vector3d F_B = c * V(t.pass1);
     Matrix6d K_B = c * K;
-    K_B.block<3, 3>(3, 0) += Skew(F_B);
+    K_B.block<3, 3>(3, 0) += ContactAccumulator::Skew(F_B);
     const Eigen::Matrix3d R = X_WB.R();
     out->on_B.force += R * F_B;
     out->on_B.torque += R * (c * V(t.pass1 + 3));
@@ -244,12 +240,6 @@ class FrictionSums {
     Rb.block<3, 3>(0, 0) = R;
     Rb.block<3, 3>(3, 3) = R;
     out->K_B += Rb * K_B * Rb.transpose();
-  }
-
-  static Eigen::Matrix3d Skew(const Eigen::Vector3d& v) {
-    Eigen::Matrix3d S;
-    S << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-    return S;
   }
 
  private:
@@ -260,7 +250,7 @@ class FrictionSums {
   int count_ = 0;  // contacts in batch_
   FrictionBatchTotals totals_;
   double scale_ = 1;
-  int sticking_ = 0, sliding_ = 0;
+  int sliding_ = 0;  // contacts that slid, counted as Scale counts them
 };
 
 // One contact of a query with friction on: its anchor's update (FrictionAnchors::Update) and its

@@ -36,8 +36,6 @@ void MatchedFrictionAnchors::BeginQuery(const Pose& X_BA) {
   a_is_current_ = !a_is_current_;
   previous_ = current_;
   current_ = 0;
-  dropped_ = 0;
-  matched_ = 0;
   if (++stamp_ == 0) {  // the stamp wrapped: clear it
     std::fill(slot_stamp_.begin(), slot_stamp_.end(), 0u);
     stamp_ = 1;
@@ -82,7 +80,6 @@ bool MatchedFrictionAnchors::Add(const Eigen::Vector3d& p_A, const Eigen::Vector
                                  double w, const Eigen::Vector3d& g_B, const FrictionParams& f, FrictionSums* sums,
                                  Eigen::Vector3d* u) {
   if (current_ >= int(a_.size())) {
-    ++dropped_;
     u->setZero();
     return false;
   }
@@ -93,7 +90,6 @@ bool MatchedFrictionAnchors::Add(const Eigen::Vector3d& p_A, const Eigen::Vector
     const Contact& p = prev[std::size_t(j)];
     c.anchor_B = p.anchor_B + (p_B - X_BA_ * p.p_A);  // its displacement, carried over
     slid_before = p.sliding;
-    ++matched_;
   }
   *u = ApplyCoulomb(p_B, n_B, f, slid_before, &c.anchor_B, &c.sliding);
   sums->Add(p_B, n_B, w, g_B, c.anchor_B, *u, c.sliding, f);

@@ -8,7 +8,7 @@
 // one; a previous contact no one takes over is gone. The search is a spatial hash of the previous
 // contacts with cells of the radius, so a query costs O(contacts) whatever their number.
 // Everything is sized at load for CAPACITY contacts a query; past it a contact carries no friction
-// (counted, dropped()). Allocation-free and throws nothing after construction.
+// (its normal force is untouched). Allocation-free and throws nothing after construction.
 #pragma once
 
 #include <Eigen/Core>
@@ -39,10 +39,6 @@ class MatchedFrictionAnchors {
   bool Add(const Eigen::Vector3d& p_A, const Eigen::Vector3d& p_B, const Eigen::Vector3d& n_B, double w,
            const Eigen::Vector3d& g_B, const FrictionParams& f, FrictionSums* sums, Eigen::Vector3d* u);
 
-  // Contacts of the latest query past the capacity, and those of it that took over an anchor.
-  std::int64_t dropped() const { return dropped_; }
-  int matched() const { return matched_; }
-
  private:
   struct Contact {
     Eigen::Vector3d p_A;       // where it is on A
@@ -65,8 +61,6 @@ class MatchedFrictionAnchors {
   std::vector<std::uint32_t> slot_stamp_;
   std::vector<std::int32_t> next_;
   std::uint32_t stamp_ = 0;
-  std::int64_t dropped_ = 0;
-  int matched_ = 0;
 };
 
 }  // namespace contactlab
