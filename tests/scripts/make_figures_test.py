@@ -587,6 +587,63 @@ class ClosedLoop(unittest.TestCase):
             self.assertEqual(by_friction["0.5 / 0.4"][-1], "5000")
 
 
+class Extraction(unittest.TestCase):
+    """extraction_friction: the closed form of a preloaded peg, and the table's errors against it."""
+
+    # The mean distance from the axis over a regular polygon's sides, against a brute-force
+    # average of points spread evenly along one side.
+    def test_mean_radius_is_the_average_over_a_side(self):
+        from figures import extraction
+        for radius, segments in ((0.004, 64), (1.0, 3), (0.0039, 192)):
+            a, b = radius * math.cos(math.pi / segments), radius * math.sin(math.pi / segments)
+            n = 200000
+            brute = sum(math.hypot(a, -b + 2 * b * (i + 0.5) / n) for i in range(n)) / n
+            self.assertAlmostEqual(extraction.mean_radius(radius, segments) / brute, 1.0, places=9)
+            self.assertLess(extraction.mean_radius(radius, segments), radius)
+
+    def test_overlap(self):
+        from figures import extraction as e
+        self.assertAlmostEqual(e.overlap(0.0), 2 * e.HOLE_H)
+        self.assertAlmostEqual(e.overlap(e.PEG_H - e.HOLE_H + 0.001), 2 * e.HOLE_H - 0.001)
+        self.assertEqual(e.overlap(e.PEG_H + e.HOLE_H + 0.001), 0.0)
+
+    # A per-point model whose friction is 3 % above the closed form everywhere (plus an end push
+    # the frictionless run also has, which the figure subtracts) reads +3.0 % in every column; a
+    # model without the closed form reads "-"; a run without its frictionless twin is refused.
+    def test_errors_against_the_closed_form(self):
+        from figures import extraction as e
+        C = common.CYCLES
+        mu_s, mu_d, kappa = 0.5, 0.4, 1000.0
+        rows = []
+        for model in ("pointshell", "fcl"):
+            for label in ("none", "0.5 / 0.4"):
+                for i in range(1400):
+                    s = 1e-5 * i
+                    whole = e.load_per_length("normal") * e.overlap(s)
+                    # Sticks up to mu_s / kappa of travel, then slides at mu_d.
+                    friction = whole * (kappa * s if s <= mu_s / kappa else mu_d)
+                    push = -0.7 if s > 0.003 else 0.0
+                    force = push + (1.03 * friction if label != "none" else 0.0)
+                    rows.append({"roles": "normal", "scene.model.friction": label, C.model: model, C.cycle: i,
+                                 C.z: s, C.fz: -force})
+        with tempfile.TemporaryDirectory() as root:
+            write_table(root, "extraction-friction", C, ["roles", "scene.model.friction"], rows)
+            results = common.Results(root)
+            results.save = lambda fig, name, **kw: None
+            self.assertTrue(e.extraction_friction(results))
+            with open(os.path.join(results.out, "extraction_friction.md")) as f:
+                table = [line.strip("|\n ").split(" | ") for line in f if line.startswith("| ")]
+            header, body = table[0], table[1:]
+            by_model = {line[1]: dict(zip(header, line)) for line in body}
+            for column in ("vs mu_s load", "vs mu_d load", "vs closed form"):
+                self.assertEqual(by_model["pointshell"][column], "+3.0 %", column)
+                self.assertEqual(by_model["fcl"][column], "-", column)
+            kept = [r for r in rows if not (r[C.model] == "fcl" and r["scene.model.friction"] == "none")]
+            write_table(root, "extraction-friction", C, ["roles", "scene.model.friction"], kept)
+            with self.assertRaisesRegex(ValueError, "fcl .* no frictionless run"):
+                e.extraction_friction(common.Results(root))
+
+
 class Reading(unittest.TestCase):
     """figures.common.read_csv reads the tables as the program writes them (RFC 4180 quoting)."""
 
